@@ -1,0 +1,25 @@
+/* apps/conegraph/commands.h: the subcommands of `conegraph`, one file each (cmd_NAME.c).
+ *
+ * Declares: cg_command, cg_commands, cg_command_count, one cmd_NAME() per subcommand.
+ *
+ * Each command returns the process exit code: 0 done, 1 failed while running,
+ * 2 bad input or usage. Each answers --help with its own usage.
+ */
+#ifndef CONEGRAPH_COMMANDS_H
+#define CONEGRAPH_COMMANDS_H
+
+typedef int (*cg_command_fn)(int argc, char **argv);
+
+typedef struct cg_command {
+    const char *name;
+    cg_command_fn run;
+    const char *summary;
+} cg_command;
+
+int cmd_version(int argc, char **argv);
+
+/* One line per command; keep them in the order `conegraph --help` lists them. */
+#define CG_COMMAND_LIST                                                                   \
+    { "version", cmd_version, "print the version of conegraph and of its libraries" },
+
+#endif

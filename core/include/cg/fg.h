@@ -1,0 +1,274 @@
+/* cg/fg.h: the frame graph: pass types, their parameters and resources, compile and execute.
+ *
+ * Declares:
+ *   pass types   FG_ABI_VERSION, fg_param_type, fg_param_desc, fg_pass_type
+ *   resources    fg_resource_kind, fg_access, fg_resource_desc, fg_resource_bytes
+ *   registry     fg_registry, fg_registry_create, fg_registry_destroy, fg_registry_add,
+ *                fg_registry_find, fg_registry_count, fg_registry_at, fg_registry_load_plugin,
+ *                fg_registry_load_plugin_dirs, fg_plugin_register_fn
+ *   declare      fg_declare, fg_declare_input, fg_declare_output, fg_declare_nothing_to_do
+ *   pass access  fg_pass, fg_pass_name, fg_pass_type_of, fg_pass_frame, fg_param_int,
+ *                fg_param_float, fg_param_bool, fg_param_enum, fg_param_string,
+ *                fg_input_present, fg_texture, fg_buffer, fg_resource
+ *   graph        fg_graph, fg_source_loc, fg_graph_create, fg_graph_destroy, fg_graph_add_pass,
+ *                fg_graph_set_param, fg_graph_connect, fg_graph_mark_output, fg_graph_compile,
+ *                fg_graph_prepare, fg_graph_execute, introspection and report functions
+ *
+ * A pass type is static data plus four callbacks. A pass instance (fg_pass) is a node of
+ * a graph with parameter values. declare() states the instance's inputs and outputs for
+ * the current parameters and scene; the graph validates, culls, orders, allocates and
+ * inserts memory barriers; prepare() compiles shaders once; execute() runs every frame.
+ * Built-in passes and plugins register through the same fg_registry_add().
+ */
+#ifndef CG_FG_H
+#define CG_FG_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <glad/gl.h>
+
+#include "cg/camera.h"
+#include "cg/error.h"
+#include "cg/gpu_scene.h"
+#include "cg/scene.h"
+
+/* Bumped whenever fg_pass_type or any function a pass calls changes incompatibly. */
+#define FG_ABI_VERSION 1u
+
+/* ---------------------------------------------------------------- parameters */
+
+typedef enum fg_param_type {
+    FG_PARAM_INT,
+    FG_PARAM_FLOAT,
+    FG_PARAM_BOOL,
+    FG_PARAM_ENUM,          /* one of `choices`, "a|b|c"; the value is the index */
+    FG_PARAM_STRING
+} fg_param_type;
+
+typedef struct fg_param_desc {
+    const char *name;
+    fg_param_type type;
+    double default_value;   /* int, float, bool (0 or 1), enum (index) */
+    double min, max;        /* int and float: inclusive range, checked on every assignment */
+    const char *choices;    /* enum: "a|b|c"; string: the default value */
+    const char *doc;        /* one line, shown by `conegraph passes`, docs and the demo */
+} fg_param_desc;
+
+/* ---------------------------------------------------------------- resources */
+
+typedef enum fg_resource_kind {
+    FG_TEXTURE_2D,
+    FG_TEXTURE_3D,
+    FG_TEXTURE_2D_ARRAY,
+    FG_BUFFER
+} fg_resource_kind;
+
+/* How a pass touches a resource; the graph derives glMemoryBarrier bits from the
+ * writer's and the reader's access. Bits may be combined. */
+typedef enum fg_access {
+    FG_ACCESS_SAMPLED     = 1 << 0, /* texture()/texelFetch() */
+    FG_ACCESS_IMAGE_LOAD  = 1 << 1, /* imageLoad */
+    FG_ACCESS_IMAGE_STORE = 1 << 2, /* imageStore / imageAtomic* */
+    FG_ACCESS_ATTACHMENT  = 1 << 3, /* framebuffer colour or depth attachment */
+    FG_ACCESS_STORAGE     = 1 << 4, /* SSBO read or write */
+    FG_ACCESS_UNIFORM     = 1 << 5, /* UBO */
+    FG_ACCESS_TRANSFER    = 1 << 6  /* glTexSubImage, glClearTexImage, glGenerateMipmap, glGetTexImage */
+} fg_access;
+
+typedef struct fg_resource_desc {
+    fg_resource_kind kind;
+    GLenum format;          /* sized internal format (GL_RGBA16F, GL_DEPTH_COMPONENT32F, ...); 0 for buffers */
+    int width, height;      /* texels */
+    int depth;              /* 3D: depth; 2D array: layers; else 1 */
+    int levels;             /* mip levels, >= 1 */
+    size_t buffer_bytes;    /* buffers */
+    bool persistent;        /* kept across frames (never pooled) */
+    bool gi;                /* counts towards the GI memory metric (lightmaps, volumes, tables) */
+} fg_resource_desc;
+
+/* Bytes a resource occupies, mip chain included. */
+size_t fg_resource_bytes(const fg_resource_desc *desc);
+/* Full mip chain length for a size. */
+int fg_mip_levels(int width, int height, int depth);
+
+/* ---------------------------------------------------------------- pass types */
+
+typedef struct fg_pass fg_pass;
+typedef struct fg_declare fg_declare;
+
+/* What every pass sees of the frame. */
+typedef struct fg_frame {
+    const cg_scene *scene;
+    const cg_gpu_scene *gpu_scene;  /* NULL when compiling without GL */
+    cg_view view;                   /* camera for the output image */
+    int width, height;              /* output image size */
+    uint64_t index;                 /* frame number, from 0 */
+} fg_frame;
+
+typedef struct fg_pass_type {
+    uint32_t abi_version;           /* FG_ABI_VERSION at the pass's build */
+    const char *name;
+    const char *doc;                /* one paragraph; cite the paper and equation */
+    const fg_param_desc *params;
+    int param_count;
+    bool side_effect;               /* never culled (e.g. writes a file) */
+    /* Required. States inputs and outputs via fg_declare_*; may read parameters and fg_pass_frame(). */
+    bool (*declare)(fg_pass *pass, fg_declare *decl, cg_error *err);
+    /* Optional. GL is current: compile programs, allocate private state. Called once after compile. */
+    bool (*prepare)(fg_pass *pass, void **state, cg_error *err);
+    /* Required. Runs the pass for fg_pass_frame(pass). */
+    bool (*execute)(fg_pass *pass, void *state, cg_error *err);
+    /* Optional. Frees what prepare made; GL is current. */
+    void (*destroy)(void *state);
+} fg_pass_type;
+
+/* Declares an input slot. `kind` is what the pass accepts; the graph checks the connected output against it.
+ * Returns the connected resource's descriptor, or NULL when unconnected or absent. */
+const fg_resource_desc *fg_declare_input(fg_declare *decl, const char *name, fg_resource_kind kind,
+                                         unsigned access, bool required);
+/* Declares an output; `access` is how this pass writes it. */
+void fg_declare_output(fg_declare *decl, const char *name, const fg_resource_desc *desc, unsigned access);
+/* The pass has nothing to do for this scene and parameters (e.g. no height-field mesh):
+ * it is culled and its outputs are absent. */
+void fg_declare_nothing_to_do(fg_declare *decl, const char *why);
+
+const char *fg_pass_name(const fg_pass *pass);
+const fg_pass_type *fg_pass_type_of(const fg_pass *pass);
+const fg_frame *fg_pass_frame(const fg_pass *pass);
+
+/* Parameter values of this instance (defaults, file values, --set overrides). Asking for a
+ * name the pass type does not declare is a programming error: it aborts with a message. */
+int fg_param_int(const fg_pass *pass, const char *name);
+float fg_param_float(const fg_pass *pass, const char *name);
+bool fg_param_bool(const fg_pass *pass, const char *name);
+int fg_param_enum(const fg_pass *pass, const char *name);
+const char *fg_param_string(const fg_pass *pass, const char *name);
+
+/* During execute: resources of this pass by slot name (inputs and outputs). */
+bool fg_input_present(const fg_pass *pass, const char *name);
+GLuint fg_texture(const fg_pass *pass, const char *name);   /* 0 when absent */
+GLuint fg_buffer(const fg_pass *pass, const char *name);    /* 0 when absent */
+const fg_resource_desc *fg_resource(const fg_pass *pass, const char *name); /* NULL when absent */
+
+/* ---------------------------------------------------------------- registry and plugins */
+
+typedef struct fg_registry fg_registry;
+
+/* The one symbol a plugin exports: `bool conegraph_plugin_register(fg_registry *, uint32_t host_abi, cg_error *)`.
+ * A plugin must refuse (CG_ERR_PLUGIN_ABI) when host_abi differs from its FG_ABI_VERSION. */
+typedef bool (*fg_plugin_register_fn)(fg_registry *registry, uint32_t host_abi, cg_error *err);
+#define FG_PLUGIN_ENTRY "conegraph_plugin_register"
+
+fg_registry *fg_registry_create(void);
+void fg_registry_destroy(fg_registry *registry);
+/* Checks the descriptor (ABI version, unique name, parameter table sane, callbacks present). */
+bool fg_registry_add(fg_registry *registry, const fg_pass_type *type, cg_error *err);
+const fg_pass_type *fg_registry_find(const fg_registry *registry, const char *name);
+int fg_registry_count(const fg_registry *registry);
+const fg_pass_type *fg_registry_at(const fg_registry *registry, int index);
+/* dlopen()s a shared object and calls its entry point. */
+bool fg_registry_load_plugin(fg_registry *registry, const char *path, cg_error *err);
+/* Loads every *.so in each directory of a ':'-separated list (e.g. $CONEGRAPH_PLUGIN_PATH). */
+bool fg_registry_load_plugin_dirs(fg_registry *registry, const char *dirs, cg_error *err);
+
+/* ---------------------------------------------------------------- graphs */
+
+typedef struct fg_graph fg_graph;
+
+/* Where a graph element came from, for error messages; file NULL for graphs built in code. */
+typedef struct fg_source_loc {
+    const char *file;
+    int line, column;
+} fg_source_loc;
+
+fg_graph *fg_graph_create(const fg_registry *registry);
+void fg_graph_destroy(fg_graph *graph);
+
+/* Adds a pass instance; names are unique. loc may be NULL. */
+bool fg_graph_add_pass(fg_graph *graph, const char *name, const char *type,
+                       const fg_source_loc *loc, cg_error *err);
+/* Sets a parameter from text ("9", "0.5", "true", "anisotropic"), validated against the table. */
+bool fg_graph_set_param(fg_graph *graph, const char *pass, const char *param, const char *value,
+                        const fg_source_loc *loc, cg_error *err);
+/* Connects input slot `input` of `pass` to `source`: "pass.output", or "pass" for the
+ * output of the same name as the input, or that pass's only output. A source ending in
+ * "@previous" reads the value of the previous frame (the one edge a cycle may go through). */
+bool fg_graph_connect(fg_graph *graph, const char *pass, const char *input, const char *source,
+                      const fg_source_loc *loc, cg_error *err);
+/* Marks "pass.output" as a graph output (kept, never pooled, readable after execute). */
+bool fg_graph_mark_output(fg_graph *graph, const char *source, const fg_source_loc *loc, cg_error *err);
+
+typedef enum fg_timing_mode {
+    FG_TIMING_NONE,
+    FG_TIMING_QUERIES,      /* GL_TIMESTAMP queries read back a frame late (GPUs) */
+    FG_TIMING_SYNC          /* glFinish + CPU clock around each pass (llvmpipe) */
+} fg_timing_mode;
+
+typedef struct fg_compile_options {
+    bool no_pool;               /* give every transient resource its own texture (for measurement) */
+    size_t max_gpu_memory;      /* bytes; 0 = no limit */
+    int max_texture_size_2d;    /* 0 = ask GL (or no check without GL) */
+    int max_texture_size_3d;
+} fg_compile_options;
+
+/* Declares, validates, culls, orders, computes lifetimes, assigns pooled storage and
+ * barriers. Needs no GL (frame->gpu_scene may be NULL). Errors name the pass, the field
+ * and the file location when known. Can be called again after parameter changes. */
+bool fg_graph_compile(fg_graph *graph, const fg_frame *frame, const fg_compile_options *options,
+                      cg_error *err);
+/* Creates GL storage and calls each live pass's prepare(). GL must be current. */
+bool fg_graph_prepare(fg_graph *graph, cg_error *err);
+/* Runs one frame: per live pass, its barrier, a timestamp, execute(), a timestamp. */
+bool fg_graph_execute(fg_graph *graph, const fg_frame *frame, fg_timing_mode timing, cg_error *err);
+
+/* ------------------------------------------------ introspection and report (after compile) */
+
+int fg_graph_pass_count(const fg_graph *graph);
+fg_pass *fg_graph_pass_at(const fg_graph *graph, int index);       /* file order */
+fg_pass *fg_graph_find_pass(const fg_graph *graph, const char *name);
+bool fg_pass_is_culled(const fg_pass *pass);
+const char *fg_pass_cull_reason(const fg_pass *pass);              /* NULL when live */
+/* Execution order: number of live passes; order[i] is an index into file order. */
+int fg_graph_order(const fg_graph *graph, const int **order);
+/* Memory barrier bits issued before this pass. */
+GLbitfield fg_pass_barrier_bits(const fg_pass *pass);
+
+typedef struct fg_resource_info {
+    const char *name;           /* "pass.output" */
+    fg_resource_desc desc;
+    bool absent;                /* writer culled or had nothing to do */
+    int writer;                 /* pass index (file order) */
+    int first_use, last_use;    /* positions in the execution order */
+    int storage;                /* physical storage slot; equal slots share one GL object */
+    size_t bytes;
+} fg_resource_info;
+
+int fg_graph_resource_count(const fg_graph *graph);
+const fg_resource_info *fg_graph_resource_at(const fg_graph *graph, int index);
+/* GL object of a resource by "pass.output", 0 if absent (after prepare). */
+GLuint fg_graph_texture(const fg_graph *graph, const char *source);
+const fg_resource_info *fg_graph_find_resource(const fg_graph *graph, const char *source);
+int fg_graph_output_count(const fg_graph *graph);
+const char *fg_graph_output_at(const fg_graph *graph, int index);
+
+typedef struct fg_memory_report {
+    size_t resource_bytes;      /* sum over live resources, as if none were pooled */
+    size_t allocated_bytes;     /* sum over physical storage slots (what the pool allocates) */
+    size_t peak_bytes;          /* largest sum of simultaneously live storage during a frame */
+    size_t gi_bytes;            /* resources flagged gi: the papers' memory metric */
+} fg_memory_report;
+
+void fg_graph_memory_report(const fg_graph *graph, fg_memory_report *out);
+/* Milliseconds of the last timed frame (queries: the frame before); -1 when not measured. */
+double fg_pass_milliseconds(const fg_pass *pass);
+
+/* Human-readable table of per-pass times and resource bytes. */
+void fg_graph_print_report(const fg_graph *graph, FILE *out);
+/* The same as JSON, written atomically. */
+bool fg_graph_write_report_json(const fg_graph *graph, const char *path, cg_error *err);
+/* Graphviz DOT of the compiled graph: culled passes dashed, resource sizes on the edges. */
+void fg_graph_write_dot(const fg_graph *graph, FILE *out);
+
+#endif

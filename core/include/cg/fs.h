@@ -1,0 +1,36 @@
+/* cg/fs.h: file helpers: whole-file reads and atomic writes.
+ *
+ * Declares: cg_read_file, cg_atomic_file, cg_atomic_open, cg_atomic_commit, cg_atomic_abort,
+ *           cg_temp_path_for.
+ *
+ * Outputs are written to a temporary file beside the target and renamed into place,
+ * so that a failure never leaves a partial or clobbered file.
+ */
+#ifndef CG_FS_H
+#define CG_FS_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdio.h>
+
+#include "cg/error.h"
+
+/* Reads a whole file, NUL-terminated; the caller frees *data. */
+bool cg_read_file(const char *path, char **data, size_t *size, cg_error *err);
+
+/* "DIR/.NAME.tmp-PID-N" beside `path`, for libraries that write by path (OIIO, tinygltf). */
+bool cg_temp_path_for(const char *path, char *out, size_t out_size);
+
+typedef struct cg_atomic_file {
+    FILE *fp;
+    char path[4096];
+    char temp_path[4096];
+} cg_atomic_file;
+
+bool cg_atomic_open(cg_atomic_file *f, const char *path, cg_error *err);
+/* Flushes, closes and renames into place. */
+bool cg_atomic_commit(cg_atomic_file *f, cg_error *err);
+/* Closes and removes the temporary file. */
+void cg_atomic_abort(cg_atomic_file *f);
+
+#endif

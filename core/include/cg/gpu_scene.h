@@ -1,0 +1,55 @@
+/* cg/gpu_scene.h: a cg_scene uploaded to GL buffers and textures, and the one way passes draw it.
+ *
+ * Declares: cg_gpu_scene, cg_gpu_scene_upload, cg_gpu_scene_destroy, cg_gpu_scene_draw,
+ *           cg_mesh_filter.
+ *
+ * Shader interface (shaders/common/scene.glsl): vertex attributes 0 = position,
+ * 1 = normal, 2 = texcoord; uniform location 0 = mat4 model, 1 = mat3 normal matrix,
+ * 2 = int material index; SSBO binding 0 = materials (see scene.glsl); texture units
+ * 0 = base colour, 1 = emissive (a 1x1 white texture when absent).
+ */
+#ifndef CG_GPU_SCENE_H
+#define CG_GPU_SCENE_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <glad/gl.h>
+
+#include "cg/error.h"
+#include "cg/scene.h"
+
+typedef enum cg_mesh_filter {
+    CG_MESHES_ALL,
+    CG_MESHES_COMPLEX,      /* everything but height fields */
+    CG_MESHES_HEIGHTFIELD
+} cg_mesh_filter;
+
+typedef struct cg_gpu_mesh {
+    GLuint vao;
+    GLuint vertex_buffer;   /* interleaved position(3) normal(3) texcoord(2) floats */
+    GLuint index_buffer;
+    GLsizei index_count;
+    cg_mesh_kind kind;
+} cg_gpu_mesh;
+
+typedef struct cg_gpu_scene {
+    const cg_scene *scene;  /* not owned */
+    cg_gpu_mesh *meshes;    /* one per cg_scene mesh */
+    GLuint material_buffer; /* SSBO, std430 array of struct cg_gpu_material in scene.glsl */
+    GLuint *textures;       /* one per cg_scene texture */
+    GLuint white_texture;
+    size_t bytes;           /* GPU memory held by the buffers and textures */
+} cg_gpu_scene;
+
+bool cg_gpu_scene_upload(const cg_scene *scene, cg_gpu_scene *out, cg_error *err);
+void cg_gpu_scene_destroy(cg_gpu_scene *gpu);
+
+/* Draws every instance whose mesh passes `filter` with the bound program: sets the
+ * model and normal matrices and material index uniforms, binds the material SSBO and
+ * textures. Returns the number of triangles drawn. */
+size_t cg_gpu_scene_draw(const cg_gpu_scene *gpu, cg_mesh_filter filter);
+
+/* True when some mesh passes the filter ("model only what a scene requires"). */
+bool cg_gpu_scene_has(const cg_gpu_scene *gpu, cg_mesh_filter filter);
+
+#endif

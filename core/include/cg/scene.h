@@ -1,0 +1,136 @@
+/* cg/scene.h: the plain C scene every pass reads: glTF 2.0 files and built-in scenes.
+ *
+ * Declares: cg_mesh_kind, cg_texture, cg_material, cg_mesh, cg_instance, cg_light_type,
+ *           cg_light, cg_camera_type, cg_camera, cg_scene, cg_scene_load, cg_scene_free,
+ *           cg_scene_export_gltf, cg_scene_compute_bounds, cg_scene_triangle_count,
+ *           cg_scene_builtin_names, cg_scene_validate.
+ *
+ * Units and conventions (see docs/architecture.md): metres, y up, glTF 2.0.
+ * Lambertian BRDF with albedo = base_color x base colour texture.
+ * Directional light: intensity x color is the irradiance E (W/m^2, or lux) on a
+ * surface facing it; a white Lambertian surface facing it has radiance E/pi.
+ * Point and spot lights: intensity x color is the radiant intensity I; E = I/d^2.
+ * Emissive radiance = emissive x emissive texture x emissive_strength.
+ */
+#ifndef CG_SCENE_H
+#define CG_SCENE_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "cg/error.h"
+
+#define CG_NAME_MAX 64
+
+/* The hybrid method puts height-field meshes (terrain) in a 2D lightmap and complex meshes in a 3D one. */
+typedef enum cg_mesh_kind {
+    CG_MESH_COMPLEX = 0,
+    CG_MESH_HEIGHTFIELD = 1
+} cg_mesh_kind;
+
+/* 8-bit RGBA texels, rows bottom to top as GL expects (glTF images are top to bottom: the loader flips). */
+typedef struct cg_texture {
+    char name[CG_NAME_MAX];
+    int width, height;
+    uint8_t *rgba;
+    bool srgb; /* base colour and emissive textures are sRGB-encoded */
+} cg_texture;
+
+typedef struct cg_material {
+    char name[CG_NAME_MAX];
+    float base_color[4];     /* linear RGBA */
+    int base_color_texture;  /* index into cg_scene.textures, -1 = none */
+    float emissive[3];       /* linear RGB factor */
+    int emissive_texture;    /* -1 = none */
+    float emissive_strength; /* KHR_materials_emissive_strength, 1 by default */
+    float metallic, roughness;
+} cg_material;
+
+/* One glTF primitive: a triangle list in the mesh's local space. */
+typedef struct cg_mesh {
+    char name[CG_NAME_MAX];
+    uint32_t vertex_count;
+    uint32_t index_count;   /* a multiple of 3 */
+    float *positions;       /* vertex_count x 3 */
+    float *normals;         /* vertex_count x 3, unit length (generated when the file has none) */
+    float *texcoords;       /* vertex_count x 2, or NULL */
+    uint32_t *indices;      /* index_count */
+    int material;           /* index into cg_scene.materials; a default white material always exists at 0 */
+    cg_mesh_kind kind;
+    float bounds_min[3], bounds_max[3]; /* local space */
+} cg_mesh;
+
+/* A mesh placed in the world; glTF's node hierarchy is flattened into these. */
+typedef struct cg_instance {
+    int mesh;
+    float world[16];        /* column-major 4x4, local to world */
+} cg_instance;
+
+typedef enum cg_light_type {
+    CG_LIGHT_DIRECTIONAL,
+    CG_LIGHT_POINT,
+    CG_LIGHT_SPOT
+} cg_light_type;
+
+typedef struct cg_light {
+    char name[CG_NAME_MAX];
+    cg_light_type type;
+    float color[3];
+    float intensity;
+    float position[3];      /* world space (point, spot) */
+    float direction[3];     /* world space unit vector the light travels along (directional, spot) */
+    float range;            /* 0 = infinite */
+    float inner_cone_angle; /* spot, radians */
+    float outer_cone_angle; /* spot, radians */
+} cg_light;
+
+typedef enum cg_camera_type {
+    CG_CAMERA_PERSPECTIVE,
+    CG_CAMERA_ORTHOGRAPHIC
+} cg_camera_type;
+
+typedef struct cg_camera {
+    char name[CG_NAME_MAX];
+    cg_camera_type type;
+    float yfov;             /* perspective, radians */
+    float aspect;           /* 0 = follow the image */
+    float znear, zfar;      /* zfar 0 = infinite (perspective) */
+    float xmag, ymag;       /* orthographic half extents */
+    float world[16];        /* column-major camera-to-world; the camera looks down its -z */
+} cg_camera;
+
+typedef struct cg_scene {
+    char name[256];         /* file path or builtin:name */
+    cg_mesh *meshes;         int mesh_count;
+    cg_instance *instances;  int instance_count;
+    cg_material *materials;  int material_count;
+    cg_texture *textures;    int texture_count;
+    cg_light *lights;        int light_count;
+    cg_camera *cameras;      int camera_count;
+    float bounds_min[3], bounds_max[3]; /* world space, over all instances */
+} cg_scene;
+
+/* Loads `source`: a .gltf/.glb path, or "builtin:NAME[?key=value&...]"
+ * (e.g. "builtin:openworld?triangles=2000000&seed=7"). On failure *out is left empty
+ * and err names the file and the problem. */
+bool cg_scene_load(const char *source, cg_scene *out, cg_error *err);
+void cg_scene_free(cg_scene *scene);
+
+/* Writes the scene as glTF 2.0 (.gltf with embedded buffers, or .glb by extension),
+ * with KHR_lights_punctual and KHR_materials_emissive_strength, through a temporary
+ * file renamed into place. Mesh kinds are kept in mesh extras ("conegraph_kind"). */
+bool cg_scene_export_gltf(const cg_scene *scene, const char *path, cg_error *err);
+
+/* Recomputes world bounds from the instances. */
+void cg_scene_compute_bounds(cg_scene *scene);
+/* Triangles over all instances. */
+size_t cg_scene_triangle_count(const cg_scene *scene);
+/* Checks indices, finiteness and references; used by every loader. */
+bool cg_scene_validate(const cg_scene *scene, cg_error *err);
+
+/* NULL-terminated list of built-in scene names, and a one-line description of each. */
+const char *const *cg_scene_builtin_names(void);
+const char *cg_scene_builtin_doc(const char *name);
+
+#endif

@@ -1,0 +1,103 @@
+#include "cg/fs.h"
+
+#include <errno.h>
+#include <stdatomic.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+bool
+cg_read_file(const char *path, char **data, size_t *size, cg_error *err)
+{
+    *data = NULL;
+    if (size)
+        *size = 0;
+    FILE *fp = fopen(path, "rb");
+    if (!fp)
+        return cg_fail(err, CG_ERR_FILE_NOT_FOUND, "%s: cannot open: %s", path, strerror(errno));
+    size_t cap = 1 << 16, len = 0;
+    char *buf = malloc(cap + 1);
+    while (buf) {
+        size_t got = fread(buf + len, 1, cap - len, fp);
+        len += got;
+        if (len < cap)
+            break;
+        cap *= 2;
+        char *bigger = realloc(buf, cap + 1);
+        if (!bigger) {
+            free(buf);
+            buf = NULL;
+        }
+        buf = bigger;
+    }
+    bool read_error = ferror(fp);
+    fclose(fp);
+    if (!buf)
+        return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "%s: out of memory reading the file", path);
+    if (read_error) {
+        free(buf);
+        return cg_fail(err, CG_ERR_FILE_NOT_FOUND, "%s: read error", path);
+    }
+    buf[len] = '\0';
+    *data = buf;
+    if (size)
+        *size = len;
+    return true;
+}
+
+bool
+cg_temp_path_for(const char *path, char *out, size_t out_size)
+{
+    static atomic_uint counter;
+    const char *slash = strrchr(path, '/');
+    int dir_len = slash ? (int)(slash - path + 1) : 0;
+    const char *base = slash ? slash + 1 : path;
+    /* Keep the extension last: OIIO and tinygltf choose the format from it. */
+    const char *dot = strrchr(base, '.');
+    int n = snprintf(out, out_size, "%.*s.%.*s.tmp-%ld-%u%s", dir_len, path,
+                     dot ? (int)(dot - base) : (int)strlen(base), base,
+                     (long)getpid(), atomic_fetch_add(&counter, 1u), dot ? dot : "");
+    return n > 0 && (size_t)n < out_size;
+}
+
+bool
+cg_atomic_open(cg_atomic_file *f, const char *path, cg_error *err)
+{
+    memset(f, 0, sizeof *f);
+    if (strlen(path) >= sizeof f->path || !cg_temp_path_for(path, f->temp_path, sizeof f->temp_path))
+        return cg_fail(err, CG_ERR_IO, "%s: path too long", path);
+    strcpy(f->path, path);
+    f->fp = fopen(f->temp_path, "wb");
+    if (!f->fp)
+        return cg_fail(err, CG_ERR_IO, "%s: cannot create: %s", path, strerror(errno));
+    return true;
+}
+
+bool
+cg_atomic_commit(cg_atomic_file *f, cg_error *err)
+{
+    bool ok = f->fp && fflush(f->fp) == 0 && !ferror(f->fp);
+    if (f->fp && fclose(f->fp) != 0)
+        ok = false;
+    f->fp = NULL;
+    if (!ok) {
+        unlink(f->temp_path);
+        return cg_fail(err, CG_ERR_IO, "%s: write failed: %s", f->path, strerror(errno));
+    }
+    if (rename(f->temp_path, f->path) != 0) {
+        int e = errno;
+        unlink(f->temp_path);
+        return cg_fail(err, CG_ERR_IO, "%s: cannot rename into place: %s", f->path, strerror(e));
+    }
+    return true;
+}
+
+void
+cg_atomic_abort(cg_atomic_file *f)
+{
+    if (f->fp)
+        fclose(f->fp);
+    f->fp = NULL;
+    if (f->temp_path[0])
+        unlink(f->temp_path);
+}
