@@ -126,7 +126,12 @@ debug_callback(GLenum source, GLenum type, GLuint id, GLenum severity, GLsizei l
     /* userParam is the context itself: the count lives with the GL state it describes. */
     cg_context *ctx = (cg_context *)user;
     (void)length;
-    if (type == GL_DEBUG_TYPE_ERROR) {
+    if (type == GL_DEBUG_TYPE_ERROR && source == GL_DEBUG_SOURCE_SHADER_COMPILER) {
+        /* Mesa repeats each failed compile's log here as an ERROR. It is not a GL API
+         * error: cg_program_* reports it through cg_error, with the driver's source-string
+         * numbers rewritten to file names, so it is neither counted nor shown twice. */
+        cg_log_debug("GL %s: %s", debug_source_name(source), message);
+    } else if (type == GL_DEBUG_TYPE_ERROR) {
         ctx->gl_error_count++;
         cg_log_error("GL %s error %u: %s", debug_source_name(source), id, message);
     } else if (type == GL_DEBUG_TYPE_UNDEFINED_BEHAVIOR && severity == GL_DEBUG_SEVERITY_HIGH) {
