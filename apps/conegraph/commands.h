@@ -17,9 +17,11 @@ typedef struct cg_command {
 } cg_command;
 
 int cmd_version(int argc, char **argv);
+int cmd_render(int argc, char **argv);
 
 /* One line per command; keep them in the order `conegraph --help` lists them. */
 #define CG_COMMAND_LIST                                                                   \
-    { "version", cmd_version, "print the version of conegraph and of its libraries" },
+    { "version", cmd_version, "print the version of conegraph and of its libraries" },   \
+    { "render", cmd_render, "render a scene through a graph file to .exr or .png" },
 
 #endif
