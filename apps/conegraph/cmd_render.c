@@ -6,9 +6,11 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/stat.h>
 #include <time.h>
 
+#include "app_common.h"
 #include "builtin.h"
 #include "cg/camera.h"
 #include "cg/error.h"
@@ -94,37 +96,6 @@ usage_error(const char *fmt, const char *arg)
 }
 
 static bool
-parse_int(const char *text, long min, long max, long *out)
-{
-    char *end;
-    errno = 0;
-    long v = strtol(text, &end, 10);
-    if (errno || end == text || *end || v < min || v > max)
-        return false;
-    *out = v;
-    return true;
-}
-
-static bool
-parse_size(const char *text, int *w, int *h)
-{
-    char buf[64];
-    if (strlen(text) >= sizeof buf)
-        return false;
-    strcpy(buf, text);
-    char *x = strchr(buf, 'x');
-    if (!x)
-        return false;
-    *x = '\0';
-    long lw, lh;
-    if (!parse_int(buf, 1, 65536, &lw) || !parse_int(x + 1, 1, 65536, &lh))
-        return false;
-    *w = (int)lw;
-    *h = (int)lh;
-    return true;
-}
-
-static bool
 parse_bytes(const char *text, size_t *out)
 {
     char *end;
@@ -156,46 +127,6 @@ has_extension(const char *path, const char *ext)
     return n > e && !strcasecmp(path + n - e, ext);
 }
 
-static bool
-file_exists(const char *path)
-{
-    struct stat st;
-    return stat(path, &st) == 0 && S_ISREG(st.st_mode);
-}
-
-static const char *
-graph_dir(void)
-{
-    const char *env = getenv("CONEGRAPH_GRAPH_DIR");
-    if (env && *env)
-        return env;
-    struct stat st;
-    if (stat(CONEGRAPH_GRAPH_SOURCE_DIR, &st) == 0 && S_ISDIR(st.st_mode))
-        return CONEGRAPH_GRAPH_SOURCE_DIR;
-    return CONEGRAPH_GRAPH_INSTALL_DIR;
-}
-
-/* The graph file to read: as given, or from the graph directory (see --help). */
-static bool
-resolve_graph(const char *given, char *out, size_t size)
-{
-    if (given && (file_exists(given) || strchr(given, '/'))) {
-        snprintf(out, size, "%s", given);
-        return true;
-    }
-    if (given) {
-        snprintf(out, size, "%s/%s", graph_dir(), given);
-        if (!file_exists(out))
-            snprintf(out, size, "%s", given);
-        return true;
-    }
-    snprintf(out, size, "%s/vct.json", graph_dir());
-    if (file_exists(out))
-        return true;
-    snprintf(out, size, "%s/direct.json", graph_dir());
-    return true;
-}
-
 static int
 parse_args(int argc, char **argv, render_options *o)
 {
@@ -215,13 +146,13 @@ parse_args(int argc, char **argv, render_options *o)
         } else if (!strcmp(a, "--graph")) {
             o->graph = v;
         } else if (!strcmp(a, "--size")) {
-            if (!parse_size(v, &o->width, &o->height))
+            if (!app_parse_size(v, &o->width, &o->height))
                 return usage_error("--size wants WxH with 1..65536 pixels each, not '%s'", v);
         } else if (!strcmp(a, "--camera")) {
             o->camera = v;
         } else if (!strcmp(a, "--frames")) {
             long n;
-            if (!parse_int(v, 1, 1000000, &n))
+            if (!app_parse_int(v, 1, 1000000, &n))
                 return usage_error("--frames wants a count from 1 to 1000000, not '%s'", v);
             o->frames = (int)n;
         } else if (!strcmp(a, "--report")) {
@@ -288,92 +219,6 @@ fail_with(const char *what, const cg_error *err)
     return code ? code : 1;
 }
 
-/* The graph output whose output name is `suffix` ("hdr", "ldr"), or NULL. */
-static const char *
-find_output(const fg_graph *graph, const char *suffix)
-{
-    for (int i = 0; i < fg_graph_output_count(graph); i++) {
-        const char *name = fg_graph_output_at(graph, i);
-        const char *dot = strrchr(name, '.');
-        if (dot && !strcmp(dot + 1, suffix))
-            return name;
-    }
-    return NULL;
-}
-
-static double
-now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
-}
-
-static int
-compare_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-/* Reads a texture resource into a top-to-bottom float image: 2D as is, 3D and array
- * layers stacked top to bottom (layer 0 first). Depth formats land in RGB. */
-static bool
-read_resource(const fg_graph *graph, const char *source, bool srgb_encoded, cg_image *out, cg_error *err)
-{
-    const fg_resource_info *info = fg_graph_find_resource(graph, source);
-    GLuint texture = fg_graph_texture(graph, source);
-    if (!info || info->absent || !texture)
-        return cg_fail(err, CG_ERR_PASS, "%s: resource absent (its pass was culled or had nothing to do)", source);
-    if (info->desc.kind == FG_BUFFER)
-        return cg_fail(err, CG_ERR_USAGE, "%s: a buffer, not a texture; only textures can be written as images", source);
-    int w = info->desc.width, h = info->desc.height;
-    int layers = info->desc.kind == FG_TEXTURE_2D ? 1 : info->desc.depth;
-    size_t texels = (size_t)w * (size_t)h * (size_t)layers;
-    bool depth = info->desc.format == GL_DEPTH_COMPONENT32F || info->desc.format == GL_DEPTH_COMPONENT24 ||
-                 info->desc.format == GL_DEPTH_COMPONENT16 || info->desc.format == GL_DEPTH_COMPONENT32;
-    float *data = malloc(texels * 4 * sizeof(float));
-    if (!data)
-        return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "%s: %zu texels", source, texels);
-    /* The last writer may have used image stores. */
-    glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    if (depth) {
-        float *d = malloc(texels * sizeof(float));
-        if (!d) {
-            free(data);
-            return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "%s: %zu texels", source, texels);
-        }
-        glGetTextureImage(texture, 0, GL_DEPTH_COMPONENT, GL_FLOAT, (GLsizei)(texels * sizeof(float)), d);
-        for (size_t i = 0; i < texels; i++) {
-            data[4 * i + 0] = data[4 * i + 1] = data[4 * i + 2] = d[i];
-            data[4 * i + 3] = 1.0f;
-        }
-        free(d);
-    } else {
-        glGetTextureImage(texture, 0, GL_RGBA, GL_FLOAT, (GLsizei)(texels * 4 * sizeof(float)), data);
-    }
-    if (!cg_image_alloc(out, w, h * layers, err)) {
-        free(data);
-        return false;
-    }
-    /* GL rows go bottom to top; image files top to bottom. */
-    for (int layer = 0; layer < layers; layer++)
-        for (int y = 0; y < h; y++) {
-            const float *src = data + ((size_t)layer * (size_t)h + (size_t)y) * (size_t)w * 4;
-            float *dst = out->rgba + ((size_t)layer * (size_t)h + (size_t)(h - 1 - y)) * (size_t)w * 4;
-            memcpy(dst, src, (size_t)w * 4 * sizeof(float));
-        }
-    free(data);
-    if (srgb_encoded) {
-        /* The ldr texture holds sRGB-encoded values; cg_image is linear and the PNG writer encodes. */
-        for (size_t i = 0; i < (size_t)w * (size_t)h * (size_t)layers; i++)
-            for (int c = 0; c < 3; c++)
-                out->rgba[4 * i + c] = cg_srgb_decode(out->rgba[4 * i + c]);
-    }
-    return true;
-}
-
 /* Builds the graph: file, --set overrides, --dump sources marked as outputs. */
 static bool
 build_graph(const render_options *o, const char *graph_path, fg_graph *graph, cg_error *err)
@@ -400,7 +245,7 @@ render(const render_options *o)
     cg_error err = { 0 };
     int code = 1;
     char graph_path[4096];
-    resolve_graph(o->graph, graph_path, sizeof graph_path);
+    app_resolve_graph(o->graph, graph_path, sizeof graph_path);
     const char *image_source = NULL;
 
     cg_scene scene;
@@ -445,7 +290,7 @@ render(const render_options *o)
         code = graph ? fail_with("graph", &err) : 1;
         goto done;
     }
-    image_source = find_output(graph, has_extension(o->output, ".exr") ? "hdr" : "ldr");
+    image_source = app_find_output(graph, has_extension(o->output, ".exr") ? "hdr" : "ldr");
     if (!image_source) {
         fprintf(stderr, "conegraph render: %s: the graph marks no output named '%s' for %s\n",
                 graph_path, has_extension(o->output, ".exr") ? "*.hdr" : "*.ldr", o->output);
@@ -490,13 +335,13 @@ render(const render_options *o)
     }
     for (int f = 0; f < o->frames; f++) {
         frame.index = (uint64_t)f;
-        double t0 = now_ms();
+        double t0 = app_now_ms();
         if (!fg_graph_execute(graph, &frame, o->timing, &err)) {
             code = fail_with("frame", &err);
             goto done;
         }
         glFinish();
-        frame_ms[f] = now_ms() - t0;
+        frame_ms[f] = app_now_ms() - t0;
         if (o->frames > 1)
             fprintf(stderr, "render: frame %d/%d %.1f ms\n", f + 1, o->frames, frame_ms[f]);
     }
@@ -506,7 +351,7 @@ render(const render_options *o)
         goto done;
     }
 
-    if (!read_resource(graph, image_source, has_extension(o->output, ".png"), &image, &err)) {
+    if (!app_read_resource(graph, image_source, has_extension(o->output, ".png"), &image, &err)) {
         code = fail_with(image_source, &err);
         goto done;
     }
@@ -516,7 +361,7 @@ render(const render_options *o)
     }
     for (int i = 0; i < o->dump_count; i++) {
         cg_image dump = { 0 };
-        if (!read_resource(graph, o->dumps[i].source, false, &dump, &err) ||
+        if (!app_read_resource(graph, o->dumps[i].source, false, &dump, &err) ||
             !cg_image_write(o->dumps[i].path, &dump, CG_EXR_FLOAT, &err)) {
             cg_image_free(&dump);
             code = fail_with(o->dumps[i].source, &err);
@@ -530,7 +375,7 @@ render(const render_options *o)
     }
 
     fg_graph_print_report(graph, stdout);
-    qsort(frame_ms, (size_t)o->frames, sizeof *frame_ms, compare_double);
+    qsort(frame_ms, (size_t)o->frames, sizeof *frame_ms, app_compare_double);
     fprintf(stderr, "render: %s %dx%d, graph %s, %s on %s: median frame %.1f ms over %d frame(s); wrote %s\n",
             scene.name, o->width, o->height, graph_path, cg_context_backend_name(cg_context_get_backend(ctx)),
             cg_context_renderer(ctx), frame_ms[o->frames / 2], o->frames, o->output);
