@@ -11,7 +11,7 @@
 #include <time.h>
 
 #include "app_common.h"
-#include "builtin.h"
+#include "app_registry.h"
 #include "cg/camera.h"
 #include "cg/error.h"
 #include "cg/fg.h"
@@ -258,7 +258,7 @@ render(const render_options *o)
         return fail_with("camera", &err);
     }
 
-    fg_registry *registry = fg_registry_create();
+    fg_registry *registry = NULL;
     fg_graph *graph = NULL;
     cg_context *ctx = NULL;
     cg_gpu_scene gpu;
@@ -266,22 +266,9 @@ render(const render_options *o)
     double *frame_ms = NULL;
     cg_image image = { 0 };
     memset(&gpu, 0, sizeof gpu);
+    registry = app_registry_create(o->plugins, o->plugin_count, &err);
     if (!registry) {
-        fprintf(stderr, "conegraph render: out of memory\n");
-        goto done;
-    }
-    if (!cg_builtin_passes_register(registry, &err)) {
-        code = fail_with("built-in passes", &err);
-        goto done;
-    }
-    for (int i = 0; i < o->plugin_count; i++)
-        if (!fg_registry_load_plugin(registry, o->plugins[i], &err)) {
-            code = fail_with("plugin", &err);
-            goto done;
-        }
-    const char *plugin_dirs = getenv("CONEGRAPH_PLUGIN_PATH");
-    if (plugin_dirs && *plugin_dirs && !fg_registry_load_plugin_dirs(registry, plugin_dirs, &err)) {
-        code = fail_with("CONEGRAPH_PLUGIN_PATH", &err);
+        code = fail_with("passes", &err);
         goto done;
     }
 
