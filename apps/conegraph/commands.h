@@ -19,11 +19,13 @@ typedef struct cg_command {
 int cmd_version(int argc, char **argv);
 int cmd_info(int argc, char **argv);
 int cmd_export(int argc, char **argv);
+int cmd_compare(int argc, char **argv);
 
 /* One line per command; keep them in the order `conegraph --help` lists them. */
 #define CG_COMMAND_LIST                                                                   \
-    { "version", cmd_version, "print the version of conegraph and of its libraries" },    \
-    { "info", cmd_info, "print a scene's meshes, triangles, materials, lights, cameras" },    \
-    { "export", cmd_export, "write a scene (a file or a built-in) as .gltf or .glb" },
+    { "version", cmd_version, "print the version of conegraph and of its libraries" },   \
+    { "info", cmd_info, "print a scene's meshes, triangles, materials, lights, cameras" }, \
+    { "export", cmd_export, "write a scene (a file or a built-in) as .gltf or .glb" },   \
+    { "compare", cmd_compare, "error metrics of an image against a reference (RMSE, relMSE, SSIM, ...)" },
 
 #endif
