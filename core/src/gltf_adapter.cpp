@@ -146,6 +146,21 @@ type_name(int type)
     }
 }
 
+const char *
+component_type_name(int component_type)
+{
+    switch (component_type) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE: return "BYTE";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return "UNSIGNED_BYTE";
+    case TINYGLTF_COMPONENT_TYPE_SHORT: return "SHORT";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return "UNSIGNED_SHORT";
+    case TINYGLTF_COMPONENT_TYPE_INT: return "INT";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return "UNSIGNED_INT";
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: return "FLOAT";
+    default: return "unknown";
+    }
+}
+
 // A checked view of an accessor's elements: every byte it will read lies in its buffer.
 struct accessor_view {
     const unsigned char *base = nullptr; // nullptr: no bufferView, all elements are zero
@@ -207,7 +222,7 @@ struct accessor_view {
 };
 
 // `what` names the use ("mesh 'roof' primitive 0 POSITION"); `types` and `component_types`
-// are the accepted ones (0-terminated lists).
+// are the accepted ones.
 bool
 view_accessor(loader &L, int index, const std::string &what, std::initializer_list<int> types,
               std::initializer_list<int> component_types, accessor_view *out)
@@ -225,13 +240,14 @@ view_accessor(loader &L, int index, const std::string &what, std::initializer_li
     for (int t : component_types)
         ctype_ok = ctype_ok || a.componentType == t;
     if (!type_ok || !ctype_ok) {
-        std::string expected;
+        std::string expected, expected_components;
         for (int t : types)
             expected += std::string(expected.empty() ? "" : " or ") + type_name(t);
+        for (int t : component_types)
+            expected_components += std::string(expected_components.empty() ? "" : " or ") + component_type_name(t);
         return fail(L, CG_ERR_GLTF_ACCESSOR,
-                    label + " has type " + type_name(a.type) + " componentType " +
-                        std::to_string(a.componentType) + "; expected " + expected +
-                        " with another componentType");
+                    label + " is " + type_name(a.type) + " of " + component_type_name(a.componentType) +
+                        "; expected " + expected + " of " + expected_components);
     }
     if (a.sparse.isSparse)
         return fail(L, CG_ERR_GLTF_ACCESSOR, label + " is sparse, which conegraph does not read");
@@ -609,8 +625,10 @@ add_light(loader &L, int node, const double world[16])
         l.color[k] = gl.color.size() == 3 ? (float)gl.color[(size_t)k] : 1.0f;
     l.intensity = (float)gl.intensity;
     l.range = (float)gl.range;
-    l.inner_cone_angle = (float)gl.spot.innerConeAngle;
-    l.outer_cone_angle = (float)gl.spot.outerConeAngle;
+    if (l.type == CG_LIGHT_SPOT) { // tinygltf fills the spot defaults (0, pi/4) for every light
+        l.inner_cone_angle = (float)gl.spot.innerConeAngle;
+        l.outer_cone_angle = (float)gl.spot.outerConeAngle;
+    }
     // KHR_lights_punctual: the light sits at the node's origin and shines down its -Z.
     double d[3] = { -world[8], -world[9], -world[10] };
     double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
