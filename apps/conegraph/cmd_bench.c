@@ -829,7 +829,7 @@ run_setting(const bench_config *c, fg_registry *registry, bench_scene *bs, cg_gp
     if (!app_read_resource(graph, hdr, false, &img, err) || !measure_errors(bs, &img, row, err))
         goto done;
     if (c->images) {
-        char name[1024], path[4096], scene_slug[BENCH_TEXT], params_slug[512];
+        char name[2048], path[4096], scene_slug[BENCH_TEXT], params_slug[512];
         slug(bs->source, scene_slug, sizeof scene_slug);
         snprintf(name, sizeof name, "%s %s", s->graph, row->params);
         slug(name, params_slug, sizeof params_slug);
