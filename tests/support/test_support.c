@@ -52,3 +52,95 @@ cg_test_write_file(const char *name, const void *data, size_t size)
     fclose(fp);
     return path;
 }
+
+int
+cg_test_gl_setup(void **state)
+{
+    cg_context_desc desc = { .backend = CG_CONTEXT_EGL, .debug = true };
+    const char *env = getenv("CONEGRAPH_CONTEXT");
+    if (env && *env && !cg_context_backend_parse(env, &desc.backend)) {
+        fprintf(stderr, "CONEGRAPH_CONTEXT=%s: expected egl, osmesa or glfw\n", env);
+        return -1;
+    }
+    if (desc.backend == CG_CONTEXT_AUTO)
+        desc.backend = CG_CONTEXT_EGL;
+    cg_context *ctx = NULL;
+    cg_error err = { 0 };
+    if (!cg_context_create(&desc, &ctx, &err)) {
+        fprintf(stderr, "cannot create a GL context for the tests: %s: %s\n",
+                cg_status_name(err.status), err.message);
+        return -1;
+    }
+    *state = ctx;
+    return 0;
+}
+
+int
+cg_test_gl_teardown(void **state)
+{
+    cg_context *ctx = *state;
+    int errors = ctx ? cg_context_gl_error_count(ctx) : 0;
+    cg_context_destroy(ctx);
+    *state = NULL;
+    if (errors) {
+        fprintf(stderr, "%d GL error(s) counted that no test asserted on\n", errors);
+        return -1;
+    }
+    return 0;
+}
+
+cg_context *
+cg_test_gl_context(void **state)
+{
+    cg_context *ctx = *state;
+    if (!ctx)
+        fail_msg("no GL context: use cg_test_gl_setup as the group setup");
+    return ctx;
+}
+
+float *
+cg_test_read_texture(GLuint texture, int level, int *w, int *h, int *d)
+{
+    GLint width = 0, height = 0, depth = 0;
+    glGetTextureLevelParameteriv(texture, level, GL_TEXTURE_WIDTH, &width);
+    glGetTextureLevelParameteriv(texture, level, GL_TEXTURE_HEIGHT, &height);
+    glGetTextureLevelParameteriv(texture, level, GL_TEXTURE_DEPTH, &depth);
+    if (width <= 0 || height <= 0 || depth <= 0)
+        fail_msg("texture %u level %d has size %dx%dx%d", texture, level, width, height, depth);
+    size_t count = (size_t)width * height * depth * 4;
+    float *data = malloc(count * sizeof *data);
+    if (!data)
+        fail_msg("out of memory reading back texture %u", texture);
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glGetTextureImage(texture, level, GL_RGBA, GL_FLOAT, (GLsizei)(count * sizeof *data), data);
+    if (w)
+        *w = width;
+    if (h)
+        *h = height;
+    if (d)
+        *d = depth;
+    return data;
+}
+
+float *
+cg_test_read_framebuffer(GLuint fbo, GLenum attachment, int w, int h)
+{
+    size_t count = (size_t)w * h * 4;
+    float *data = malloc(count * sizeof *data);
+    if (!data)
+        fail_msg("out of memory reading back framebuffer %u", fbo);
+    glNamedFramebufferReadBuffer(fbo, attachment);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo);
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glReadnPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, (GLsizei)(count * sizeof *data), data);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    return data;
+}
+
+int
+cg_test_skip_program(const char *reason)
+{
+    printf("1..0 # SKIP %s\n", reason);
+    fflush(stdout);
+    return 0;
+}

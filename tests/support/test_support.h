@@ -1,6 +1,23 @@
 /* tests/support/test_support.h: helpers shared by the cmocka tests.
  *
- * Declares: cg_test_tmpdir, cg_test_write_file, assert_cg_ok, assert_cg_status.
+ * Declares: cg_test_tmpdir, cg_test_write_file, assert_cg_ok, assert_cg_status,
+ *           cg_test_gl_setup, cg_test_gl_teardown, cg_test_gl_context, assert_no_gl_errors,
+ *           cg_test_read_texture, cg_test_read_framebuffer, cg_test_skip_program.
+ *
+ * GL tests: use the setup/teardown pair as cmocka group fixtures so that one headless
+ * context serves every test of the file:
+ *
+ *     static void test_x(void **state) {
+ *         cg_context *ctx = cg_test_gl_context(state);
+ *         ...GL calls...
+ *         assert_no_gl_errors(ctx);
+ *     }
+ *     int main(void) {
+ *         const struct CMUnitTest tests[] = { cmocka_unit_test(test_x) };
+ *         return cmocka_run_group_tests(tests, cg_test_gl_setup, cg_test_gl_teardown);
+ *     }
+ *
+ * With group fixtures, cmocka hands each test the pointer the group setup stored.
  */
 #ifndef CG_TEST_SUPPORT_H
 #define CG_TEST_SUPPORT_H
@@ -12,6 +29,7 @@
 #include <cmocka.h>
 
 #include "cg/error.h"
+#include "cg/gl.h"
 
 /* A fresh directory under $TMPDIR for this test process, removed at exit. */
 const char *cg_test_tmpdir(void);
@@ -37,5 +55,42 @@ const char *cg_test_write_file(const char *name, const void *data, size_t size);
                      cg_status_name((errp)->status), (errp)->message,                     \
                      cg_status_name(expected));                                           \
     } while (0)
+
+/* cmocka group setup: creates a headless GL 4.5 core context with KHR_debug output
+ * (backend from $CONEGRAPH_CONTEXT: egl, osmesa or glfw; EGL when unset; no fallback, so
+ * a broken backend fails loudly instead of silently testing another one) and stores
+ * the cg_context * in *state. Returns -1 (the group fails) when no context can be made. */
+int cg_test_gl_setup(void **state);
+/* cmocka group teardown: destroys the context. Returns -1 (the group fails) when GL
+ * errors were counted after the last reset, so an error no test asserted on still fails. */
+int cg_test_gl_teardown(void **state);
+/* The context stored by cg_test_gl_setup, from a test's `state`. */
+cg_context *cg_test_gl_context(void **state);
+
+/* Fails the test when the context counted any GL error (KHR_debug type ERROR) since it
+ * was created or since cg_context_reset_gl_error_count; the messages are in the log.
+ * A test that provokes errors on purpose resets the count afterwards. */
+#define assert_no_gl_errors(ctx)                                                          \
+    do {                                                                                  \
+        int cg_gl_errors_ = cg_context_gl_error_count(ctx);                               \
+        if (cg_gl_errors_ != 0)                                                           \
+            fail_msg("%d GL error(s) reported through KHR_debug (messages logged above)", \
+                     cg_gl_errors_);                                                      \
+    } while (0)
+
+/* Skips a whole test program: prints the TAP plan "1..0 # SKIP reason" and returns 0
+ * for main to return. Use it instead of cmocka's skip(): cmocka 1.1.5 prints a skipped
+ * test as "not ok N # SKIP", which Meson 1.0's TAP parser counts as a failure. */
+int cg_test_skip_program(const char *reason);
+
+/* Reads back mip `level` of a texture (any target glGetTextureImage accepts: 2D, 2D
+ * array, 3D, ...) as RGBA float, rows bottom to top as GL stores them, layers one after
+ * another. Sizes go to w, h, d (each may be NULL). Returns malloc'd w*h*d*4 floats;
+ * the caller frees. Fails the test on a bad texture or out of memory. */
+float *cg_test_read_texture(GLuint texture, int level, int *w, int *h, int *d);
+/* Reads back a w x h region at the origin of one colour attachment (GL_COLOR_ATTACHMENT0
+ * + i) of a framebuffer object as RGBA float, rows bottom to top. Returns malloc'd
+ * w*h*4 floats; the caller frees. Leaves GL_READ_FRAMEBUFFER bound to 0. */
+float *cg_test_read_framebuffer(GLuint fbo, GLenum attachment, int w, int h);
 
 #endif

@@ -1,0 +1,671 @@
+/* The CPU path tracer on Embree 3: see pt_render.h for the physics and the conventions. */
+#include "pt_render.h"
+
+#include <embree3/rtcore.h>
+#include <math.h>
+#include <pthread.h>
+#include <stdatomic.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+
+/* Embree's C API names its records as plain structs. */
+typedef struct RTCRay RTCRay;
+typedef struct RTCRayHit RTCRayHit;
+typedef struct RTCIntersectContext RTCIntersectContext;
+
+#define PT_PI 3.14159265358979323846f
+#define PT_TILE 16
+#define PT_MAX_BOUNCES 64
+#define PT_MAX_SPP (1 << 20)
+#define PT_MAX_THREADS 256
+
+typedef struct v3 {
+    float x, y, z;
+} v3;
+
+static inline v3 mk(float x, float y, float z) { return (v3){ x, y, z }; }
+static inline v3 add(v3 a, v3 b) { return mk(a.x + b.x, a.y + b.y, a.z + b.z); }
+static inline v3 sub(v3 a, v3 b) { return mk(a.x - b.x, a.y - b.y, a.z - b.z); }
+static inline v3 mul(v3 a, v3 b) { return mk(a.x * b.x, a.y * b.y, a.z * b.z); }
+static inline v3 scale(v3 a, float s) { return mk(a.x * s, a.y * s, a.z * s); }
+static inline float dot(v3 a, v3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+static inline v3 neg(v3 a) { return mk(-a.x, -a.y, -a.z); }
+
+static inline v3
+normalize(v3 a)
+{
+    float len = sqrtf(dot(a, a));
+    return len > 0.0f ? scale(a, 1.0f / len) : a;
+}
+
+/* ---------------------------------------------------------------- scene */
+
+/* A texture decoded once to linear float RGBA, rows bottom to top like the GL upload. */
+typedef struct pt_texture {
+    int width, height;
+    float *rgba;
+} pt_texture;
+
+/* What shading needs of one Embree geometry (one scene instance). */
+typedef struct pt_geometry {
+    const cg_mesh *mesh;
+    float normal_matrix[9];   /* cofactor of the upper 3x3 of the instance matrix, column-major */
+} pt_geometry;
+
+struct pt_scene {
+    const cg_scene *scene;
+    RTCDevice device;
+    RTCScene rtc;
+    pt_geometry *geometries;  /* by Embree geomID */
+    unsigned geometry_count;
+    pt_texture *textures;     /* by cg_scene texture index */
+    size_t triangles;
+};
+
+pt_settings
+pt_settings_default(void)
+{
+    return (pt_settings){ .spp = 64, .bounces = 1, .seed = 1, .threads = 0, .jitter = false,
+                          .progress = false };
+}
+
+static void
+cofactor3(const float m[16], float out[9])
+{
+    /* Column-major 4x4: element (row r, column c) is m[c*4 + r]. */
+#define M(r, c) m[(c) * 4 + (r)]
+    float a = M(0, 0), b = M(0, 1), c = M(0, 2);
+    float d = M(1, 0), e = M(1, 1), f = M(1, 2);
+    float g = M(2, 0), h = M(2, 1), i = M(2, 2);
+#undef M
+    /* The cofactor matrix is det(M) times the inverse transpose: it maps normals correctly up
+     * to scale and sign, and shading re-normalises and orients them against the geometric normal. */
+    float cof[3][3] = {
+        { e * i - f * h, -(d * i - f * g), d * h - e * g },
+        { -(b * i - c * h), a * i - c * g, -(a * h - b * g) },
+        { b * f - c * e, -(a * f - c * d), a * e - b * d },
+    };
+    for (int r = 0; r < 3; r++)
+        for (int col = 0; col < 3; col++)
+            out[col * 3 + r] = cof[r][col];
+}
+
+/* The sRGB EOTF (IEC 61966-2-1), as GL applies it to SRGB8_ALPHA8 texels. */
+static float
+srgb_decode(float v)
+{
+    return v <= 0.04045f ? v / 12.92f : powf((v + 0.055f) / 1.055f, 2.4f);
+}
+
+static bool
+textures_create(pt_scene *pts, cg_error *err)
+{
+    const cg_scene *scene = pts->scene;
+    if (scene->texture_count == 0)
+        return true;
+    pts->textures = calloc((size_t)scene->texture_count, sizeof *pts->textures);
+    if (!pts->textures)
+        return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "path_trace: %d texture records", scene->texture_count);
+    for (int t = 0; t < scene->texture_count; t++) {
+        const cg_texture *src = &scene->textures[t];
+        pt_texture *dst = &pts->textures[t];
+        if (src->width <= 0 || src->height <= 0 || !src->rgba)
+            return cg_fail(err, CG_ERR_IMAGE_FORMAT, "path_trace: texture %d '%s' is empty (%dx%d)",
+                           t, src->name, src->width, src->height);
+        size_t n = (size_t)src->width * (size_t)src->height * 4;
+        dst->rgba = malloc(n * sizeof(float));
+        if (!dst->rgba)
+            return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "path_trace: texture '%s' %dx%d", src->name,
+                           src->width, src->height);
+        dst->width = src->width;
+        dst->height = src->height;
+        /* GL decodes SRGB8_ALPHA8 texels before filtering; alpha is always linear. */
+        for (size_t k = 0; k < n; k++) {
+            float v = (float)src->rgba[k] / 255.0f;
+            dst->rgba[k] = (src->srgb && (k & 3) != 3) ? srgb_decode(v) : v;
+        }
+    }
+    return true;
+}
+
+static void
+rtc_error_to_log(void *user, enum RTCError code, const char *str)
+{
+    (void)user;
+    fprintf(stderr, "path_trace: embree error %d: %s\n", (int)code, str ? str : "");
+}
+
+bool
+pt_scene_create(const cg_scene *scene, pt_scene **out, cg_error *err)
+{
+    *out = NULL;
+    pt_scene *pts = calloc(1, sizeof *pts);
+    if (!pts)
+        return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "path_trace: scene record");
+    pts->scene = scene;
+    pts->device = rtcNewDevice(NULL);
+    if (!pts->device) {
+        free(pts);
+        return cg_fail(err, CG_ERR_PASS, "path_trace: rtcNewDevice failed (error %d)",
+                       (int)rtcGetDeviceError(NULL));
+    }
+    rtcSetDeviceErrorFunction(pts->device, rtc_error_to_log, NULL);
+    if (!textures_create(pts, err))
+        goto fail;
+    pts->rtc = rtcNewScene(pts->device);
+    /* Watertight traversal: no light leaks through the shared edges of a closed box. */
+    rtcSetSceneFlags(pts->rtc, RTC_SCENE_FLAG_ROBUST);
+    rtcSetSceneBuildQuality(pts->rtc, RTC_BUILD_QUALITY_MEDIUM);
+    pts->geometries = calloc((size_t)(scene->instance_count > 0 ? scene->instance_count : 1),
+                             sizeof *pts->geometries);
+    if (!pts->geometries) {
+        cg_fail(err, CG_ERR_OUT_OF_MEMORY, "path_trace: %d geometries", scene->instance_count);
+        goto fail;
+    }
+    for (int i = 0; i < scene->instance_count; i++) {
+        const cg_instance *inst = &scene->instances[i];
+        if (inst->mesh < 0 || inst->mesh >= scene->mesh_count) {
+            cg_fail(err, CG_ERR_USAGE, "path_trace: instance %d names mesh %d of %d", i, inst->mesh,
+                    scene->mesh_count);
+            goto fail;
+        }
+        const cg_mesh *mesh = &scene->meshes[inst->mesh];
+        uint32_t tris = mesh->index_count / 3;
+        if (tris == 0 || mesh->vertex_count == 0)
+            continue;
+        RTCGeometry geom = rtcNewGeometry(pts->device, RTC_GEOMETRY_TYPE_TRIANGLE);
+        float *vtx = rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                             3 * sizeof(float), mesh->vertex_count);
+        uint32_t *idx = rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                3 * sizeof(uint32_t), tris);
+        if (!vtx || !idx) {
+            rtcReleaseGeometry(geom);
+            cg_fail(err, CG_ERR_OUT_OF_MEMORY, "path_trace: buffers of mesh '%s' (%u vertices)",
+                    mesh->name, mesh->vertex_count);
+            goto fail;
+        }
+        const float *w = inst->world;
+        for (uint32_t v = 0; v < mesh->vertex_count; v++) {
+            const float *p = &mesh->positions[3 * v];
+            for (int r = 0; r < 3; r++)
+                vtx[3 * v + r] = w[r] * p[0] + w[4 + r] * p[1] + w[8 + r] * p[2] + w[12 + r];
+        }
+        for (uint32_t k = 0; k < tris * 3; k++) {
+            if (mesh->indices[k] >= mesh->vertex_count) {
+                rtcReleaseGeometry(geom);
+                cg_fail(err, CG_ERR_USAGE, "path_trace: mesh '%s' index %u out of range (%u vertices)",
+                        mesh->name, mesh->indices[k], mesh->vertex_count);
+                goto fail;
+            }
+            idx[k] = mesh->indices[k];
+        }
+        rtcCommitGeometry(geom);
+        unsigned id = pts->geometry_count++;
+        rtcAttachGeometryByID(pts->rtc, geom, id);
+        rtcReleaseGeometry(geom);
+        pts->geometries[id].mesh = mesh;
+        cofactor3(inst->world, pts->geometries[id].normal_matrix);
+        pts->triangles += tris;
+    }
+    rtcCommitScene(pts->rtc);
+    enum RTCError code = rtcGetDeviceError(pts->device);
+    if (code != RTC_ERROR_NONE) {
+        cg_fail(err, CG_ERR_PASS, "path_trace: building the BVH failed (embree error %d)", (int)code);
+        goto fail;
+    }
+    *out = pts;
+    return true;
+fail:
+    pt_scene_destroy(pts);
+    return false;
+}
+
+void
+pt_scene_destroy(pt_scene *pts)
+{
+    if (!pts)
+        return;
+    if (pts->rtc)
+        rtcReleaseScene(pts->rtc);
+    if (pts->device)
+        rtcReleaseDevice(pts->device);
+    if (pts->textures)
+        for (int t = 0; t < pts->scene->texture_count; t++)
+            free(pts->textures[t].rgba);
+    free(pts->textures);
+    free(pts->geometries);
+    free(pts);
+}
+
+size_t
+pt_scene_triangle_count(const pt_scene *pts)
+{
+    return pts->triangles;
+}
+
+/* ---------------------------------------------------------------- random numbers */
+
+/* splitmix64 (Steele, Lea, Flood 2014) is a counter hashed by a bijective mixer: the n-th
+ * draw depends only on the key and n, which is what makes pixels independent of scheduling. */
+static inline uint64_t
+mix64(uint64_t z)
+{
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+}
+
+typedef struct pt_rng {
+    uint64_t key;
+    uint64_t counter;
+} pt_rng;
+
+static inline pt_rng
+rng_for_sample(uint32_t seed, uint64_t pixel, uint32_t sample)
+{
+    uint64_t key = mix64(((uint64_t)seed << 32) ^ 0x5851F42D4C957F2Dull);
+    key = mix64(key ^ pixel * 0x9E3779B97F4A7C15ull);
+    key = mix64(key ^ ((uint64_t)sample * 0xD1B54A32D192ED03ull + 1));
+    return (pt_rng){ key, 0 };
+}
+
+/* Uniform in [0,1): 24 random bits, exactly representable in a float. */
+static inline float
+rng_next(pt_rng *rng)
+{
+    uint64_t bits = mix64(rng->key + 0x9E3779B97F4A7C15ull * ++rng->counter);
+    return (float)(bits >> 40) * (1.0f / 16777216.0f);
+}
+
+/* ---------------------------------------------------------------- shading */
+
+static void
+texture_sample(const pt_texture *tex, float s, float t, float out[4])
+{
+    /* GL_LINEAR with GL_REPEAT: texel centres at (i + 0.5) / size. */
+    float x = s * (float)tex->width - 0.5f;
+    float y = t * (float)tex->height - 0.5f;
+    float fx = floorf(x), fy = floorf(y);
+    float ax = x - fx, ay = y - fy;
+    long ix = (long)fx, iy = (long)fy;
+    long w = tex->width, h = tex->height;
+    long x0 = ((ix % w) + w) % w, x1 = (x0 + 1) % w;
+    long y0 = ((iy % h) + h) % h, y1 = (y0 + 1) % h;
+    const float *p00 = &tex->rgba[4 * (y0 * w + x0)];
+    const float *p10 = &tex->rgba[4 * (y0 * w + x1)];
+    const float *p01 = &tex->rgba[4 * (y1 * w + x0)];
+    const float *p11 = &tex->rgba[4 * (y1 * w + x1)];
+    for (int c = 0; c < 4; c++) {
+        float a = p00[c] + (p10[c] - p00[c]) * ax;
+        float b = p01[c] + (p11[c] - p01[c]) * ax;
+        out[c] = a + (b - a) * ay;
+    }
+}
+
+typedef struct pt_hit {
+    v3 position;
+    v3 geometric_normal;  /* unit, facing the incoming ray */
+    v3 shading_normal;    /* unit, same hemisphere as geometric_normal */
+    v3 albedo;
+    v3 emission;
+} pt_hit;
+
+static void
+shade_hit(const pt_scene *pts, const RTCRayHit *rh, pt_hit *hit)
+{
+    const pt_geometry *g = &pts->geometries[rh->hit.geomID];
+    const cg_mesh *mesh = g->mesh;
+    const uint32_t *tri = &mesh->indices[3 * rh->hit.primID];
+    float u = rh->hit.u, v = rh->hit.v, w = 1.0f - u - v;
+    v3 dir = mk(rh->ray.dir_x, rh->ray.dir_y, rh->ray.dir_z);
+
+    hit->position = add(mk(rh->ray.org_x, rh->ray.org_y, rh->ray.org_z), scale(dir, rh->ray.tfar));
+    v3 ng = normalize(mk(rh->hit.Ng_x, rh->hit.Ng_y, rh->hit.Ng_z));
+    if (dot(ng, dir) > 0.0f)
+        ng = neg(ng);
+    hit->geometric_normal = ng;
+
+    const float *n0 = &mesh->normals[3 * tri[0]], *n1 = &mesh->normals[3 * tri[1]],
+                *n2 = &mesh->normals[3 * tri[2]];
+    float nl[3];
+    for (int c = 0; c < 3; c++)
+        nl[c] = w * n0[c] + u * n1[c] + v * n2[c];
+    const float *m = g->normal_matrix;
+    v3 ns = normalize(mk(m[0] * nl[0] + m[3] * nl[1] + m[6] * nl[2],
+                         m[1] * nl[0] + m[4] * nl[1] + m[7] * nl[2],
+                         m[2] * nl[0] + m[5] * nl[1] + m[8] * nl[2]));
+    if (dot(ns, ng) < 0.0f)
+        ns = neg(ns);
+    if (!(dot(ns, ns) > 0.5f)) /* zero or NaN interpolated normal */
+        ns = ng;
+    hit->shading_normal = ns;
+
+    const cg_scene *scene = pts->scene;
+    int mi = mesh->material;
+    const cg_material *mat = (mi >= 0 && mi < scene->material_count) ? &scene->materials[mi]
+                                                                       : &scene->materials[0];
+    float st[2] = { 0.0f, 0.0f };
+    if (mesh->texcoords) {
+        const float *t0 = &mesh->texcoords[2 * tri[0]], *t1 = &mesh->texcoords[2 * tri[1]],
+                    *t2 = &mesh->texcoords[2 * tri[2]];
+        st[0] = w * t0[0] + u * t1[0] + v * t2[0];
+        st[1] = w * t0[1] + u * t1[1] + v * t2[1];
+    }
+    v3 albedo = mk(mat->base_color[0], mat->base_color[1], mat->base_color[2]);
+    if (mat->base_color_texture >= 0 && mat->base_color_texture < scene->texture_count) {
+        float texel[4];
+        texture_sample(&pts->textures[mat->base_color_texture], st[0], st[1], texel);
+        albedo = mul(albedo, mk(texel[0], texel[1], texel[2]));
+    }
+    hit->albedo = albedo;
+    v3 emission = scale(mk(mat->emissive[0], mat->emissive[1], mat->emissive[2]), mat->emissive_strength);
+    if (mat->emissive_texture >= 0 && mat->emissive_texture < scene->texture_count &&
+        (emission.x > 0.0f || emission.y > 0.0f || emission.z > 0.0f)) {
+        float texel[4];
+        texture_sample(&pts->textures[mat->emissive_texture], st[0], st[1], texel);
+        emission = mul(emission, mk(texel[0], texel[1], texel[2]));
+    }
+    hit->emission = emission;
+}
+
+/* Offset along the geometric normal, growing with the coordinates' magnitude so that the
+ * spawned ray clears the surface in float precision from millimetre to kilometre scenes. */
+static inline v3
+offset_origin(v3 p, v3 n)
+{
+    float m = fmaxf(fabsf(p.x), fmaxf(fabsf(p.y), fabsf(p.z)));
+    return add(p, scale(n, 1e-4f + 4e-6f * m));
+}
+
+typedef struct pt_worker_ctx {
+    const pt_scene *pts;
+    RTCIntersectContext ictx;
+    uint64_t rays;
+} pt_worker_ctx;
+
+static bool
+occluded(pt_worker_ctx *wc, v3 org, v3 dir, float tfar)
+{
+    RTCRay ray = { 0 };
+    ray.org_x = org.x; ray.org_y = org.y; ray.org_z = org.z;
+    ray.dir_x = dir.x; ray.dir_y = dir.y; ray.dir_z = dir.z;
+    ray.tnear = 0.0f;
+    ray.tfar = tfar;
+    ray.mask = 0xFFFFFFFFu;
+    ray.flags = 0;
+    wc->rays++;
+    rtcOccluded1(wc->pts->rtc, &wc->ictx, &ray);
+    return ray.tfar < 0.0f;
+}
+
+/* Irradiance at the hit from every punctual light (next-event estimation, hard shadows). */
+static v3
+punctual_irradiance(pt_worker_ctx *wc, const pt_hit *hit)
+{
+    const cg_scene *scene = wc->pts->scene;
+    v3 total = mk(0, 0, 0);
+    v3 org = offset_origin(hit->position, hit->geometric_normal);
+    for (int i = 0; i < scene->light_count; i++) {
+        const cg_light *l = &scene->lights[i];
+        v3 color = scale(mk(l->color[0], l->color[1], l->color[2]), l->intensity);
+        v3 wi;
+        float dist = INFINITY, factor = 1.0f;
+        if (l->type == CG_LIGHT_DIRECTIONAL) {
+            wi = normalize(neg(mk(l->direction[0], l->direction[1], l->direction[2])));
+        } else {
+            v3 to_light = sub(mk(l->position[0], l->position[1], l->position[2]), hit->position);
+            float d2 = dot(to_light, to_light);
+            if (!(d2 > 0.0f))
+                continue;
+            dist = sqrtf(d2);
+            wi = scale(to_light, 1.0f / dist);
+            factor = 1.0f / d2; /* E = I / d^2 */
+            if (l->range > 0.0f) {
+                /* KHR_lights_punctual's recommended window: clamp(1 - (d/range)^4, 0, 1)^2. */
+                float r = dist / l->range;
+                float win = fminf(fmaxf(1.0f - r * r * r * r, 0.0f), 1.0f);
+                factor *= win * win;
+            }
+            if (l->type == CG_LIGHT_SPOT) {
+                /* KHR_lights_punctual spot falloff: saturate(cd * scale + offset)^2 with
+                 * scale = 1 / max(0.001, cos(inner) - cos(outer)), offset = -cos(outer) * scale. */
+                float cos_outer = cosf(l->outer_cone_angle);
+                float angle_scale = 1.0f / fmaxf(0.001f, cosf(l->inner_cone_angle) - cos_outer);
+                float angle_offset = -cos_outer * angle_scale;
+                v3 spot_dir = normalize(mk(l->direction[0], l->direction[1], l->direction[2]));
+                float cd = dot(spot_dir, neg(wi));
+                float att = fminf(fmaxf(cd * angle_scale + angle_offset, 0.0f), 1.0f);
+                factor *= att * att;
+            }
+        }
+        float cos_theta = dot(hit->shading_normal, wi);
+        if (cos_theta <= 0.0f || dot(hit->geometric_normal, wi) <= 0.0f || factor <= 0.0f)
+            continue;
+        /* Shorten the shadow ray so that it does not hit a surface at the light itself. */
+        float tfar = isinf(dist) ? INFINITY : dist * (1.0f - 1e-5f);
+        if (occluded(wc, org, wi, tfar))
+            continue;
+        total = add(total, scale(color, factor * cos_theta));
+    }
+    return total;
+}
+
+/* Cosine-weighted direction about n (Malley's method) on the orthonormal basis of
+ * Duff et al. 2017, "Building an Orthonormal Basis, Revisited". */
+static v3
+sample_cosine(v3 n, float u1, float u2)
+{
+    float sign = copysignf(1.0f, n.z);
+    float a = -1.0f / (sign + n.z);
+    float b = n.x * n.y * a;
+    v3 t = mk(1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x);
+    v3 bt = mk(b, sign + n.y * n.y * a, -n.y);
+    float r = sqrtf(u1), phi = 2.0f * PT_PI * u2;
+    float x = r * cosf(phi), y = r * sinf(phi), z = sqrtf(fmaxf(0.0f, 1.0f - u1));
+    return normalize(add(add(scale(t, x), scale(bt, y)), scale(n, z)));
+}
+
+static inline void
+ray_init(RTCRayHit *rh, v3 org, v3 dir, float tnear)
+{
+    memset(rh, 0, sizeof *rh);
+    rh->ray.org_x = org.x; rh->ray.org_y = org.y; rh->ray.org_z = org.z;
+    rh->ray.dir_x = dir.x; rh->ray.dir_y = dir.y; rh->ray.dir_z = dir.z;
+    rh->ray.tnear = tnear;
+    rh->ray.tfar = INFINITY;
+    rh->ray.mask = 0xFFFFFFFFu;
+    rh->hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh->hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+}
+
+/* Radiance along one camera ray: emission and punctual light at every vertex, `bounces`
+ * cosine-sampled continuations. The Lambertian BRDF albedo/pi times cos over the cosine
+ * pdf cos/pi leaves the albedo as the throughput factor. */
+static v3
+radiance(pt_worker_ctx *wc, v3 org, v3 dir, int bounces, pt_rng *rng)
+{
+    v3 sum = mk(0, 0, 0), throughput = mk(1, 1, 1);
+    RTCRayHit rh;
+    ray_init(&rh, org, dir, 0.0f);
+    for (int depth = 0;; depth++) {
+        wc->rays++;
+        rtcIntersect1(wc->pts->rtc, &wc->ictx, &rh);
+        if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID)
+            break; /* no sky: black background */
+        pt_hit hit;
+        shade_hit(wc->pts, &rh, &hit);
+        sum = add(sum, mul(throughput, hit.emission));
+        v3 e = punctual_irradiance(wc, &hit);
+        sum = add(sum, mul(throughput, scale(mul(hit.albedo, e), 1.0f / PT_PI)));
+        if (depth >= bounces)
+            break;
+        throughput = mul(throughput, hit.albedo);
+        if (throughput.x <= 0.0f && throughput.y <= 0.0f && throughput.z <= 0.0f)
+            break;
+        float u1 = rng_next(rng), u2 = rng_next(rng);
+        v3 next = sample_cosine(hit.shading_normal, u1, u2);
+        if (dot(next, hit.geometric_normal) <= 0.0f)
+            break; /* below the true surface (shading normal tilted away): no light */
+        ray_init(&rh, offset_origin(hit.position, hit.geometric_normal), next, 0.0f);
+    }
+    return sum;
+}
+
+/* ---------------------------------------------------------------- camera and tiles */
+
+static v3
+unproject(const float m[16], float x, float y, float z)
+{
+    float X = m[0] * x + m[4] * y + m[8] * z + m[12];
+    float Y = m[1] * x + m[5] * y + m[9] * z + m[13];
+    float Z = m[2] * x + m[6] * y + m[10] * z + m[14];
+    float W = m[3] * x + m[7] * y + m[11] * z + m[15];
+    return mk(X / W, Y / W, Z / W);
+}
+
+typedef struct pt_job {
+    const pt_scene *pts;
+    const cg_view *view;
+    const pt_settings *settings;
+    float *rgba;
+    int tiles_x, tiles_y, tile_count;
+    atomic_int next_tile;
+    atomic_int tiles_done;
+    atomic_uint_fast64_t rays;
+} pt_job;
+
+static void
+render_tile(pt_job *job, pt_worker_ctx *wc, int tile)
+{
+    const cg_view *view = job->view;
+    const pt_settings *s = job->settings;
+    int x0 = (tile % job->tiles_x) * PT_TILE, y0 = (tile / job->tiles_x) * PT_TILE;
+    int x1 = x0 + PT_TILE < view->width ? x0 + PT_TILE : view->width;
+    int y1 = y0 + PT_TILE < view->height ? y0 + PT_TILE : view->height;
+    for (int y = y0; y < y1; y++) {
+        for (int x = x0; x < x1; x++) {
+            uint64_t pixel = (uint64_t)y * (uint64_t)view->width + (uint64_t)x;
+            double acc[3] = { 0, 0, 0 };
+            for (int k = 0; k < s->spp; k++) {
+                pt_rng rng = rng_for_sample(s->seed, pixel, (uint32_t)k);
+                float jx = 0.5f, jy = 0.5f;
+                if (s->jitter) {
+                    jx = rng_next(&rng);
+                    jy = rng_next(&rng);
+                }
+                /* Rows top to bottom: row y's centre is at NDC y = 1 - 2 (y + 0.5) / height, the
+                 * same point as GL's gl_FragCoord.y = height - y - 0.5 of the flipped read-back. */
+                float ndc_x = 2.0f * ((float)x + jx) / (float)view->width - 1.0f;
+                float ndc_y = 1.0f - 2.0f * ((float)y + jy) / (float)view->height;
+                /* From the near plane (what the rasteriser clips) towards the NDC z = 0 point,
+                 * which stays finite for an infinite far plane. */
+                v3 near = unproject(view->inv_view_proj, ndc_x, ndc_y, -1.0f);
+                v3 mid = unproject(view->inv_view_proj, ndc_x, ndc_y, 0.0f);
+                v3 l = radiance(wc, near, normalize(sub(mid, near)), s->bounces, &rng);
+                acc[0] += l.x;
+                acc[1] += l.y;
+                acc[2] += l.z;
+            }
+            float *out = &job->rgba[4 * pixel];
+            for (int c = 0; c < 3; c++)
+                out[c] = (float)(acc[c] / s->spp);
+            out[3] = 1.0f;
+        }
+    }
+}
+
+static void
+progress_print(int done, int total, int *last_shown)
+{
+    int percent = (int)((int64_t)done * 100 / total);
+    if (percent == *last_shown)
+        return;
+    *last_shown = percent;
+    char bar[41];
+    int filled = percent * 40 / 100;
+    for (int i = 0; i < 40; i++)
+        bar[i] = i < filled ? '#' : '.';
+    bar[40] = '\0';
+    fprintf(stderr, "\rpath_trace [%s] %3d%%", bar, percent);
+    fflush(stderr);
+}
+
+typedef struct pt_thread_arg {
+    pt_job *job;
+    bool main_thread;
+} pt_thread_arg;
+
+static void *
+worker(void *arg)
+{
+    pt_thread_arg *ta = arg;
+    pt_job *job = ta->job;
+    pt_worker_ctx wc = { .pts = job->pts, .rays = 0 };
+    rtcInitIntersectContext(&wc.ictx);
+    int last_shown = -1;
+    for (;;) {
+        int tile = atomic_fetch_add(&job->next_tile, 1);
+        if (tile >= job->tile_count)
+            break;
+        render_tile(job, &wc, tile);
+        int done = atomic_fetch_add(&job->tiles_done, 1) + 1;
+        if (ta->main_thread && job->settings->progress)
+            progress_print(done, job->tile_count, &last_shown);
+    }
+    atomic_fetch_add(&job->rays, wc.rays);
+    return NULL;
+}
+
+bool
+pt_render(const pt_scene *pts, const cg_view *view, const pt_settings *settings, float *rgba,
+          uint64_t *rays_traced, cg_error *err)
+{
+    if (view->width <= 0 || view->height <= 0)
+        return cg_fail(err, CG_ERR_USAGE, "path_trace: image size %dx%d, expected positive",
+                       view->width, view->height);
+    if (settings->spp < 1 || settings->spp > PT_MAX_SPP)
+        return cg_fail(err, CG_ERR_USAGE, "path_trace: spp %d, expected 1..%d", settings->spp, PT_MAX_SPP);
+    if (settings->bounces < 0 || settings->bounces > PT_MAX_BOUNCES)
+        return cg_fail(err, CG_ERR_USAGE, "path_trace: bounces %d, expected 0..%d", settings->bounces,
+                       PT_MAX_BOUNCES);
+    if (settings->threads < 0 || settings->threads > PT_MAX_THREADS)
+        return cg_fail(err, CG_ERR_USAGE, "path_trace: threads %d, expected 0..%d", settings->threads,
+                       PT_MAX_THREADS);
+    int threads = settings->threads;
+    if (threads == 0) {
+        long n = sysconf(_SC_NPROCESSORS_ONLN);
+        threads = n > 0 ? (n > PT_MAX_THREADS ? PT_MAX_THREADS : (int)n) : 1;
+    }
+    pt_job job = { .pts = pts, .view = view, .settings = settings, .rgba = rgba };
+    job.tiles_x = (view->width + PT_TILE - 1) / PT_TILE;
+    job.tiles_y = (view->height + PT_TILE - 1) / PT_TILE;
+    job.tile_count = job.tiles_x * job.tiles_y;
+    atomic_init(&job.next_tile, 0);
+    atomic_init(&job.tiles_done, 0);
+    atomic_init(&job.rays, 0);
+
+    pthread_t ids[PT_MAX_THREADS];
+    pt_thread_arg args[PT_MAX_THREADS];
+    int started = 0;
+    for (int t = 1; t < threads; t++) {
+        args[t] = (pt_thread_arg){ &job, false };
+        if (pthread_create(&ids[t], NULL, worker, &args[t]) != 0)
+            break; /* fewer threads only slows the render down; the image is the same */
+        started = t;
+    }
+    args[0] = (pt_thread_arg){ &job, true };
+    worker(&args[0]);
+    for (int t = 1; t <= started; t++)
+        pthread_join(ids[t], NULL);
+    if (settings->progress) {
+        int last_shown = -1;
+        progress_print(job.tile_count, job.tile_count, &last_shown);
+        fputc('\n', stderr);
+    }
+    if (rays_traced)
+        *rays_traced = atomic_load(&job.rays);
+    return true;
+}

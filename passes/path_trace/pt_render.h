@@ -1,0 +1,66 @@
+/* passes/path_trace/pt_render.h: the CPU path tracer behind the path_trace pass (Embree 3).
+ *
+ * Declares: pt_settings, pt_settings_default, pt_scene, pt_scene_create, pt_scene_destroy,
+ *           pt_scene_triangle_count, pt_render, pt_rays_traced.
+ *
+ * Pure C, no GL: it renders a cg_scene seen through a cg_view into linear float RGBA
+ * (rows top to bottom, as cg_image stores them), so tests and `conegraph bench` can use
+ * it without a context. Physics and units are those of cg/scene.h and DESIGN.md:
+ *   - Lambertian surfaces, albedo = base_color x base colour texture (bilinear, repeat,
+ *     sRGB-decoded before filtering as GL does for SRGB8_ALPHA8; no mipmaps);
+ *   - emissive radiance = emissive x emissive texture x emissive_strength, seen from
+ *     both sides of a surface;
+ *   - punctual lights by next-event estimation with hard shadows: directional
+ *     E = intensity x color, point E = I/d^2, spot as point times the
+ *     KHR_lights_punctual cone falloff; `range` > 0 applies the extension's
+ *     recommended smooth window;
+ *   - `bounces` n: a path x1..x(n+1) from the camera; emission is added at every vertex
+ *     and punctual light at every vertex, so emission reaches the camera after at most n
+ *     diffuse reflections and punctual light after at most n+1. n = 0 is "direct light
+ *     and visible emission", n = 1 the GI graphs' "direct + one diffuse bounce" (their
+ *     light volume holds direct light and emission, gathered once). A white furnace of
+ *     albedo a and emission L therefore gives L x sum_{k=0..n} a^k. Emitters are never
+ *     sampled explicitly, so nothing is counted twice.
+ * Determinism: each sample draws from a counter-based generator keyed by (seed, pixel,
+ * sample), and a pixel's samples are summed in a fixed order, so the image is
+ * bit-identical whatever the thread count or tile schedule.
+ */
+#ifndef CG_PT_RENDER_H
+#define CG_PT_RENDER_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "cg/camera.h"
+#include "cg/error.h"
+#include "cg/scene.h"
+
+typedef struct pt_settings {
+    int spp;            /* samples per pixel, >= 1 */
+    int bounces;        /* diffuse bounces after the first hit, >= 0 */
+    uint32_t seed;
+    int threads;        /* render threads; 0 = one per online core */
+    bool jitter;        /* false: every sample through the pixel centre, exactly the raster
+                         * camera's rays; true: uniform over the pixel (box-filtered edges) */
+    bool progress;      /* progress bar on stderr */
+} pt_settings;
+
+/* spp 64, bounces 1, seed 1, all cores, pixel centres, no progress bar. */
+pt_settings pt_settings_default(void);
+
+typedef struct pt_scene pt_scene;
+
+/* Builds the BVH (one Embree geometry per instance, vertices transformed to world space)
+ * and linear copies of the textures. The cg_scene must outlive the pt_scene. */
+bool pt_scene_create(const cg_scene *scene, pt_scene **out, cg_error *err);
+void pt_scene_destroy(pt_scene *pts);
+size_t pt_scene_triangle_count(const pt_scene *pts);
+
+/* Renders view->width x view->height pixels into rgba (width*height*4 floats, rows top
+ * to bottom, alpha 1). Fails with CG_ERR_USAGE on bad settings. If rays_traced is not
+ * NULL it receives the number of rays cast (camera, bounce and shadow rays). */
+bool pt_render(const pt_scene *pts, const cg_view *view, const pt_settings *settings,
+               float *rgba, uint64_t *rays_traced, cg_error *err);
+
+#endif

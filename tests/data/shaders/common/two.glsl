@@ -1,0 +1,2 @@
+#include "common/one.glsl"
+float two() { return one() + one(); }
