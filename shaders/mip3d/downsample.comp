@@ -1,3 +1,4 @@
+#version 450 core
 // mip3d/downsample.comp: one level of a 3D lightmap's mip chain from the level below,
 // a 2x2x2 box filter (VCT paper 3.1, figure 5), one invocation per output voxel.
 //

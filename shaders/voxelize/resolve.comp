@@ -1,3 +1,4 @@
+#version 450 core
 // voxelize/resolve.comp: turns the fixed-point sums of the voxelization into the lightmap's
 // level 0: mean radiance of the fragments that fell in each voxel (averaged, never
 // last-writer-wins, so the result does not depend on rasterization order), opacity 1
