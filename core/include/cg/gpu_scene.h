@@ -1,12 +1,20 @@
 /* cg/gpu_scene.h: a cg_scene uploaded to GL buffers and textures, and the one way passes draw it.
  *
  * Declares: cg_gpu_scene, cg_gpu_scene_upload, cg_gpu_scene_destroy, cg_gpu_scene_draw,
- *           cg_mesh_filter.
+ *           cg_mesh_filter, CG_BINDING_MATERIALS, CG_BINDING_LIGHTS, CG_BINDING_SHADOW,
+ *           cg_gpu_scene_bind_lights, cg_gpu_scene_update_lights.
  *
  * Shader interface (shaders/common/scene.glsl): vertex attributes 0 = position,
  * 1 = normal, 2 = texcoord; uniform location 0 = mat4 model, 1 = mat3 normal matrix,
  * 2 = int material index; SSBO binding 0 = materials (see scene.glsl); texture units
  * 0 = base colour, 1 = emissive (a 1x1 white texture when absent).
+ * Every program drawn with cg_gpu_scene_draw includes common/scene.glsl, which declares
+ * all three uniforms, so the locations exist in every such program.
+ *
+ * Lights (shaders/common/lights.glsl): SSBO binding 1 = a uvec4 header (x = light count)
+ * followed by a std430 array of struct CgLight, one per cg_scene light in scene order,
+ * so every pass that lights the scene binds the very same data. Binding 2 is kept for
+ * the shadow-map uniform block (shaders/common/shadow.glsl).
  */
 #ifndef CG_GPU_SCENE_H
 #define CG_GPU_SCENE_H
@@ -17,6 +25,10 @@
 
 #include "cg/error.h"
 #include "cg/scene.h"
+
+#define CG_BINDING_MATERIALS 0  /* SSBO */
+#define CG_BINDING_LIGHTS 1     /* SSBO */
+#define CG_BINDING_SHADOW 2     /* UBO */
 
 typedef enum cg_mesh_filter {
     CG_MESHES_ALL,
@@ -38,6 +50,7 @@ typedef struct cg_gpu_scene {
     GLuint material_buffer; /* SSBO, std430 array of struct cg_gpu_material in scene.glsl */
     GLuint *textures;       /* one per cg_scene texture */
     GLuint white_texture;
+    GLuint light_buffer;    /* SSBO, header + std430 array of struct CgLight in lights.glsl */
     size_t bytes;           /* GPU memory held by the buffers and textures */
 } cg_gpu_scene;
 
@@ -48,6 +61,12 @@ void cg_gpu_scene_destroy(cg_gpu_scene *gpu);
  * model and normal matrices and material index uniforms, binds the material SSBO and
  * textures. Returns the number of triangles drawn. */
 size_t cg_gpu_scene_draw(const cg_gpu_scene *gpu, cg_mesh_filter filter);
+
+/* Binds the light SSBO at CG_BINDING_LIGHTS. */
+void cg_gpu_scene_bind_lights(const cg_gpu_scene *gpu);
+/* Re-uploads the lights from gpu->scene (same light count as at upload), e.g. after the
+ * demo moved the sun. Fails with CG_ERR_USAGE when the count changed. */
+bool cg_gpu_scene_update_lights(cg_gpu_scene *gpu, cg_error *err);
 
 /* True when some mesh passes the filter ("model only what a scene requires"). */
 bool cg_gpu_scene_has(const cg_gpu_scene *gpu, cg_mesh_filter filter);

@@ -1,0 +1,342 @@
+/* cg_gpu_scene: a cg_scene in GL buffers and textures (DSA), and the one way passes draw it.
+ * The std430 layouts written here are mirrored by shaders/common/scene.glsl (CgMaterial)
+ * and shaders/common/lights.glsl (CgLight); change both together. */
+#include "cg/gpu_scene.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cglm/cglm.h>
+
+#include "cg/log.h"
+
+/* std430 struct CgMaterial in scene.glsl: four vec4-sized members, 64 bytes. */
+typedef struct gpu_material {
+    float base_color[4];
+    float emissive[4];      /* rgb = emissive factor x emissive strength */
+    int32_t textures[4];    /* x = base colour texture (-1 none), y = emissive texture */
+    float pbr[4];           /* x = metallic, y = roughness */
+} gpu_material;
+
+/* std430 struct CgLight in lights.glsl. */
+typedef struct gpu_light {
+    float position_type[4];     /* xyz world position, w = type (0 directional, 1 point, 2 spot) */
+    float direction_range[4];   /* xyz unit direction the light travels, w = range (0 = infinite) */
+    float radiance[4];          /* rgb = color x intensity, w unused */
+    float cone[4];              /* x = angle scale, y = angle offset (KHR_lights_punctual) */
+} gpu_light;
+
+_Static_assert(sizeof(gpu_material) == 64, "CgMaterial is 64 bytes in std430");
+_Static_assert(sizeof(gpu_light) == 64, "CgLight is 64 bytes in std430");
+
+#define LIGHT_HEADER_BYTES 16
+
+static size_t
+texture_bytes(int width, int height, int levels)
+{
+    size_t bytes = 0;
+    for (int l = 0; l < levels; l++) {
+        bytes += (size_t)width * (size_t)height * 4u;
+        width = width > 1 ? width / 2 : 1;
+        height = height > 1 ? height / 2 : 1;
+    }
+    return bytes;
+}
+
+static int
+mip_levels(int width, int height)
+{
+    int levels = 1;
+    int size = width > height ? width : height;
+    while (size > 1) {
+        size /= 2;
+        levels++;
+    }
+    return levels;
+}
+
+static bool
+upload_mesh(const cg_mesh *mesh, cg_gpu_mesh *out, size_t *bytes, cg_error *err)
+{
+    size_t vertex_bytes = (size_t)mesh->vertex_count * 8u * sizeof(float);
+    float *interleaved = malloc(vertex_bytes ? vertex_bytes : 1);
+    if (!interleaved)
+        return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "gpu scene: mesh '%s': %zu bytes of vertices",
+                       mesh->name, vertex_bytes);
+    for (uint32_t v = 0; v < mesh->vertex_count; v++) {
+        float *dst = interleaved + (size_t)v * 8u;
+        memcpy(dst, mesh->positions + (size_t)v * 3u, 3 * sizeof(float));
+        memcpy(dst + 3, mesh->normals + (size_t)v * 3u, 3 * sizeof(float));
+        if (mesh->texcoords)
+            memcpy(dst + 6, mesh->texcoords + (size_t)v * 2u, 2 * sizeof(float));
+        else
+            dst[6] = dst[7] = 0.0f;
+    }
+    size_t index_bytes = (size_t)mesh->index_count * sizeof(uint32_t);
+
+    glCreateBuffers(1, &out->vertex_buffer);
+    glNamedBufferStorage(out->vertex_buffer, (GLsizeiptr)(vertex_bytes ? vertex_bytes : 32),
+                         vertex_bytes ? interleaved : NULL, 0);
+    free(interleaved);
+    glCreateBuffers(1, &out->index_buffer);
+    glNamedBufferStorage(out->index_buffer, (GLsizeiptr)(index_bytes ? index_bytes : 4),
+                         index_bytes ? mesh->indices : NULL, 0);
+
+    glCreateVertexArrays(1, &out->vao);
+    glVertexArrayVertexBuffer(out->vao, 0, out->vertex_buffer, 0, 8 * sizeof(float));
+    glVertexArrayElementBuffer(out->vao, out->index_buffer);
+    static const struct { GLuint location; GLint size; GLuint offset; } attribs[] = {
+        { 0, 3, 0 }, { 1, 3, 3 * sizeof(float) }, { 2, 2, 6 * sizeof(float) },
+    };
+    for (size_t i = 0; i < sizeof attribs / sizeof attribs[0]; i++) {
+        glEnableVertexArrayAttrib(out->vao, attribs[i].location);
+        glVertexArrayAttribFormat(out->vao, attribs[i].location, attribs[i].size, GL_FLOAT,
+                                  GL_FALSE, attribs[i].offset);
+        glVertexArrayAttribBinding(out->vao, attribs[i].location, 0);
+    }
+    out->index_count = (GLsizei)mesh->index_count;
+    out->kind = mesh->kind;
+    *bytes += vertex_bytes + index_bytes;
+    return true;
+}
+
+static GLuint
+upload_texture(const cg_texture *tex, size_t *bytes)
+{
+    int levels = mip_levels(tex->width, tex->height);
+    GLuint name;
+    glCreateTextures(GL_TEXTURE_2D, 1, &name);
+    glTextureStorage2D(name, levels, tex->srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, tex->width, tex->height);
+    glTextureSubImage2D(name, 0, 0, 0, tex->width, tex->height, GL_RGBA, GL_UNSIGNED_BYTE, tex->rgba);
+    glGenerateTextureMipmap(name);
+    glTextureParameteri(name, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    glTextureParameteri(name, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(name, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glTextureParameteri(name, GL_TEXTURE_WRAP_T, GL_REPEAT);
+    *bytes += texture_bytes(tex->width, tex->height, levels);
+    return name;
+}
+
+static void
+pack_light(const cg_light *light, gpu_light *out)
+{
+    memset(out, 0, sizeof *out);
+    memcpy(out->position_type, light->position, sizeof light->position);
+    out->position_type[3] = (float)light->type;
+    memcpy(out->direction_range, light->direction, sizeof light->direction);
+    out->direction_range[3] = light->range;
+    for (int c = 0; c < 3; c++)
+        out->radiance[c] = light->color[c] * light->intensity;
+    if (light->type == CG_LIGHT_SPOT) {
+        /* KHR_lights_punctual, "Inner and Outer Cone Angles": the smooth falloff is
+         * saturate(cd * scale + offset)^2 with cd the cosine to the spot axis. */
+        float cos_outer = cosf(light->outer_cone_angle);
+        float cos_inner = cosf(light->inner_cone_angle);
+        float scale = 1.0f / fmaxf(0.001f, cos_inner - cos_outer);
+        out->cone[0] = scale;
+        out->cone[1] = -cos_outer * scale;
+    }
+}
+
+static bool
+write_lights(cg_gpu_scene *gpu, bool create, cg_error *err)
+{
+    const cg_scene *scene = gpu->scene;
+    size_t bytes = LIGHT_HEADER_BYTES + (size_t)scene->light_count * sizeof(gpu_light);
+    unsigned char *data = calloc(1, bytes);
+    if (!data)
+        return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "gpu scene: %zu bytes of lights", bytes);
+    uint32_t count = (uint32_t)scene->light_count;
+    memcpy(data, &count, sizeof count);
+    for (int i = 0; i < scene->light_count; i++)
+        pack_light(&scene->lights[i], (gpu_light *)(data + LIGHT_HEADER_BYTES) + i);
+    if (create) {
+        glCreateBuffers(1, &gpu->light_buffer);
+        glNamedBufferStorage(gpu->light_buffer, (GLsizeiptr)bytes, data, GL_DYNAMIC_STORAGE_BIT);
+        gpu->bytes += bytes;
+    } else {
+        glNamedBufferSubData(gpu->light_buffer, 0, (GLsizeiptr)bytes, data);
+    }
+    free(data);
+    return true;
+}
+
+static void
+pack_material(const cg_material *m, gpu_material *out)
+{
+    memset(out, 0, sizeof *out);
+    memcpy(out->base_color, m->base_color, sizeof m->base_color);
+    for (int c = 0; c < 3; c++)
+        out->emissive[c] = m->emissive[c] * m->emissive_strength;
+    out->textures[0] = m->base_color_texture;
+    out->textures[1] = m->emissive_texture;
+    out->pbr[0] = m->metallic;
+    out->pbr[1] = m->roughness;
+}
+
+bool
+cg_gpu_scene_upload(const cg_scene *scene, cg_gpu_scene *out, cg_error *err)
+{
+    memset(out, 0, sizeof *out);
+    out->scene = scene;
+    if (scene->mesh_count > 0) {
+        out->meshes = calloc((size_t)scene->mesh_count, sizeof *out->meshes);
+        if (!out->meshes)
+            return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "gpu scene: %d meshes", scene->mesh_count);
+    }
+    for (int i = 0; i < scene->mesh_count; i++)
+        if (!upload_mesh(&scene->meshes[i], &out->meshes[i], &out->bytes, err)) {
+            cg_gpu_scene_destroy(out);
+            return false;
+        }
+
+    int material_count = scene->material_count > 0 ? scene->material_count : 1;
+    gpu_material *materials = calloc((size_t)material_count, sizeof *materials);
+    if (!materials) {
+        cg_gpu_scene_destroy(out);
+        return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "gpu scene: %d materials", material_count);
+    }
+    if (scene->material_count > 0) {
+        for (int i = 0; i < scene->material_count; i++)
+            pack_material(&scene->materials[i], &materials[i]);
+    } else {
+        /* A scene without materials still draws: a white Lambertian default. */
+        materials[0] = (gpu_material){ { 1, 1, 1, 1 }, { 0, 0, 0, 0 }, { -1, -1, 0, 0 }, { 0, 1, 0, 0 } };
+    }
+    glCreateBuffers(1, &out->material_buffer);
+    glNamedBufferStorage(out->material_buffer, (GLsizeiptr)(material_count * sizeof *materials),
+                         materials, 0);
+    out->bytes += (size_t)material_count * sizeof *materials;
+    free(materials);
+
+    if (scene->texture_count > 0) {
+        out->textures = calloc((size_t)scene->texture_count, sizeof *out->textures);
+        if (!out->textures) {
+            cg_gpu_scene_destroy(out);
+            return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "gpu scene: %d textures", scene->texture_count);
+        }
+    }
+    for (int i = 0; i < scene->texture_count; i++)
+        out->textures[i] = upload_texture(&scene->textures[i], &out->bytes);
+
+    static const uint8_t white[4] = { 255, 255, 255, 255 };
+    glCreateTextures(GL_TEXTURE_2D, 1, &out->white_texture);
+    glTextureStorage2D(out->white_texture, 1, GL_RGBA8, 1, 1);
+    glTextureSubImage2D(out->white_texture, 0, 0, 0, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, white);
+    out->bytes += 4;
+
+    if (!write_lights(out, true, err)) {
+        cg_gpu_scene_destroy(out);
+        return false;
+    }
+    cg_log_debug("gpu scene '%s': %d meshes, %d textures, %d lights, %zu bytes", scene->name,
+                 scene->mesh_count, scene->texture_count, scene->light_count, out->bytes);
+    return true;
+}
+
+void
+cg_gpu_scene_destroy(cg_gpu_scene *gpu)
+{
+    if (!gpu)
+        return;
+    if (gpu->meshes && gpu->scene) {
+        for (int i = 0; i < gpu->scene->mesh_count; i++) {
+            glDeleteVertexArrays(1, &gpu->meshes[i].vao);
+            glDeleteBuffers(1, &gpu->meshes[i].vertex_buffer);
+            glDeleteBuffers(1, &gpu->meshes[i].index_buffer);
+        }
+    }
+    if (gpu->textures && gpu->scene)
+        glDeleteTextures(gpu->scene->texture_count, gpu->textures);
+    glDeleteBuffers(1, &gpu->material_buffer);
+    glDeleteBuffers(1, &gpu->light_buffer);
+    glDeleteTextures(1, &gpu->white_texture);
+    free(gpu->meshes);
+    free(gpu->textures);
+    memset(gpu, 0, sizeof *gpu);
+}
+
+static bool
+mesh_passes(cg_mesh_kind kind, cg_mesh_filter filter)
+{
+    switch (filter) {
+    case CG_MESHES_ALL: return true;
+    case CG_MESHES_COMPLEX: return kind == CG_MESH_COMPLEX;
+    case CG_MESHES_HEIGHTFIELD: return kind == CG_MESH_HEIGHTFIELD;
+    }
+    return false;
+}
+
+static GLuint
+material_texture(const cg_gpu_scene *gpu, int index)
+{
+    if (index < 0 || index >= gpu->scene->texture_count)
+        return gpu->white_texture;
+    return gpu->textures[index];
+}
+
+size_t
+cg_gpu_scene_draw(const cg_gpu_scene *gpu, cg_mesh_filter filter)
+{
+    const cg_scene *scene = gpu->scene;
+    size_t triangles = 0;
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_MATERIALS, gpu->material_buffer);
+    for (int i = 0; i < scene->instance_count; i++) {
+        const cg_instance *inst = &scene->instances[i];
+        const cg_gpu_mesh *mesh = &gpu->meshes[inst->mesh];
+        if (!mesh_passes(mesh->kind, filter) || mesh->index_count == 0)
+            continue;
+        mat4 model;
+        memcpy(model, inst->world, sizeof model);
+        /* Normals transform by the inverse transpose of the linear part. */
+        mat3 linear, normal_matrix;
+        glm_mat4_pick3(model, linear);
+        glm_mat3_inv(linear, normal_matrix);
+        glm_mat3_transpose(normal_matrix);
+        int material = scene->meshes[inst->mesh].material;
+        if (material < 0 || material >= scene->material_count)
+            material = 0;
+        glUniformMatrix4fv(0, 1, GL_FALSE, (const float *)model);
+        glUniformMatrix3fv(1, 1, GL_FALSE, (const float *)normal_matrix);
+        glUniform1i(2, material);
+        const cg_material *m = scene->material_count > 0 ? &scene->materials[material] : NULL;
+        glBindTextureUnit(0, material_texture(gpu, m ? m->base_color_texture : -1));
+        glBindTextureUnit(1, material_texture(gpu, m ? m->emissive_texture : -1));
+        glBindVertexArray(mesh->vao);
+        glDrawElements(GL_TRIANGLES, mesh->index_count, GL_UNSIGNED_INT, NULL);
+        triangles += (size_t)mesh->index_count / 3u;
+    }
+    glBindVertexArray(0);
+    return triangles;
+}
+
+bool
+cg_gpu_scene_has(const cg_gpu_scene *gpu, cg_mesh_filter filter)
+{
+    for (int i = 0; i < gpu->scene->instance_count; i++) {
+        const cg_gpu_mesh *mesh = &gpu->meshes[gpu->scene->instances[i].mesh];
+        if (mesh_passes(mesh->kind, filter) && mesh->index_count > 0)
+            return true;
+    }
+    return false;
+}
+
+void
+cg_gpu_scene_bind_lights(const cg_gpu_scene *gpu)
+{
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_LIGHTS, gpu->light_buffer);
+}
+
+bool
+cg_gpu_scene_update_lights(cg_gpu_scene *gpu, cg_error *err)
+{
+    GLint64 size = 0;
+    glGetNamedBufferParameteri64v(gpu->light_buffer, GL_BUFFER_SIZE, &size);
+    size_t expected = LIGHT_HEADER_BYTES + (size_t)gpu->scene->light_count * sizeof(gpu_light);
+    if ((size_t)size != expected)
+        return cg_fail(err, CG_ERR_USAGE,
+                       "gpu scene: light count changed since upload (buffer %lld bytes, need %zu)",
+                       (long long)size, expected);
+    return write_lights(gpu, false, err);
+}

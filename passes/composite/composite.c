@@ -1,0 +1,142 @@
+/* composite: the final image. hdr = direct + albedo x indirect + emissive (linear
+ * radiance, RGBA32F, what .exr files hold); ldr = hdr x 2^exposure, tonemapped, sRGB-encoded
+ * (RGBA8 holding sRGB-encoded values, what .png files hold).
+ *
+ * Convention with the gather passes (docs/passes.md): the `indirect` input holds the
+ * gathered incident radiance integral divided by pi, so that the outgoing Lambertian
+ * radiance is albedo x indirect (VCT paper 3.2: the diffuse cones' weighted sum).
+ */
+#include <math.h>
+#include <stdlib.h>
+
+#include "cg/fg.h"
+#include "cg/shader.h"
+
+enum { TONEMAP_NONE, TONEMAP_REINHARD, TONEMAP_ACES };
+
+static const fg_param_desc composite_params[] = {
+    { "exposure", FG_PARAM_FLOAT, 0.0, -20.0, 20.0, NULL,
+      "exposure of the ldr output in EV: radiance is scaled by 2^exposure before the tonemap (hdr is not)" },
+    { "tonemap", FG_PARAM_ENUM, TONEMAP_ACES, 0, 0, "none|reinhard|aces",
+      "tonemap operator of the ldr output: clamp, Reinhard on luminance, or the Narkowicz ACES fit" },
+};
+
+typedef struct composite_state {
+    GLuint program;
+} composite_state;
+
+static bool
+same_size(const fg_resource_desc *a, const fg_resource_desc *b)
+{
+    return a->width == b->width && a->height == b->height;
+}
+
+static bool
+composite_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
+{
+    const fg_frame *frame = fg_pass_frame(pass);
+    const fg_resource_desc *direct =
+        fg_declare_input(decl, "direct", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, true);
+    const fg_resource_desc *inputs[3] = {
+        fg_declare_input(decl, "indirect", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, false),
+        fg_declare_input(decl, "albedo", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, false),
+        fg_declare_input(decl, "emissive", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, false),
+    };
+    static const char *const names[3] = { "indirect", "albedo", "emissive" };
+    if (inputs[0] && !inputs[1])
+        return cg_fail(err, CG_ERR_GRAPH_MISSING_INPUT,
+                       "pass '%s': input 'indirect' needs 'albedo' (outgoing = albedo x indirect)",
+                       fg_pass_name(pass));
+    for (int i = 0; i < 3; i++)
+        if (direct && inputs[i] && !same_size(direct, inputs[i]))
+            return cg_fail(err, CG_ERR_GRAPH_INCOMPATIBLE,
+                           "pass '%s': input '%s' is %dx%d, input 'direct' %dx%d; composite reads "
+                           "them pixel for pixel", fg_pass_name(pass), names[i], inputs[i]->width,
+                           inputs[i]->height, direct->width, direct->height);
+    fg_resource_desc out = {
+        .kind = FG_TEXTURE_2D, .format = GL_RGBA32F,
+        .width = direct ? direct->width : frame->width,
+        .height = direct ? direct->height : frame->height,
+        .depth = 1, .levels = 1,
+    };
+    fg_declare_output(decl, "hdr", &out, FG_ACCESS_IMAGE_STORE);
+    out.format = GL_RGBA8;
+    fg_declare_output(decl, "ldr", &out, FG_ACCESS_IMAGE_STORE);
+    return true;
+}
+
+static bool
+composite_prepare(fg_pass *pass, void **state, cg_error *err)
+{
+    (void)pass;
+    composite_state *st = calloc(1, sizeof *st);
+    if (!st)
+        return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "composite: state");
+    if (!cg_program_compute("composite/composite.comp", NULL, &st->program, err)) {
+        free(st);
+        return false;
+    }
+    *state = st;
+    return true;
+}
+
+static bool
+composite_execute(fg_pass *pass, void *state, cg_error *err)
+{
+    (void)err;
+    composite_state *st = state;
+    const fg_resource_desc *out = fg_resource(pass, "hdr");
+    GLuint direct = fg_texture(pass, "direct");
+    bool has_indirect = fg_input_present(pass, "indirect");
+    bool has_emissive = fg_input_present(pass, "emissive");
+
+    glUseProgram(st->program);
+    /* Absent inputs are never read (the flags say so); a valid texture stays bound anyway. */
+    glBindTextureUnit(0, direct);
+    glBindTextureUnit(1, has_indirect ? fg_texture(pass, "indirect") : direct);
+    glBindTextureUnit(2, has_indirect ? fg_texture(pass, "albedo") : direct);
+    glBindTextureUnit(3, has_emissive ? fg_texture(pass, "emissive") : direct);
+    glUniform1i(0, has_indirect);
+    glUniform1i(1, has_emissive);
+    glUniform1f(2, exp2f(fg_param_float(pass, "exposure")));
+    glUniform1i(3, fg_param_enum(pass, "tonemap"));
+    glBindImageTexture(0, fg_texture(pass, "hdr"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    glBindImageTexture(1, fg_texture(pass, "ldr"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
+    glDispatchCompute((GLuint)(out->width + 7) / 8, (GLuint)(out->height + 7) / 8, 1);
+    glUseProgram(0);
+    return true;
+}
+
+static void
+composite_destroy(void *state)
+{
+    composite_state *st = state;
+    if (!st)
+        return;
+    glDeleteProgram(st->program);
+    free(st);
+}
+
+static const fg_pass_type composite_type = {
+    .abi_version = FG_ABI_VERSION,
+    .name = "composite",
+    .doc = "The final image: hdr = direct + albedo x indirect + emissive, linear radiance "
+           "(RGBA32F); ldr = hdr x 2^exposure, tonemapped and sRGB-encoded (RGBA8). The optional "
+           "indirect input holds the gathered incident radiance integral over pi, so that "
+           "outgoing = albedo x indirect.",
+    .params = composite_params,
+    .param_count = (int)(sizeof composite_params / sizeof composite_params[0]),
+    .declare = composite_declare,
+    .prepare = composite_prepare,
+    .execute = composite_execute,
+    .destroy = composite_destroy,
+};
+
+bool
+cg_pass_register_composite(fg_registry *registry, uint32_t host_abi, cg_error *err)
+{
+    if (host_abi != FG_ABI_VERSION)
+        return cg_fail(err, CG_ERR_PLUGIN_ABI, "pass composite: built for frame-graph ABI %u, host has %u",
+                       FG_ABI_VERSION, host_abi);
+    return fg_registry_add(registry, &composite_type, err);
+}

@@ -1,0 +1,137 @@
+/* direct_light: outgoing radiance of the G-buffer's surfaces lit directly by every light
+ * of the scene (Lambertian, DESIGN.md units: shaders/common/lights.glsl), shadowed by the
+ * optional shadow map (shaders/common/shadow.glsl) for the light it serves. Point lights
+ * and lights without a map are unshadowed.
+ */
+#include <stdlib.h>
+#include <string.h>
+
+#include "cg/fg.h"
+#include "cg/gpu_scene.h"
+#include "cg/shader.h"
+
+#define SHADOW_BLOCK_BYTES 192
+
+typedef struct direct_state {
+    GLuint program;
+    GLuint no_shadow_block;     /* light index -1: every light unshadowed */
+    GLuint no_shadow_map;       /* 1x1 depth texture bound when the input is absent */
+} direct_state;
+
+static bool
+direct_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
+{
+    const fg_frame *frame = fg_pass_frame(pass);
+    const fg_resource_desc *position =
+        fg_declare_input(decl, "position", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, true);
+    fg_declare_input(decl, "normal", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, true);
+    fg_declare_input(decl, "albedo", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, true);
+    const fg_resource_desc *shadow =
+        fg_declare_input(decl, "shadow", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, false);
+    const fg_resource_desc *matrix =
+        fg_declare_input(decl, "shadow_matrix", FG_BUFFER, FG_ACCESS_UNIFORM, false);
+    if (!shadow != !matrix)
+        return cg_fail(err, CG_ERR_GRAPH_MISSING_INPUT,
+                       "pass '%s': inputs 'shadow' and 'shadow_matrix' go together (a shadow_map "
+                       "pass's outputs 'depth' and 'matrix'); only one is present", fg_pass_name(pass));
+    if (shadow && shadow->format != GL_DEPTH_COMPONENT32F)
+        return cg_fail(err, CG_ERR_GRAPH_INCOMPATIBLE,
+                       "pass '%s': input 'shadow' must be a GL_DEPTH_COMPONENT32F shadow map",
+                       fg_pass_name(pass));
+    if (matrix && matrix->buffer_bytes < SHADOW_BLOCK_BYTES)
+        return cg_fail(err, CG_ERR_GRAPH_INCOMPATIBLE,
+                       "pass '%s': input 'shadow_matrix' holds %zu bytes; a shadow_map 'matrix' "
+                       "holds %d", fg_pass_name(pass), matrix->buffer_bytes, SHADOW_BLOCK_BYTES);
+    fg_resource_desc out = {
+        .kind = FG_TEXTURE_2D, .format = GL_RGBA16F,
+        .width = position ? position->width : frame->width,
+        .height = position ? position->height : frame->height,
+        .depth = 1, .levels = 1,
+    };
+    fg_declare_output(decl, "radiance", &out, FG_ACCESS_IMAGE_STORE);
+    return true;
+}
+
+static bool
+direct_prepare(fg_pass *pass, void **state, cg_error *err)
+{
+    (void)pass;
+    direct_state *st = calloc(1, sizeof *st);
+    if (!st)
+        return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "direct_light: state");
+    if (!cg_program_compute("direct_light/direct.comp", NULL, &st->program, err)) {
+        free(st);
+        return false;
+    }
+    float block[SHADOW_BLOCK_BYTES / 4];
+    memset(block, 0, sizeof block);
+    block[36] = -1.0f; /* frustum.x (after two mat4 and params): light index -1 */
+    glCreateBuffers(1, &st->no_shadow_block);
+    glNamedBufferStorage(st->no_shadow_block, sizeof block, block, 0);
+    glCreateTextures(GL_TEXTURE_2D, 1, &st->no_shadow_map);
+    glTextureStorage2D(st->no_shadow_map, 1, GL_DEPTH_COMPONENT32F, 1, 1);
+    const float far_depth = 1.0f;
+    glClearTexImage(st->no_shadow_map, 0, GL_DEPTH_COMPONENT, GL_FLOAT, &far_depth);
+    *state = st;
+    return true;
+}
+
+static bool
+direct_execute(fg_pass *pass, void *state, cg_error *err)
+{
+    (void)err;
+    direct_state *st = state;
+    const fg_frame *frame = fg_pass_frame(pass);
+    const fg_resource_desc *out = fg_resource(pass, "radiance");
+    bool shadowed = fg_input_present(pass, "shadow");
+
+    glUseProgram(st->program);
+    cg_gpu_scene_bind_lights(frame->gpu_scene);
+    glBindBufferBase(GL_UNIFORM_BUFFER, CG_BINDING_SHADOW,
+                     shadowed ? fg_buffer(pass, "shadow_matrix") : st->no_shadow_block);
+    glBindTextureUnit(2, fg_texture(pass, "position"));
+    glBindTextureUnit(3, fg_texture(pass, "normal"));
+    glBindTextureUnit(4, fg_texture(pass, "albedo"));
+    glBindTextureUnit(5, shadowed ? fg_texture(pass, "shadow") : st->no_shadow_map);
+    glBindImageTexture(0, fg_texture(pass, "radiance"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glDispatchCompute((GLuint)(out->width + 7) / 8, (GLuint)(out->height + 7) / 8, 1);
+    glUseProgram(0);
+    return true;
+}
+
+static void
+direct_destroy(void *state)
+{
+    direct_state *st = state;
+    if (!st)
+        return;
+    glDeleteProgram(st->program);
+    glDeleteBuffers(1, &st->no_shadow_block);
+    glDeleteTextures(1, &st->no_shadow_map);
+    free(st);
+}
+
+static const fg_pass_type direct_light_type = {
+    .abi_version = FG_ABI_VERSION,
+    .name = "direct_light",
+    .doc = "Outgoing radiance of the G-buffer's surfaces lit directly by every scene light: "
+           "Lambertian, albedo x E x cos / pi with E from KHR_lights_punctual (directional: "
+           "intensity x color; point: I/d^2; spot: I/d^2 with the smooth cone falloff). The light "
+           "served by the optional shadow map (inputs shadow and shadow_matrix) is shadowed; "
+           "the others, point lights included, are not.",
+    .params = NULL,
+    .param_count = 0,
+    .declare = direct_declare,
+    .prepare = direct_prepare,
+    .execute = direct_execute,
+    .destroy = direct_destroy,
+};
+
+bool
+cg_pass_register_direct_light(fg_registry *registry, uint32_t host_abi, cg_error *err)
+{
+    if (host_abi != FG_ABI_VERSION)
+        return cg_fail(err, CG_ERR_PLUGIN_ABI, "pass direct_light: built for frame-graph ABI %u, host has %u",
+                       FG_ABI_VERSION, host_abi);
+    return fg_registry_add(registry, &direct_light_type, err);
+}

@@ -1,0 +1,135 @@
+/* gbuffer: the visible surface of every pixel of the output image, in world space.
+ *
+ * Outputs (all the output image's size): depth (GL_DEPTH_COMPONENT32F), position
+ * (RGBA32F world position, w = 1 where a surface covers the pixel, 0 on the background),
+ * normal (RGBA16F world normal turned towards the camera), albedo (RGBA16F linear
+ * Lambertian albedo) and emissive (RGBA16F emitted radiance).
+ *
+ * The world position is stored rather than reconstructed from depth: a perspective fp32
+ * depth buffer loses ~z^2/near x 6e-8 metres, about half a metre at 1 km with a 10 cm
+ * near plane, which shadow lookups and cone origins in an open world cannot afford.
+ * Albedo is 16-bit float because 8-bit linear values band in dark albedos (1/255 is 8%
+ * of an albedo of 0.05), and the indirect light is multiplied by it.
+ */
+#include <stdlib.h>
+
+#include "cg/fg.h"
+#include "cg/gpu_scene.h"
+#include "cg/shader.h"
+
+typedef struct gbuffer_state {
+    GLuint program;
+    GLuint fbo;
+} gbuffer_state;
+
+static const char *const color_outputs[] = { "position", "normal", "albedo", "emissive" };
+static const GLenum color_formats[] = { GL_RGBA32F, GL_RGBA16F, GL_RGBA16F, GL_RGBA16F };
+#define COLOR_OUTPUTS 4
+
+static bool
+gbuffer_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
+{
+    (void)err;
+    const fg_frame *frame = fg_pass_frame(pass);
+    fg_resource_desc desc = {
+        .kind = FG_TEXTURE_2D, .format = GL_DEPTH_COMPONENT32F,
+        .width = frame->width, .height = frame->height, .depth = 1, .levels = 1,
+    };
+    fg_declare_output(decl, "depth", &desc, FG_ACCESS_ATTACHMENT);
+    for (int i = 0; i < COLOR_OUTPUTS; i++) {
+        desc.format = color_formats[i];
+        fg_declare_output(decl, color_outputs[i], &desc, FG_ACCESS_ATTACHMENT);
+    }
+    return true;
+}
+
+static bool
+gbuffer_prepare(fg_pass *pass, void **state, cg_error *err)
+{
+    (void)pass;
+    gbuffer_state *st = calloc(1, sizeof *st);
+    if (!st)
+        return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "gbuffer: state");
+    if (!cg_program_graphics("gbuffer/gbuffer.vert", NULL, "gbuffer/gbuffer.frag", NULL,
+                             &st->program, err)) {
+        free(st);
+        return false;
+    }
+    glCreateFramebuffers(1, &st->fbo);
+    static const GLenum draw_buffers[COLOR_OUTPUTS] = {
+        GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3,
+    };
+    glNamedFramebufferDrawBuffers(st->fbo, COLOR_OUTPUTS, draw_buffers);
+    *state = st;
+    return true;
+}
+
+static bool
+gbuffer_execute(fg_pass *pass, void *state, cg_error *err)
+{
+    gbuffer_state *st = state;
+    const fg_frame *frame = fg_pass_frame(pass);
+    /* Pooled storage may hand this pass other textures from frame to frame: attach each time. */
+    glNamedFramebufferTexture(st->fbo, GL_DEPTH_ATTACHMENT, fg_texture(pass, "depth"), 0);
+    for (int i = 0; i < COLOR_OUTPUTS; i++)
+        glNamedFramebufferTexture(st->fbo, GL_COLOR_ATTACHMENT0 + (GLenum)i,
+                                  fg_texture(pass, color_outputs[i]), 0);
+    GLenum status = glCheckNamedFramebufferStatus(st->fbo, GL_FRAMEBUFFER);
+    if (status != GL_FRAMEBUFFER_COMPLETE)
+        return cg_fail(err, CG_ERR_GL, "pass '%s': G-buffer framebuffer incomplete (0x%x)",
+                       fg_pass_name(pass), status);
+
+    glBindFramebuffer(GL_FRAMEBUFFER, st->fbo);
+    glViewport(0, 0, frame->width, frame->height);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_BLEND);
+    static const float zero[4] = { 0.0f, 0.0f, 0.0f, 0.0f };
+    const float far_depth = 1.0f;
+    for (int i = 0; i < COLOR_OUTPUTS; i++)
+        glClearNamedFramebufferfv(st->fbo, GL_COLOR, i, zero);
+    glClearNamedFramebufferfv(st->fbo, GL_DEPTH, 0, &far_depth);
+    glUseProgram(st->program);
+    glUniformMatrix4fv(8, 1, GL_FALSE, frame->view.view_proj);
+    cg_gpu_scene_draw(frame->gpu_scene, CG_MESHES_ALL);
+    glUseProgram(0);
+    glDisable(GL_DEPTH_TEST);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    return true;
+}
+
+static void
+gbuffer_destroy(void *state)
+{
+    gbuffer_state *st = state;
+    if (!st)
+        return;
+    glDeleteProgram(st->program);
+    glDeleteFramebuffers(1, &st->fbo);
+    free(st);
+}
+
+static const fg_pass_type gbuffer_type = {
+    .abi_version = FG_ABI_VERSION,
+    .name = "gbuffer",
+    .doc = "The visible surface of each pixel of the output image: depth, world position "
+           "(w = 1 where covered), world normal facing the camera, linear albedo and emitted "
+           "radiance. Deferred shading's G-buffer; the VCT paper's cones start from it.",
+    .params = NULL,
+    .param_count = 0,
+    .declare = gbuffer_declare,
+    .prepare = gbuffer_prepare,
+    .execute = gbuffer_execute,
+    .destroy = gbuffer_destroy,
+};
+
+bool
+cg_pass_register_gbuffer(fg_registry *registry, uint32_t host_abi, cg_error *err)
+{
+    if (host_abi != FG_ABI_VERSION)
+        return cg_fail(err, CG_ERR_PLUGIN_ABI, "pass gbuffer: built for frame-graph ABI %u, host has %u",
+                       FG_ABI_VERSION, host_abi);
+    return fg_registry_add(registry, &gbuffer_type, err);
+}

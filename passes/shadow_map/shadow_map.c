@@ -1,0 +1,322 @@
+/* shadow_map: depth of the scene seen from one directional or spot light, and the
+ * matrices and bias that shaders/common/shadow.glsl needs to look it up.
+ *
+ * Directional light: orthographic projection fitted to the scene bounds seen along the
+ * light. Spot light: perspective projection covering the outer cone. Point lights get no
+ * shadow map (they light unshadowed; docs/passes.md). Used for direct light and for the
+ * light injected into the voxel volume (VCT paper 3.1: "we render a shadow map").
+ */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cglm/cglm.h>
+
+#include "cg/fg.h"
+#include "cg/gpu_scene.h"
+#include "cg/shader.h"
+
+enum { FILTER_NONE, FILTER_PCF3, FILTER_PCF5 };
+
+/* Spot cones wider than this cannot be covered by one perspective projection with a
+ * usable texel density. */
+#define MAX_SPOT_FOV_DEGREES 170.0f
+
+static const fg_param_desc shadow_params[] = {
+    { "light", FG_PARAM_INT, -1, -1, 65535, NULL,
+      "index of the scene light to shadow (directional or spot); -1 = the first directional or spot light" },
+    { "resolution", FG_PARAM_INT, 2048, 16, 16384, NULL,
+      "width and height of the depth map, texels" },
+    { "bias", FG_PARAM_FLOAT, 1.0, 0.0, 64.0, NULL,
+      "constant depth bias, in shadow-map texels (world size of a texel at the receiver)" },
+    { "slope_bias", FG_PARAM_FLOAT, 1.0, 0.0, 64.0, NULL,
+      "depth bias per unit of tan(angle between normal and light), in texels; tan is capped at 10" },
+    { "filter", FG_PARAM_ENUM, FILTER_PCF3, 0, 0, "none|pcf3|pcf5",
+      "percentage-closer filtering of the lookup: 1, 3x3 or 5x5 depth comparisons" },
+};
+
+/* std140 block CgShadow in shaders/common/shadow.glsl. */
+typedef struct shadow_block {
+    float view[16];
+    float view_proj[16];
+    float params[4];    /* constant bias, slope bias, filter radius, resolution */
+    float frustum[4];   /* light index, orthographic, near, far */
+    float light[4];     /* towards the light (orthographic) or light position */
+    float texel[4];     /* texel world size, or per metre of distance */
+} shadow_block;
+
+_Static_assert(sizeof(shadow_block) == 192, "CgShadow is 192 bytes in std140");
+
+typedef struct shadow_state {
+    GLuint program;
+    GLuint fbo;
+    GLuint staging;
+} shadow_state;
+
+/* The light this instance serves: the `light` parameter, or the first directional or spot
+ * light. Returns false with an error for an index the scene does not have or a point light;
+ * *index = -1 when the scene has no light a shadow map can serve. */
+static bool
+pick_light(const fg_pass *pass, const cg_scene *scene, int *index, cg_error *err)
+{
+    int wanted = fg_param_int(pass, "light");
+    *index = -1;
+    if (wanted < 0) {
+        for (int i = 0; i < scene->light_count; i++)
+            if (scene->lights[i].type != CG_LIGHT_POINT) {
+                *index = i;
+                break;
+            }
+        return true;
+    }
+    if (wanted >= scene->light_count)
+        return cg_fail(err, CG_ERR_GRAPH_PARAM_RANGE,
+                       "pass '%s': light %d does not exist (scene '%s' has %d lights)",
+                       fg_pass_name(pass), wanted, scene->name, scene->light_count);
+    if (scene->lights[wanted].type == CG_LIGHT_POINT)
+        return cg_fail(err, CG_ERR_GRAPH_PARAM_RANGE,
+                       "pass '%s': light %d ('%s') is a point light; shadow_map serves directional "
+                       "and spot lights (point lights are unshadowed)",
+                       fg_pass_name(pass), wanted, scene->lights[wanted].name);
+    *index = wanted;
+    return true;
+}
+
+static float
+spot_fov(const cg_light *light)
+{
+    /* One degree beyond the outer cone, so that PCF taps at the cone's edge stay inside. */
+    return 2.0f * light->outer_cone_angle + glm_rad(1.0f);
+}
+
+static bool
+shadow_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
+{
+    const fg_frame *frame = fg_pass_frame(pass);
+    if (frame->scene) {
+        int index;
+        if (!pick_light(pass, frame->scene, &index, err))
+            return false;
+        if (index < 0) {
+            fg_declare_nothing_to_do(decl, "the scene has no directional or spot light");
+            return true;
+        }
+        const cg_light *light = &frame->scene->lights[index];
+        if (light->type == CG_LIGHT_SPOT && spot_fov(light) > glm_rad(MAX_SPOT_FOV_DEGREES)) {
+            fg_declare_nothing_to_do(decl, "the spot light's cone is too wide for one perspective "
+                                           "shadow map (outer angle above 84 degrees)");
+            return true;
+        }
+    }
+    int resolution = fg_param_int(pass, "resolution");
+    fg_resource_desc depth = {
+        .kind = FG_TEXTURE_2D, .format = GL_DEPTH_COMPONENT32F,
+        .width = resolution, .height = resolution, .depth = 1, .levels = 1,
+    };
+    fg_declare_output(decl, "depth", &depth, FG_ACCESS_ATTACHMENT);
+    fg_resource_desc matrix = {
+        .kind = FG_BUFFER, .format = 0, .width = 0, .height = 0, .depth = 1, .levels = 1,
+        .buffer_bytes = sizeof(shadow_block),
+    };
+    fg_declare_output(decl, "matrix", &matrix, FG_ACCESS_TRANSFER);
+    return true;
+}
+
+static bool
+shadow_prepare(fg_pass *pass, void **state, cg_error *err)
+{
+    (void)pass;
+    shadow_state *st = calloc(1, sizeof *st);
+    if (!st)
+        return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "shadow_map: state");
+    if (!cg_program_graphics("shadow_map/depth.vert", NULL, NULL, NULL, &st->program, err)) {
+        free(st);
+        return false;
+    }
+    glCreateFramebuffers(1, &st->fbo);
+    glNamedFramebufferDrawBuffer(st->fbo, GL_NONE);
+    glNamedFramebufferReadBuffer(st->fbo, GL_NONE);
+    glCreateBuffers(1, &st->staging);
+    glNamedBufferStorage(st->staging, sizeof(shadow_block), NULL, GL_DYNAMIC_STORAGE_BIT);
+    *state = st;
+    return true;
+}
+
+static void
+light_up_vector(const vec3 dir, vec3 up)
+{
+    /* Any vector not parallel to the light's direction. */
+    if (fabsf(dir[1]) < 0.99f)
+        glm_vec3_copy((vec3){ 0.0f, 1.0f, 0.0f }, up);
+    else
+        glm_vec3_copy((vec3){ 1.0f, 0.0f, 0.0f }, up);
+}
+
+static void
+bounds_corner(const cg_scene *scene, int i, vec3 out)
+{
+    out[0] = (i & 1) ? scene->bounds_max[0] : scene->bounds_min[0];
+    out[1] = (i & 2) ? scene->bounds_max[1] : scene->bounds_min[1];
+    out[2] = (i & 4) ? scene->bounds_max[2] : scene->bounds_min[2];
+}
+
+/* Orthographic projection along the light that just holds the scene bounds. */
+static void
+fit_directional(const cg_scene *scene, const cg_light *light, int resolution, shadow_block *b)
+{
+    vec3 dir, up, center, eye, extent;
+    glm_vec3_normalize_to((float *)light->direction, dir);
+    light_up_vector(dir, up);
+    glm_vec3_add((float *)scene->bounds_min, (float *)scene->bounds_max, center);
+    glm_vec3_scale(center, 0.5f, center);
+    glm_vec3_sub((float *)scene->bounds_max, (float *)scene->bounds_min, extent);
+    float diagonal = glm_vec3_norm(extent);
+    float radius = diagonal > 0.0f ? 0.5f * diagonal : 1.0f;
+    glm_vec3_scale(dir, -radius, eye);
+    glm_vec3_add(center, eye, eye);
+    mat4 view, proj, view_proj;
+    glm_lookat(eye, center, up, view);
+
+    vec3 lo = { INFINITY, INFINITY, INFINITY }, hi = { -INFINITY, -INFINITY, -INFINITY };
+    for (int i = 0; i < 8; i++) {
+        vec3 c, v;
+        bounds_corner(scene, i, c);
+        glm_mat4_mulv3(view, c, 1.0f, v);
+        glm_vec3_minv(lo, v, lo);
+        glm_vec3_maxv(hi, v, hi);
+    }
+    /* A margin so that geometry on the bounds is not clipped, nor flat scenes degenerate. */
+    float margin = fmaxf(0.01f * radius, 1e-4f);
+    float left = lo[0] - margin, right = hi[0] + margin;
+    float bottom = lo[1] - margin, top = hi[1] + margin;
+    float znear = -hi[2] - margin, zfar = -lo[2] + margin;
+    glm_ortho(left, right, bottom, top, znear, zfar, proj);
+    glm_mat4_mul(proj, view, view_proj);
+
+    memcpy(b->view, view, sizeof b->view);
+    memcpy(b->view_proj, view_proj, sizeof b->view_proj);
+    b->frustum[1] = 1.0f;
+    b->frustum[2] = znear;
+    b->frustum[3] = zfar;
+    glm_vec3_negate_to(dir, b->light);
+    b->texel[0] = fmaxf(right - left, top - bottom) / (float)resolution;
+}
+
+/* Perspective projection from the spot light covering its outer cone and reaching the
+ * farthest corner of the scene bounds. */
+static void
+fit_spot(const cg_scene *scene, const cg_light *light, int resolution, shadow_block *b)
+{
+    vec3 dir, up, eye, target;
+    glm_vec3_normalize_to((float *)light->direction, dir);
+    light_up_vector(dir, up);
+    glm_vec3_copy((float *)light->position, eye);
+    glm_vec3_add(eye, dir, target);
+    float zfar = 0.0f;
+    for (int i = 0; i < 8; i++) {
+        vec3 c;
+        bounds_corner(scene, i, c);
+        zfar = fmaxf(zfar, glm_vec3_distance(eye, c));
+    }
+    zfar = zfar > 0.0f ? zfar * 1.01f : 1.0f;
+    /* fp32 depth linearised in shadow.glsl keeps ~1e-4 relative precision at far/near = 1e4. */
+    float znear = zfar * 1e-4f;
+    float fov = spot_fov(light);
+    mat4 view, proj, view_proj;
+    glm_lookat(eye, target, up, view);
+    glm_perspective(fov, 1.0f, znear, zfar, proj);
+    glm_mat4_mul(proj, view, view_proj);
+
+    memcpy(b->view, view, sizeof b->view);
+    memcpy(b->view_proj, view_proj, sizeof b->view_proj);
+    b->frustum[1] = 0.0f;
+    b->frustum[2] = znear;
+    b->frustum[3] = zfar;
+    glm_vec3_copy(eye, b->light);
+    b->texel[0] = 2.0f * tanf(0.5f * fov) / (float)resolution;
+}
+
+static bool
+shadow_execute(fg_pass *pass, void *state, cg_error *err)
+{
+    shadow_state *st = state;
+    const fg_frame *frame = fg_pass_frame(pass);
+    int index;
+    if (!pick_light(pass, frame->scene, &index, err))
+        return false;
+    if (index < 0)
+        return cg_fail(err, CG_ERR_PASS, "pass '%s': the scene lost its shadowed light", fg_pass_name(pass));
+    const cg_light *light = &frame->scene->lights[index];
+    int resolution = fg_param_int(pass, "resolution");
+    static const int filter_radius[] = { [FILTER_NONE] = 0, [FILTER_PCF3] = 1, [FILTER_PCF5] = 2 };
+
+    shadow_block block;
+    memset(&block, 0, sizeof block);
+    if (light->type == CG_LIGHT_DIRECTIONAL)
+        fit_directional(frame->scene, light, resolution, &block);
+    else
+        fit_spot(frame->scene, light, resolution, &block);
+    block.params[0] = fg_param_float(pass, "bias");
+    block.params[1] = fg_param_float(pass, "slope_bias");
+    block.params[2] = (float)filter_radius[fg_param_enum(pass, "filter")];
+    block.params[3] = (float)resolution;
+    block.frustum[0] = (float)index;
+    glNamedBufferSubData(st->staging, 0, sizeof block, &block);
+    glCopyNamedBufferSubData(st->staging, fg_buffer(pass, "matrix"), 0, 0, sizeof block);
+
+    glNamedFramebufferTexture(st->fbo, GL_DEPTH_ATTACHMENT, fg_texture(pass, "depth"), 0);
+    glBindFramebuffer(GL_FRAMEBUFFER, st->fbo);
+    glViewport(0, 0, resolution, resolution);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    /* Occluders in front of the near plane still cast shadows. */
+    glEnable(GL_DEPTH_CLAMP);
+    glDisable(GL_CULL_FACE);
+    const float far_depth = 1.0f;
+    glClearNamedFramebufferfv(st->fbo, GL_DEPTH, 0, &far_depth);
+    glUseProgram(st->program);
+    glUniformMatrix4fv(8, 1, GL_FALSE, block.view_proj);
+    cg_gpu_scene_draw(frame->gpu_scene, CG_MESHES_ALL);
+    glUseProgram(0);
+    glDisable(GL_DEPTH_CLAMP);
+    glDisable(GL_DEPTH_TEST);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    return true;
+}
+
+static void
+shadow_destroy(void *state)
+{
+    shadow_state *st = state;
+    if (!st)
+        return;
+    glDeleteProgram(st->program);
+    glDeleteFramebuffers(1, &st->fbo);
+    glDeleteBuffers(1, &st->staging);
+    free(st);
+}
+
+static const fg_pass_type shadow_map_type = {
+    .abi_version = FG_ABI_VERSION,
+    .name = "shadow_map",
+    .doc = "Depth map of the scene from one directional light (orthographic, fitted to the "
+           "scene bounds) or spot light (perspective over the outer cone), and the matrices "
+           "and bias of its lookup (shaders/common/shadow.glsl) in the buffer `matrix`. "
+           "Point lights are unshadowed. Nothing to do without a directional or spot light.",
+    .params = shadow_params,
+    .param_count = (int)(sizeof shadow_params / sizeof shadow_params[0]),
+    .declare = shadow_declare,
+    .prepare = shadow_prepare,
+    .execute = shadow_execute,
+    .destroy = shadow_destroy,
+};
+
+bool
+cg_pass_register_shadow_map(fg_registry *registry, uint32_t host_abi, cg_error *err)
+{
+    if (host_abi != FG_ABI_VERSION)
+        return cg_fail(err, CG_ERR_PLUGIN_ABI, "pass shadow_map: built for frame-graph ABI %u, host has %u",
+                       FG_ABI_VERSION, host_abi);
+    return fg_registry_add(registry, &shadow_map_type, err);
+}

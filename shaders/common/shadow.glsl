@@ -1,0 +1,70 @@
+// common/shadow.glsl: shadow-map lookup for one light, as written by the shadow_map pass.
+//
+// The shadow_map pass writes a depth texture (GL_DEPTH_COMPONENT32F, window depth of
+// the light's projection) and a 192-byte std140 block `matrix`, bound here at uniform
+// binding 2. A program that has no shadow map binds a block whose light index is -1.
+// Bias (docs/passes.md): the receiver is moved towards the light by
+//   texel * (constant + slope * min(tan(theta), 10))
+// where texel is the world size of one shadow-map texel at the receiver and theta the
+// angle between the normal and the light: scale-free, so the same defaults work for a
+// 1 m box and a 2 km terrain.
+#ifndef CG_SHADOW_GLSL
+#define CG_SHADOW_GLSL
+
+layout(std140, binding = 2) uniform CgShadow {
+    mat4 cg_shadow_view;        // world -> light view (looks down -z)
+    mat4 cg_shadow_view_proj;   // world -> light clip
+    vec4 cg_shadow_params;      // x constant bias, y slope bias (texels), z filter radius (texels), w resolution
+    vec4 cg_shadow_frustum;     // x light index (-1 = no shadow map), y 1 orthographic / 0 perspective, z near, w far
+    vec4 cg_shadow_light;       // xyz: direction towards the light (orthographic) or light position (perspective)
+    vec4 cg_shadow_texel;       // x: texel world size (orthographic) or per metre of distance (perspective)
+};
+
+// Distance along the light's view axis stored in a texel of window depth d.
+float
+cg_shadow_linear_depth(float d)
+{
+    float n = cg_shadow_frustum.z, f = cg_shadow_frustum.w;
+    if (cg_shadow_frustum.y > 0.5)
+        return n + d * (f - n);
+    float z_ndc = 2.0 * d - 1.0;
+    return 2.0 * n * f / ((f + n) - z_ndc * (f - n));
+}
+
+// Fraction of the light `light_index` reaching world point p with unit normal n:
+// 1 lit, 0 shadowed; 1 outside the shadow map's frustum (no information there) and for
+// lights the map does not serve.
+float
+cg_shadow_visibility(sampler2D shadow_map, int light_index, vec3 p, vec3 n)
+{
+    if (light_index != int(cg_shadow_frustum.x))
+        return 1.0;
+    vec4 clip = cg_shadow_view_proj * vec4(p, 1.0);
+    if (clip.w <= 0.0)
+        return 1.0;
+    vec3 ndc = clip.xyz / clip.w;
+    if (any(greaterThan(abs(ndc.xy), vec2(1.0))))
+        return 1.0;
+    float dist = -(cg_shadow_view * vec4(p, 1.0)).z;
+    bool ortho = cg_shadow_frustum.y > 0.5;
+    vec3 to_light = ortho ? cg_shadow_light.xyz : normalize(cg_shadow_light.xyz - p);
+    float cos_theta = clamp(abs(dot(n, to_light)), 1e-3, 1.0);
+    float tan_theta = min(sqrt(1.0 - cos_theta * cos_theta) / cos_theta, 10.0);
+    float texel = ortho ? cg_shadow_texel.x : cg_shadow_texel.x * dist;
+    float receiver = dist - texel * (cg_shadow_params.x + cg_shadow_params.y * tan_theta);
+
+    int resolution = int(cg_shadow_params.w);
+    int radius = int(cg_shadow_params.z);
+    ivec2 center = ivec2(floor((ndc.xy * 0.5 + 0.5) * float(resolution)));
+    float lit = 0.0;
+    for (int y = -radius; y <= radius; y++)
+        for (int x = -radius; x <= radius; x++) {
+            ivec2 t = clamp(center + ivec2(x, y), ivec2(0), ivec2(resolution - 1));
+            float occluder = cg_shadow_linear_depth(texelFetch(shadow_map, t, 0).r);
+            lit += receiver <= occluder ? 1.0 : 0.0;
+        }
+    float taps = float((2 * radius + 1) * (2 * radius + 1));
+    return lit / taps;
+}
+
+#endif
