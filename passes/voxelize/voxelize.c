@@ -370,10 +370,15 @@ voxelize_execute(fg_pass *pass, void *state, cg_error *err)
     if (!radiance_bound(s, scene, filter, region.voxel, &bound, err))
         return false;
     /* Fixed point: FRAGMENT_HEADROOM fragments at the bound sum to 2^32. RGBA16F stores
-     * radiance / (bound / 1024), keeping values near 1..1024 whatever the scene's units;
-     * RGBA8 stores radiance / bound. A scene with no light and no emission is black. */
+     * radiance itself (so a dump of the volume reads in scene units) unless the bound nears
+     * the half-float maximum (65504); RGBA8 stores radiance / bound. A scene with no light
+     * and no emission is black. */
     double fixed_scale = bound > 0.0 ? 4294967295.0 / (bound * FRAGMENT_HEADROOM) : 1.0;
-    double radiance_scale = bound > 0.0 ? (s->format == GL_RGBA8 ? bound : bound / 1024.0) : 1.0;
+    double radiance_scale = 1.0;
+    if (s->format == GL_RGBA8 && bound > 0.0)
+        radiance_scale = bound;
+    else if (bound > 32768.0)
+        radiance_scale = bound / 32768.0;
 
     GLuint accum = fg_texture(pass, "accumulation");
     GLuint radiance = fg_texture(pass, "radiance");

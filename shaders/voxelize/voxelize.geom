@@ -9,11 +9,14 @@
 // this dilation brings (chiefly at sharp corners) are rejected in the fragment shader by
 // an exact triangle/voxel overlap test, so the result is exactly the set of voxels the
 // triangle touches, independent of orientation (tests/passes/test_voxelize.c).
+// A very acute triangle's dilated corners shoot far out (by 0.7 / sin(angle / 2) pixels)
+// and lose precision where nearly parallel edges meet; such a triangle is drawn as its
+// bounding rectangle grown by half a pixel instead, which the overlap test trims as well.
 #version 450 core
 #include "common/scene.glsl"
 
 layout(triangles) in;
-layout(triangle_strip, max_vertices = 3) out;
+layout(triangle_strip, max_vertices = 4) out;
 
 layout(location = 0) in vec3 vs_world[];
 layout(location = 1) in vec3 vs_normal[];
@@ -61,7 +64,8 @@ main()
     if (area == 0.0)
         return;  // degenerate: no surface to voxelize
 
-    vec2 out_q[3] = q;
+    vec2 out_q[4] = vec2[4](q[0], q[1], q[2], q[2]);
+    int corners = 3;
     if (u_conservative) {
         // Edge lines n_i . x = c_i with outward unit normals, pushed out by the half diagonal.
         float orient = area > 0.0 ? 1.0 : -1.0;
@@ -72,16 +76,22 @@ main()
             lines[i] = vec3(en, dot(en, q[i]) + 0.5 * (abs(en.x) + abs(en.y)));
         }
         // New vertex i is where the lines of its two edges (i-1 and i) meet.
+        bool acute = false;
         for (int i = 0; i < 3; i++) {
             vec3 a = lines[(i + 2) % 3], b = lines[i];
             float det = a.x * b.y - a.y * b.x;
-            if (abs(det) < 1e-12)
-                return;  // adjacent edges parallel: the triangle is degenerate
             out_q[i] = vec2(a.z * b.y - b.z * a.y, a.x * b.z - b.x * a.z) / det;
+            // 4 pixels: corners sharper than about 20 degrees.
+            acute = acute || abs(det) < 1e-6 || distance(out_q[i], q[i]) > 4.0;
+        }
+        if (acute) {
+            vec2 lo = min(q[0], min(q[1], q[2])) - 0.5, hi = max(q[0], max(q[1], q[2])) + 0.5;
+            out_q = vec2[4](lo, vec2(hi.x, lo.y), vec2(lo.x, hi.y), hi);
+            corners = 4;
         }
     }
 
-    for (int i = 0; i < 3; i++) {
+    for (int i = 0; i < corners; i++) {
         // Attributes at the moved vertex: the original triangle's barycentric extension.
         vec2 d = out_q[i] - q[0];
         float l1 = cross2(d, q[2] - q[0]) / area;
