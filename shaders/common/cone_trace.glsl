@@ -42,17 +42,17 @@ cg_cone_lod(CgVolume v, float diameter)
     return log2(diameter / v.voxel_size);
 }
 
-// One compositing step. `s` is a premultiplied sample; its opacity was measured over a
-// voxel of the sampled level, so for a step of `step_voxels` such voxels it is corrected
-// to 1 - (1 - alpha)^step_voxels (Beer-Lambert), and its colour with it.
+// One compositing step with a premultiplied sample, as the VCT paper and the issue state
+// it: c += (1 - a) * alpha_s * c_s; a += (1 - a) * alpha_s. No Beer-Lambert correction of
+// alpha_s for the step length: the voxels hold surfaces (alpha is coverage, not a density),
+// and with trilinear filtering the correction lets cones slip through walls that the coarse
+// levels have spread over a whole cell (docs/vct.md: the furnace falls 2.5% short with it).
 void
-cg_cone_composite(inout vec4 acc, vec4 s, float step_voxels)
+cg_cone_composite(inout vec4 acc, vec4 s)
 {
     float alpha = clamp(s.a, 0.0, 1.0);
-    float corrected = 1.0 - pow(1.0 - alpha, step_voxels);
-    vec3 color = alpha > 1e-6 ? s.rgb * (corrected / alpha) : vec3(0.0);
-    acc.rgb += (1.0 - acc.a) * color;
-    acc.a += (1.0 - acc.a) * corrected;
+    acc.rgb += (1.0 - acc.a) * s.rgb;
+    acc.a += (1.0 - acc.a) * alpha;
 }
 
 // Returns the gathered radiance (rgb, already scaled to radiance) and the cone's opacity (a).
@@ -74,10 +74,8 @@ cg_cone_trace(sampler3D volume, CgVolume v, CgCone c)
             break;  // the whole footprint is outside the volume: nothing more to gather
         float lod = min(cg_cone_lod(v, diameter), top);
         vec4 s = textureLod(volume, uvw, lod);
-        float step = c.step_factor * diameter;
-        float level_voxel = v.voxel_size * exp2(lod);
-        cg_cone_composite(acc, s, step / level_voxel);
-        t += step;
+        cg_cone_composite(acc, s);
+        t += c.step_factor * diameter;
     }
     acc.rgb *= v.radiance_scale;
     return acc;
