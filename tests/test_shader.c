@@ -228,6 +228,48 @@ test_graphics_program_draws(void **state)
     assert_no_gl_errors(ctx);
 }
 
+/* Vertex + geometry stages and no fragment stage: a depth-only program writes the
+ * geometry shader's depth into a depth attachment. */
+static void
+test_depth_only_program_with_geometry_stage(void **state)
+{
+    cg_context *ctx = cg_test_gl_context(state);
+    GLuint program = 0;
+    cg_error err = { 0 };
+    assert_cg_ok(cg_program_graphics("test/fullscreen.vert", "test/passthrough.geom", NULL, "#define DEPTH 0.5\n",
+                                     &program, &err),
+                 &err);
+    GLuint depth, fbo, vao;
+    glCreateTextures(GL_TEXTURE_2D, 1, &depth);
+    glTextureStorage2D(depth, 1, GL_DEPTH_COMPONENT32F, 8, 8);
+    glCreateFramebuffers(1, &fbo);
+    glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, depth, 0);
+    glNamedFramebufferDrawBuffer(fbo, GL_NONE);
+    glNamedFramebufferReadBuffer(fbo, GL_NONE);
+    assert_int_equal(glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER), GL_FRAMEBUFFER_COMPLETE);
+    const float far = 1.0f;
+    glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &far);
+    glCreateVertexArrays(1, &vao);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fbo);
+    glViewport(0, 0, 8, 8);
+    glEnable(GL_DEPTH_TEST);
+    glBindVertexArray(vao);
+    glUseProgram(program);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glUseProgram(0);
+    glDisable(GL_DEPTH_TEST);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+    float values[64];
+    glGetTextureImage(depth, 0, GL_DEPTH_COMPONENT, GL_FLOAT, sizeof values, values);
+    for (int i = 0; i < 64; i++) /* NDC z 0.5 -> window depth 0.75 */
+        assert_true(values[i] == 0.75f);
+    glDeleteVertexArrays(1, &vao);
+    glDeleteFramebuffers(1, &fbo);
+    glDeleteTextures(1, &depth);
+    glDeleteProgram(program);
+    assert_no_gl_errors(ctx);
+}
+
 int
 main(void)
 {
@@ -244,6 +286,7 @@ main(void)
         cmocka_unit_test(test_link_error),
         cmocka_unit_test(test_compute_program_runs),
         cmocka_unit_test(test_graphics_program_draws),
+        cmocka_unit_test(test_depth_only_program_with_geometry_stage),
     };
     /* The shaders of these tests live with the tests, not in shaders/. */
     char dir[4096];

@@ -17,9 +17,11 @@ typedef struct cg_command {
 } cg_command;
 
 int cmd_version(int argc, char **argv);
+int cmd_compare(int argc, char **argv);
 
 /* One line per command; keep them in the order `conegraph --help` lists them. */
 #define CG_COMMAND_LIST                                                                   \
-    { "version", cmd_version, "print the version of conegraph and of its libraries" },
+    { "version", cmd_version, "print the version of conegraph and of its libraries" },   \
+    { "compare", cmd_compare, "error metrics of an image against a reference (RMSE, relMSE, SSIM, ...)" },
 
 #endif

@@ -124,7 +124,11 @@ pack_light(const cg_light *light, gpu_light *out)
     memset(out, 0, sizeof *out);
     memcpy(out->position_type, light->position, sizeof light->position);
     out->position_type[3] = (float)light->type;
-    memcpy(out->direction_range, light->direction, sizeof light->direction);
+    /* Normalised here so that shaders can trust it (the path tracer normalises too). */
+    float len = sqrtf(light->direction[0] * light->direction[0] + light->direction[1] * light->direction[1] +
+                      light->direction[2] * light->direction[2]);
+    for (int c = 0; c < 3 && len > 0.0f; c++)
+        out->direction_range[c] = light->direction[c] / len;
     out->direction_range[3] = light->range;
     for (int c = 0; c < 3; c++)
         out->radiance[c] = light->color[c] * light->intensity;

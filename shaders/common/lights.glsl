@@ -1,7 +1,8 @@
 // common/lights.glsl: the scene's punctual lights (SSBO binding 1, filled by cg_gpu_scene)
 // and their irradiance, in the units of KHR_lights_punctual as DESIGN.md fixes them:
 //   directional: E = intensity x color on a surface facing the light;
-//   point:       E = I / d^2 with I = intensity x color, times the range window;
+//   point:       E = I / d^2 with I = intensity x color, times the range window
+//                clamp(1 - (d/range)^4, 0, 1)^2 when range > 0;
 //   spot:        as point, times the KHR_lights_punctual smooth cone falloff.
 // A Lambertian surface of albedo a returns outgoing radiance a * E * cos(theta) / pi.
 #ifndef CG_LIGHTS_GLSL
@@ -58,10 +59,11 @@ cg_light_sample(CgLight light, vec3 position)
     float attenuation = 1.0 / dist2;
     float range = light.direction_range.w;
     if (range > 0.0) {
-        // KHR_lights_punctual's recommended window: the inverse square law inside the
-        // range, smoothly reaching 0 at it.
+        // KHR_lights_punctual's recommended window, squared as in the glTF sample viewer
+        // and the path_trace pass: clamp(1 - (d/range)^4, 0, 1)^2.
         float ratio = s.distance / range;
-        attenuation *= clamp(1.0 - ratio * ratio * ratio * ratio, 0.0, 1.0);
+        float window = clamp(1.0 - ratio * ratio * ratio * ratio, 0.0, 1.0);
+        attenuation *= window * window;
     }
     if (type == CG_LIGHT_SPOT) {
         // KHR_lights_punctual, "Inner and Outer Cone Angles".

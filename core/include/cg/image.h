@@ -1,7 +1,7 @@
 /* cg/image.h: float RGBA images, read and written through OpenImageIO.
  *
  * Declares: cg_image, cg_image_alloc, cg_image_free, cg_image_read, cg_image_write,
- *           cg_image_write_png_tonemapped, cg_srgb_encode, cg_srgb_decode.
+ *           cg_srgb_encode, cg_srgb_decode.
  *
  * Pixels are linear float RGBA, rows top to bottom (as files store them; GL read-backs
  * are flipped by the caller). .exr is written as linear half or float; .png as 8-bit

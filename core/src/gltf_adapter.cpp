@@ -1,0 +1,960 @@
+// core/src/gltf_adapter.cpp: glTF 2.0 (.gltf, .glb) to and from cg_scene through tinygltf.
+//
+// The only C++ in core: tinygltf parses the JSON and fetches buffers and images; everything
+// it hands back is re-checked here (indices of every reference, every accessor against its
+// bufferView and buffer, every vertex index against the vertex count) because malformed
+// files must give a named error, never a crash. tinygltf is a shared library (Debian's
+// libtinygltf): TINYGLTF_IMPLEMENTATION is not defined here.
+#include <tiny_gltf.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+extern "C" {
+#include "cg/error.h"
+#include "cg/fs.h"
+#include "cg/log.h"
+#include "cg/scene.h"
+}
+#include "scene_internal.h"
+
+namespace {
+
+const char *const supported_extensions[] = { "KHR_lights_punctual", "KHR_materials_emissive_strength" };
+
+// ------------------------------------------------------------------ loading
+
+struct loader {
+    std::string path;       // as given, for messages
+    tinygltf::Model model;
+    cg_scene *scene;
+    cg_error *err;
+    // glTF mesh -> its cg meshes (one per triangle primitive), filled on first use.
+    std::vector<std::vector<int>> mesh_map;
+    std::vector<bool> mesh_done;
+    std::vector<int> texture_map;         // glTF texture -> cg texture or -1
+    std::vector<int> explicit_kind;       // per cg mesh: -1 none, else a cg_mesh_kind
+};
+
+std::string
+one_line(std::string s)
+{
+    while (!s.empty() && (s.back() == '\n' || s.back() == ' '))
+        s.pop_back();
+    for (char &c : s)
+        if (c == '\n')
+            c = ';';
+    return s;
+}
+
+std::string
+mesh_label(const loader &L, int m)
+{
+    const std::string &name = L.model.meshes[(size_t)m].name;
+    return name.empty() ? "mesh " + std::to_string(m) : "mesh '" + name + "'";
+}
+
+bool
+fail(loader &L, cg_status status, const std::string &what)
+{
+    return cg_fail(L.err, status, "%s: %s", L.path.c_str(), what.c_str());
+}
+
+// tinygltf refuses some files itself; name the class of problem from its message.
+cg_status
+classify_tinygltf_error(const std::string &e)
+{
+    if (e.find("ccessor") != std::string::npos)
+        return CG_ERR_GLTF_ACCESSOR;
+    const char *buffer_words[] = { "uffer", "File not found", "File size mismatch", "File is empty",
+                                   "File read error", "BIN", "binary size", "Failed to decode 'uri'" };
+    for (const char *w : buffer_words)
+        if (e.find(w) != std::string::npos)
+            return CG_ERR_GLTF_BUFFER;
+    return CG_ERR_GLTF_PARSE;
+}
+
+// Images in a bufferView are decoded after loading, once the bufferView is known to lie in
+// its buffer (tinygltf would hand the decoder an unchecked pointer). Images from a URI
+// arrive with their bytes and are decoded at once by tinygltf's own stb_image loader.
+bool
+deferred_image_loader(tinygltf::Image *image, const int index, std::string *err, std::string *warn,
+                      int req_width, int req_height, const unsigned char *bytes, int size, void *)
+{
+    if (image->bufferView >= 0)
+        return true;
+    if (!tinygltf::LoadImageData(image, index, err, warn, req_width, req_height, bytes, size, nullptr)) {
+        // A texture that cannot be decoded is dropped with a warning, not fatal.
+        if (warn)
+            *warn += "image " + std::to_string(index) + " could not be decoded; ";
+        image->image.clear();
+    }
+    return true;
+}
+
+size_t
+component_size(int component_type)
+{
+    switch (component_type) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
+    case TINYGLTF_COMPONENT_TYPE_SHORT:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
+    case TINYGLTF_COMPONENT_TYPE_INT:
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
+    default: return 0;
+    }
+}
+
+int
+component_count(int type)
+{
+    switch (type) {
+    case TINYGLTF_TYPE_SCALAR: return 1;
+    case TINYGLTF_TYPE_VEC2: return 2;
+    case TINYGLTF_TYPE_VEC3: return 3;
+    case TINYGLTF_TYPE_VEC4: return 4;
+    case TINYGLTF_TYPE_MAT2: return 4;
+    case TINYGLTF_TYPE_MAT3: return 9;
+    case TINYGLTF_TYPE_MAT4: return 16;
+    default: return 0;
+    }
+}
+
+const char *
+type_name(int type)
+{
+    switch (type) {
+    case TINYGLTF_TYPE_SCALAR: return "SCALAR";
+    case TINYGLTF_TYPE_VEC2: return "VEC2";
+    case TINYGLTF_TYPE_VEC3: return "VEC3";
+    case TINYGLTF_TYPE_VEC4: return "VEC4";
+    case TINYGLTF_TYPE_MAT2: return "MAT2";
+    case TINYGLTF_TYPE_MAT3: return "MAT3";
+    case TINYGLTF_TYPE_MAT4: return "MAT4";
+    default: return "unknown";
+    }
+}
+
+// A checked view of an accessor's elements: every byte it will read lies in its buffer.
+struct accessor_view {
+    const unsigned char *base = nullptr; // nullptr: no bufferView, all elements are zero
+    size_t stride = 0, count = 0;
+    int component_type = 0, components = 0;
+    bool normalized = false;
+
+    double component(size_t i, int c) const
+    {
+        if (!base)
+            return 0;
+        const unsigned char *p = base + i * stride + (size_t)c * component_size(component_type);
+        switch (component_type) {
+        case TINYGLTF_COMPONENT_TYPE_BYTE: {
+            int8_t v; std::memcpy(&v, p, 1);
+            return normalized ? std::fmax(v / 127.0, -1.0) : v;
+        }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: {
+            uint8_t v; std::memcpy(&v, p, 1);
+            return normalized ? v / 255.0 : v;
+        }
+        case TINYGLTF_COMPONENT_TYPE_SHORT: {
+            int16_t v; std::memcpy(&v, p, 2);
+            return normalized ? std::fmax(v / 32767.0, -1.0) : v;
+        }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+            uint16_t v; std::memcpy(&v, p, 2);
+            return normalized ? v / 65535.0 : v;
+        }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
+            uint32_t v; std::memcpy(&v, p, 4);
+            return v;
+        }
+        case TINYGLTF_COMPONENT_TYPE_INT: {
+            int32_t v; std::memcpy(&v, p, 4);
+            return v;
+        }
+        default: {
+            float v; std::memcpy(&v, p, 4);
+            return v;
+        }
+        }
+    }
+
+    uint32_t index(size_t i) const
+    {
+        if (!base)
+            return 0;
+        const unsigned char *p = base + i * stride;
+        if (component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE)
+            return *p;
+        if (component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) {
+            uint16_t v; std::memcpy(&v, p, 2);
+            return v;
+        }
+        uint32_t v; std::memcpy(&v, p, 4);
+        return v;
+    }
+};
+
+// `what` names the use ("mesh 'roof' primitive 0 POSITION"); `types` and `component_types`
+// are the accepted ones (0-terminated lists).
+bool
+view_accessor(loader &L, int index, const std::string &what, std::initializer_list<int> types,
+              std::initializer_list<int> component_types, accessor_view *out)
+{
+    const tinygltf::Model &M = L.model;
+    if (index < 0 || (size_t)index >= M.accessors.size())
+        return fail(L, CG_ERR_GLTF_ACCESSOR,
+                    what + ": accessor " + std::to_string(index) + " does not exist (" +
+                        std::to_string(M.accessors.size()) + " accessors)");
+    const tinygltf::Accessor &a = M.accessors[(size_t)index];
+    std::string label = what + ": accessor " + std::to_string(index);
+    bool type_ok = false, ctype_ok = false;
+    for (int t : types)
+        type_ok = type_ok || a.type == t;
+    for (int t : component_types)
+        ctype_ok = ctype_ok || a.componentType == t;
+    if (!type_ok || !ctype_ok) {
+        std::string expected;
+        for (int t : types)
+            expected += std::string(expected.empty() ? "" : " or ") + type_name(t);
+        return fail(L, CG_ERR_GLTF_ACCESSOR,
+                    label + " has type " + type_name(a.type) + " componentType " +
+                        std::to_string(a.componentType) + "; expected " + expected +
+                        " with another componentType");
+    }
+    if (a.sparse.isSparse)
+        return fail(L, CG_ERR_GLTF_ACCESSOR, label + " is sparse, which conegraph does not read");
+    if (a.count == 0)
+        return fail(L, CG_ERR_GLTF_ACCESSOR, label + " has count 0");
+    out->count = a.count;
+    out->component_type = a.componentType;
+    out->components = component_count(a.type);
+    out->normalized = a.normalized;
+    size_t elem = component_size(a.componentType) * (size_t)out->components;
+    if (a.bufferView < 0) {
+        out->base = nullptr; // glTF 3.6.2.1: no bufferView means zeros
+        out->stride = elem;
+        return true;
+    }
+    if ((size_t)a.bufferView >= M.bufferViews.size())
+        return fail(L, CG_ERR_GLTF_BUFFER,
+                    label + ": bufferView " + std::to_string(a.bufferView) + " does not exist");
+    const tinygltf::BufferView &bv = M.bufferViews[(size_t)a.bufferView];
+    if (bv.buffer < 0 || (size_t)bv.buffer >= M.buffers.size())
+        return fail(L, CG_ERR_GLTF_BUFFER,
+                    label + ": bufferView " + std::to_string(a.bufferView) + " refers to buffer " +
+                        std::to_string(bv.buffer) + ", which does not exist");
+    const tinygltf::Buffer &buf = M.buffers[(size_t)bv.buffer];
+    size_t stride = bv.byteStride ? bv.byteStride : elem;
+    if (stride < elem)
+        return fail(L, CG_ERR_GLTF_ACCESSOR,
+                    label + ": byteStride " + std::to_string(stride) + " is shorter than an element (" +
+                        std::to_string(elem) + " bytes)");
+    // 64-bit sums of values each below 2^40 cannot wrap.
+    uint64_t view_end = (uint64_t)bv.byteOffset + bv.byteLength;
+    if (bv.byteOffset > (1ull << 40) || bv.byteLength > (1ull << 40) || view_end > buf.data.size())
+        return fail(L, CG_ERR_GLTF_BUFFER,
+                    label + ": bufferView " + std::to_string(a.bufferView) + " (bytes " +
+                        std::to_string(bv.byteOffset) + ".." + std::to_string(view_end) +
+                        ") runs past the end of buffer " + std::to_string(bv.buffer) + " (" +
+                        std::to_string(buf.data.size()) + " bytes)");
+    if (a.count > (1ull << 32) || a.byteOffset > (1ull << 40) ||
+        (uint64_t)a.byteOffset + (uint64_t)stride * (a.count - 1) + elem > bv.byteLength)
+        return fail(L, CG_ERR_GLTF_BUFFER,
+                    label + ": " + std::to_string(a.count) + " elements from byte " +
+                        std::to_string(a.byteOffset) + " need more than the " +
+                        std::to_string(bv.byteLength) + " bytes of bufferView " +
+                        std::to_string(a.bufferView));
+    out->base = buf.data.data() + bv.byteOffset + a.byteOffset;
+    out->stride = stride;
+    return true;
+}
+
+// Triangle list from a primitive's (possibly implicit) index sequence and mode.
+bool
+triangulate(loader &L, const std::string &what, int mode, const std::vector<uint32_t> &seq,
+            std::vector<uint32_t> *tris)
+{
+    size_t n = seq.size();
+    tris->clear();
+    if (mode == TINYGLTF_MODE_TRIANGLES) {
+        if (n % 3 != 0)
+            return fail(L, CG_ERR_GLTF_ACCESSOR,
+                        what + ": " + std::to_string(n) + " indices is not a multiple of 3");
+        *tris = seq;
+    } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+        // glTF 3.7.2.1: triangle i = (v_i, v_{i+1+i%2}, v_{i+2-i%2}), one winding throughout.
+        for (size_t i = 0; i + 2 < n; i++) {
+            tris->push_back(seq[i]);
+            tris->push_back(seq[i + 1 + i % 2]);
+            tris->push_back(seq[i + 2 - i % 2]);
+        }
+    } else if (mode == TINYGLTF_MODE_TRIANGLE_FAN) {
+        // glTF 3.7.2.1: triangle i = (v_{i+1}, v_{i+2}, v_0).
+        for (size_t i = 0; i + 2 < n; i++) {
+            tris->push_back(seq[i + 1]);
+            tris->push_back(seq[i + 2]);
+            tris->push_back(seq[0]);
+        }
+    } else {
+        return fail(L, CG_ERR_GLTF_PARSE, what + ": unknown primitive mode " + std::to_string(mode));
+    }
+    return true;
+}
+
+bool
+add_primitive(loader &L, int mesh_index, int prim_index, std::vector<int> *out)
+{
+    const tinygltf::Mesh &mesh = L.model.meshes[(size_t)mesh_index];
+    const tinygltf::Primitive &prim = mesh.primitives[(size_t)prim_index];
+    std::string what = mesh_label(L, mesh_index) + " primitive " + std::to_string(prim_index);
+    if (prim.mode == TINYGLTF_MODE_POINTS || prim.mode == TINYGLTF_MODE_LINE ||
+        prim.mode == TINYGLTF_MODE_LINE_LOOP || prim.mode == TINYGLTF_MODE_LINE_STRIP) {
+        cg_log_warn("%s: %s: points or lines skipped (conegraph renders triangles)", L.path.c_str(),
+                    what.c_str());
+        return true;
+    }
+    auto pos_it = prim.attributes.find("POSITION");
+    if (pos_it == prim.attributes.end())
+        return fail(L, CG_ERR_GLTF_ACCESSOR, what + ": no POSITION attribute");
+    accessor_view pos, nrm, uv, idx;
+    if (!view_accessor(L, pos_it->second, what + " POSITION", { TINYGLTF_TYPE_VEC3 },
+                       { TINYGLTF_COMPONENT_TYPE_FLOAT }, &pos))
+        return false;
+    size_t nv = pos.count;
+    auto nrm_it = prim.attributes.find("NORMAL");
+    bool has_normals = nrm_it != prim.attributes.end();
+    if (has_normals && !view_accessor(L, nrm_it->second, what + " NORMAL", { TINYGLTF_TYPE_VEC3 },
+                                      { TINYGLTF_COMPONENT_TYPE_FLOAT }, &nrm))
+        return false;
+    auto uv_it = prim.attributes.find("TEXCOORD_0");
+    bool has_uv = uv_it != prim.attributes.end();
+    if (has_uv && !view_accessor(L, uv_it->second, what + " TEXCOORD_0", { TINYGLTF_TYPE_VEC2 },
+                                 { TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
+                                   TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT },
+                                 &uv))
+        return false;
+    if (has_uv && uv.component_type != TINYGLTF_COMPONENT_TYPE_FLOAT && !uv.normalized)
+        return fail(L, CG_ERR_GLTF_ACCESSOR,
+                    what + " TEXCOORD_0: integer texture coordinates must be normalized");
+    if ((has_normals && nrm.count != nv) || (has_uv && uv.count != nv))
+        return fail(L, CG_ERR_GLTF_ACCESSOR,
+                    what + ": attribute counts differ (POSITION has " + std::to_string(nv) +
+                        (has_normals ? ", NORMAL " + std::to_string(nrm.count) : std::string()) +
+                        (has_uv ? ", TEXCOORD_0 " + std::to_string(uv.count) : std::string()) + ")");
+
+    std::vector<uint32_t> seq;
+    if (prim.indices >= 0) {
+        if (!view_accessor(L, prim.indices, what + " indices", { TINYGLTF_TYPE_SCALAR },
+                           { TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
+                             TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT },
+                           &idx))
+            return false;
+        seq.resize(idx.count);
+        for (size_t i = 0; i < idx.count; i++) {
+            seq[i] = idx.index(i);
+            if (seq[i] >= nv)
+                return fail(L, CG_ERR_GLTF_INDEX_RANGE,
+                            what + ": index " + std::to_string(seq[i]) + " out of range (accessor " +
+                                std::to_string(pos_it->second) + " has " + std::to_string(nv) +
+                                " vertices)");
+        }
+    } else {
+        seq.resize(nv);
+        for (size_t i = 0; i < nv; i++)
+            seq[i] = (uint32_t)i;
+    }
+    std::vector<uint32_t> tris;
+    if (!triangulate(L, what, prim.mode, seq, &tris))
+        return false;
+    if (tris.empty()) {
+        cg_log_warn("%s: %s: no triangles, skipped", L.path.c_str(), what.c_str());
+        return true;
+    }
+
+    cg_mesh m = {};
+    std::string name = mesh.name.empty() ? "mesh" + std::to_string(mesh_index) : mesh.name;
+    if (mesh.primitives.size() > 1)
+        name += "." + std::to_string(prim_index);
+    cg_copy_name(m.name, name.c_str());
+    m.vertex_count = (uint32_t)nv;
+    m.index_count = (uint32_t)tris.size();
+    m.positions = (float *)std::malloc(nv * 3 * sizeof(float));
+    m.normals = (float *)std::malloc(nv * 3 * sizeof(float));
+    m.texcoords = has_uv ? (float *)std::malloc(nv * 2 * sizeof(float)) : nullptr;
+    m.indices = (uint32_t *)std::malloc(tris.size() * sizeof(uint32_t));
+    if (!m.positions || !m.normals || !m.indices || (has_uv && !m.texcoords)) {
+        std::free(m.positions), std::free(m.normals), std::free(m.texcoords), std::free(m.indices);
+        return fail(L, CG_ERR_OUT_OF_MEMORY, what + ": out of memory");
+    }
+    std::memcpy(m.indices, tris.data(), tris.size() * sizeof(uint32_t));
+    bool finite = true;
+    size_t bad_vertex = 0;
+    for (size_t v = 0; v < nv; v++)
+        for (int k = 0; k < 3; k++) {
+            double x = pos.component(v, k);
+            if (!std::isfinite(x) && finite) {
+                finite = false;
+                bad_vertex = v;
+            }
+            m.positions[3 * v + k] = (float)x;
+        }
+    bool normals_ok = true;
+    if (has_normals)
+        for (size_t v = 0; v < nv; v++) {
+            double n[3] = { nrm.component(v, 0), nrm.component(v, 1), nrm.component(v, 2) };
+            double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+            if (!std::isfinite(len))
+                normals_ok = false;
+            for (int k = 0; k < 3; k++)
+                m.normals[3 * v + k] = len > 0 ? (float)(n[k] / len) : (k == 1 ? 1.0f : 0.0f);
+        }
+    if (has_uv)
+        for (size_t v = 0; v < nv; v++)
+            for (int k = 0; k < 2; k++)
+                m.texcoords[2 * v + k] = (float)uv.component(v, k);
+    int material = prim.material < 0 ? 0 : prim.material + 1;
+    m.material = material;
+    cg_error local = {};
+    bool ok = true;
+    if (!finite)
+        ok = fail(L, CG_ERR_GLTF_NONFINITE,
+                  what + ": vertex " + std::to_string(bad_vertex) + " position is NaN or infinite (accessor " +
+                      std::to_string(pos_it->second) + ")");
+    else if (!normals_ok)
+        ok = fail(L, CG_ERR_GLTF_NONFINITE, what + ": a NORMAL is NaN or infinite");
+    else if (prim.material >= (int)L.model.materials.size())
+        ok = fail(L, CG_ERR_GLTF_INDEX_RANGE,
+                  what + ": material " + std::to_string(prim.material) + " does not exist");
+    else if (!has_normals && !cg_mesh_generate_normals(&m, &local))
+        ok = fail(L, local.status, local.message);
+    if (!ok) {
+        std::free(m.positions), std::free(m.normals), std::free(m.texcoords), std::free(m.indices);
+        return false;
+    }
+    cg_mesh_compute_bounds(&m);
+    int index = cg_scene_add_mesh(L.scene, &m, L.err);
+    if (index < 0) {
+        std::free(m.positions), std::free(m.normals), std::free(m.texcoords), std::free(m.indices);
+        return false;
+    }
+    // A kind stored by conegraph export wins over the classification rule.
+    int kind = -1;
+    if (mesh.extras.IsObject() && mesh.extras.Has("conegraph_kind")) {
+        const tinygltf::Value &k = mesh.extras.Get("conegraph_kind");
+        std::string s = k.IsString() ? k.Get<std::string>() : std::string();
+        if (s == "heightfield")
+            kind = CG_MESH_HEIGHTFIELD;
+        else if (s == "complex")
+            kind = CG_MESH_COMPLEX;
+        else
+            cg_log_warn("%s: %s: conegraph_kind '%s' is neither 'heightfield' nor 'complex'; "
+                        "classified from the geometry", L.path.c_str(), mesh_label(L, mesh_index).c_str(),
+                        s.c_str());
+    }
+    L.explicit_kind.push_back(kind);
+    out->push_back(index);
+    return true;
+}
+
+bool
+mesh_primitives(loader &L, int mesh_index, const std::vector<int> **out)
+{
+    if (!L.mesh_done[(size_t)mesh_index]) {
+        L.mesh_done[(size_t)mesh_index] = true;
+        const tinygltf::Mesh &mesh = L.model.meshes[(size_t)mesh_index];
+        for (size_t p = 0; p < mesh.primitives.size(); p++)
+            if (!add_primitive(L, mesh_index, (int)p, &L.mesh_map[(size_t)mesh_index]))
+                return false;
+    }
+    *out = &L.mesh_map[(size_t)mesh_index];
+    return true;
+}
+
+// Column-major 4x4 products and the glTF node transform (3.5.3: T * R * S, or `matrix`).
+void
+mat_mul(const double a[16], const double b[16], double out[16])
+{
+    double r[16];
+    for (int c = 0; c < 4; c++)
+        for (int row = 0; row < 4; row++) {
+            double s = 0;
+            for (int k = 0; k < 4; k++)
+                s += a[k * 4 + row] * b[c * 4 + k];
+            r[c * 4 + row] = s;
+        }
+    std::memcpy(out, r, sizeof r);
+}
+
+void
+node_local(const tinygltf::Node &n, double m[16])
+{
+    if (n.matrix.size() == 16) {
+        for (int i = 0; i < 16; i++)
+            m[i] = n.matrix[(size_t)i];
+        return;
+    }
+    double t[3] = { 0, 0, 0 }, s[3] = { 1, 1, 1 }, q[4] = { 0, 0, 0, 1 };
+    if (n.translation.size() == 3)
+        for (int i = 0; i < 3; i++) t[i] = n.translation[(size_t)i];
+    if (n.scale.size() == 3)
+        for (int i = 0; i < 3; i++) s[i] = n.scale[(size_t)i];
+    if (n.rotation.size() == 4)
+        for (int i = 0; i < 4; i++) q[i] = n.rotation[(size_t)i];
+    double x = q[0], y = q[1], z = q[2], w = q[3];
+    double r[9] = { 1 - 2 * (y * y + z * z), 2 * (x * y + z * w), 2 * (x * z - y * w),
+                    2 * (x * y - z * w), 1 - 2 * (x * x + z * z), 2 * (y * z + x * w),
+                    2 * (x * z + y * w), 2 * (y * z - x * w), 1 - 2 * (x * x + y * y) };
+    for (int c = 0; c < 3; c++) {
+        for (int row = 0; row < 3; row++)
+            m[c * 4 + row] = r[c * 3 + row] * s[c];
+        m[c * 4 + 3] = 0;
+    }
+    m[12] = t[0], m[13] = t[1], m[14] = t[2], m[15] = 1;
+}
+
+void
+to_float(const double d[16], float f[16])
+{
+    for (int i = 0; i < 16; i++)
+        f[i] = (float)d[i];
+}
+
+std::string
+node_label(const loader &L, int n)
+{
+    const std::string &name = L.model.nodes[(size_t)n].name;
+    return name.empty() ? "node " + std::to_string(n) : "node '" + name + "'";
+}
+
+// Every child reference in range and no node its own ancestor, checked over the whole node
+// array before any recursion (an iterative depth-first search with three colours).
+bool
+check_node_graph(loader &L)
+{
+    const auto &nodes = L.model.nodes;
+    for (size_t n = 0; n < nodes.size(); n++)
+        for (int c : nodes[n].children)
+            if (c < 0 || (size_t)c >= nodes.size())
+                return fail(L, CG_ERR_GLTF_INDEX_RANGE,
+                            node_label(L, (int)n) + ": child " + std::to_string(c) + " does not exist (" +
+                                std::to_string(nodes.size()) + " nodes)");
+    std::vector<uint8_t> colour(nodes.size(), 0); // 0 new, 1 on the current path, 2 done
+    std::vector<std::pair<int, size_t>> stack;
+    for (size_t root = 0; root < nodes.size(); root++) {
+        if (colour[root])
+            continue;
+        stack.push_back({ (int)root, 0 });
+        colour[root] = 1;
+        while (!stack.empty()) {
+            auto &top = stack.back();
+            const auto &children = nodes[(size_t)top.first].children;
+            if (top.second < children.size()) {
+                int c = children[top.second++];
+                if (colour[(size_t)c] == 1)
+                    return fail(L, CG_ERR_GLTF_NODE_CYCLE,
+                                node_label(L, top.first) + " has " + node_label(L, c) +
+                                    " as a child, which is also its ancestor (the node graph has a cycle)");
+                if (colour[(size_t)c] == 0) {
+                    colour[(size_t)c] = 1;
+                    stack.push_back({ c, 0 });
+                }
+            } else {
+                colour[(size_t)top.first] = 2;
+                stack.pop_back();
+            }
+        }
+    }
+    return true;
+}
+
+bool
+add_light(loader &L, int node, const double world[16])
+{
+    const tinygltf::Node &n = L.model.nodes[(size_t)node];
+    auto it = n.extensions.find("KHR_lights_punctual");
+    if (it == n.extensions.end())
+        return true;
+    const tinygltf::Value &ext = it->second;
+    if (!ext.IsObject() || !ext.Has("light") || !ext.Get("light").IsNumber())
+        return fail(L, CG_ERR_GLTF_PARSE, node_label(L, node) + ": KHR_lights_punctual without a light index");
+    int li = ext.Get("light").GetNumberAsInt();
+    if (li < 0 || (size_t)li >= L.model.lights.size())
+        return fail(L, CG_ERR_GLTF_INDEX_RANGE,
+                    node_label(L, node) + ": light " + std::to_string(li) + " does not exist");
+    const tinygltf::Light &gl = L.model.lights[(size_t)li];
+    cg_light l = {};
+    cg_copy_name(l.name, gl.name.empty() ? ("light" + std::to_string(li)).c_str() : gl.name.c_str());
+    if (gl.type == "directional")
+        l.type = CG_LIGHT_DIRECTIONAL;
+    else if (gl.type == "point")
+        l.type = CG_LIGHT_POINT;
+    else if (gl.type == "spot")
+        l.type = CG_LIGHT_SPOT;
+    else
+        return fail(L, CG_ERR_GLTF_PARSE,
+                    "light " + std::to_string(li) + ": unknown type '" + gl.type + "'");
+    for (int k = 0; k < 3; k++)
+        l.color[k] = gl.color.size() == 3 ? (float)gl.color[(size_t)k] : 1.0f;
+    l.intensity = (float)gl.intensity;
+    l.range = (float)gl.range;
+    l.inner_cone_angle = (float)gl.spot.innerConeAngle;
+    l.outer_cone_angle = (float)gl.spot.outerConeAngle;
+    // KHR_lights_punctual: the light sits at the node's origin and shines down its -Z.
+    double d[3] = { -world[8], -world[9], -world[10] };
+    double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    for (int k = 0; k < 3; k++) {
+        l.position[k] = (float)world[12 + k];
+        l.direction[k] = len > 0 ? (float)(d[k] / len) : (k == 1 ? -1.0f : 0.0f);
+    }
+    return cg_scene_add_light(L.scene, &l, L.err) >= 0;
+}
+
+bool
+add_camera(loader &L, int node, const double world[16])
+{
+    int ci = L.model.nodes[(size_t)node].camera;
+    if (ci < 0)
+        return true;
+    if ((size_t)ci >= L.model.cameras.size())
+        return fail(L, CG_ERR_GLTF_INDEX_RANGE,
+                    node_label(L, node) + ": camera " + std::to_string(ci) + " does not exist");
+    const tinygltf::Camera &gc = L.model.cameras[(size_t)ci];
+    cg_camera c = {};
+    cg_copy_name(c.name, gc.name.empty() ? ("camera" + std::to_string(ci)).c_str() : gc.name.c_str());
+    if (gc.type == "orthographic") {
+        c.type = CG_CAMERA_ORTHOGRAPHIC;
+        c.xmag = (float)gc.orthographic.xmag;
+        c.ymag = (float)gc.orthographic.ymag;
+        c.znear = (float)gc.orthographic.znear;
+        c.zfar = (float)gc.orthographic.zfar;
+        // glTF allows znear = 0 for orthographic cameras; cg_camera asks for znear > 0.
+        if (c.znear == 0 && c.zfar > 0)
+            c.znear = c.zfar * 1e-6f;
+    } else if (gc.type == "perspective") {
+        c.type = CG_CAMERA_PERSPECTIVE;
+        c.yfov = (float)gc.perspective.yfov;
+        c.aspect = (float)gc.perspective.aspectRatio;
+        c.znear = (float)gc.perspective.znear;
+        c.zfar = (float)gc.perspective.zfar;
+    } else {
+        return fail(L, CG_ERR_GLTF_PARSE, "camera " + std::to_string(ci) + ": unknown type '" + gc.type + "'");
+    }
+    to_float(world, c.world);
+    return cg_scene_add_camera(L.scene, &c, L.err) >= 0;
+}
+
+bool
+visit_nodes(loader &L, const std::vector<int> &roots)
+{
+    struct item {
+        int node;
+        double parent[16];
+    };
+    std::vector<item> stack;
+    for (auto it = roots.rbegin(); it != roots.rend(); ++it) {
+        item r = { *it, { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 } };
+        stack.push_back(r);
+    }
+    while (!stack.empty()) {
+        item cur = stack.back();
+        stack.pop_back();
+        const tinygltf::Node &n = L.model.nodes[(size_t)cur.node];
+        double local[16], world[16];
+        node_local(n, local);
+        mat_mul(cur.parent, local, world);
+        if (n.mesh >= 0) {
+            if ((size_t)n.mesh >= L.model.meshes.size())
+                return fail(L, CG_ERR_GLTF_INDEX_RANGE,
+                            node_label(L, cur.node) + ": mesh " + std::to_string(n.mesh) + " does not exist (" +
+                                std::to_string(L.model.meshes.size()) + " meshes)");
+            const std::vector<int> *prims;
+            if (!mesh_primitives(L, n.mesh, &prims))
+                return false;
+            float wf[16];
+            to_float(world, wf);
+            for (int m : *prims)
+                if (cg_scene_add_instance(L.scene, m, wf, L.err) < 0)
+                    return false;
+        }
+        if (!add_light(L, cur.node, world) || !add_camera(L, cur.node, world))
+            return false;
+        for (auto c = n.children.rbegin(); c != n.children.rend(); ++c) {
+            item child;
+            child.node = *c;
+            std::memcpy(child.parent, world, sizeof world);
+            stack.push_back(child);
+        }
+    }
+    return true;
+}
+
+bool
+texture_info(loader &L, const std::string &what, int index, int texcoord, int *out)
+{
+    *out = -1;
+    if (index < 0)
+        return true;
+    if ((size_t)index >= L.model.textures.size())
+        return fail(L, CG_ERR_GLTF_INDEX_RANGE, what + ": texture " + std::to_string(index) + " does not exist");
+    if (texcoord != 0)
+        cg_log_warn("%s: %s uses TEXCOORD_%d; conegraph reads TEXCOORD_0 only", L.path.c_str(), what.c_str(),
+                    texcoord);
+    *out = L.texture_map[(size_t)index];
+    return true;
+}
+
+bool
+convert_materials(loader &L)
+{
+    for (size_t i = 0; i < L.model.materials.size(); i++) {
+        const tinygltf::Material &gm = L.model.materials[i];
+        std::string what = gm.name.empty() ? "material " + std::to_string(i) : "material '" + gm.name + "'";
+        cg_material m = cg_material_default(gm.name.empty() ? ("material" + std::to_string(i)).c_str()
+                                                             : gm.name.c_str());
+        const auto &pbr = gm.pbrMetallicRoughness;
+        for (size_t k = 0; k < 4 && pbr.baseColorFactor.size() == 4; k++)
+            m.base_color[k] = (float)pbr.baseColorFactor[k];
+        for (size_t k = 0; k < 3 && gm.emissiveFactor.size() == 3; k++)
+            m.emissive[k] = (float)gm.emissiveFactor[k];
+        m.metallic = (float)pbr.metallicFactor;
+        m.roughness = (float)pbr.roughnessFactor;
+        auto it = gm.extensions.find("KHR_materials_emissive_strength");
+        if (it != gm.extensions.end() && it->second.IsObject() && it->second.Has("emissiveStrength")) {
+            const tinygltf::Value &v = it->second.Get("emissiveStrength");
+            if (!v.IsNumber())
+                return fail(L, CG_ERR_GLTF_PARSE, what + ": emissiveStrength is not a number");
+            m.emissive_strength = (float)v.GetNumberAsDouble();
+        }
+        if (!texture_info(L, what + " baseColorTexture", pbr.baseColorTexture.index,
+                          pbr.baseColorTexture.texCoord, &m.base_color_texture) ||
+            !texture_info(L, what + " emissiveTexture", gm.emissiveTexture.index, gm.emissiveTexture.texCoord,
+                          &m.emissive_texture))
+            return false;
+        if (cg_scene_add_material(L.scene, &m, L.err) < 0)
+            return false;
+    }
+    return true;
+}
+
+// RGBA8, rows bottom to top (cg_texture), from tinygltf's decoded image (top to bottom,
+// 1-4 channels of 8 or 16 bits).
+bool
+convert_image(loader &L, size_t image_index, cg_texture *t)
+{
+    tinygltf::Image &img = L.model.images[image_index];
+    std::string what = "image " + std::to_string(image_index);
+    if (img.image.empty() && img.bufferView >= 0) {
+        const auto &M = L.model;
+        if ((size_t)img.bufferView >= M.bufferViews.size())
+            return fail(L, CG_ERR_GLTF_BUFFER, what + ": bufferView does not exist");
+        const auto &bv = M.bufferViews[(size_t)img.bufferView];
+        if (bv.buffer < 0 || (size_t)bv.buffer >= M.buffers.size() || bv.byteLength > (1ull << 31) ||
+            bv.byteOffset > (1ull << 40) || bv.byteOffset + bv.byteLength > M.buffers[(size_t)bv.buffer].data.size())
+            return fail(L, CG_ERR_GLTF_BUFFER, what + ": bufferView " + std::to_string(img.bufferView) +
+                                                   " runs past the end of its buffer");
+        std::string e, w;
+        const unsigned char *bytes = M.buffers[(size_t)bv.buffer].data.data() + bv.byteOffset;
+        if (!tinygltf::LoadImageData(&img, (int)image_index, &e, &w, 0, 0, bytes, (int)bv.byteLength, nullptr))
+            img.image.clear();
+    }
+    int bytes_per = img.bits == 16 ? 2 : 1;
+    if (img.image.empty() || img.width <= 0 || img.height <= 0 || img.component < 1 || img.component > 4 ||
+        (img.bits != 8 && img.bits != 16) ||
+        img.image.size() < (size_t)img.width * img.height * img.component * bytes_per) {
+        cg_log_warn("%s: %s could not be decoded; its texture is ignored", L.path.c_str(), what.c_str());
+        return true;
+    }
+    size_t w = (size_t)img.width, h = (size_t)img.height;
+    uint8_t *rgba = (uint8_t *)std::malloc(w * h * 4);
+    if (!rgba)
+        return fail(L, CG_ERR_OUT_OF_MEMORY, what + ": out of memory");
+    for (size_t y = 0; y < h; y++)
+        for (size_t x = 0; x < w; x++) {
+            const unsigned char *src = img.image.data() + ((y * w + x) * (size_t)img.component) * bytes_per;
+            uint8_t c[4] = { 0, 0, 0, 255 };
+            for (int k = 0; k < img.component; k++)
+                c[k] = bytes_per == 2 ? (uint8_t)((src[2 * k] | (src[2 * k + 1] << 8)) >> 8) : src[k];
+            if (img.component <= 2) { // grey, grey + alpha
+                c[3] = img.component == 2 ? c[1] : 255;
+                c[1] = c[2] = c[0];
+            }
+            std::memcpy(rgba + ((h - 1 - y) * w + x) * 4, c, 4);
+        }
+    t->width = img.width;
+    t->height = img.height;
+    t->rgba = rgba;
+    return true;
+}
+
+bool
+convert_textures(loader &L)
+{
+    L.texture_map.assign(L.model.textures.size(), -1);
+    std::vector<int> image_texture(L.model.images.size(), -2); // -2 not yet converted
+    for (size_t i = 0; i < L.model.textures.size(); i++) {
+        int src = L.model.textures[i].source;
+        if (src < 0 || (size_t)src >= L.model.images.size()) {
+            cg_log_warn("%s: texture %zu has no image conegraph can read; ignored", L.path.c_str(), i);
+            continue;
+        }
+        if (image_texture[(size_t)src] == -2) {
+            cg_texture t = {};
+            const auto &img = L.model.images[(size_t)src];
+            std::string name = !img.name.empty() ? img.name : !img.uri.empty() && img.uri.compare(0, 5, "data:")
+                                                                   ? img.uri : "image" + std::to_string(src);
+            cg_copy_name(t.name, name.c_str());
+            t.srgb = true; // base colour and emissive textures are the only ones read
+            if (!convert_image(L, (size_t)src, &t))
+                return false;
+            image_texture[(size_t)src] = -1;
+            if (t.rgba) {
+                int index = cg_scene_add_texture(L.scene, &t, L.err);
+                if (index < 0) {
+                    std::free(t.rgba);
+                    return false;
+                }
+                image_texture[(size_t)src] = index;
+            }
+        }
+        L.texture_map[i] = image_texture[(size_t)src];
+    }
+    return true;
+}
+
+bool
+check_extensions(loader &L)
+{
+    for (const std::string &e : L.model.extensionsRequired) {
+        bool known = false;
+        for (const char *s : supported_extensions)
+            known = known || e == s;
+        if (!known)
+            return fail(L, CG_ERR_GLTF_EXTENSION,
+                        "requires extension '" + e +
+                            "', which conegraph does not support (supported: KHR_lights_punctual, "
+                            "KHR_materials_emissive_strength)");
+    }
+    return true;
+}
+
+bool
+scene_roots(loader &L, std::vector<int> *roots)
+{
+    const auto &M = L.model;
+    if (!M.scenes.empty()) {
+        int s = M.defaultScene >= 0 ? M.defaultScene : 0;
+        if ((size_t)s >= M.scenes.size())
+            return fail(L, CG_ERR_GLTF_INDEX_RANGE, "scene " + std::to_string(s) + " does not exist");
+        for (int n : M.scenes[(size_t)s].nodes) {
+            if (n < 0 || (size_t)n >= M.nodes.size())
+                return fail(L, CG_ERR_GLTF_INDEX_RANGE,
+                            "scene " + std::to_string(s) + ": node " + std::to_string(n) + " does not exist");
+            roots->push_back(n);
+        }
+        return true;
+    }
+    // No scene: every node that is nobody's child is a root (glTF leaves this to the loader).
+    std::vector<bool> child(M.nodes.size(), false);
+    for (const auto &n : M.nodes)
+        for (int c : n.children)
+            child[(size_t)c] = true;
+    for (size_t n = 0; n < M.nodes.size(); n++)
+        if (!child[n])
+            roots->push_back((int)n);
+    return true;
+}
+
+bool
+load(loader &L)
+{
+    char *data = nullptr;
+    size_t size = 0;
+    if (!cg_read_file(L.path.c_str(), &data, &size, L.err))
+        return false;
+    bool binary = size >= 4 && std::memcmp(data, "glTF", 4) == 0;
+    // JSON glTF starts with '{' after white space (and perhaps a UTF-8 byte order mark,
+    // which the JSON parser skips itself).
+    size_t first = size >= 3 && std::memcmp(data, "\xEF\xBB\xBF", 3) == 0 ? 3 : 0;
+    while (first < size && std::strchr(" \t\r\n", data[first]))
+        first++;
+    if (!binary && (first >= size || data[first] != '{')) {
+        std::free(data);
+        return fail(L, CG_ERR_GLTF_PARSE, "not a glTF file (neither JSON nor the binary 'glTF' header)");
+    }
+    if (size > 0xFFFFFFFFu) {
+        std::free(data);
+        return fail(L, CG_ERR_GLTF_PARSE, "file larger than 4 GiB");
+    }
+    std::string base_dir = ".";
+    size_t slash = L.path.find_last_of('/');
+    if (slash != std::string::npos)
+        base_dir = slash == 0 ? "/" : L.path.substr(0, slash);
+    tinygltf::TinyGLTF gltf;
+    gltf.SetImageLoader(deferred_image_loader, nullptr);
+    std::string terr, twarn;
+    bool ok;
+    try {
+        if (binary)
+            ok = gltf.LoadBinaryFromMemory(&L.model, &terr, &twarn, (const unsigned char *)data,
+                                           (unsigned int)size, base_dir);
+        else
+            ok = gltf.LoadASCIIFromString(&L.model, &terr, &twarn, data, (unsigned int)size, base_dir);
+    } catch (const std::exception &e) {
+        ok = false;
+        terr = e.what();
+    }
+    std::free(data);
+    if (!twarn.empty())
+        cg_log_warn("%s: %s", L.path.c_str(), one_line(twarn).c_str());
+    if (!ok)
+        return fail(L, classify_tinygltf_error(terr), one_line(terr.empty() ? "tinygltf failed without a message" : terr));
+    L.mesh_map.assign(L.model.meshes.size(), {});
+    L.mesh_done.assign(L.model.meshes.size(), false);
+    std::vector<int> roots;
+    return check_extensions(L) && convert_textures(L) && convert_materials(L) && check_node_graph(L) &&
+           scene_roots(L, &roots) && visit_nodes(L, roots);
+}
+
+} // namespace
+
+extern "C" bool
+cg_gltf_load(const char *path, cg_scene *out, cg_error *err)
+{
+    std::memset(out, 0, sizeof *out);
+    std::snprintf(out->name, sizeof out->name, "%s", path);
+    cg_material white = cg_material_default("default");
+    if (cg_scene_add_material(out, &white, err) < 0)
+        return false;
+    bool ok;
+    try {
+        loader L;
+        L.path = path;
+        L.scene = out;
+        L.err = err;
+        ok = load(L);
+        if (ok)
+            for (int m = 0; m < out->mesh_count; m++) {
+                int k = L.explicit_kind[(size_t)m];
+                out->meshes[m].kind = k >= 0 ? (cg_mesh_kind)k
+                                             : cg_scene_mesh_is_heightfield(out, m) ? CG_MESH_HEIGHTFIELD
+                                                                                    : CG_MESH_COMPLEX;
+            }
+    } catch (const std::bad_alloc &) {
+        ok = cg_fail(err, CG_ERR_OUT_OF_MEMORY, "%s: out of memory", path);
+    } catch (const std::exception &e) {
+        ok = cg_fail(err, CG_ERR_GLTF_PARSE, "%s: %s", path, e.what());
+    }
+    if (!ok)
+        cg_scene_free(out);
+    return ok;
+}

@@ -1,0 +1,445 @@
+/* core/src/scene.c: scene loading dispatch (file or built-in), freeing, bounds, validation,
+ * and the height-field classification of meshes.
+ *
+ * Height-field rule (hybrid paper 3.1 sorts meshes into height fields and complex meshes):
+ * a mesh is CG_MESH_HEIGHTFIELD when it has at least one instance and, for every instance,
+ * every triangle of non-zero area faces up in world space: its unit geometric normal
+ * (counter-clockwise winding, flipped when the instance transform mirrors) has
+ * y > CG_HEIGHTFIELD_MIN_NY (1e-3, i.e. slopes below about 89.94 degrees). Such a surface
+ * has no overhang, no vertical wall and no underside, so each (x, z) sees it at most once
+ * where the triangles do not overlap in plan: y = h(x, z). The rule does not detect two
+ * separate up-facing layers stacked above each other (a floor above a floor); meshes like
+ * that should carry the "conegraph_kind": "complex" extra, which always wins.
+ */
+#include "cg/scene.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "scene_internal.h"
+
+void
+cg_copy_name(char dst[CG_NAME_MAX], const char *src)
+{
+    snprintf(dst, CG_NAME_MAX, "%s", src ? src : "");
+}
+
+/* Grows *array by one element of `size` bytes; returns the new element's index or -1. */
+static int
+append(void **array, int *count, size_t size, const void *element, const char *what, cg_error *err)
+{
+    void *bigger = realloc(*array, (size_t)(*count + 1) * size);
+    if (!bigger) {
+        cg_fail(err, CG_ERR_OUT_OF_MEMORY, "out of memory adding a %s to the scene", what);
+        return -1;
+    }
+    *array = bigger;
+    memcpy((char *)bigger + (size_t)*count * size, element, size);
+    return (*count)++;
+}
+
+int
+cg_scene_add_material(cg_scene *scene, const cg_material *material, cg_error *err)
+{
+    return append((void **)&scene->materials, &scene->material_count, sizeof *material, material,
+                  "material", err);
+}
+
+int
+cg_scene_add_mesh(cg_scene *scene, const cg_mesh *mesh, cg_error *err)
+{
+    return append((void **)&scene->meshes, &scene->mesh_count, sizeof *mesh, mesh, "mesh", err);
+}
+
+int
+cg_scene_add_instance(cg_scene *scene, int mesh, const float world[16], cg_error *err)
+{
+    cg_instance instance = { .mesh = mesh };
+    memcpy(instance.world, world, sizeof instance.world);
+    return append((void **)&scene->instances, &scene->instance_count, sizeof instance, &instance,
+                  "instance", err);
+}
+
+int
+cg_scene_add_light(cg_scene *scene, const cg_light *light, cg_error *err)
+{
+    return append((void **)&scene->lights, &scene->light_count, sizeof *light, light, "light", err);
+}
+
+int
+cg_scene_add_camera(cg_scene *scene, const cg_camera *camera, cg_error *err)
+{
+    return append((void **)&scene->cameras, &scene->camera_count, sizeof *camera, camera,
+                  "camera", err);
+}
+
+int
+cg_scene_add_texture(cg_scene *scene, const cg_texture *texture, cg_error *err)
+{
+    return append((void **)&scene->textures, &scene->texture_count, sizeof *texture, texture,
+                  "texture", err);
+}
+
+cg_material
+cg_material_default(const char *name)
+{
+    cg_material m = {
+        .base_color = { 1, 1, 1, 1 },
+        .base_color_texture = -1,
+        .emissive = { 0, 0, 0 },
+        .emissive_texture = -1,
+        .emissive_strength = 1,
+        .metallic = 0,
+        .roughness = 1,
+    };
+    cg_copy_name(m.name, name);
+    return m;
+}
+
+void
+cg_mesh_compute_bounds(cg_mesh *mesh)
+{
+    if (mesh->vertex_count == 0) {
+        memset(mesh->bounds_min, 0, sizeof mesh->bounds_min);
+        memset(mesh->bounds_max, 0, sizeof mesh->bounds_max);
+        return;
+    }
+    for (int k = 0; k < 3; k++)
+        mesh->bounds_min[k] = mesh->bounds_max[k] = mesh->positions[k];
+    for (uint32_t v = 1; v < mesh->vertex_count; v++)
+        for (int k = 0; k < 3; k++) {
+            float x = mesh->positions[3 * v + k];
+            if (x < mesh->bounds_min[k]) mesh->bounds_min[k] = x;
+            if (x > mesh->bounds_max[k]) mesh->bounds_max[k] = x;
+        }
+}
+
+static void
+triangle_cross(const float *p, uint32_t a, uint32_t b, uint32_t c, double n[3])
+{
+    double e1[3], e2[3];
+    for (int k = 0; k < 3; k++) {
+        e1[k] = (double)p[3 * b + k] - p[3 * a + k];
+        e2[k] = (double)p[3 * c + k] - p[3 * a + k];
+    }
+    n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+    n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+    n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+}
+
+bool
+cg_mesh_generate_normals(cg_mesh *mesh, cg_error *err)
+{
+    if (!mesh->normals) {
+        mesh->normals = malloc((size_t)mesh->vertex_count * 3 * sizeof(float) + 1);
+        if (!mesh->normals)
+            return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "mesh '%s': out of memory for normals",
+                           mesh->name);
+    }
+    double *sum = calloc((size_t)mesh->vertex_count * 3 + 1, sizeof(double));
+    if (!sum)
+        return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "mesh '%s': out of memory for normals",
+                       mesh->name);
+    /* The cross product's length is twice the triangle's area: summing it unnormalised
+     * weights each face by its area. */
+    for (uint32_t t = 0; t + 2 < mesh->index_count; t += 3) {
+        uint32_t i[3] = { mesh->indices[t], mesh->indices[t + 1], mesh->indices[t + 2] };
+        double n[3];
+        triangle_cross(mesh->positions, i[0], i[1], i[2], n);
+        for (int v = 0; v < 3; v++)
+            for (int k = 0; k < 3; k++)
+                sum[3 * (size_t)i[v] + k] += n[k];
+    }
+    for (uint32_t v = 0; v < mesh->vertex_count; v++) {
+        double *s = sum + 3 * (size_t)v;
+        double len = sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
+        float *n = mesh->normals + 3 * (size_t)v;
+        if (len > 0 && isfinite(len)) {
+            n[0] = (float)(s[0] / len);
+            n[1] = (float)(s[1] / len);
+            n[2] = (float)(s[2] / len);
+        } else {
+            n[0] = 0, n[1] = 1, n[2] = 0;
+        }
+    }
+    free(sum);
+    return true;
+}
+
+static void
+transform_point(const float m[16], const float p[3], double out[3])
+{
+    for (int r = 0; r < 3; r++)
+        out[r] = (double)m[r] * p[0] + (double)m[4 + r] * p[1] + (double)m[8 + r] * p[2] + m[12 + r];
+}
+
+static double
+upper_3x3_determinant(const float m[16])
+{
+    return (double)m[0] * ((double)m[5] * m[10] - (double)m[9] * m[6]) -
+           (double)m[4] * ((double)m[1] * m[10] - (double)m[9] * m[2]) +
+           (double)m[8] * ((double)m[1] * m[6] - (double)m[5] * m[2]);
+}
+
+bool
+cg_scene_mesh_is_heightfield(const cg_scene *scene, int mesh_index)
+{
+    const cg_mesh *mesh = &scene->meshes[mesh_index];
+    bool instanced = false;
+    for (int i = 0; i < scene->instance_count; i++) {
+        const cg_instance *inst = &scene->instances[i];
+        if (inst->mesh != mesh_index)
+            continue;
+        instanced = true;
+        /* glTF 3.7.4: a transform with a negative determinant reverses the winding. */
+        double facing = upper_3x3_determinant(inst->world) < 0 ? -1.0 : 1.0;
+        for (uint32_t t = 0; t + 2 < mesh->index_count; t += 3) {
+            double p[3][3];
+            for (int v = 0; v < 3; v++)
+                transform_point(inst->world, mesh->positions + 3 * (size_t)mesh->indices[t + v], p[v]);
+            double e1[3], e2[3];
+            for (int k = 0; k < 3; k++) {
+                e1[k] = p[1][k] - p[0][k];
+                e2[k] = p[2][k] - p[0][k];
+            }
+            double n[3] = { e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                            e1[0] * e2[1] - e1[1] * e2[0] };
+            double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+            if (!(len > 0))
+                continue; /* no area: covers nothing and has no orientation */
+            if (!(facing * n[1] / len > CG_HEIGHTFIELD_MIN_NY))
+                return false;
+        }
+    }
+    return instanced;
+}
+
+static bool
+has_prefix(const char *s, const char *prefix)
+{
+    return strncmp(s, prefix, strlen(prefix)) == 0;
+}
+
+bool
+cg_scene_load(const char *source, cg_scene *out, cg_error *err)
+{
+    memset(out, 0, sizeof *out);
+    if (!source || !source[0])
+        return cg_fail(err, CG_ERR_USAGE, "no scene given (a .gltf/.glb path or builtin:NAME)");
+    bool ok;
+    if (has_prefix(source, "builtin:")) {
+        const char *spec = source + strlen("builtin:");
+        const char *q = strchr(spec, '?');
+        char name[64];
+        size_t len = q ? (size_t)(q - spec) : strlen(spec);
+        if (len >= sizeof name)
+            len = sizeof name - 1;
+        memcpy(name, spec, len);
+        name[len] = '\0';
+        ok = cg_builtin_scene_load(name, q ? q + 1 : NULL, out, err);
+    } else {
+        ok = cg_gltf_load(source, out, err);
+    }
+    if (ok) {
+        snprintf(out->name, sizeof out->name, "%s", source);
+        cg_scene_compute_bounds(out);
+        ok = cg_scene_validate(out, err);
+    }
+    if (!ok)
+        cg_scene_free(out);
+    return ok;
+}
+
+void
+cg_scene_free(cg_scene *scene)
+{
+    if (!scene)
+        return;
+    for (int i = 0; i < scene->mesh_count; i++) {
+        free(scene->meshes[i].positions);
+        free(scene->meshes[i].normals);
+        free(scene->meshes[i].texcoords);
+        free(scene->meshes[i].indices);
+    }
+    for (int i = 0; i < scene->texture_count; i++)
+        free(scene->textures[i].rgba);
+    free(scene->meshes);
+    free(scene->instances);
+    free(scene->materials);
+    free(scene->textures);
+    free(scene->lights);
+    free(scene->cameras);
+    memset(scene, 0, sizeof *scene);
+}
+
+void
+cg_scene_compute_bounds(cg_scene *scene)
+{
+    bool any = false;
+    double lo[3] = { 0, 0, 0 }, hi[3] = { 0, 0, 0 };
+    for (int i = 0; i < scene->instance_count; i++) {
+        const cg_instance *inst = &scene->instances[i];
+        if (inst->mesh < 0 || inst->mesh >= scene->mesh_count)
+            continue;
+        const cg_mesh *mesh = &scene->meshes[inst->mesh];
+        if (mesh->vertex_count == 0)
+            continue;
+        for (int c = 0; c < 8; c++) {
+            float corner[3] = { (c & 1) ? mesh->bounds_max[0] : mesh->bounds_min[0],
+                                (c & 2) ? mesh->bounds_max[1] : mesh->bounds_min[1],
+                                (c & 4) ? mesh->bounds_max[2] : mesh->bounds_min[2] };
+            double w[3];
+            transform_point(inst->world, corner, w);
+            for (int k = 0; k < 3; k++) {
+                if (!any || w[k] < lo[k]) lo[k] = w[k];
+                if (!any || w[k] > hi[k]) hi[k] = w[k];
+            }
+            any = true;
+        }
+    }
+    for (int k = 0; k < 3; k++) {
+        scene->bounds_min[k] = (float)lo[k];
+        scene->bounds_max[k] = (float)hi[k];
+    }
+}
+
+size_t
+cg_scene_triangle_count(const cg_scene *scene)
+{
+    size_t n = 0;
+    for (int i = 0; i < scene->instance_count; i++) {
+        int m = scene->instances[i].mesh;
+        if (m >= 0 && m < scene->mesh_count)
+            n += scene->meshes[m].index_count / 3;
+    }
+    return n;
+}
+
+static bool
+all_finite(const float *v, size_t n)
+{
+    for (size_t i = 0; i < n; i++)
+        if (!isfinite(v[i]))
+            return false;
+    return true;
+}
+
+static bool
+validate_mesh(const cg_scene *scene, int index, cg_error *err)
+{
+    const char *src = scene->name;
+    const cg_mesh *m = &scene->meshes[index];
+    if (m->index_count % 3 != 0)
+        return cg_fail(err, CG_ERR_GLTF_ACCESSOR,
+                       "%s: mesh %d '%s': %u indices is not a whole number of triangles", src,
+                       index, m->name, m->index_count);
+    if ((m->vertex_count && (!m->positions || !m->normals)) || (m->index_count && !m->indices))
+        return cg_fail(err, CG_ERR_GLTF_ACCESSOR, "%s: mesh %d '%s': missing vertex data", src,
+                       index, m->name);
+    for (uint32_t i = 0; i < m->index_count; i++)
+        if (m->indices[i] >= m->vertex_count)
+            return cg_fail(err, CG_ERR_GLTF_INDEX_RANGE,
+                           "%s: mesh %d '%s': index %u at position %u out of range (%u vertices)",
+                           src, index, m->name, m->indices[i], i, m->vertex_count);
+    for (uint32_t v = 0; v < m->vertex_count; v++)
+        if (!all_finite(m->positions + 3 * (size_t)v, 3))
+            return cg_fail(err, CG_ERR_GLTF_NONFINITE,
+                           "%s: mesh %d '%s': vertex %u position is NaN or infinite", src, index,
+                           m->name, v);
+    if (!all_finite(m->normals, 3 * (size_t)m->vertex_count) ||
+        (m->texcoords && !all_finite(m->texcoords, 2 * (size_t)m->vertex_count)))
+        return cg_fail(err, CG_ERR_GLTF_NONFINITE,
+                       "%s: mesh %d '%s': a normal or texture coordinate is NaN or infinite", src,
+                       index, m->name);
+    if (m->material < 0 || m->material >= scene->material_count)
+        return cg_fail(err, CG_ERR_GLTF_INDEX_RANGE,
+                       "%s: mesh %d '%s': material %d out of range (%d materials)", src, index,
+                       m->name, m->material, scene->material_count);
+    return true;
+}
+
+static bool
+validate_material(const cg_scene *scene, int index, cg_error *err)
+{
+    const cg_material *m = &scene->materials[index];
+    if (!all_finite(m->base_color, 4) || !all_finite(m->emissive, 3) ||
+        !isfinite(m->emissive_strength) || !isfinite(m->metallic) || !isfinite(m->roughness))
+        return cg_fail(err, CG_ERR_GLTF_NONFINITE, "%s: material %d '%s': a factor is NaN or infinite",
+                       scene->name, index, m->name);
+    int tex[2] = { m->base_color_texture, m->emissive_texture };
+    for (int k = 0; k < 2; k++)
+        if (tex[k] < -1 || tex[k] >= scene->texture_count)
+            return cg_fail(err, CG_ERR_GLTF_INDEX_RANGE,
+                           "%s: material %d '%s': texture %d out of range (%d textures)",
+                           scene->name, index, m->name, tex[k], scene->texture_count);
+    return true;
+}
+
+static bool
+validate_camera(const cg_scene *scene, int index, cg_error *err)
+{
+    const cg_camera *c = &scene->cameras[index];
+    bool ok = all_finite(c->world, 16) && c->znear > 0 && c->aspect >= 0 && isfinite(c->aspect);
+    if (c->type == CG_CAMERA_PERSPECTIVE)
+        ok = ok && c->yfov > 0 && c->yfov < 3.14159f && (c->zfar == 0 || c->zfar > c->znear);
+    else
+        ok = ok && c->ymag > 0 && isfinite(c->ymag) && c->xmag >= 0 && c->zfar > c->znear;
+    if (!ok || !isfinite(c->zfar))
+        return cg_fail(err, CG_ERR_GLTF_PARSE,
+                       "%s: camera %d '%s': needs finite values with znear > 0, zfar 0 or > znear, "
+                       "0 < yfov < pi (perspective) or ymag > 0 (orthographic)",
+                       scene->name, index, c->name);
+    return true;
+}
+
+bool
+cg_scene_validate(const cg_scene *scene, cg_error *err)
+{
+    if (scene->material_count < 1)
+        return cg_fail(err, CG_ERR_GLTF_PARSE, "%s: scene has no default material", scene->name);
+    for (int i = 0; i < scene->material_count; i++)
+        if (!validate_material(scene, i, err))
+            return false;
+    for (int i = 0; i < scene->texture_count; i++) {
+        const cg_texture *t = &scene->textures[i];
+        if (t->width <= 0 || t->height <= 0 || !t->rgba)
+            return cg_fail(err, CG_ERR_IMAGE_FORMAT, "%s: texture %d '%s': no pixels (%dx%d)",
+                           scene->name, i, t->name, t->width, t->height);
+    }
+    for (int i = 0; i < scene->mesh_count; i++)
+        if (!validate_mesh(scene, i, err))
+            return false;
+    for (int i = 0; i < scene->instance_count; i++) {
+        const cg_instance *inst = &scene->instances[i];
+        if (inst->mesh < 0 || inst->mesh >= scene->mesh_count)
+            return cg_fail(err, CG_ERR_GLTF_INDEX_RANGE,
+                           "%s: instance %d: mesh %d out of range (%d meshes)", scene->name, i,
+                           inst->mesh, scene->mesh_count);
+        if (!all_finite(inst->world, 16))
+            return cg_fail(err, CG_ERR_GLTF_NONFINITE,
+                           "%s: instance %d (mesh '%s'): world transform is NaN or infinite",
+                           scene->name, i, scene->meshes[inst->mesh].name);
+    }
+    for (int i = 0; i < scene->light_count; i++) {
+        const cg_light *l = &scene->lights[i];
+        bool ok = all_finite(l->color, 3) && isfinite(l->intensity) && l->intensity >= 0 &&
+                  all_finite(l->position, 3) && all_finite(l->direction, 3) &&
+                  isfinite(l->range) && l->range >= 0;
+        if (l->type == CG_LIGHT_SPOT)
+            ok = ok && l->inner_cone_angle >= 0 && l->inner_cone_angle < l->outer_cone_angle &&
+                 l->outer_cone_angle <= 1.5707964f;
+        if (!ok)
+            return cg_fail(err, CG_ERR_GLTF_PARSE,
+                           "%s: light %d '%s': needs finite values, intensity >= 0, range >= 0 and "
+                           "for a spot 0 <= inner < outer <= pi/2",
+                           scene->name, i, l->name);
+    }
+    for (int i = 0; i < scene->camera_count; i++)
+        if (!validate_camera(scene, i, err))
+            return false;
+    if (cg_scene_triangle_count(scene) == 0)
+        return cg_fail(err, CG_ERR_GLTF_NO_TRIANGLES, "%s: scene has no triangles", scene->name);
+    return true;
+}

@@ -1,0 +1,61 @@
+/* core/src/scene_internal.h: helpers shared by the scene loaders (scene.c, builtin_scenes.c,
+ * gltf_adapter.cpp). Not a public header: passes and apps use cg/scene.h only.
+ *
+ * Declares: cg_scene_add_material, cg_scene_add_mesh, cg_scene_add_instance,
+ *           cg_scene_add_light, cg_scene_add_camera, cg_scene_add_texture,
+ *           cg_mesh_compute_bounds, cg_mesh_generate_normals, cg_scene_classify_mesh,
+ *           cg_builtin_scene_load, cg_gltf_load, cg_copy_name.
+ */
+#ifndef CG_SCENE_INTERNAL_H
+#define CG_SCENE_INTERNAL_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "cg/error.h"
+#include "cg/scene.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Copies src into a CG_NAME_MAX buffer, truncating (names are labels, not keys). */
+void cg_copy_name(char dst[CG_NAME_MAX], const char *src);
+
+/* Each add_* appends one element (arrays grow by realloc) and returns its index,
+ * or -1 with err set (CG_ERR_OUT_OF_MEMORY). The scene takes ownership of the
+ * pointers inside *mesh and *texture. */
+int cg_scene_add_material(cg_scene *scene, const cg_material *material, cg_error *err);
+int cg_scene_add_mesh(cg_scene *scene, const cg_mesh *mesh, cg_error *err);
+int cg_scene_add_instance(cg_scene *scene, int mesh, const float world[16], cg_error *err);
+int cg_scene_add_light(cg_scene *scene, const cg_light *light, cg_error *err);
+int cg_scene_add_camera(cg_scene *scene, const cg_camera *camera, cg_error *err);
+int cg_scene_add_texture(cg_scene *scene, const cg_texture *texture, cg_error *err);
+
+/* A white Lambertian material with the defaults of glTF (base colour 1, roughness 1,
+ * metallic 0 here since the renderer is diffuse-only, emissive strength 1). */
+cg_material cg_material_default(const char *name);
+
+/* Local-space bounds of the vertices. */
+void cg_mesh_compute_bounds(cg_mesh *mesh);
+/* Area-weighted vertex normals from the triangles (allocates mesh->normals when NULL).
+ * A vertex used by no triangle with non-zero area gets (0, 1, 0). */
+bool cg_mesh_generate_normals(cg_mesh *mesh, cg_error *err);
+
+/* The height-field rule (see scene.c): true when every instance of the mesh places every
+ * triangle of non-zero area facing up (world normal y > CG_HEIGHTFIELD_MIN_NY). */
+#define CG_HEIGHTFIELD_MIN_NY 1e-3f
+bool cg_scene_mesh_is_heightfield(const cg_scene *scene, int mesh);
+
+/* "NAME" and "key=value&..." (query may be NULL) of a "builtin:" source. */
+bool cg_builtin_scene_load(const char *name, const char *query, cg_scene *out, cg_error *err);
+
+/* Loads a .gltf or .glb file (the adapter decides by magic). Mesh kinds come from the
+ * "conegraph_kind" extra when present, else from cg_scene_mesh_is_heightfield. */
+bool cg_gltf_load(const char *path, cg_scene *out, cg_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

@@ -1,0 +1,330 @@
+/* Built-in scenes: sizes follow the parameter, seeds are deterministic, openworld has what the
+ * hybrid method needs (a height field, complex meshes, space under a structure), cornell and
+ * furnace have their lights and closed, inward-facing boxes; bad names and parameters fail
+ * with their named errors. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "cg/scene.h"
+#include "test_support.h"
+
+static double
+now_seconds(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+static const cg_mesh *
+find_mesh(const cg_scene *s, const char *name)
+{
+    for (int i = 0; i < s->mesh_count; i++)
+        if (!strcmp(s->meshes[i].name, name))
+            return &s->meshes[i];
+    return NULL;
+}
+
+static void
+world_point(const cg_scene *s, int instance, uint32_t vertex, double out[3])
+{
+    const cg_instance *in = &s->instances[instance];
+    const float *p = s->meshes[in->mesh].positions + 3 * (size_t)vertex;
+    for (int r = 0; r < 3; r++)
+        out[r] = in->world[r] * p[0] + in->world[4 + r] * p[1] + in->world[8 + r] * p[2] + in->world[12 + r];
+}
+
+static void
+triangle_normal(const double a[3], const double b[3], const double c[3], double n[3])
+{
+    double e1[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
+    double e2[3] = { c[0] - a[0], c[1] - a[1], c[2] - a[2] };
+    n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+    n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+    n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+    double l = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    for (int k = 0; k < 3; k++)
+        n[k] /= l;
+}
+
+static void
+check_count(const char *source, long target)
+{
+    cg_scene s;
+    cg_error err = { 0 };
+    double t0 = now_seconds();
+    assert_cg_ok(cg_scene_load(source, &s, &err), &err);
+    double t = now_seconds() - t0;
+    size_t n = cg_scene_triangle_count(&s);
+    printf("# %s: %zu triangles in %.3f s\n", source, n, t);
+    assert_true(fabs((double)n - (double)target) <= 0.01 * (double)target);
+    cg_scene_free(&s);
+}
+
+static void
+openworld_triangles_follow_parameter(void **state)
+{
+    (void)state;
+    check_count("builtin:openworld?triangles=10000", 10000);
+    check_count("builtin:openworld", 200000);
+    check_count("builtin:openworld?triangles=200000&seed=9", 200000);
+    check_count("builtin:openworld?triangles=2000000", 2000000);
+}
+
+static bool
+same_scene(const cg_scene *a, const cg_scene *b)
+{
+    if (a->mesh_count != b->mesh_count || a->instance_count != b->instance_count ||
+        a->material_count != b->material_count || a->light_count != b->light_count ||
+        a->camera_count != b->camera_count)
+        return false;
+    for (int i = 0; i < a->mesh_count; i++) {
+        const cg_mesh *x = &a->meshes[i], *y = &b->meshes[i];
+        if (x->vertex_count != y->vertex_count || x->index_count != y->index_count ||
+            memcmp(x->positions, y->positions, 12 * (size_t)x->vertex_count) ||
+            memcmp(x->normals, y->normals, 12 * (size_t)x->vertex_count) ||
+            memcmp(x->indices, y->indices, 4 * (size_t)x->index_count) || x->kind != y->kind ||
+            x->material != y->material)
+            return false;
+    }
+    return !memcmp(a->instances, b->instances, sizeof *a->instances * (size_t)a->instance_count) &&
+           !memcmp(a->materials, b->materials, sizeof *a->materials * (size_t)a->material_count) &&
+           !memcmp(a->lights, b->lights, sizeof *a->lights * (size_t)a->light_count) &&
+           !memcmp(a->cameras, b->cameras, sizeof *a->cameras * (size_t)a->camera_count);
+}
+
+static void
+same_seed_same_scene(void **state)
+{
+    (void)state;
+    cg_scene a, b, c;
+    cg_error err = { 0 };
+    assert_cg_ok(cg_scene_load("builtin:openworld?triangles=30000&seed=7", &a, &err), &err);
+    assert_cg_ok(cg_scene_load("builtin:openworld?seed=7&triangles=30000", &b, &err), &err);
+    assert_cg_ok(cg_scene_load("builtin:openworld?triangles=30000&seed=8", &c, &err), &err);
+    assert_true(same_scene(&a, &b));
+    assert_false(same_scene(&a, &c));
+    cg_scene_free(&a);
+    cg_scene_free(&b);
+    cg_scene_free(&c);
+}
+
+/* Height of the terrain's triangles under (x, z), by brute force; NAN when none covers it. */
+static double
+terrain_height_at(const cg_scene *s, int terrain_instance, double x, double z)
+{
+    const cg_mesh *m = &s->meshes[s->instances[terrain_instance].mesh];
+    for (uint32_t t = 0; t < m->index_count; t += 3) {
+        double p[3][3];
+        for (int v = 0; v < 3; v++)
+            world_point(s, terrain_instance, m->indices[t + v], p[v]);
+        double d = (p[1][2] - p[2][2]) * (p[0][0] - p[2][0]) + (p[2][0] - p[1][0]) * (p[0][2] - p[2][2]);
+        double l0 = ((p[1][2] - p[2][2]) * (x - p[2][0]) + (p[2][0] - p[1][0]) * (z - p[2][2])) / d;
+        double l1 = ((p[2][2] - p[0][2]) * (x - p[2][0]) + (p[0][0] - p[2][0]) * (z - p[2][2])) / d;
+        double l2 = 1 - l0 - l1;
+        if (l0 >= -1e-9 && l1 >= -1e-9 && l2 >= -1e-9)
+            return l0 * p[0][1] + l1 * p[1][1] + l2 * p[2][1];
+    }
+    return NAN;
+}
+
+static void
+openworld_has_heightfield_complex_and_space_under(void **state)
+{
+    (void)state;
+    cg_scene s;
+    cg_error err = { 0 };
+    assert_cg_ok(cg_scene_load("builtin:openworld?triangles=10000&seed=3", &s, &err), &err);
+    int terrain = -1, complex_meshes = 0;
+    for (int i = 0; i < s.instance_count; i++) {
+        const cg_mesh *m = &s.meshes[s.instances[i].mesh];
+        if (m->kind == CG_MESH_HEIGHTFIELD) {
+            assert_int_equal(terrain, -1);
+            terrain = i;
+            /* The height-field rule: every triangle faces up. */
+            for (uint32_t t = 0; t < m->index_count; t += 3) {
+                double p[3][3], n[3];
+                for (int v = 0; v < 3; v++)
+                    world_point(&s, i, m->indices[t + v], p[v]);
+                triangle_normal(p[0], p[1], p[2], n);
+                assert_true(n[1] > 1e-3);
+            }
+            assert_true(m->index_count / 3 > cg_scene_triangle_count(&s) * 9 / 10);
+        } else {
+            complex_meshes++;
+        }
+    }
+    assert_true(terrain >= 0);
+    assert_true(complex_meshes >= 3);
+    /* Something stands over open air: a downward-facing triangle of a complex mesh at
+     * least 3 m above the terrain under it (the bridge deck, the arch's intrados). */
+    int over_air = 0;
+    for (int i = 0; i < s.instance_count; i++) {
+        const cg_mesh *m = &s.meshes[s.instances[i].mesh];
+        if (m->kind != CG_MESH_COMPLEX)
+            continue;
+        for (uint32_t t = 0; t < m->index_count; t += 3) {
+            double p[3][3], n[3];
+            for (int v = 0; v < 3; v++)
+                world_point(&s, i, m->indices[t + v], p[v]);
+            triangle_normal(p[0], p[1], p[2], n);
+            if (n[1] > -0.5)
+                continue;
+            double cx = (p[0][0] + p[1][0] + p[2][0]) / 3, cy = (p[0][1] + p[1][1] + p[2][1]) / 3;
+            double cz = (p[0][2] + p[1][2] + p[2][2]) / 3;
+            double h = terrain_height_at(&s, terrain, cx, cz);
+            if (cy - h > 3)
+                over_air++;
+        }
+    }
+    printf("# %d downward-facing triangles stand more than 3 m above the terrain\n", over_air);
+    assert_true(over_air >= 2);
+    /* Buildings, in several colours: albedos that differ per channel bleed colour. */
+    int coloured = 0;
+    for (int i = 0; i < s.material_count; i++) {
+        const float *c = s.materials[i].base_color;
+        if (fabsf(c[0] - c[1]) > 0.3f || fabsf(c[1] - c[2]) > 0.3f)
+            coloured++;
+    }
+    assert_true(coloured >= 3);
+    /* A sun of a few W/m^2 from above, and a camera; extent a few hundred metres. */
+    assert_int_equal(s.light_count, 1);
+    assert_int_equal(s.lights[0].type, CG_LIGHT_DIRECTIONAL);
+    assert_true(s.lights[0].intensity >= 1 && s.lights[0].intensity <= 10);
+    assert_true(s.lights[0].direction[1] < -0.3f);
+    assert_int_equal(s.camera_count, 1);
+    assert_int_equal(s.cameras[0].type, CG_CAMERA_PERSPECTIVE);
+    assert_true(s.bounds_max[0] - s.bounds_min[0] >= 200 && s.bounds_max[0] - s.bounds_min[0] <= 1000);
+    cg_scene_free(&s);
+}
+
+static void
+cornell_box(void **state)
+{
+    (void)state;
+    cg_scene s;
+    cg_error err = { 0 };
+    assert_cg_ok(cg_scene_load("builtin:cornell", &s, &err), &err);
+    assert_int_equal(s.light_count, 1);
+    const cg_light *l = &s.lights[0];
+    assert_int_equal(l->type, CG_LIGHT_SPOT);
+    assert_true(l->direction[1] < -0.99f);
+    assert_true(l->position[1] > 0.9f && l->position[1] < 1.0f);
+    assert_true(l->outer_cone_angle < 1.5f); /* one perspective shadow map covers it */
+    assert_int_equal(s.camera_count, 1);
+    const cg_mesh *left = find_mesh(&s, "left_wall"), *right = find_mesh(&s, "right_wall");
+    assert_non_null(left);
+    assert_non_null(right);
+    const float *red = s.materials[left->material].base_color;
+    const float *green = s.materials[right->material].base_color;
+    assert_true(red[0] > 2 * red[1] && green[1] > 2 * green[0]);
+    /* Walls face into the box: the left wall's normal is +x, the right's -x. */
+    assert_true(left->normals[0] > 0.99f && right->normals[0] < -0.99f);
+    assert_true(fabsf(s.bounds_max[1] - s.bounds_min[1] - 1) < 1e-5f);
+    assert_int_equal(cg_scene_triangle_count(&s), 10 + 2 * 12);
+    cg_scene_free(&s);
+}
+
+static void
+check_furnace(const char *source, double scale, float albedo, float radiance)
+{
+    cg_scene s;
+    cg_error err = { 0 };
+    assert_cg_ok(cg_scene_load(source, &s, &err), &err);
+    for (int k = 0; k < 3; k++) {
+        assert_true(fabs(s.bounds_min[k] + scale / 2) <= 1e-6 * scale);
+        assert_true(fabs(s.bounds_max[k] - scale / 2) <= 1e-6 * scale);
+    }
+    assert_int_equal(s.light_count, 0);
+    assert_int_equal(s.camera_count, 1);
+    /* The camera is inside, its near plane well inside the walls. */
+    for (int k = 0; k < 3; k++)
+        assert_true(fabsf(s.cameras[0].world[12 + k]) < scale / 4);
+    assert_true(s.cameras[0].znear < scale / 4);
+    size_t triangles = 0;
+    for (int i = 0; i < s.instance_count; i++) {
+        const cg_mesh *m = &s.meshes[s.instances[i].mesh];
+        const cg_material *mat = &s.materials[m->material];
+        for (int c = 0; c < 3; c++) {
+            assert_float_equal(mat->base_color[c], albedo, 0);
+            assert_float_equal(mat->emissive[c] * mat->emissive_strength, radiance, radiance * 1e-6);
+        }
+        assert_int_equal(mat->emissive_texture, -1);
+        assert_int_equal(mat->base_color_texture, -1);
+        /* Every face points to the centre. */
+        for (uint32_t t = 0; t < m->index_count; t += 3) {
+            double p[3][3], n[3];
+            for (int v = 0; v < 3; v++)
+                world_point(&s, i, m->indices[t + v], p[v]);
+            triangle_normal(p[0], p[1], p[2], n);
+            double c[3] = { (p[0][0] + p[1][0] + p[2][0]) / 3, (p[0][1] + p[1][1] + p[2][1]) / 3,
+                            (p[0][2] + p[1][2] + p[2][2]) / 3 };
+            assert_true(n[0] * c[0] + n[1] * c[1] + n[2] * c[2] < -0.4 * scale);
+            const float *sn = m->normals + 3 * (size_t)m->indices[t];
+            assert_true(sn[0] * n[0] + sn[1] * n[1] + sn[2] * n[2] > 0.999);
+        }
+        triangles += m->index_count / 3;
+    }
+    /* Closed: the six faces of the cube, two triangles each, cover its whole surface. */
+    assert_int_equal(triangles, 12);
+    cg_scene_free(&s);
+}
+
+static void
+furnace_scales(void **state)
+{
+    (void)state;
+    check_furnace("builtin:furnace", 1, 0.5f, 1);
+    check_furnace("builtin:furnace?scale=1e-3&albedo=0.8&radiance=2", 1e-3, 0.8f, 2);
+    check_furnace("builtin:furnace?scale=1e4&albedo=1&radiance=0.25", 1e4, 1, 0.25f);
+}
+
+static void
+bad_names_and_parameters(void **state)
+{
+    (void)state;
+    cg_scene s;
+    cg_error err = { 0 };
+    assert_cg_status(cg_scene_load("builtin:nowhere", &s, &err), &err, CG_ERR_SCENE_UNKNOWN);
+    for (const char *const *n = cg_scene_builtin_names(); *n; n++) {
+        assert_non_null(strstr(err.message, *n));
+        assert_non_null(cg_scene_builtin_doc(*n));
+    }
+    assert_null(cg_scene_builtin_doc("nowhere"));
+    const char *bad[] = {
+        "builtin:openworld?triangles=0",     "builtin:openworld?triangles=abc",
+        "builtin:openworld?triangles=1e5",   "builtin:openworld?seed=-1",
+        "builtin:openworld?colour=red",      "builtin:openworld?triangles",
+        "builtin:openworld?seed=1&seed=2",   "builtin:openworld?triangles=99999999999",
+        "builtin:openworld?&",               "builtin:cornell?size=2",
+        "builtin:furnace?albedo=1.5",        "builtin:furnace?scale=0",
+        "builtin:furnace?radiance=nan",      "builtin:furnace?scale=-1",
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
+        cg_error_clear(&err);
+        if (cg_scene_load(bad[i], &s, &err))
+            fail_msg("%s loaded", bad[i]);
+        if (err.status != CG_ERR_SCENE_PARAM)
+            fail_msg("%s: %s (%s), expected CG_ERR_SCENE_PARAM", bad[i], cg_status_name(err.status),
+                     err.message);
+        assert_int_equal(s.mesh_count, 0);
+        assert_null(s.meshes);
+    }
+}
+
+int
+main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(openworld_triangles_follow_parameter),
+        cmocka_unit_test(same_seed_same_scene),
+        cmocka_unit_test(openworld_has_heightfield_complex_and_space_under),
+        cmocka_unit_test(cornell_box),
+        cmocka_unit_test(furnace_scales),
+        cmocka_unit_test(bad_names_and_parameters),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

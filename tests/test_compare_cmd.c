@@ -1,0 +1,131 @@
+/* `conegraph compare` end to end: known image pairs written as EXR, the command's JSON
+ * figures and exit codes checked. The executable comes from $CONEGRAPH_EXE (tests/meson.build). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+
+#include "cg/image.h"
+#include "test_support.h"
+
+enum { W = 32, H = 24 };
+
+static const char *
+write_constant(const char *name, float v, int w, int h)
+{
+    cg_image img = { 0 };
+    cg_error err = { 0 };
+    assert_cg_ok(cg_image_alloc(&img, w, h, &err), &err);
+    for (int i = 0; i < w * h; i++) {
+        img.rgba[4 * i] = img.rgba[4 * i + 1] = img.rgba[4 * i + 2] = v;
+        img.rgba[4 * i + 3] = 1.0f;
+    }
+    static char paths[8][4096];
+    static int next;
+    char *path = paths[next++ % 8];
+    snprintf(path, 4096, "%s/%s", cg_test_tmpdir(), name);
+    assert_cg_ok(cg_image_write(path, &img, CG_EXR_FLOAT, &err), &err);
+    cg_image_free(&img);
+    return path;
+}
+
+/* Runs conegraph with `args`; returns the exit code, stdout in out. */
+static int
+run(const char *args, char *out, size_t size)
+{
+    const char *exe = getenv("CONEGRAPH_EXE");
+    assert_non_null(exe);
+    char cmd[8192];
+    snprintf(cmd, sizeof cmd, "'%s' %s 2>/dev/null", exe, args);
+    FILE *p = popen(cmd, "r");
+    assert_non_null(p);
+    size_t n = fread(out, 1, size - 1, p);
+    out[n] = '\0';
+    int status = pclose(p);
+    assert_true(WIFEXITED(status));
+    return WEXITSTATUS(status);
+}
+
+/* The number after "KEY": in the object that follows "SECTION": . */
+static double
+json_number(const char *json, const char *section, const char *key)
+{
+    const char *s = strstr(json, section);
+    assert_non_null(s);
+    char pattern[64];
+    snprintf(pattern, sizeof pattern, "\"%s\": ", key);
+    const char *k = strstr(s, pattern);
+    assert_non_null(k);
+    return strtod(k + strlen(pattern), NULL);
+}
+
+static void
+identical_images(void **state)
+{
+    (void)state;
+    const char *a = write_constant("a.exr", 0.4f, W, H);
+    char args[9000], out[4096];
+    snprintf(args, sizeof args, "compare '%s' '%s' --json", a, a);
+    assert_int_equal(run(args, out, sizeof out), 0);
+    assert_float_equal(json_number(out, "\"full\"", "rmse"), 0.0, 0.0);
+    assert_float_equal(json_number(out, "\"full\"", "relmse"), 0.0, 0.0);
+    assert_float_equal(json_number(out, "\"full\"", "ssim"), 1.0, 1e-9);
+    assert_float_equal(json_number(out, "\"full\"", "lum_ratio"), 1.0, 1e-9);
+}
+
+static void
+offset_and_indirect_part(void **state)
+{
+    (void)state;
+    const char *t = write_constant("t.exr", 0.5f, W, H);
+    const char *r = write_constant("r.exr", 0.25f, W, H);
+    const char *d = write_constant("d.exr", 0.125f, W, H);
+    char heatmap[4200];
+    snprintf(heatmap, sizeof heatmap, "%s/heat.png", cg_test_tmpdir());
+    char args[20000], out[4096];
+    snprintf(args, sizeof args, "compare '%s' '%s' --direct '%s' --json --heatmap '%s'", t, r, d, heatmap);
+    assert_int_equal(run(args, out, sizeof out), 0);
+    /* Offset 0.25 on 0.25: relMSE 0.0625 / (0.0625 + 0.01); indirect 0.375 against 0.125. */
+    assert_float_equal(json_number(out, "\"full\"", "rmse"), 0.25, 1e-7);
+    assert_float_equal(json_number(out, "\"full\"", "relmse"), 0.0625 / 0.0725, 1e-7);
+    assert_float_equal(json_number(out, "\"full\"", "lum_ratio"), 2.0, 1e-7);
+    assert_float_equal(json_number(out, "\"indirect\"", "lum_ratio"), 3.0, 1e-6);
+    assert_float_equal(json_number(out, "\"indirect\"", "relmse"), 0.0625 / (0.015625 + 0.01), 1e-6);
+    cg_image map = { 0 };
+    cg_error err = { 0 };
+    assert_cg_ok(cg_image_read(heatmap, &map, &err), &err);
+    assert_int_equal(map.width, W);
+    assert_int_equal(map.height, H);
+    cg_image_free(&map);
+}
+
+static void
+bad_input_exits_with_2(void **state)
+{
+    (void)state;
+    const char *a = write_constant("s1.exr", 0.4f, W, H);
+    const char *b = write_constant("s2.exr", 0.4f, W, H + 1);
+    char args[9000], out[4096];
+    snprintf(args, sizeof args, "compare '%s' '%s'", a, b);
+    assert_int_equal(run(args, out, sizeof out), 2);
+    snprintf(args, sizeof args, "compare '%s' '%s/missing.exr'", a, cg_test_tmpdir());
+    assert_int_equal(run(args, out, sizeof out), 2);
+    snprintf(args, sizeof args, "compare '%s'", a);
+    assert_int_equal(run(args, out, sizeof out), 2);
+    snprintf(args, sizeof args, "compare '%s' '%s' --bogus", a, a);
+    assert_int_equal(run(args, out, sizeof out), 2);
+    assert_int_equal(run("compare --help", out, sizeof out), 0);
+    assert_non_null(strstr(out, "usage: conegraph compare"));
+}
+
+int
+main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(identical_images),
+        cmocka_unit_test(offset_and_indirect_part),
+        cmocka_unit_test(bad_input_exits_with_2),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
