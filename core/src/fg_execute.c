@@ -1,0 +1,335 @@
+/* Prepare and execute: GL storage from descriptors, pass states, barriers and timings. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "fg_internal.h"
+
+/* ---------------------------------------------------------------- resource lookup */
+
+const fg_storage *
+fg_resource_storage(const fg_graph *graph, int resource, bool previous)
+{
+    if (resource < 0 || resource >= graph->resource_count)
+        return NULL;
+    const fg_res *r = &graph->resources[resource];
+    if (r->info.storage < 0)
+        return NULL;
+    if (!r->double_buffered)
+        return &graph->storage[r->info.storage];
+    /* Even frames write the first storage and read last frame's value from the second;
+     * odd frames the other way round. */
+    bool second = (graph->frame_parity != 0) != previous;
+    return &graph->storage[second ? r->storage2 : r->info.storage];
+}
+
+/* An input shadows an output of the same name: both are then one in-place resource. */
+static const fg_storage *
+slot_storage(const fg_pass *pass, const char *name, const fg_resource_desc **desc)
+{
+    const fg_graph *graph = pass->graph;
+    for (int i = 0; i < pass->input_count; i++) {
+        const fg_input *in = &pass->inputs[i];
+        if (strcmp(in->name, name))
+            continue;
+        for (int o = 0; o < pass->output_count; o++)
+            if (pass->outputs[o].in_place_input == i) {
+                if (desc)
+                    *desc = &graph->resources[pass->outputs[o].resource].info.desc;
+                return fg_resource_storage(graph, pass->outputs[o].resource, false);
+            }
+        if (in->resource < 0)
+            return NULL;
+        if (desc)
+            *desc = &graph->resources[in->resource].info.desc;
+        return fg_resource_storage(graph, in->resource, in->previous);
+    }
+    for (int o = 0; o < pass->output_count; o++) {
+        if (strcmp(pass->outputs[o].name, name) || pass->outputs[o].resource < 0)
+            continue;
+        if (desc)
+            *desc = &graph->resources[pass->outputs[o].resource].info.desc;
+        return fg_resource_storage(graph, pass->outputs[o].resource, false);
+    }
+    return NULL;
+}
+
+bool
+fg_input_present(const fg_pass *pass, const char *name)
+{
+    for (int i = 0; i < pass->input_count; i++)
+        if (!strcmp(pass->inputs[i].name, name))
+            return pass->inputs[i].resource >= 0;
+    return false;
+}
+
+GLuint
+fg_texture(const fg_pass *pass, const char *name)
+{
+    const fg_storage *s = slot_storage(pass, name, NULL);
+    return s && s->desc.kind != FG_BUFFER ? s->object : 0;
+}
+
+GLuint
+fg_buffer(const fg_pass *pass, const char *name)
+{
+    const fg_storage *s = slot_storage(pass, name, NULL);
+    return s && s->desc.kind == FG_BUFFER ? s->object : 0;
+}
+
+const fg_resource_desc *
+fg_resource(const fg_pass *pass, const char *name)
+{
+    const fg_resource_desc *desc = NULL;
+    return slot_storage(pass, name, &desc) ? desc : NULL;
+}
+
+GLuint
+fg_graph_texture(const fg_graph *graph, const char *source)
+{
+    int index = fg_graph_find_resource_index(graph, source);
+    if (index < 0 || graph->resources[index].info.absent)
+        return 0;
+    const fg_storage *s = fg_resource_storage(graph, index, false);
+    return s ? s->object : 0;
+}
+
+/* ---------------------------------------------------------------- storage */
+
+static GLenum
+texture_target(fg_resource_kind kind)
+{
+    switch (kind) {
+    case FG_TEXTURE_3D: return GL_TEXTURE_3D;
+    case FG_TEXTURE_2D_ARRAY: return GL_TEXTURE_2D_ARRAY;
+    default: return GL_TEXTURE_2D;
+    }
+}
+
+/* A pixel format and type that glClearTexImage accepts for an internal format. */
+static void
+clear_format(GLenum internal, GLenum *format, GLenum *type)
+{
+    const fg_format_info *info = fg_format_find(internal);
+    *format = GL_RGBA;
+    *type = GL_FLOAT;
+    if (!info)
+        return;
+    size_t len = strlen(info->name);
+    if (internal == GL_DEPTH24_STENCIL8) {
+        *format = GL_DEPTH_STENCIL;
+        *type = GL_UNSIGNED_INT_24_8;
+    } else if (internal == GL_DEPTH32F_STENCIL8) {
+        *format = GL_DEPTH_STENCIL;
+        *type = GL_FLOAT_32_UNSIGNED_INT_24_8_REV;
+    } else if (internal == GL_STENCIL_INDEX8) {
+        *format = GL_STENCIL_INDEX;
+        *type = GL_UNSIGNED_BYTE;
+    } else if (info->depth) {
+        *format = GL_DEPTH_COMPONENT;
+    } else if (len > 2 && !strcmp(info->name + len - 2, "UI")) {
+        *format = GL_RGBA_INTEGER;
+        *type = GL_UNSIGNED_INT;
+    } else if (info->name[len - 1] == 'I' && internal != GL_RGB10_A2UI) {
+        *format = GL_RGBA_INTEGER;
+        *type = GL_INT;
+    }
+}
+
+static bool
+create_storage(fg_graph *graph, int index, cg_error *err)
+{
+    fg_storage *s = &graph->storage[index];
+    const fg_resource_desc *d = &s->desc;
+    /* Name the GL object after the first resource it holds, for debuggers and KHR_debug. */
+    const char *label = "fg storage";
+    for (int i = 0; i < graph->resource_count; i++)
+        if (graph->resources[i].info.storage == index || graph->resources[i].storage2 == index) {
+            label = graph->resources[i].name;
+            break;
+        }
+    while (glGetError() != GL_NO_ERROR)
+        ;
+    if (d->kind == FG_BUFFER) {
+        glCreateBuffers(1, &s->object);
+        glNamedBufferStorage(s->object, (GLsizeiptr)d->buffer_bytes, NULL, GL_DYNAMIC_STORAGE_BIT);
+        if (s->clear_on_create)
+            glClearNamedBufferData(s->object, GL_R8, GL_RED, GL_UNSIGNED_BYTE, NULL);
+        glObjectLabel(GL_BUFFER, s->object, -1, label);
+    } else {
+        glCreateTextures(texture_target(d->kind), 1, &s->object);
+        if (d->kind == FG_TEXTURE_2D)
+            glTextureStorage2D(s->object, d->levels, d->format, d->width, d->height);
+        else
+            glTextureStorage3D(s->object, d->levels, d->format, d->width, d->height, d->depth);
+        if (s->clear_on_create) {
+            GLenum format, type;
+            clear_format(d->format, &format, &type);
+            for (int level = 0; level < d->levels; level++)
+                glClearTexImage(s->object, level, format, type, NULL);
+        }
+        glObjectLabel(GL_TEXTURE, s->object, -1, label);
+    }
+    GLenum error = glGetError();
+    if (error != GL_NO_ERROR)
+        return cg_fail(err, error == GL_OUT_OF_MEMORY ? CG_ERR_OUT_OF_MEMORY : CG_ERR_GL,
+                       "creating storage for '%s' (%zu bytes): GL error 0x%04x", label, s->bytes,
+                       (unsigned)error);
+    return true;
+}
+
+void
+fg_graph_release_gl(fg_graph *graph)
+{
+    if (!graph->prepared)
+        return;
+    for (int k = graph->order_count - 1; k >= 0; k--) {
+        fg_pass *pass = graph->passes[graph->order[k]];
+        if (pass->prepared && pass->type->destroy)
+            pass->type->destroy(pass->state);
+        pass->prepared = false;
+        pass->state = NULL;
+    }
+    for (int p = 0; p < graph->pass_count; p++) {
+        fg_pass *pass = graph->passes[p];
+        for (int slot = 0; slot < FG_QUERY_RING; slot++) {
+            if (pass->queries[slot][0])
+                glDeleteQueries(2, pass->queries[slot]);
+            pass->queries[slot][0] = pass->queries[slot][1] = 0;
+            pass->query_issued[slot] = false;
+        }
+    }
+    for (int i = 0; i < graph->storage_count; i++) {
+        fg_storage *s = &graph->storage[i];
+        if (!s->object)
+            continue;
+        if (s->desc.kind == FG_BUFFER)
+            glDeleteBuffers(1, &s->object);
+        else
+            glDeleteTextures(1, &s->object);
+        s->object = 0;
+    }
+    graph->prepared = false;
+}
+
+bool
+fg_graph_prepare(fg_graph *graph, cg_error *err)
+{
+    if (!graph->compiled)
+        return cg_fail(err, CG_ERR_USAGE, "fg_graph_prepare: the graph is not compiled");
+    fg_graph_release_gl(graph);
+    graph->prepared = true; /* from here on, release_gl undoes whatever was made */
+    graph->frames_executed = 0;
+    graph->frame_parity = 0;
+    for (int i = 0; i < graph->storage_count; i++)
+        if (!create_storage(graph, i, err))
+            return false;
+    for (int k = 0; k < graph->order_count; k++) {
+        fg_pass *pass = graph->passes[graph->order[k]];
+        pass->ms = -1;
+        if (!pass->type->prepare) {
+            pass->prepared = true;
+            continue;
+        }
+        cg_error local = { 0 };
+        if (!pass->type->prepare(pass, &pass->state, &local)) {
+            if (local.status == CG_OK)
+                return cg_fail(err, CG_ERR_PASS, "pass '%s' (type %s): prepare failed without a reason",
+                               pass->name, pass->type->name);
+            return cg_fail(err, local.status, "pass '%s' (type %s): %s", pass->name, pass->type->name,
+                           local.message);
+        }
+        pass->prepared = true;
+    }
+    return true;
+}
+
+/* ---------------------------------------------------------------- execute */
+
+static double
+now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
+}
+
+/* Reads the timestamps of ring slot `slot`; waits for them only when `wait`. */
+static void
+read_queries(fg_graph *graph, int slot, bool wait)
+{
+    for (int k = 0; k < graph->order_count; k++) {
+        fg_pass *pass = graph->passes[graph->order[k]];
+        if (!pass->query_issued[slot])
+            continue;
+        GLuint available = 0;
+        if (!wait)
+            glGetQueryObjectuiv(pass->queries[slot][1], GL_QUERY_RESULT_AVAILABLE, &available);
+        if (!wait && !available)
+            continue;
+        GLuint64 t0 = 0, t1 = 0;
+        glGetQueryObjectui64v(pass->queries[slot][0], GL_QUERY_RESULT, &t0);
+        glGetQueryObjectui64v(pass->queries[slot][1], GL_QUERY_RESULT, &t1);
+        pass->ms = t1 >= t0 ? (double)(t1 - t0) * 1e-6 : 0.0;
+        pass->query_issued[slot] = false;
+    }
+}
+
+bool
+fg_graph_execute(fg_graph *graph, const fg_frame *frame, fg_timing_mode timing, cg_error *err)
+{
+    if (!graph->prepared)
+        return cg_fail(err, CG_ERR_USAGE, "fg_graph_execute: the graph is not prepared");
+    if (frame->width != graph->frame.width || frame->height != graph->frame.height)
+        return cg_fail(err, CG_ERR_USAGE,
+                       "fg_graph_execute: the frame is %dx%d but the graph was compiled for %dx%d; "
+                       "compile and prepare it again", frame->width, frame->height, graph->frame.width,
+                       graph->frame.height);
+    graph->frame = *frame;
+    graph->frame_parity = (int)(graph->frames_executed & 1);
+    int slot = (int)(graph->frames_executed % FG_QUERY_RING);
+    if (timing == FG_TIMING_QUERIES)
+        read_queries(graph, slot, true); /* a slot reused after FG_QUERY_RING frames */
+    for (int k = 0; k < graph->order_count; k++) {
+        fg_pass *pass = graph->passes[graph->order[k]];
+        if (pass->barrier_bits)
+            glMemoryBarrier(pass->barrier_bits);
+        double t0 = 0;
+        if (timing == FG_TIMING_SYNC) {
+            glFinish();
+            t0 = now_ms();
+        } else if (timing == FG_TIMING_QUERIES) {
+            if (!pass->queries[slot][0])
+                glCreateQueries(GL_TIMESTAMP, 2, pass->queries[slot]);
+            glQueryCounter(pass->queries[slot][0], GL_TIMESTAMP);
+        }
+        cg_error local = { 0 };
+        if (!pass->type->execute(pass, pass->state, &local)) {
+            if (local.status == CG_OK)
+                return cg_fail(err, CG_ERR_PASS, "pass '%s' (type %s): execute failed without a reason",
+                               pass->name, pass->type->name);
+            return cg_fail(err, local.status, "pass '%s' (type %s): %s", pass->name, pass->type->name,
+                           local.message);
+        }
+        if (timing == FG_TIMING_SYNC) {
+            glFinish();
+            pass->ms = now_ms() - t0;
+        } else if (timing == FG_TIMING_QUERIES) {
+            glQueryCounter(pass->queries[slot][1], GL_TIMESTAMP);
+            pass->query_issued[slot] = true;
+        }
+    }
+    /* Timestamps of the frame before are ready by now on any sane driver: read them without
+     * stalling (a result not available yet is read when its slot comes round again). */
+    if (timing == FG_TIMING_QUERIES && graph->frames_executed > 0)
+        read_queries(graph, (int)((graph->frames_executed - 1) % FG_QUERY_RING), false);
+    graph->frames_executed++;
+    return true;
+}
+
+double
+fg_pass_milliseconds(const fg_pass *pass)
+{
+    return pass->ms;
+}

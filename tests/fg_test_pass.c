@@ -1,0 +1,215 @@
+/* Configurable pass types for frame-graph tests (see fg_test_pass.h). */
+#include "fg_test_pass.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const fg_param_desc test_params[] = {
+    { "inputs", FG_PARAM_STRING, 0, 0, 0, "", "input slots: NAME:KIND:ACCESS[:opt] ..." },
+    { "outputs", FG_PARAM_STRING, 0, 0, 0, "", "outputs: NAME:KIND:FORMAT:SIZE:ACCESS[:persistent][:gi][:mips] ..." },
+    { "nothing", FG_PARAM_BOOL, 0, 0, 1, NULL, "declare that there is nothing to do" },
+    { "value", FG_PARAM_FLOAT, 0, -1e6, 1e6, NULL, "value execute() clears colour outputs to" },
+    { "cones", FG_PARAM_ENUM, 1, 0, 0, "1|6|9|16", "number of cones (validation tests only)" },
+    { "resolution", FG_PARAM_INT, 64, 1, 4096, NULL, "a resolution (validation tests only)" },
+    { "scale", FG_PARAM_FLOAT, 0.5, 0, 1, NULL, "a fraction (validation tests only)" },
+    { "label", FG_PARAM_STRING, 0, 0, 0, "none", "a label (validation tests only)" },
+};
+
+static const struct {
+    const char *name;
+    GLenum format;
+} formats[] = {
+    { "RGBA16F", GL_RGBA16F }, { "RGBA32F", GL_RGBA32F }, { "R32F", GL_R32F }, { "RGBA8", GL_RGBA8 },
+    { "R8", GL_R8 }, { "DEPTH32F", GL_DEPTH_COMPONENT32F }, { "SRGB8_ALPHA8", GL_SRGB8_ALPHA8 },
+    { "R32UI", GL_R32UI }, { "-", 0 },
+};
+
+static bool
+parse_kind(const char *s, fg_resource_kind *kind)
+{
+    static const char *const names[] = { "2d", "3d", "array", "buffer" };
+    for (int i = 0; i < 4; i++)
+        if (!strcmp(s, names[i])) {
+            *kind = (fg_resource_kind)i;
+            return true;
+        }
+    return false;
+}
+
+static bool
+parse_access(char *s, unsigned *access)
+{
+    static const char *const names[] = { "sampled", "load", "store", "attach", "storage", "uniform",
+                                         "transfer" };
+    *access = 0;
+    for (char *save = NULL, *tok = strtok_r(s, "+", &save); tok; tok = strtok_r(NULL, "+", &save)) {
+        bool found = false;
+        for (unsigned i = 0; i < 7; i++)
+            if (!strcmp(tok, names[i])) {
+                *access |= 1u << i;
+                found = true;
+            }
+        if (!found)
+            return false;
+    }
+    return true;
+}
+
+/* Splits "a:b:c" in place into at most `max` fields. */
+static int
+split_fields(char *s, char **fields, int max)
+{
+    int n = 0;
+    for (char *save = NULL, *tok = strtok_r(s, ":", &save); tok && n < max; tok = strtok_r(NULL, ":", &save))
+        fields[n++] = tok;
+    return n;
+}
+
+static bool
+declare_inputs(fg_pass *pass, fg_declare *decl, cg_error *err)
+{
+    char *spec = strdup(fg_param_string(pass, "inputs"));
+    bool ok = true;
+    for (char *save = NULL, *item = strtok_r(spec, " ", &save); item && ok;
+         item = strtok_r(NULL, " ", &save)) {
+        char *f[4];
+        int n = split_fields(item, f, 4);
+        fg_resource_kind kind;
+        unsigned access;
+        if (n < 3 || !parse_kind(f[1], &kind) || !parse_access(f[2], &access)) {
+            ok = cg_fail(err, CG_ERR_PASS, "test pass '%s': bad input spec", fg_pass_name(pass));
+            break;
+        }
+        fg_declare_input(decl, f[0], kind, access, !(n == 4 && !strcmp(f[3], "opt")));
+    }
+    free(spec);
+    return ok;
+}
+
+static bool
+declare_outputs(fg_pass *pass, fg_declare *decl, cg_error *err)
+{
+    char *spec = strdup(fg_param_string(pass, "outputs"));
+    const fg_frame *frame = fg_pass_frame(pass);
+    bool ok = true;
+    for (char *save = NULL, *item = strtok_r(spec, " ", &save); item && ok;
+         item = strtok_r(NULL, " ", &save)) {
+        char *f[8];
+        int n = split_fields(item, f, 8);
+        fg_resource_desc desc = { 0 };
+        unsigned access;
+        int format = -1;
+        for (int i = 0; n >= 5 && i < (int)(sizeof formats / sizeof formats[0]); i++)
+            if (!strcmp(formats[i].name, f[2]))
+                format = i;
+        if (n < 5 || !parse_kind(f[1], &desc.kind) || format < 0 || !parse_access(f[4], &access)) {
+            ok = cg_fail(err, CG_ERR_PASS, "test pass '%s': bad output spec", fg_pass_name(pass));
+            break;
+        }
+        desc.format = formats[format].format;
+        desc.depth = 1;
+        desc.levels = 1;
+        if (desc.kind == FG_BUFFER) {
+            desc.buffer_bytes = (size_t)strtoull(f[3], NULL, 10);
+        } else if (!strcmp(f[3], "frame")) {
+            desc.width = frame->width;
+            desc.height = frame->height;
+        } else if (sscanf(f[3], "%dx%dx%d", &desc.width, &desc.height, &desc.depth) < 2) {
+            ok = cg_fail(err, CG_ERR_PASS, "test pass '%s': bad size '%s'", fg_pass_name(pass), f[3]);
+            break;
+        }
+        for (int i = 5; i < n; i++) {
+            if (!strcmp(f[i], "persistent"))
+                desc.persistent = true;
+            else if (!strcmp(f[i], "gi"))
+                desc.gi = true;
+            else if (!strcmp(f[i], "mips"))
+                desc.levels = fg_mip_levels(desc.width, desc.height,
+                                            desc.kind == FG_TEXTURE_3D ? desc.depth : 1);
+        }
+        fg_declare_output(decl, f[0], &desc, access);
+    }
+    free(spec);
+    return ok;
+}
+
+static bool
+test_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
+{
+    if (!declare_inputs(pass, decl, err))
+        return false;
+    if (fg_param_bool(pass, "nothing")) {
+        fg_declare_nothing_to_do(decl, "the test said so");
+        return true;
+    }
+    return declare_outputs(pass, decl, err);
+}
+
+static bool
+test_prepare(fg_pass *pass, void **state, cg_error *err)
+{
+    (void)pass;
+    *state = calloc(1, sizeof(int));
+    return *state ? true : cg_fail(err, CG_ERR_OUT_OF_MEMORY, "out of memory");
+}
+
+static bool
+test_execute(fg_pass *pass, void *state, cg_error *err)
+{
+    (void)err;
+    (*(int *)state)++;
+    char *spec = strdup(fg_param_string(pass, "outputs"));
+    float v = fg_param_float(pass, "value");
+    const float rgba[4] = { v, v, v, v };
+    for (char *save = NULL, *item = strtok_r(spec, " ", &save); item; item = strtok_r(NULL, " ", &save)) {
+        char *f[2];
+        if (split_fields(item, f, 2) < 1)
+            continue;
+        const fg_resource_desc *d = fg_resource(pass, f[0]);
+        GLuint tex = fg_texture(pass, f[0]);
+        if (!d || !tex || d->format == GL_DEPTH_COMPONENT32F || d->format == GL_R32UI)
+            continue;
+        for (int level = 0; level < d->levels; level++)
+            glClearTexImage(tex, level, GL_RGBA, GL_FLOAT, rgba);
+    }
+    free(spec);
+    return true;
+}
+
+static void
+test_destroy(void *state)
+{
+    free(state);
+}
+
+static const fg_pass_type test_type = {
+    .abi_version = FG_ABI_VERSION,
+    .name = "t",
+    .doc = "A test pass whose inputs and outputs are given by its parameters.",
+    .params = test_params,
+    .param_count = (int)(sizeof test_params / sizeof test_params[0]),
+    .declare = test_declare,
+    .prepare = test_prepare,
+    .execute = test_execute,
+    .destroy = test_destroy,
+};
+
+static const fg_pass_type test_side_type = {
+    .abi_version = FG_ABI_VERSION,
+    .name = "t_side",
+    .doc = "The same test pass, marked as having a side effect (never culled).",
+    .params = test_params,
+    .param_count = (int)(sizeof test_params / sizeof test_params[0]),
+    .side_effect = true,
+    .declare = test_declare,
+    .prepare = test_prepare,
+    .execute = test_execute,
+    .destroy = test_destroy,
+};
+
+bool
+fg_test_register(fg_registry *registry, cg_error *err)
+{
+    return fg_registry_add(registry, &test_type, err) && fg_registry_add(registry, &test_side_type, err);
+}

@@ -1,0 +1,27 @@
+/* tests/fg_test_pass.h: pass types for frame-graph tests whose slots come from parameters.
+ *
+ * Declares: fg_test_register.
+ *
+ * Registers two types, "t" and "t_side" (a side-effect pass), with the parameters
+ *   inputs   "NAME:KIND:ACCESS[:opt] ..."   KIND 2d|3d|array|buffer, ACCESS sampled|load|store|
+ *                                          attach|storage|uniform|transfer joined by '+'
+ *   outputs  "NAME:KIND:FORMAT:SIZE:ACCESS[:persistent][:gi][:mips] ..."  FORMAT as in the
+ *            report (RGBA16F, R32F, DEPTH32F, RGBA8, ...; "-" for buffers), SIZE WxH, WxHxD,
+ *            "frame" (the output image), or BYTES for buffers; mips = full chain
+ *   nothing  declare nothing to do
+ *   value    what execute() clears every 2D/3D colour output to (RGBA)
+ *   cones    enum 1|6|9|16, resolution int [1, 4096], scale float [0, 1], label string:
+ *            only for parameter validation tests
+ * execute() clears each colour texture output to `value` with glClearTexImage and counts
+ * its calls in the pass state (an int).
+ */
+#ifndef CG_TEST_FG_TEST_PASS_H
+#define CG_TEST_FG_TEST_PASS_H
+
+#include <stdbool.h>
+
+#include "cg/fg.h"
+
+bool fg_test_register(fg_registry *registry, cg_error *err);
+
+#endif

@@ -1,0 +1,242 @@
+/* Graph files: a good file, --set overrides, and the bad-graph corpus, where every entry
+ * must fail with its named status and a message that points at file:line:column. */
+#include "test_support.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cg/fg.h"
+#include "cg/graphfile.h"
+#include "fg_test_pass.h"
+
+#define SRC "\"src\": { \"type\": \"t\", \"params\": { \"outputs\": \"out:2d:RGBA16F:frame:store\" } }"
+#define USE_PARAMS "\"inputs\": \"in:2d:sampled\", \"outputs\": \"out:2d:RGBA16F:frame:attach\""
+
+static const char good_graph[] =
+    "{\n"
+    "  \"version\": 1,\n"
+    "  \"description\": \"two passes\",\n"
+    "  \"passes\": {\n"
+    "    \"use\": { \"type\": \"t\", \"params\": { " USE_PARAMS ", \"cones\": 6, \"scale\": 0.25,\n"
+    "               \"nothing\": false, \"label\": \"caf\\u00e9\" },\n"
+    "             \"inputs\": { \"in\": \"src.out\" } },\n"
+    "    " SRC "\n"
+    "  },\n"
+    "  \"outputs\": [ \"use.out\" ]\n"
+    "}\n";
+
+typedef struct fixture {
+    fg_registry *registry;
+    fg_graph *graph;
+    cg_error err;
+} fixture;
+
+static int
+setup(void **state)
+{
+    fixture *f = calloc(1, sizeof *f);
+    f->registry = fg_registry_create();
+    if (!fg_test_register(f->registry, &f->err))
+        return -1;
+    f->graph = fg_graph_create(f->registry);
+    *state = f;
+    return 0;
+}
+
+static int
+teardown(void **state)
+{
+    fixture *f = *state;
+    fg_graph_destroy(f->graph);
+    fg_registry_destroy(f->registry);
+    free(f);
+    return 0;
+}
+
+static bool
+compile(fixture *f, size_t budget)
+{
+    fg_frame frame = { 0 };
+    frame.width = 64;
+    frame.height = 64;
+    fg_compile_options options = { false, budget, 16384, 2048 };
+    return fg_graph_compile(f->graph, &frame, &options, &f->err);
+}
+
+static void
+good_graph_loads(void **state)
+{
+    fixture *f = *state;
+    const char *path = cg_test_write_file("good.json", good_graph, 0);
+    assert_cg_ok(fg_graph_load_file(f->graph, path, &f->err), &f->err);
+    assert_cg_ok(compile(f, 0), &f->err);
+    /* Passes keep file order; execution follows the connections. */
+    assert_string_equal(fg_pass_name(fg_graph_pass_at(f->graph, 0)), "use");
+    const int *order;
+    assert_int_equal(fg_graph_order(f->graph, &order), 2);
+    assert_int_equal(order[0], 1);
+    fg_pass *use = fg_graph_find_pass(f->graph, "use");
+    assert_int_equal(fg_param_enum(use, "cones"), 1);
+    assert_true(fg_param_float(use, "scale") == 0.25f);
+    assert_string_equal(fg_param_string(use, "label"), "caf\xc3\xa9");
+    assert_int_equal(fg_graph_output_count(f->graph), 1);
+    assert_string_equal(fg_graph_output_at(f->graph, 0), "use.out");
+
+    assert_cg_ok(fg_graph_apply_override(f->graph, "use.cones=16", &f->err), &f->err);
+    assert_int_equal(fg_param_enum(use, "cones"), 3);
+    assert_cg_status(fg_graph_apply_override(f->graph, "use.cones=7", &f->err), &f->err,
+                     CG_ERR_GRAPH_PARAM_RANGE);
+    assert_string_equal(f->err.message, "--set:1:11: pass 'use' parameter 'cones': 7 is not one of 1|6|9|16");
+    assert_cg_status(fg_graph_apply_override(f->graph, "use.rays=7", &f->err), &f->err,
+                     CG_ERR_GRAPH_UNKNOWN_PARAM);
+    assert_cg_status(fg_graph_apply_override(f->graph, "ghost.rays=7", &f->err), &f->err,
+                     CG_ERR_GRAPH_DANGLING);
+    assert_cg_status(fg_graph_apply_override(f->graph, "use.cones", &f->err), &f->err, CG_ERR_USAGE);
+    assert_cg_status(fg_graph_apply_override(f->graph, "use.resolution=1e9", &f->err), &f->err,
+                     CG_ERR_GRAPH_PARAM_RANGE);
+    assert_cg_status(fg_graph_load_file(f->graph, "/nonexistent/graph.json", &f->err), &f->err,
+                     CG_ERR_FILE_NOT_FOUND);
+}
+
+/* ---------------------------------------------------------------- the bad-graph corpus */
+
+typedef struct bad_graph {
+    const char *name;
+    const char *text;
+    cg_status status;
+    const char *anchor;     /* the error points at this text (its `nth` occurrence, from 1) */
+    int nth;
+    size_t budget;
+    const char *message;    /* a part of the message that must appear */
+} bad_graph;
+
+#define HEAD "{\n  \"version\": 1,\n  \"passes\": {\n    " SRC ",\n    "
+#define TAIL "\n  },\n  \"outputs\": [ \"use.out\" ]\n}\n"
+#define USE(params, inputs) \
+    "\"use\": { \"type\": \"t\", \"params\": { " USE_PARAMS params " }, \"inputs\": { " inputs " } }"
+#define USE_OK USE("", "\"in\": \"src.out\"")
+
+static const bad_graph corpus[] = {
+    { "syntax", "{\n  \"version\": 1,\n  \"passes\": { \"a\": { \"type\": \"t\" },, }\n}\n",
+      CG_ERR_GRAPH_SYNTAX, NULL, 0, 0, "syntax.json:3:" },
+    { "version", "{\n  \"version\": 2,\n  \"passes\": {},\n  \"outputs\": [ \"a.b\" ]\n}\n",
+      CG_ERR_GRAPH_VERSION, "2", 1, 0, "version 1" },
+    { "no_version", "{\n  \"passes\": {},\n  \"outputs\": [ \"a.b\" ]\n}\n",
+      CG_ERR_GRAPH_VERSION, "{", 1, 0, "\"version\": 1" },
+    { "top_key", "{\n  \"version\": 1,\n  \"pases\": {}\n}\n", CG_ERR_GRAPH_SCHEMA, "\"pases\"", 1, 0,
+      "unknown key \"pases\"" },
+    { "pass_key", HEAD "\"use\": { \"type\": \"t\", \"param\": {} }" TAIL, CG_ERR_GRAPH_SCHEMA, "\"param\"", 1,
+      0, "pass 'use': unknown key \"param\"" },
+    { "unknown_type", HEAD "\"use\": { \"type\": \"cone_magic\" }" TAIL, CG_ERR_GRAPH_UNKNOWN_TYPE,
+      "\"cone_magic\"", 1, 0, "known types: t, t_side" },
+    { "unknown_param", HEAD USE(", \"rays\": 4", "\"in\": \"src.out\"") TAIL, CG_ERR_GRAPH_UNKNOWN_PARAM,
+      "\"rays\"", 1, 0, "has no parameter 'rays'" },
+    { "param_type", HEAD USE(", \"resolution\": \"high\"", "\"in\": \"src.out\"") TAIL,
+      CG_ERR_GRAPH_PARAM_TYPE, "\"high\"", 1, 0, "parameter 'resolution': expected an integer, got a string" },
+    { "param_fraction", HEAD USE(", \"resolution\": 2.5", "\"in\": \"src.out\"") TAIL,
+      CG_ERR_GRAPH_PARAM_TYPE, "2.5", 1, 0, "expected an integer, got '2.5'" },
+    { "param_bool", HEAD USE(", \"nothing\": 1", "\"in\": \"src.out\"") TAIL, CG_ERR_GRAPH_PARAM_TYPE,
+      "1 }", 1, 0, "expected true or false" },
+    { "param_range", HEAD USE(", \"cones\": 7", "\"in\": \"src.out\"") TAIL, CG_ERR_GRAPH_PARAM_RANGE,
+      "7 }", 1, 0, "pass 'use' parameter 'cones': 7 is not one of 1|6|9|16" },
+    { "param_range_int", HEAD USE(", \"resolution\": 5000", "\"in\": \"src.out\"") TAIL,
+      CG_ERR_GRAPH_PARAM_RANGE, "5000", 1, 0, "5000 is not within [1, 4096]" },
+    { "cycle", HEAD "\"a\": { \"type\": \"t\", \"params\": { " USE_PARAMS " }, \"inputs\": { \"in\": \"use\" } },\n    "
+               USE("", "\"in\": \"a\"") TAIL, CG_ERR_GRAPH_CYCLE, "\"a\"", 1, 0, "'a' -> 'use' -> 'a'" },
+    { "dangling_pass", HEAD USE("", "\"in\": \"ghost.out\"") TAIL, CG_ERR_GRAPH_DANGLING, "\"ghost.out\"", 1,
+      0, "no pass named 'ghost'" },
+    { "dangling_output", HEAD USE("", "\"in\": \"src.color\"") TAIL, CG_ERR_GRAPH_DANGLING, "\"src.color\"",
+      1, 0, "has no output 'color' (outputs: out)" },
+    { "dangling_graph_output", HEAD USE_OK "\n  },\n  \"outputs\": [ \"use.hdr\" ]\n}\n",
+      CG_ERR_GRAPH_DANGLING, "\"use.hdr\"", 1, 0, NULL },
+    { "duplicate_pass", HEAD USE_OK ",\n    " USE_OK TAIL, CG_ERR_GRAPH_DUPLICATE, "\"use\"", 2, 0,
+      "duplicate key \"use\"" },
+    { "duplicate_param", HEAD USE(", \"cones\": 6, \"cones\": 9", "\"in\": \"src.out\"") TAIL,
+      CG_ERR_GRAPH_DUPLICATE, "\"cones\"", 2, 0, NULL },
+    { "no_outputs", HEAD USE_OK "\n  }\n}\n", CG_ERR_GRAPH_NO_OUTPUT, "{", 1, 0, NULL },
+    { "empty_outputs", HEAD USE_OK "\n  },\n  \"outputs\": []\n}\n", CG_ERR_GRAPH_NO_OUTPUT, "[]", 1, 0, NULL },
+    { "output_not_string", HEAD USE_OK "\n  },\n  \"outputs\": [ 3 ]\n}\n", CG_ERR_GRAPH_SCHEMA, "3 ]", 1, 0,
+      NULL },
+    { "missing_input", HEAD "\"use\": { \"type\": \"t\", \"params\": { " USE_PARAMS " } }" TAIL,
+      CG_ERR_GRAPH_MISSING_INPUT, "\"use\"", 1, 0, "required input 'in' is not connected" },
+    { "incompatible", "{\n  \"version\": 1,\n  \"passes\": {\n    \"src\": { \"type\": \"t\", \"params\": "
+                      "{ \"outputs\": \"out:3d:RGBA8:16x16x16:store\" } },\n    " USE_OK TAIL,
+      CG_ERR_GRAPH_INCOMPATIBLE, "\"src.out\"", 1, 0, "expected a 2d resource" },
+    { "too_large", "{\n  \"version\": 1,\n  \"passes\": {\n    \"src\": { \"type\": \"t\", \"params\": "
+                   "{ \"outputs\": \"out:2d:RGBA16F:20000x8:store\" } },\n    " USE_OK TAIL,
+      CG_ERR_GRAPH_TOO_LARGE, "\"src\"", 1, 0, "16384" },
+    { "too_large_3d", "{\n  \"version\": 1,\n  \"passes\": {\n    \"vox\": { \"type\": \"t\", \"params\": "
+                      "{ \"outputs\": \"v:3d:RGBA8:4096x4096x4096:store\" } },\n    " SRC ",\n    "
+                      "\"use\": { \"type\": \"t\", \"params\": { \"inputs\": \"in:2d:sampled v:3d:sampled\", "
+                      "\"outputs\": \"out:2d:RGBA16F:frame:attach\" }, \"inputs\": { \"in\": \"src\", \"v\": \"vox\" } }"
+                      TAIL, CG_ERR_GRAPH_TOO_LARGE, "\"vox\"", 1, 0, "2048" },
+    { "budget", HEAD USE_OK TAIL, CG_ERR_GRAPH_MEMORY_BUDGET, "\"src\"", 1, 1000, "more than the allowed" },
+    { "not_object", "[ 1, 2 ]\n", CG_ERR_GRAPH_SCHEMA, "[", 1, 0, NULL },
+    { "inputs_not_string", HEAD USE("", "\"in\": 5") TAIL, CG_ERR_GRAPH_SCHEMA, "5 }", 1, 0, NULL },
+    { "bad_source", HEAD USE("", "\"in\": \"src.out@next\"") TAIL, CG_ERR_GRAPH_SCHEMA, "\"src.out@next\"", 1,
+      0, "@previous" },
+};
+
+/* "name.json:LINE:COLUMN" of the nth occurrence of anchor in text. */
+static void
+location_of(const char *name, const char *text, const char *anchor, int nth, char *out, size_t size)
+{
+    const char *at = text;
+    for (int i = 0; i < nth; i++) {
+        at = strstr(i ? at + 1 : at, anchor);
+        assert_non_null(at);
+    }
+    int line = 1, column = 1;
+    for (const char *c = text; c < at; c++) {
+        if (*c == '\n') {
+            line++;
+            column = 1;
+        } else {
+            column++;
+        }
+    }
+    snprintf(out, size, "%s.json:%d:%d: ", name, line, column);
+}
+
+static void
+bad_graph_corpus(void **state)
+{
+    fixture *f = *state;
+    for (size_t i = 0; i < sizeof corpus / sizeof corpus[0]; i++) {
+        const bad_graph *b = &corpus[i];
+        fg_graph_destroy(f->graph);
+        f->graph = fg_graph_create(f->registry);
+        char file[64];
+        snprintf(file, sizeof file, "%s.json", b->name);
+        const char *path = cg_test_write_file(file, b->text, 0);
+        cg_error_clear(&f->err);
+        bool ok = fg_graph_load_file(f->graph, path, &f->err) && compile(f, b->budget);
+        if (ok)
+            fail_msg("%s: loaded and compiled; expected %s", b->name, cg_status_name(b->status));
+        if (f->err.status != b->status)
+            fail_msg("%s: %s (%s); expected %s", b->name, cg_status_name(f->err.status), f->err.message,
+                     cg_status_name(b->status));
+        /* The message starts with the path as given, then line and column. */
+        char expected[512];
+        if (b->anchor) {
+            location_of(b->name, b->text, b->anchor, b->nth, expected, sizeof expected);
+            if (!strstr(f->err.message, expected))
+                fail_msg("%s: message '%s' does not point at %s", b->name, f->err.message, expected);
+        }
+        if (b->message && !strstr(f->err.message, b->message))
+            fail_msg("%s: message '%s' lacks '%s'", b->name, f->err.message, b->message);
+        if (strncmp(f->err.message, path, strlen(path)))
+            fail_msg("%s: message '%s' does not start with the file", b->name, f->err.message);
+    }
+}
+
+int
+main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test_setup_teardown(good_graph_loads, setup, teardown),
+        cmocka_unit_test_setup_teardown(bad_graph_corpus, setup, teardown),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
