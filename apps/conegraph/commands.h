@@ -18,10 +18,14 @@ typedef struct cg_command {
 
 int cmd_version(int argc, char **argv);
 int cmd_compare(int argc, char **argv);
+int cmd_passes(int argc, char **argv);
+int cmd_graph(int argc, char **argv);
 
 /* One line per command; keep them in the order `conegraph --help` lists them. */
 #define CG_COMMAND_LIST                                                                   \
     { "version", cmd_version, "print the version of conegraph and of its libraries" },   \
+    { "passes", cmd_passes, "list the pass types with their parameters (from their tables)" },  \
+    { "graph", cmd_graph, "check a graph file: compile it without GL, print order, culling, resources or DOT" }, \
     { "compare", cmd_compare, "error metrics of an image against a reference (RMSE, relMSE, SSIM, ...)" },
 
 #endif

@@ -236,7 +236,7 @@ plot_render(const plot_desc *plot, cg_image *out, cg_error *err)
         out->rgba[i] = 1.0f;
     canvas cv = { out };
     static const float black[3] = { 0, 0, 0 }, grid[3] = { 0.88f, 0.88f, 0.88f };
-    const int left = 96, right = 20, top = 40, bottom = 64;
+    const int left = 96, right = 40, top = 40, bottom = 64;
     axis ax = { .log = plot->logx, .p0 = left, .p1 = w - right - 1 };
     axis ay = { .log = plot->logy, .p0 = h - bottom, .p1 = top };
     axis_fit(&ax, plot, true);

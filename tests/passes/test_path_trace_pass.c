@@ -1,0 +1,171 @@
+/* The path_trace pass in a frame graph: its `radiance` output is exactly pt_render's image
+ * (rows flipped for GL), composite passes it through, parameters are validated, and the
+ * built-in furnace gives the closed form through the whole graph. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "builtin.h"
+#include "cg/camera.h"
+#include "cg/fg.h"
+#include "cg/gpu_scene.h"
+#include "cg/graphfile.h"
+#include "cg/scene.h"
+#include "path_trace/pt_render.h"
+#include "test_support.h"
+
+enum { W = 40, H = 24 };
+
+static const char *reference_graph =
+    "{ \"version\": 1, \"passes\": {"
+    "  \"trace\": { \"type\": \"path_trace\", \"params\": { \"spp\": 4, \"bounces\": 1, \"seed\": 5, \"progress\": false } },"
+    "  \"final\": { \"type\": \"composite\", \"params\": { \"tonemap\": \"none\" }, \"inputs\": { \"direct\": \"trace.radiance\" } } },"
+    "  \"outputs\": [ \"final.hdr\", \"trace.radiance\" ] }";
+
+typedef struct run {
+    cg_scene scene;
+    cg_gpu_scene gpu;
+    fg_registry *registry;
+    fg_graph *graph;
+    fg_frame frame;
+} run;
+
+static void
+run_graph(run *r, const char *scene, const char *json, int frames)
+{
+    cg_error err = { 0 };
+    assert_cg_ok(cg_scene_load(scene, &r->scene, &err), &err);
+    int camera;
+    assert_cg_ok(cg_camera_select(&r->scene, NULL, &camera, &err), &err);
+    r->frame = (fg_frame){ .scene = &r->scene, .width = W, .height = H };
+    cg_view_from_scene(&r->scene, camera, W, H, &r->frame.view);
+    r->registry = fg_registry_create();
+    assert_cg_ok(cg_builtin_passes_register(r->registry, &err), &err);
+    r->graph = fg_graph_create(r->registry);
+    assert_cg_ok(fg_graph_load_string(r->graph, json, "test.json", &err), &err);
+    assert_cg_ok(cg_gpu_scene_upload(&r->scene, &r->gpu, &err), &err);
+    r->frame.gpu_scene = &r->gpu;
+    fg_compile_options options = { 0 };
+    assert_cg_ok(fg_graph_compile(r->graph, &r->frame, &options, &err), &err);
+    assert_cg_ok(fg_graph_prepare(r->graph, &err), &err);
+    for (int f = 0; f < frames; f++) {
+        r->frame.index = (uint64_t)f;
+        assert_cg_ok(fg_graph_execute(r->graph, &r->frame, FG_TIMING_SYNC, &err), &err);
+    }
+    glMemoryBarrier(GL_ALL_BARRIER_BITS);
+}
+
+static void
+run_free(run *r)
+{
+    fg_graph_destroy(r->graph);
+    fg_registry_destroy(r->registry);
+    cg_gpu_scene_destroy(&r->gpu);
+    cg_scene_free(&r->scene);
+}
+
+static void
+output_is_the_traced_image(void **state)
+{
+    cg_context *ctx = cg_test_gl_context(state);
+    run r;
+    run_graph(&r, "builtin:cornell", reference_graph, 2);
+    int w, h;
+    float *radiance = cg_test_read_texture(fg_graph_texture(r.graph, "trace.radiance"), 0, &w, &h, NULL);
+    float *hdr = cg_test_read_texture(fg_graph_texture(r.graph, "final.hdr"), 0, NULL, NULL, NULL);
+    assert_int_equal(w, W);
+    assert_int_equal(h, H);
+
+    pt_scene *pts;
+    cg_error err = { 0 };
+    assert_cg_ok(pt_scene_create(&r.scene, &pts, &err), &err);
+    pt_settings s = pt_settings_default();
+    s.spp = 4;
+    s.bounces = 1;
+    s.seed = 5;
+    float *direct = malloc(sizeof(float) * 4 * W * H);
+    assert_non_null(direct);
+    assert_cg_ok(pt_render(pts, &r.frame.view, &s, direct, NULL, &err), &err);
+    double sum = 0.0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++)
+            for (int c = 0; c < 4; c++) {
+                /* GL rows bottom to top, pt_render's top to bottom. */
+                float want = direct[4 * ((H - 1 - y) * W + x) + c];
+                float got = radiance[4 * (y * W + x) + c];
+                if (got != want)
+                    fail_msg("radiance (%d,%d).%d = %g, pt_render %g", x, y, c, got, want);
+                /* composite with no indirect and no emissive input: hdr = direct. */
+                if (c < 3)
+                    assert_float_equal(hdr[4 * (y * W + x) + c], want, 1e-6 * (1.0 + want));
+                sum += c < 3 ? want : 0.0;
+            }
+    assert_true(sum > 0.0); /* the lit box is in view */
+    assert_no_gl_errors(ctx);
+    free(direct);
+    free(radiance);
+    free(hdr);
+    pt_scene_destroy(pts);
+    run_free(&r);
+}
+
+static void
+builtin_furnace_through_the_graph(void **state)
+{
+    cg_context *ctx = cg_test_gl_context(state);
+    const double a = 0.6, le = 0.5;
+    for (int n = 0; n <= 2; n++) {
+        char json[1024];
+        snprintf(json, sizeof json,
+                 "{ \"version\": 1, \"passes\": { \"trace\": { \"type\": \"path_trace\", \"params\": "
+                 "{ \"spp\": 2, \"bounces\": %d, \"jitter\": true, \"progress\": false } } }, "
+                 "\"outputs\": [ \"trace.radiance\" ] }", n);
+        run r;
+        run_graph(&r, "builtin:furnace?albedo=0.6&radiance=0.5&scale=3", json, 1);
+        int w, h;
+        float *img = cg_test_read_texture(fg_graph_texture(r.graph, "trace.radiance"), 0, &w, &h, NULL);
+        double want = 0.0;
+        for (int k = 0; k <= n; k++)
+            want += le * pow(a, k);
+        for (int i = 0; i < w * h; i++)
+            for (int c = 0; c < 3; c++)
+                if (fabs(img[4 * i + c] - want) > 1e-5 * want)
+                    fail_msg("furnace, %d bounces, pixel %d: %.7g, expected L sum a^k = %.7g", n, i,
+                             img[4 * i + c], want);
+        free(img);
+        run_free(&r);
+    }
+    assert_no_gl_errors(ctx);
+}
+
+static void
+parameters_are_validated(void **state)
+{
+    (void)state;
+    fg_registry *registry = fg_registry_create();
+    cg_error err = { 0 };
+    assert_cg_ok(cg_builtin_passes_register(registry, &err), &err);
+    const fg_pass_type *type = fg_registry_find(registry, "path_trace");
+    assert_non_null(type);
+    fg_graph *graph = fg_graph_create(registry);
+    assert_cg_ok(fg_graph_add_pass(graph, "trace", "path_trace", NULL, &err), &err);
+    assert_cg_status(fg_graph_set_param(graph, "trace", "spp", "0", NULL, &err), &err, CG_ERR_GRAPH_PARAM_RANGE);
+    assert_cg_status(fg_graph_set_param(graph, "trace", "bounces", "17", NULL, &err), &err,
+                     CG_ERR_GRAPH_PARAM_RANGE);
+    assert_cg_status(fg_graph_set_param(graph, "trace", "spp", "many", NULL, &err), &err, CG_ERR_GRAPH_PARAM_TYPE);
+    assert_cg_ok(fg_graph_set_param(graph, "trace", "bounces", "0", NULL, &err), &err);
+    fg_graph_destroy(graph);
+    fg_registry_destroy(registry);
+}
+
+int
+main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(output_is_the_traced_image),
+        cmocka_unit_test(builtin_furnace_through_the_graph),
+        cmocka_unit_test(parameters_are_validated),
+    };
+    return cmocka_run_group_tests(tests, cg_test_gl_setup, cg_test_gl_teardown);
+}

@@ -1,0 +1,75 @@
+/* example_plugin: a pass module built as a shared object and loaded at run time
+ * (`conegraph --plugin build/tests/example_plugin.so`, or $CONEGRAPH_PLUGIN_PATH).
+ *
+ * It registers `example_fill`, which fills a 2D RGBA16F output with a colour. Built a second
+ * time with EXAMPLE_PLUGIN_ABI set to another value, it stands for a plugin built against an
+ * older or newer cg/fg.h, which the host must refuse with CG_ERR_PLUGIN_ABI. */
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "cg/error.h"
+#include "cg/fg.h"
+
+#ifndef EXAMPLE_PLUGIN_ABI
+#define EXAMPLE_PLUGIN_ABI FG_ABI_VERSION
+#endif
+
+static const fg_param_desc fill_params[] = {
+    { "red", FG_PARAM_FLOAT, 1, 0, 65504, NULL, "red component of the fill colour (linear)" },
+    { "green", FG_PARAM_FLOAT, 0, 0, 65504, NULL, "green component of the fill colour (linear)" },
+    { "blue", FG_PARAM_FLOAT, 1, 0, 65504, NULL, "blue component of the fill colour (linear)" },
+    { "alpha", FG_PARAM_FLOAT, 1, 0, 65504, NULL, "alpha component of the fill colour" },
+    { "width", FG_PARAM_INT, 0, 0, 16384, NULL, "output width in texels; 0 = the output image's" },
+    { "height", FG_PARAM_INT, 0, 0, 16384, NULL, "output height in texels; 0 = the output image's" },
+};
+
+static bool
+fill_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
+{
+    (void)err;
+    const fg_frame *frame = fg_pass_frame(pass);
+    fg_resource_desc desc = { 0 };
+    desc.kind = FG_TEXTURE_2D;
+    desc.format = GL_RGBA16F;
+    desc.width = fg_param_int(pass, "width") ? fg_param_int(pass, "width") : frame->width;
+    desc.height = fg_param_int(pass, "height") ? fg_param_int(pass, "height") : frame->height;
+    desc.depth = 1;
+    desc.levels = 1;
+    fg_declare_output(decl, "color", &desc, FG_ACCESS_TRANSFER);
+    return true;
+}
+
+static bool
+fill_execute(fg_pass *pass, void *state, cg_error *err)
+{
+    (void)state;
+    (void)err;
+    const float rgba[4] = { fg_param_float(pass, "red"), fg_param_float(pass, "green"),
+                            fg_param_float(pass, "blue"), fg_param_float(pass, "alpha") };
+    glClearTexImage(fg_texture(pass, "color"), 0, GL_RGBA, GL_FLOAT, rgba);
+    return true;
+}
+
+static const fg_pass_type fill_type = {
+    .abi_version = EXAMPLE_PLUGIN_ABI,
+    .name = "example_fill",
+    .doc = "Example plugin pass: fills a 2D RGBA16F output ('color') with a constant colour "
+           "(glClearTexImage). Shows how a pass module outside the tree is built and loaded.",
+    .params = fill_params,
+    .param_count = (int)(sizeof fill_params / sizeof fill_params[0]),
+    .declare = fill_declare,
+    .execute = fill_execute,
+};
+
+bool conegraph_plugin_register(fg_registry *registry, uint32_t host_abi, cg_error *err);
+
+bool
+conegraph_plugin_register(fg_registry *registry, uint32_t host_abi, cg_error *err)
+{
+    if (host_abi != EXAMPLE_PLUGIN_ABI)
+        return cg_fail(err, CG_ERR_PLUGIN_ABI,
+                       "example_plugin was built for frame-graph ABI %u, but the host has ABI %u; "
+                       "rebuild it against the host's cg/fg.h", (unsigned)EXAMPLE_PLUGIN_ABI,
+                       (unsigned)host_abi);
+    return fg_registry_add(registry, &fill_type, err);
+}

@@ -1,0 +1,91 @@
+/* The bench plots (apps/conegraph/plot.c): markers land in the right order on linear and
+ * log axes, unusable points are skipped, rings and lines are drawn. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../apps/conegraph/plot.h"
+#include "test_support.h"
+
+static float
+srgb_to_linear(float v)
+{
+    return v <= 0.04045f ? v / 12.92f : powf((v + 0.055f) / 1.055f, 2.4f);
+}
+
+/* Centroid of the pixels of exactly colour c (sRGB); returns the count. */
+static int
+centroid(const cg_image *img, const float c[3], double *cx, double *cy)
+{
+    int n = 0;
+    double sx = 0, sy = 0;
+    for (int y = 0; y < img->height; y++)
+        for (int x = 0; x < img->width; x++) {
+            const float *p = &img->rgba[4 * (y * img->width + x)];
+            if (fabsf(p[0] - srgb_to_linear(c[0])) < 1e-6f && fabsf(p[1] - srgb_to_linear(c[1])) < 1e-6f &&
+                fabsf(p[2] - srgb_to_linear(c[2])) < 1e-6f) {
+                n++;
+                sx += x;
+                sy += y;
+            }
+        }
+    if (n) {
+        *cx = sx / n;
+        *cy = sy / n;
+    }
+    return n;
+}
+
+static void
+markers_follow_the_data(void **state)
+{
+    (void)state;
+    for (int log_axes = 0; log_axes < 2; log_axes++) {
+        const double x1[] = { 1.0 }, y1[] = { 100.0 };        /* left, high */
+        const double x2[] = { 50.0, -1.0 }, y2[] = { 0.5, NAN }; /* right, low; then unusable */
+        plot_series series[2] = {
+            { .color = { 1, 0, 0 }, .x = x1, .y = y1, .count = 1 },
+            { .color = { 0, 0, 1 }, .x = x2, .y = y2, .count = 2 },
+        };
+        plot_desc plot = { .title = "test", .xlabel = "x", .ylabel = "y", .logx = log_axes, .logy = log_axes,
+                           .series = series, .series_count = 2, .width = 400, .height = 300 };
+        cg_image img = { 0 };
+        cg_error err = { 0 };
+        assert_cg_ok(plot_render(&plot, &img, &err), &err);
+        assert_int_equal(img.width, 400);
+        double rx, ry, bx, by;
+        assert_int_equal(centroid(&img, series[0].color, &rx, &ry), 49); /* one 7x7 marker */
+        assert_int_equal(centroid(&img, series[1].color, &bx, &by), 49); /* the NaN point is skipped */
+        assert_true(rx < bx);   /* smaller x is further left */
+        assert_true(ry < by);   /* larger y is higher up (smaller row) */
+        cg_image_free(&img);
+    }
+}
+
+static void
+rings_and_lines_are_drawn(void **state)
+{
+    (void)state;
+    const double x[] = { 3, 1, 2 }, y[] = { 1, 3, 2 };
+    plot_series series[1] = { { .name = "front", .color = { 0, 0.5f, 0 }, .x = x, .y = y, .count = 3,
+                                .line = true, .ring = true } };
+    plot_desc plot = { .series = series, .series_count = 1 };
+    cg_image img = { 0 };
+    cg_error err = { 0 };
+    assert_cg_ok(plot_render(&plot, &img, &err), &err);
+    assert_int_equal(img.width, 720);
+    double cx, cy;
+    /* Three rings, two line segments and the legend's ring: well over a few hundred pixels. */
+    assert_true(centroid(&img, series[0].color, &cx, &cy) > 300);
+    cg_image_free(&img);
+}
+
+int
+main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(markers_follow_the_data),
+        cmocka_unit_test(rings_and_lines_are_drawn),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
