@@ -8,6 +8,9 @@
 #include <string.h>
 #include <time.h>
 
+#include <dirent.h>
+#include <unistd.h>
+
 #include "cg/scene.h"
 #include "test_support.h"
 
@@ -315,6 +318,119 @@ bad_names_and_parameters(void **state)
     }
 }
 
+static void
+assert_close(double a, double b, double tol, const char *what, const char *source)
+{
+    if (!(fabs(a - b) <= tol))
+        fail_msg("%s: %s: %.9g after the round trip, %.9g before", source, what, b, a);
+}
+
+/* Export to `file` in the test directory, load it back, compare what renderers depend on. */
+static void
+check_round_trip(const char *source, const char *file)
+{
+    cg_scene a, b;
+    cg_error err = { 0 };
+    char path[4200];
+    snprintf(path, sizeof path, "%s/%s", cg_test_tmpdir(), file);
+    assert_cg_ok(cg_scene_load(source, &a, &err), &err);
+    assert_cg_ok(cg_scene_export_gltf(&a, path, &err), &err);
+    assert_cg_ok(cg_scene_load(path, &b, &err), &err);
+    double scale = a.bounds_max[0] - a.bounds_min[0];
+    assert_int_equal(cg_scene_triangle_count(&a), cg_scene_triangle_count(&b));
+    assert_int_equal(a.mesh_count, b.mesh_count);
+    assert_int_equal(a.instance_count, b.instance_count);
+    for (int i = 0; i < a.mesh_count; i++) {
+        assert_string_equal(a.meshes[i].name, b.meshes[i].name);
+        assert_int_equal(a.meshes[i].kind, b.meshes[i].kind);
+        assert_int_equal(a.meshes[i].index_count, b.meshes[i].index_count);
+        assert_int_equal(a.meshes[i].material, b.meshes[i].material);
+        assert_memory_equal(a.meshes[i].positions, b.meshes[i].positions, 12 * (size_t)a.meshes[i].vertex_count);
+    }
+    assert_int_equal(a.material_count, b.material_count);
+    for (int i = 0; i < a.material_count; i++)
+        for (int k = 0; k < 3; k++) {
+            const cg_material *x = &a.materials[i], *y = &b.materials[i];
+            assert_close(x->base_color[k], y->base_color[k], 1e-7, "base colour", source);
+            assert_close(x->emissive[k] * x->emissive_strength, y->emissive[k] * y->emissive_strength,
+                         1e-6 * fmax(1, x->emissive_strength), "emitted radiance", source);
+        }
+    assert_int_equal(a.light_count, b.light_count);
+    for (int i = 0; i < a.light_count; i++) {
+        const cg_light *x = &a.lights[i], *y = &b.lights[i];
+        assert_string_equal(x->name, y->name);
+        assert_int_equal(x->type, y->type);
+        assert_close(x->intensity, y->intensity, 0, "intensity", source);
+        assert_close(x->outer_cone_angle, y->outer_cone_angle, 0, "outer cone", source);
+        assert_close(x->inner_cone_angle, y->inner_cone_angle, 0, "inner cone", source);
+        for (int k = 0; k < 3; k++) {
+            assert_close(x->color[k], y->color[k], 0, "colour", source);
+            assert_close(x->position[k], y->position[k], 1e-6 * scale, "position", source);
+            if (x->type != CG_LIGHT_POINT)
+                assert_close(x->direction[k], y->direction[k], 1e-6, "direction", source);
+        }
+    }
+    assert_int_equal(a.camera_count, b.camera_count);
+    for (int i = 0; i < a.camera_count; i++) {
+        const cg_camera *x = &a.cameras[i], *y = &b.cameras[i];
+        assert_string_equal(x->name, y->name);
+        assert_int_equal(x->type, y->type);
+        assert_close(x->yfov, y->yfov, 0, "yfov", source);
+        assert_close(x->aspect, y->aspect, 0, "aspect", source);
+        assert_close(x->znear, y->znear, 0, "znear", source);
+        assert_close(x->zfar, y->zfar, 0, "zfar", source);
+        for (int k = 0; k < 16; k++) /* exact, but -0 may come back as 0 */
+            assert_close(x->world[k], y->world[k], 0, "camera matrix", source);
+    }
+    for (int k = 0; k < 3; k++) {
+        assert_close(a.bounds_min[k], b.bounds_min[k], 0, "bounds", source);
+        assert_close(a.bounds_max[k], b.bounds_max[k], 0, "bounds", source);
+    }
+    cg_scene_free(&a);
+    cg_scene_free(&b);
+}
+
+static void
+export_then_load_back(void **state)
+{
+    (void)state;
+    check_round_trip("builtin:openworld?triangles=10000&seed=4", "openworld.gltf");
+    check_round_trip("builtin:openworld?triangles=10000&seed=4", "openworld.glb");
+    check_round_trip("builtin:cornell", "cornell.gltf");
+    check_round_trip("builtin:cornell", "cornell.glb");
+    check_round_trip("builtin:furnace?scale=1e4&radiance=5&albedo=0.9", "furnace.gltf");
+}
+
+static bool
+tmpdir_has_temp_files(void)
+{
+    DIR *d = opendir(cg_test_tmpdir());
+    assert_non_null(d);
+    bool found = false;
+    for (struct dirent *e; (e = readdir(d));)
+        found = found || strstr(e->d_name, ".tmp-") != NULL;
+    closedir(d);
+    return found;
+}
+
+static void
+export_failures_leave_nothing(void **state)
+{
+    (void)state;
+    cg_scene s;
+    cg_error err = { 0 };
+    assert_cg_ok(cg_scene_load("builtin:cornell", &s, &err), &err);
+    char path[4200];
+    snprintf(path, sizeof path, "%s/no/such/dir/out.gltf", cg_test_tmpdir());
+    assert_cg_status(cg_scene_export_gltf(&s, path, &err), &err, CG_ERR_IO);
+    assert_non_null(strstr(err.message, "out.gltf"));
+    snprintf(path, sizeof path, "%s/out.obj", cg_test_tmpdir());
+    assert_cg_status(cg_scene_export_gltf(&s, path, &err), &err, CG_ERR_USAGE);
+    assert_int_not_equal(access(path, F_OK), 0);
+    assert_false(tmpdir_has_temp_files());
+    cg_scene_free(&s);
+}
+
 int
 main(void)
 {
@@ -325,6 +441,8 @@ main(void)
         cmocka_unit_test(cornell_box),
         cmocka_unit_test(furnace_scales),
         cmocka_unit_test(bad_names_and_parameters),
+        cmocka_unit_test(export_then_load_back),
+        cmocka_unit_test(export_failures_leave_nothing),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

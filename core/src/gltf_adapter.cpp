@@ -7,6 +7,8 @@
 // libtinygltf): TINYGLTF_IMPLEMENTATION is not defined here.
 #include <tiny_gltf.h>
 
+#include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -144,6 +146,21 @@ type_name(int type)
     }
 }
 
+const char *
+component_type_name(int component_type)
+{
+    switch (component_type) {
+    case TINYGLTF_COMPONENT_TYPE_BYTE: return "BYTE";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return "UNSIGNED_BYTE";
+    case TINYGLTF_COMPONENT_TYPE_SHORT: return "SHORT";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return "UNSIGNED_SHORT";
+    case TINYGLTF_COMPONENT_TYPE_INT: return "INT";
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return "UNSIGNED_INT";
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: return "FLOAT";
+    default: return "unknown";
+    }
+}
+
 // A checked view of an accessor's elements: every byte it will read lies in its buffer.
 struct accessor_view {
     const unsigned char *base = nullptr; // nullptr: no bufferView, all elements are zero
@@ -205,7 +222,7 @@ struct accessor_view {
 };
 
 // `what` names the use ("mesh 'roof' primitive 0 POSITION"); `types` and `component_types`
-// are the accepted ones (0-terminated lists).
+// are the accepted ones.
 bool
 view_accessor(loader &L, int index, const std::string &what, std::initializer_list<int> types,
               std::initializer_list<int> component_types, accessor_view *out)
@@ -223,13 +240,14 @@ view_accessor(loader &L, int index, const std::string &what, std::initializer_li
     for (int t : component_types)
         ctype_ok = ctype_ok || a.componentType == t;
     if (!type_ok || !ctype_ok) {
-        std::string expected;
+        std::string expected, expected_components;
         for (int t : types)
             expected += std::string(expected.empty() ? "" : " or ") + type_name(t);
+        for (int t : component_types)
+            expected_components += std::string(expected_components.empty() ? "" : " or ") + component_type_name(t);
         return fail(L, CG_ERR_GLTF_ACCESSOR,
-                    label + " has type " + type_name(a.type) + " componentType " +
-                        std::to_string(a.componentType) + "; expected " + expected +
-                        " with another componentType");
+                    label + " is " + type_name(a.type) + " of " + component_type_name(a.componentType) +
+                        "; expected " + expected + " of " + expected_components);
     }
     if (a.sparse.isSparse)
         return fail(L, CG_ERR_GLTF_ACCESSOR, label + " is sparse, which conegraph does not read");
@@ -607,8 +625,10 @@ add_light(loader &L, int node, const double world[16])
         l.color[k] = gl.color.size() == 3 ? (float)gl.color[(size_t)k] : 1.0f;
     l.intensity = (float)gl.intensity;
     l.range = (float)gl.range;
-    l.inner_cone_angle = (float)gl.spot.innerConeAngle;
-    l.outer_cone_angle = (float)gl.spot.outerConeAngle;
+    if (l.type == CG_LIGHT_SPOT) { // tinygltf fills the spot defaults (0, pi/4) for every light
+        l.inner_cone_angle = (float)gl.spot.innerConeAngle;
+        l.outer_cone_angle = (float)gl.spot.outerConeAngle;
+    }
     // KHR_lights_punctual: the light sits at the node's origin and shines down its -Z.
     double d[3] = { -world[8], -world[9], -world[10] };
     double len = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
@@ -925,7 +945,263 @@ load(loader &L)
            scene_roots(L, &roots) && visit_nodes(L, roots);
 }
 
+// ------------------------------------------------------------------ export
+
+size_t
+append_bytes(std::vector<unsigned char> &buf, const void *data, size_t size)
+{
+    while (buf.size() % 4)
+        buf.push_back(0);
+    size_t offset = buf.size();
+    buf.insert(buf.end(), (const unsigned char *)data, (const unsigned char *)data + size);
+    return offset;
+}
+
+int
+add_accessor(tinygltf::Model &M, const void *data, size_t count, int type, int component_type, int target,
+             const float *min3 = nullptr, const float *max3 = nullptr)
+{
+    size_t elem = component_size(component_type) * (size_t)component_count(type);
+    tinygltf::BufferView bv;
+    bv.buffer = 0;
+    bv.byteLength = count * elem;
+    bv.byteOffset = append_bytes(M.buffers[0].data, data, bv.byteLength);
+    bv.target = target;
+    M.bufferViews.push_back(bv);
+    tinygltf::Accessor a;
+    a.bufferView = (int)M.bufferViews.size() - 1;
+    a.byteOffset = 0;
+    a.componentType = component_type;
+    a.type = type;
+    a.count = count;
+    if (min3 && max3) {
+        a.minValues.assign(min3, min3 + 3);
+        a.maxValues.assign(max3, max3 + 3);
+    }
+    M.accessors.push_back(a);
+    return (int)M.accessors.size() - 1;
+}
+
+// Unit quaternion (x, y, z, w) turning -Z onto the unit vector d (the light's direction).
+void
+quat_from_minus_z(const float d[3], std::vector<double> *q)
+{
+    double c = -d[2]; // dot((0, 0, -1), d)
+    if (c < -0.999999) {
+        *q = { 0, 1, 0, 0 }; // d = +Z: half a turn about Y
+        return;
+    }
+    // axis = (0, 0, -1) x d, w = 1 + c, normalised (half-angle form).
+    double x = d[1], y = -d[0], z = 0, w = 1 + c;
+    double len = std::sqrt(x * x + y * y + z * z + w * w);
+    *q = { x / len, y / len, z / len, w / len };
+}
+
+void
+export_materials(const cg_scene *S, tinygltf::Model &M, bool *uses_strength)
+{
+    // cg material 0 is the loader's default white: meshes using it get no glTF material
+    // (which loads back as the default), so material i becomes glTF material i - 1.
+    for (int i = 1; i < S->material_count; i++) {
+        const cg_material &c = S->materials[i];
+        tinygltf::Material m;
+        m.name = c.name;
+        m.pbrMetallicRoughness.baseColorFactor = { c.base_color[0], c.base_color[1], c.base_color[2],
+                                                   c.base_color[3] };
+        m.pbrMetallicRoughness.metallicFactor = c.metallic;
+        m.pbrMetallicRoughness.roughnessFactor = c.roughness;
+        m.pbrMetallicRoughness.baseColorTexture.index = c.base_color_texture;
+        m.emissiveTexture.index = c.emissive_texture;
+        // glTF keeps emissiveFactor in [0, 1]; anything brighter moves into the strength.
+        double peak = std::fmax(c.emissive[0], std::fmax(c.emissive[1], c.emissive[2]));
+        double scale = peak > 1 ? peak : 1;
+        m.emissiveFactor = { c.emissive[0] / scale, c.emissive[1] / scale, c.emissive[2] / scale };
+        double strength = (double)c.emissive_strength * scale;
+        if (strength != 1) {
+            tinygltf::Value::Object o;
+            o["emissiveStrength"] = tinygltf::Value(strength);
+            m.extensions["KHR_materials_emissive_strength"] = tinygltf::Value(o);
+            *uses_strength = true;
+        }
+        M.materials.push_back(m);
+    }
+}
+
+void
+export_textures(const cg_scene *S, tinygltf::Model &M)
+{
+    for (int i = 0; i < S->texture_count; i++) {
+        const cg_texture &t = S->textures[i];
+        tinygltf::Image img;
+        img.name = t.name[0] ? t.name : "texture" + std::to_string(i);
+        for (char &ch : img.name)
+            if (!std::isalnum((unsigned char)ch) && ch != '_' && ch != '-')
+                ch = '_';
+        img.width = t.width;
+        img.height = t.height;
+        img.component = 4;
+        img.bits = 8;
+        img.pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+        img.mimeType = "image/png";
+        size_t row = (size_t)t.width * 4;
+        img.image.resize(row * (size_t)t.height);
+        for (int y = 0; y < t.height; y++) // back to glTF's top-to-bottom rows
+            std::memcpy(img.image.data() + (size_t)y * row, t.rgba + (size_t)(t.height - 1 - y) * row, row);
+        M.images.push_back(img);
+        tinygltf::Texture tex;
+        tex.name = t.name;
+        tex.source = i;
+        M.textures.push_back(tex);
+    }
+}
+
+void
+export_meshes(const cg_scene *S, tinygltf::Model &M)
+{
+    for (int i = 0; i < S->mesh_count; i++) {
+        const cg_mesh &c = S->meshes[i];
+        tinygltf::Primitive p;
+        p.mode = TINYGLTF_MODE_TRIANGLES;
+        p.material = c.material - 1;
+        p.attributes["POSITION"] = add_accessor(M, c.positions, c.vertex_count, TINYGLTF_TYPE_VEC3,
+                                                TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TARGET_ARRAY_BUFFER,
+                                                c.bounds_min, c.bounds_max);
+        p.attributes["NORMAL"] = add_accessor(M, c.normals, c.vertex_count, TINYGLTF_TYPE_VEC3,
+                                              TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TARGET_ARRAY_BUFFER);
+        if (c.texcoords)
+            p.attributes["TEXCOORD_0"] = add_accessor(M, c.texcoords, c.vertex_count, TINYGLTF_TYPE_VEC2,
+                                                      TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TARGET_ARRAY_BUFFER);
+        p.indices = add_accessor(M, c.indices, c.index_count, TINYGLTF_TYPE_SCALAR,
+                                 TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+        tinygltf::Mesh m;
+        m.name = c.name;
+        m.primitives.push_back(p);
+        tinygltf::Value::Object extras;
+        extras["conegraph_kind"] =
+            tinygltf::Value(std::string(c.kind == CG_MESH_HEIGHTFIELD ? "heightfield" : "complex"));
+        m.extras = tinygltf::Value(extras);
+        M.meshes.push_back(m);
+    }
+}
+
+void
+export_nodes(const cg_scene *S, tinygltf::Model &M)
+{
+    tinygltf::Scene scene;
+    scene.name = S->name;
+    for (int i = 0; i < S->instance_count; i++) {
+        tinygltf::Node n;
+        n.mesh = S->instances[i].mesh;
+        n.matrix.assign(S->instances[i].world, S->instances[i].world + 16);
+        scene.nodes.push_back((int)M.nodes.size());
+        M.nodes.push_back(n);
+    }
+    for (int i = 0; i < S->light_count; i++) {
+        const cg_light &c = S->lights[i];
+        tinygltf::Light l;
+        l.name = c.name;
+        l.type = c.type == CG_LIGHT_DIRECTIONAL ? "directional" : c.type == CG_LIGHT_POINT ? "point" : "spot";
+        l.color = { c.color[0], c.color[1], c.color[2] };
+        l.intensity = c.intensity;
+        l.range = c.range;
+        if (c.type == CG_LIGHT_SPOT) {
+            l.spot.innerConeAngle = c.inner_cone_angle;
+            l.spot.outerConeAngle = c.outer_cone_angle;
+        }
+        M.lights.push_back(l);
+        tinygltf::Node n;
+        n.name = c.name;
+        n.translation = { c.position[0], c.position[1], c.position[2] };
+        quat_from_minus_z(c.direction, &n.rotation);
+        tinygltf::Value::Object ext;
+        ext["light"] = tinygltf::Value(i);
+        n.extensions["KHR_lights_punctual"] = tinygltf::Value(ext);
+        scene.nodes.push_back((int)M.nodes.size());
+        M.nodes.push_back(n);
+    }
+    for (int i = 0; i < S->camera_count; i++) {
+        const cg_camera &c = S->cameras[i];
+        tinygltf::Camera cam;
+        cam.name = c.name;
+        if (c.type == CG_CAMERA_ORTHOGRAPHIC) {
+            cam.type = "orthographic";
+            cam.orthographic.xmag = c.xmag;
+            cam.orthographic.ymag = c.ymag;
+            cam.orthographic.znear = c.znear;
+            cam.orthographic.zfar = c.zfar;
+        } else {
+            cam.type = "perspective";
+            cam.perspective.yfov = c.yfov;
+            cam.perspective.aspectRatio = c.aspect; // 0 is left out: the image decides
+            cam.perspective.znear = c.znear;
+            cam.perspective.zfar = c.zfar;
+        }
+        M.cameras.push_back(cam);
+        tinygltf::Node n;
+        n.name = c.name;
+        n.camera = i;
+        n.matrix.assign(c.world, c.world + 16);
+        scene.nodes.push_back((int)M.nodes.size());
+        M.nodes.push_back(n);
+    }
+    M.scenes.push_back(scene);
+    M.defaultScene = 0;
+}
+
+bool
+ends_with(const std::string &s, const char *suffix)
+{
+    size_t n = std::strlen(suffix);
+    if (s.size() < n)
+        return false;
+    for (size_t i = 0; i < n; i++)
+        if (std::tolower((unsigned char)s[s.size() - n + i]) != suffix[i])
+            return false;
+    return true;
+}
+
 } // namespace
+
+extern "C" bool
+cg_scene_export_gltf(const cg_scene *scene, const char *path, cg_error *err)
+{
+    std::string out = path;
+    bool binary = ends_with(out, ".glb");
+    if (!binary && !ends_with(out, ".gltf"))
+        return cg_fail(err, CG_ERR_USAGE, "%s: the output must end in .gltf or .glb", path);
+    char temp[4096];
+    if (!cg_temp_path_for(path, temp, sizeof temp))
+        return cg_fail(err, CG_ERR_IO, "%s: path too long", path);
+    bool ok = false;
+    try {
+        tinygltf::Model M;
+        M.asset.version = "2.0";
+        M.asset.generator = "conegraph";
+        M.buffers.resize(1);
+        bool uses_strength = false;
+        export_materials(scene, M, &uses_strength);
+        export_textures(scene, M);
+        export_meshes(scene, M);
+        export_nodes(scene, M);
+        if (!M.lights.empty())
+            M.extensionsUsed.push_back("KHR_lights_punctual");
+        if (uses_strength)
+            M.extensionsUsed.push_back("KHR_materials_emissive_strength");
+        tinygltf::TinyGLTF gltf;
+        ok = gltf.WriteGltfSceneToFile(&M, temp, true, true, !binary, binary);
+        if (!ok)
+            cg_fail(err, CG_ERR_IO, "%s: writing the glTF failed", path);
+    } catch (const std::bad_alloc &) {
+        ok = cg_fail(err, CG_ERR_OUT_OF_MEMORY, "%s: out of memory writing the glTF", path);
+    } catch (const std::exception &e) {
+        ok = cg_fail(err, CG_ERR_IO, "%s: %s", path, e.what());
+    }
+    if (ok && std::rename(temp, path) != 0)
+        ok = cg_fail(err, CG_ERR_IO, "%s: cannot rename %s into place: %s", path, temp, std::strerror(errno));
+    if (!ok)
+        std::remove(temp);
+    return ok;
+}
 
 extern "C" bool
 cg_gltf_load(const char *path, cg_scene *out, cg_error *err)

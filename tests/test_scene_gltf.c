@@ -1,0 +1,696 @@
+/* glTF loading: good scenes written here (a triangle with and without 8/16/32-bit indices,
+ * strips and fans, a node hierarchy, lights and cameras, materials and textures, a .glb,
+ * height-field classification) and a malformed corpus written here, where each defect
+ * gives its named error, a message naming the file, and no crash. */
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cg/camera.h"
+#include "cg/fs.h"
+#include "cg/image.h"
+#include "cg/scene.h"
+#include "test_support.h"
+
+/* ------------------------------------------------------------------ writing test files */
+
+typedef struct blob {
+    unsigned char data[8192];
+    size_t size;
+} blob;
+
+static size_t
+blob_add(blob *b, const void *p, size_t n)
+{
+    while (b->size % 4)
+        b->data[b->size++] = 0;
+    size_t at = b->size;
+    assert_true(at + n <= sizeof b->data);
+    memcpy(b->data + at, p, n);
+    b->size += n;
+    return at;
+}
+
+static const char *
+write_text(const char *name, const char *text)
+{
+    return cg_test_write_file(name, text, strlen(text));
+}
+
+/* A mesh file: positions, optional indices (component type 5121/5123/5125, 0 = none),
+ * optional texture coordinates; `top` adds top-level members (each ending in ','),
+ * `mesh_extra` members of the mesh (each starting with ','), `prim_extra` of the primitive,
+ * `nodes` and `scene_nodes` replace the default one node holding mesh 0. */
+typedef struct mesh_file {
+    const float *positions;
+    int vertex_count;
+    const uint32_t *indices;
+    int index_count;
+    int index_type;
+    int mode;
+    const float *texcoords;
+    const char *top, *mesh_extra, *prim_extra, *nodes, *scene_nodes;
+} mesh_file;
+
+static const char *
+write_mesh_file(const char *name, const mesh_file *m)
+{
+    blob b = { .size = 0 };
+    char views[1024], accessors[1024], attributes[256], bin_name[256], file[256];
+    size_t pos_at = blob_add(&b, m->positions, 12 * (size_t)m->vertex_count);
+    snprintf(views, sizeof views, "{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":%d}", pos_at,
+             12 * m->vertex_count);
+    snprintf(accessors, sizeof accessors,
+             "{\"bufferView\":0,\"componentType\":5126,\"count\":%d,\"type\":\"VEC3\"}", m->vertex_count);
+    snprintf(attributes, sizeof attributes, "\"POSITION\":0");
+    int next = 1;
+    char indices[64] = "";
+    if (m->index_type) {
+        size_t size = m->index_type == 5121 ? 1 : m->index_type == 5123 ? 2 : 4;
+        unsigned char raw[1024];
+        for (int i = 0; i < m->index_count; i++) {
+            uint32_t v = m->indices[i];
+            memcpy(raw + i * size, &v, size); /* little-endian machine: the low bytes */
+        }
+        size_t at = blob_add(&b, raw, size * (size_t)m->index_count);
+        snprintf(views + strlen(views), sizeof views - strlen(views),
+                 ",{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":%zu}", at, size * (size_t)m->index_count);
+        snprintf(accessors + strlen(accessors), sizeof accessors - strlen(accessors),
+                 ",{\"bufferView\":%d,\"componentType\":%d,\"count\":%d,\"type\":\"SCALAR\"}", next,
+                 m->index_type, m->index_count);
+        snprintf(indices, sizeof indices, ",\"indices\":%d", next);
+        next++;
+    }
+    if (m->texcoords) {
+        size_t at = blob_add(&b, m->texcoords, 8 * (size_t)m->vertex_count);
+        snprintf(views + strlen(views), sizeof views - strlen(views),
+                 ",{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":%d}", at, 8 * m->vertex_count);
+        snprintf(accessors + strlen(accessors), sizeof accessors - strlen(accessors),
+                 ",{\"bufferView\":%d,\"componentType\":5126,\"count\":%d,\"type\":\"VEC2\"}", next,
+                 m->vertex_count);
+        snprintf(attributes + strlen(attributes), sizeof attributes - strlen(attributes),
+                 ",\"TEXCOORD_0\":%d", next);
+        next++;
+    }
+    snprintf(bin_name, sizeof bin_name, "%s.bin", name);
+    cg_test_write_file(bin_name, b.data, b.size);
+    static char json[16384];
+    snprintf(json, sizeof json,
+             "{\"asset\":{\"version\":\"2.0\"},%s"
+             "\"buffers\":[{\"uri\":\"%s\",\"byteLength\":%zu}],"
+             "\"bufferViews\":[%s],\"accessors\":[%s],"
+             "\"meshes\":[{\"name\":\"roof\"%s,\"primitives\":[{\"attributes\":{%s}%s,\"mode\":%d%s}]}],"
+             "\"nodes\":%s,\"scenes\":[{\"nodes\":%s}],\"scene\":0}",
+             m->top ? m->top : "", bin_name, b.size, views, accessors, m->mesh_extra ? m->mesh_extra : "",
+             attributes, indices, m->mode, m->prim_extra ? m->prim_extra : "",
+             m->nodes ? m->nodes : "[{\"mesh\":0}]", m->scene_nodes ? m->scene_nodes : "[0]");
+    snprintf(file, sizeof file, "%s.gltf", name);
+    return write_text(file, json);
+}
+
+static const float triangle[9] = { 0, 0, 0, 1, 0, 0, 0, 1, 0 };
+
+static void
+load_ok(const char *path, cg_scene *s)
+{
+    cg_error err = { 0 };
+    assert_cg_ok(cg_scene_load(path, s, &err), &err);
+}
+
+static void
+transform(const float m[16], const double p[3], double out[3])
+{
+    for (int r = 0; r < 3; r++)
+        out[r] = m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r];
+}
+
+/* ------------------------------------------------------------------ good scenes */
+
+static void
+triangle_with_and_without_indices(void **state)
+{
+    (void)state;
+    cg_scene s;
+    mesh_file m = { .positions = triangle, .vertex_count = 3, .mode = 4 };
+    load_ok(write_mesh_file("plain", &m), &s);
+    assert_int_equal(cg_scene_triangle_count(&s), 1);
+    assert_int_equal(s.mesh_count, 1);
+    const cg_mesh *mesh = &s.meshes[0];
+    assert_string_equal(mesh->name, "roof");
+    assert_int_equal(mesh->vertex_count, 3);
+    for (int i = 0; i < 3; i++)
+        assert_int_equal(mesh->indices[i], i);
+    /* Generated normals: the counter-clockwise triangle in the xy plane faces +z. */
+    for (int v = 0; v < 3; v++) {
+        assert_float_equal(mesh->normals[3 * v + 2], 1, 1e-6);
+        assert_float_equal(mesh->normals[3 * v + 0], 0, 1e-6);
+    }
+    assert_null(mesh->texcoords);
+    assert_int_equal(mesh->material, 0);
+    assert_int_equal(s.material_count, 1);
+    assert_int_equal(mesh->kind, CG_MESH_COMPLEX);
+    assert_float_equal(s.bounds_max[0], 1, 0);
+    assert_float_equal(s.bounds_max[1], 1, 0);
+    assert_float_equal(s.bounds_min[2], 0, 0);
+    cg_scene_free(&s);
+
+    const int types[3] = { 5121, 5123, 5125 };
+    const uint32_t reversed[3] = { 2, 1, 0 };
+    for (int t = 0; t < 3; t++) {
+        mesh_file mi = { .positions = triangle, .vertex_count = 3, .mode = 4, .indices = reversed,
+                         .index_count = 3, .index_type = types[t] };
+        char name[32];
+        snprintf(name, sizeof name, "indexed%d", types[t]);
+        load_ok(write_mesh_file(name, &mi), &s);
+        assert_int_equal(cg_scene_triangle_count(&s), 1);
+        for (int i = 0; i < 3; i++)
+            assert_int_equal(s.meshes[0].indices[i], reversed[i]);
+        /* Wound the other way round: the generated normal flips. */
+        assert_float_equal(s.meshes[0].normals[2], -1, 1e-6);
+        cg_scene_free(&s);
+    }
+}
+
+static void
+strips_and_fans(void **state)
+{
+    (void)state;
+    static const float five[15] = { 0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 2, 1, 0 };
+    cg_scene s;
+    mesh_file strip = { .positions = five, .vertex_count = 4, .mode = 5 };
+    load_ok(write_mesh_file("strip", &strip), &s);
+    /* glTF 3.7.2.1: strip triangle i = (i, i+1+i%2, i+2-i%2). */
+    const uint32_t strip_expected[6] = { 0, 1, 2, 1, 3, 2 };
+    assert_int_equal(s.meshes[0].index_count, 6);
+    for (int i = 0; i < 6; i++)
+        assert_int_equal(s.meshes[0].indices[i], strip_expected[i]);
+    cg_scene_free(&s);
+
+    const uint32_t seq[5] = { 4, 3, 2, 1, 0 };
+    mesh_file fan = { .positions = five, .vertex_count = 5, .mode = 6, .indices = seq, .index_count = 5,
+                      .index_type = 5123 };
+    load_ok(write_mesh_file("fan", &fan), &s);
+    /* Fan triangle i = (i+1, i+2, 0) over the index sequence. */
+    const uint32_t fan_expected[9] = { 3, 2, 4, 2, 1, 4, 1, 0, 4 };
+    assert_int_equal(s.meshes[0].index_count, 9);
+    for (int i = 0; i < 9; i++)
+        assert_int_equal(s.meshes[0].indices[i], fan_expected[i]);
+    cg_scene_free(&s);
+}
+
+static void
+points_and_lines_are_skipped(void **state)
+{
+    (void)state;
+    cg_scene s;
+    cg_error err = { 0 };
+    mesh_file m = { .positions = triangle, .vertex_count = 3, .mode = 4,
+                    .mesh_extra = "" };
+    const char *path = write_mesh_file("lines", &m);
+    /* Add a second primitive drawing lines over the same accessor. */
+    char *json;
+    size_t size;
+    assert_cg_ok(cg_read_file(path, &json, &size, &err), &err);
+    char *p = strstr(json, "\"mode\":4}");
+    assert_non_null(p);
+    char edited[16384];
+    snprintf(edited, sizeof edited, "%.*s\"mode\":4},{\"attributes\":{\"POSITION\":0},\"mode\":1}%s",
+             (int)(p - json), json, p + strlen("\"mode\":4}"));
+    free(json);
+    load_ok(write_text("lines.gltf", edited), &s);
+    assert_int_equal(s.mesh_count, 1);
+    assert_int_equal(cg_scene_triangle_count(&s), 1);
+    cg_scene_free(&s);
+    /* Only points: no triangles at all. */
+    mesh_file pts = { .positions = triangle, .vertex_count = 3, .mode = 0 };
+    assert_cg_status(cg_scene_load(write_mesh_file("points", &pts), &s, &err), &err, CG_ERR_GLTF_NO_TRIANGLES);
+    assert_non_null(strstr(err.message, "points.gltf"));
+}
+
+static void
+node_hierarchy(void **state)
+{
+    (void)state;
+    cg_scene s;
+    mesh_file m = {
+        .positions = triangle, .vertex_count = 3, .mode = 4,
+        .nodes = "[{\"translation\":[10,0,0],\"scale\":[2,2,2],\"children\":[1]},"
+                 "{\"rotation\":[0,0.70710678,0,0.70710678],\"translation\":[0,1,0],\"children\":[2]},"
+                 "{\"matrix\":[1,0,0,0,0,1,0,0,0,0,1,0,0,0,3,1],\"mesh\":0},"
+                 "{\"mesh\":0,\"translation\":[0,-5,0]}]",
+        .scene_nodes = "[0,3]",
+    };
+    load_ok(write_mesh_file("hierarchy", &m), &s);
+    assert_int_equal(s.mesh_count, 1);
+    assert_int_equal(s.instance_count, 2);
+    assert_int_equal(cg_scene_triangle_count(&s), 2);
+    /* (1,0,0): +3 z by the matrix, 90 degrees about y, +1 y, scale 2, +10 x. */
+    double p[3] = { 1, 0, 0 }, w[3];
+    transform(s.instances[0].world, p, w);
+    assert_float_equal(w[0], 16, 1e-5);
+    assert_float_equal(w[1], 2, 1e-5);
+    assert_float_equal(w[2], -2, 1e-5);
+    transform(s.instances[1].world, p, w);
+    assert_float_equal(w[0], 1, 1e-6);
+    assert_float_equal(w[1], -5, 1e-6);
+    /* World bounds cover both instances. */
+    assert_float_equal(s.bounds_min[1], -5, 1e-5);
+    assert_float_equal(s.bounds_max[0], 16, 1e-4);
+    cg_scene_free(&s);
+}
+
+static const cg_light *
+light_of_type(const cg_scene *s, cg_light_type t)
+{
+    for (int i = 0; i < s->light_count; i++)
+        if (s->lights[i].type == t)
+            return &s->lights[i];
+    fail_msg("no light of type %d", t);
+    return NULL;
+}
+
+static void
+lights_and_cameras(void **state)
+{
+    (void)state;
+    cg_scene s;
+    mesh_file m = {
+        .positions = triangle, .vertex_count = 3, .mode = 4,
+        .top = "\"extensionsUsed\":[\"KHR_lights_punctual\"],\"extensionsRequired\":[\"KHR_lights_punctual\"],"
+               "\"extensions\":{\"KHR_lights_punctual\":{\"lights\":["
+               "{\"type\":\"directional\",\"intensity\":3,\"color\":[1,0.5,0.25],\"name\":\"sun\"},"
+               "{\"type\":\"spot\",\"intensity\":20,\"spot\":{\"innerConeAngle\":0.2,\"outerConeAngle\":0.6}},"
+               "{\"type\":\"point\",\"intensity\":5,\"range\":10}]}},"
+               "\"cameras\":[{\"type\":\"perspective\",\"name\":\"main\",\"perspective\":{\"yfov\":0.8,\"znear\":0.1}},"
+               "{\"type\":\"orthographic\",\"orthographic\":{\"xmag\":2,\"ymag\":1,\"znear\":0.01,\"zfar\":100}}],",
+        .nodes = "[{\"mesh\":0},"
+                 "{\"rotation\":[-0.70710678,0,0,0.70710678],\"extensions\":{\"KHR_lights_punctual\":{\"light\":0}}},"
+                 "{\"translation\":[1,2,3],\"children\":[3]},"
+                 "{\"translation\":[0,1,0],\"rotation\":[-0.70710678,0,0,0.70710678],"
+                 "\"extensions\":{\"KHR_lights_punctual\":{\"light\":1}}},"
+                 "{\"translation\":[0,0,5],\"camera\":0},"
+                 "{\"translation\":[0,0,-4],\"extensions\":{\"KHR_lights_punctual\":{\"light\":2}}},"
+                 "{\"translation\":[0,0,10],\"camera\":1}]",
+        .scene_nodes = "[0,1,2,4,5,6]",
+    };
+    load_ok(write_mesh_file("lights", &m), &s);
+    assert_int_equal(s.light_count, 3);
+    const cg_light *sun = light_of_type(&s, CG_LIGHT_DIRECTIONAL);
+    assert_string_equal(sun->name, "sun");
+    assert_float_equal(sun->intensity, 3, 0);
+    assert_float_equal(sun->color[1], 0.5, 0);
+    /* Rotated -90 degrees about x: its -z points down. */
+    assert_float_equal(sun->direction[0], 0, 1e-6);
+    assert_float_equal(sun->direction[1], -1, 1e-6);
+    assert_float_equal(sun->direction[2], 0, 1e-6);
+    const cg_light *spot = light_of_type(&s, CG_LIGHT_SPOT);
+    assert_float_equal(spot->position[0], 1, 1e-6);
+    assert_float_equal(spot->position[1], 3, 1e-6);
+    assert_float_equal(spot->position[2], 3, 1e-6);
+    assert_float_equal(spot->direction[1], -1, 1e-6);
+    assert_float_equal(spot->inner_cone_angle, 0.2, 1e-6);
+    assert_float_equal(spot->outer_cone_angle, 0.6, 1e-6);
+    assert_float_equal(spot->color[0], 1, 0); /* default colour */
+    const cg_light *point = light_of_type(&s, CG_LIGHT_POINT);
+    assert_float_equal(point->position[2], -4, 1e-6);
+    assert_float_equal(point->range, 10, 0);
+
+    assert_int_equal(s.camera_count, 2);
+    int cam;
+    cg_error err = { 0 };
+    assert_cg_ok(cg_camera_select(&s, "main", &cam, &err), &err);
+    const cg_camera *c = &s.cameras[cam];
+    assert_int_equal(c->type, CG_CAMERA_PERSPECTIVE);
+    assert_float_equal(c->yfov, 0.8, 1e-6);
+    assert_float_equal(c->aspect, 0, 0);
+    assert_float_equal(c->zfar, 0, 0); /* glTF: no zfar = infinite */
+    assert_float_equal(c->world[14], 5, 0);
+    /* The view: a point at depth 5 lands where yfov and the image aspect (2) put it. */
+    cg_view v;
+    cg_view_from_scene(&s, cam, 64, 32, &v);
+    double t = tan(0.4), ndc[2] = { 0.5 / (5 * t * 2), 0.25 / (5 * t) };
+    const float *vp = v.view_proj;
+    double q[3] = { 0.5, 0.25, 0 }, clip[4];
+    for (int r = 0; r < 4; r++)
+        clip[r] = vp[r] * q[0] + vp[4 + r] * q[1] + vp[8 + r] * q[2] + vp[12 + r];
+    assert_float_equal((clip[0] / clip[3] + 1) * 32, (ndc[0] + 1) * 32, 1e-3);
+    assert_float_equal((clip[1] / clip[3] + 1) * 16, (ndc[1] + 1) * 16, 1e-3);
+    assert_true(isfinite(v.zfar) && v.zfar >= 5);
+    const cg_camera *o = &s.cameras[1 - cam];
+    assert_int_equal(o->type, CG_CAMERA_ORTHOGRAPHIC);
+    assert_float_equal(o->ymag, 1, 0);
+    assert_float_equal(o->zfar, 100, 0);
+    cg_scene_free(&s);
+}
+
+/* A 2x2 PNG: top row red, green; bottom row blue, white. */
+static const char *
+write_png(const char *name)
+{
+    cg_image img = { 0 };
+    cg_error err = { 0 };
+    assert_cg_ok(cg_image_alloc(&img, 2, 2, &err), &err);
+    const float px[4][4] = { { 1, 0, 0, 1 }, { 0, 1, 0, 1 }, { 0, 0, 1, 1 }, { 1, 1, 1, 1 } };
+    memcpy(img.rgba, px, sizeof px);
+    static char path[4096];
+    snprintf(path, sizeof path, "%s/%s", cg_test_tmpdir(), name);
+    assert_cg_ok(cg_image_write(path, &img, CG_EXR_FLOAT, &err), &err);
+    cg_image_free(&img);
+    return path;
+}
+
+static void
+check_texture(const cg_texture *t)
+{
+    assert_int_equal(t->width, 2);
+    assert_int_equal(t->height, 2);
+    assert_true(t->srgb);
+    /* Rows bottom to top: row 0 holds the PNG's bottom row (blue, white). */
+    const uint8_t expected[16] = { 0, 0, 255, 255, 255, 255, 255, 255, 255, 0, 0, 255, 0, 255, 0, 255 };
+    assert_memory_equal(t->rgba, expected, 16);
+}
+
+static const char material_json[] =
+    "\"extensionsUsed\":[\"KHR_materials_emissive_strength\"],"
+    "\"materials\":[{\"name\":\"mat\",\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.5,0.25,1,1],"
+    "\"baseColorTexture\":{\"index\":0},\"metallicFactor\":0.3,\"roughnessFactor\":0.7},"
+    "\"emissiveFactor\":[1,0.5,0],\"emissiveTexture\":{\"index\":0},"
+    "\"extensions\":{\"KHR_materials_emissive_strength\":{\"emissiveStrength\":4}}}],"
+    "\"textures\":[{\"source\":0}],";
+
+static void
+materials_and_textures(void **state)
+{
+    (void)state;
+    write_png("tex.png");
+    static const float uv[6] = { 0, 0, 1, 0, 0, 1 };
+    char top[2048];
+    snprintf(top, sizeof top, "%s\"images\":[{\"uri\":\"tex.png\"}],", material_json);
+    mesh_file m = { .positions = triangle, .vertex_count = 3, .mode = 4, .texcoords = uv, .top = top,
+                    .prim_extra = ",\"material\":0" };
+    cg_scene s;
+    load_ok(write_mesh_file("material", &m), &s);
+    assert_int_equal(s.material_count, 2);
+    assert_int_equal(s.meshes[0].material, 1);
+    const cg_material *mat = &s.materials[1];
+    assert_string_equal(mat->name, "mat");
+    assert_float_equal(mat->base_color[1], 0.25, 0);
+    assert_float_equal(mat->metallic, 0.3, 1e-6);
+    assert_float_equal(mat->roughness, 0.7, 1e-6);
+    assert_float_equal(mat->emissive[1], 0.5, 0);
+    assert_float_equal(mat->emissive_strength, 4, 0);
+    assert_int_equal(mat->base_color_texture, 0);
+    assert_int_equal(mat->emissive_texture, 0);
+    assert_int_equal(s.texture_count, 1);
+    check_texture(&s.textures[0]);
+    assert_non_null(s.meshes[0].texcoords);
+    assert_float_equal(s.meshes[0].texcoords[5], 1, 0);
+    /* Material 0 stays the default white. */
+    assert_float_equal(s.materials[0].base_color[0], 1, 0);
+    assert_float_equal(s.materials[0].emissive[0], 0, 0);
+    cg_scene_free(&s);
+}
+
+/* A .glb: JSON chunk then BIN chunk holding the triangle, its indices and a PNG image. */
+static const char *
+write_glb(const char *name, bool image_past_end)
+{
+    cg_error err = { 0 };
+    char *png;
+    size_t png_size;
+    assert_cg_ok(cg_read_file(write_png("glbtex.png"), &png, &png_size, &err), &err);
+    blob b = { .size = 0 };
+    size_t pos_at = blob_add(&b, triangle, sizeof triangle);
+    uint16_t idx[3] = { 0, 1, 2 };
+    size_t idx_at = blob_add(&b, idx, sizeof idx);
+    size_t png_at = blob_add(&b, png, png_size);
+    free(png);
+    while (b.size % 4)
+        b.data[b.size++] = 0;
+    char image_view[64];
+    snprintf(image_view, sizeof image_view, "\"byteLength\":%zu", image_past_end ? (size_t)100000 : png_size);
+    char json[4096];
+    snprintf(json, sizeof json,
+             "{\"asset\":{\"version\":\"2.0\"},\"buffers\":[{\"byteLength\":%zu}],"
+             "\"bufferViews\":[{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":36},"
+             "{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":6},{\"buffer\":0,\"byteOffset\":%zu,%s}],"
+             "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":3,\"type\":\"VEC3\"},"
+             "{\"bufferView\":1,\"componentType\":5123,\"count\":3,\"type\":\"SCALAR\"}],"
+             "\"images\":[{\"bufferView\":2,\"mimeType\":\"image/png\"}],\"textures\":[{\"source\":0}],"
+             "\"materials\":[{\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":0}}}],"
+             "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"indices\":1,\"material\":0}]}],"
+             "\"nodes\":[{\"mesh\":0}],\"scenes\":[{\"nodes\":[0]}],\"scene\":0}",
+             b.size, pos_at, idx_at, png_at, image_view);
+    size_t json_len = strlen(json);
+    while (json_len % 4)
+        json[json_len++] = ' ';
+    static unsigned char glb[16384];
+    uint32_t total = (uint32_t)(12 + 8 + json_len + 8 + b.size);
+    uint32_t header[3] = { 0x46546C67u, 2, total };
+    uint32_t json_chunk[2] = { (uint32_t)json_len, 0x4E4F534Au };
+    uint32_t bin_chunk[2] = { (uint32_t)b.size, 0x004E4942u };
+    size_t at = 0;
+    memcpy(glb + at, header, 12), at += 12;
+    memcpy(glb + at, json_chunk, 8), at += 8;
+    memcpy(glb + at, json, json_len), at += json_len;
+    memcpy(glb + at, bin_chunk, 8), at += 8;
+    memcpy(glb + at, b.data, b.size), at += b.size;
+    return cg_test_write_file(name, glb, at);
+}
+
+static void
+binary_gltf(void **state)
+{
+    (void)state;
+    cg_scene s;
+    cg_error err = { 0 };
+    load_ok(write_glb("scene.glb", false), &s);
+    assert_int_equal(cg_scene_triangle_count(&s), 1);
+    assert_int_equal(s.texture_count, 1);
+    check_texture(&s.textures[0]);
+    assert_int_equal(s.materials[s.meshes[0].material].base_color_texture, 0);
+    cg_scene_free(&s);
+    /* The image's bufferView runs past the BIN chunk: checked before decoding. */
+    assert_cg_status(cg_scene_load(write_glb("badimage.glb", true), &s, &err), &err,
+                     CG_ERR_GLTF_BUFFER);
+    assert_non_null(strstr(err.message, "badimage.glb"));
+    assert_non_null(strstr(err.message, "image 0"));
+}
+
+static void
+heightfield_classification(void **state)
+{
+    (void)state;
+    /* A 2x2-cell grid on a slope, counter-clockwise seen from above: faces up. */
+    static const float grid[27] = { 0, 0, 0, 1, 0, 0, 2, 0, 0, 0, 0.5f, 1, 1, 0.5f, 1, 2, 0.5f, 1,
+                                    0, 1, 2, 1, 1, 2, 2, 1, 2 };
+    static const uint32_t cells[24] = { 0, 3, 1, 1, 3, 4, 1, 4, 2, 2, 4, 5,
+                                        3, 6, 4, 4, 6, 7, 4, 7, 5, 5, 7, 8 };
+    const struct {
+        const char *name, *nodes, *extra;
+        cg_mesh_kind kind;
+    } cases[] = {
+        { "up", "[{\"mesh\":0}]", "", CG_MESH_HEIGHTFIELD },
+        { "mirrored", "[{\"mesh\":0,\"scale\":[-1,1,1]}]", "", CG_MESH_HEIGHTFIELD },
+        { "flipped", "[{\"mesh\":0,\"rotation\":[1,0,0,0]}]", "", CG_MESH_COMPLEX },
+        { "one_flipped_instance", "[{\"mesh\":0},{\"mesh\":0,\"rotation\":[1,0,0,0]}]", "", CG_MESH_COMPLEX },
+        { "standing", "[{\"mesh\":0,\"rotation\":[0,0,0.70710678,0.70710678]}]", "", CG_MESH_COMPLEX },
+        { "tagged", "[{\"mesh\":0}]", ",\"extras\":{\"conegraph_kind\":\"complex\"}", CG_MESH_COMPLEX },
+        { "tagged_flipped", "[{\"mesh\":0,\"rotation\":[1,0,0,0]}]",
+          ",\"extras\":{\"conegraph_kind\":\"heightfield\"}", CG_MESH_HEIGHTFIELD },
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
+        mesh_file m = { .positions = grid, .vertex_count = 9, .mode = 4, .indices = cells,
+                        .index_count = 24, .index_type = 5123, .nodes = cases[i].nodes,
+                        .mesh_extra = cases[i].extra,
+                        .scene_nodes = strstr(cases[i].nodes, "},{") ? "[0,1]" : "[0]" };
+        cg_scene s;
+        load_ok(write_mesh_file(cases[i].name, &m), &s);
+        if (s.meshes[0].kind != cases[i].kind)
+            fail_msg("%s: kind %d, expected %d", cases[i].name, s.meshes[0].kind, cases[i].kind);
+        cg_scene_free(&s);
+    }
+}
+
+/* ------------------------------------------------------------------ the malformed corpus */
+
+/* The base file: a triangle mesh 'roof' with 16-bit indices in base.bin (44 bytes). */
+static const char base_json[] =
+    "{\"asset\":{\"version\":\"2.0\"},"
+    "\"buffers\":[{\"uri\":\"base.bin\",\"byteLength\":44}],"
+    "\"bufferViews\":[{\"buffer\":0,\"byteOffset\":0,\"byteLength\":36},"
+    "{\"buffer\":0,\"byteOffset\":36,\"byteLength\":6}],"
+    "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":3,\"type\":\"VEC3\"},"
+    "{\"bufferView\":1,\"componentType\":5123,\"count\":3,\"type\":\"SCALAR\"}],"
+    "\"meshes\":[{\"name\":\"roof\",\"primitives\":[{\"attributes\":{\"POSITION\":0},\"indices\":1}]}],"
+    "\"nodes\":[{\"mesh\":0}],\"scenes\":[{\"nodes\":[0]}],\"scene\":0}";
+
+static void
+write_base_bin(const char *name, float poison, uint16_t last_index, size_t size)
+{
+    unsigned char bin[44] = { 0 };
+    float pos[9];
+    memcpy(pos, triangle, sizeof pos);
+    pos[4] = poison;
+    uint16_t idx[3] = { 0, 1, last_index };
+    memcpy(bin, pos, 36);
+    memcpy(bin + 36, idx, 6);
+    cg_test_write_file(name, bin, size);
+}
+
+typedef struct bad_case {
+    const char *name;   /* file name; its .bin is base.bin unless the case rewrites it */
+    const char *from, *to;
+    cg_status expected;
+    const char *message_part; /* besides the file name, the message must name this */
+} bad_case;
+
+static void
+good_base_loads(void **state)
+{
+    (void)state;
+    write_base_bin("base.bin", 0, 2, 44);
+    cg_scene s;
+    load_ok(write_text("base.gltf", base_json), &s);
+    assert_int_equal(cg_scene_triangle_count(&s), 1);
+    cg_scene_free(&s);
+}
+
+static void
+malformed_corpus(void **state)
+{
+    (void)state;
+    write_base_bin("base.bin", 0, 2, 44);
+    write_base_bin("short.bin", 0, 2, 20);
+    write_base_bin("nan.bin", NAN, 2, 44);
+    write_base_bin("inf.bin", INFINITY, 2, 44);
+    write_base_bin("range.bin", 0, 812, 44);
+    const bad_case cases[] = {
+        { "missing_buffer.gltf", "base.bin", "nothere.bin", CG_ERR_GLTF_BUFFER, "nothere.bin" },
+        { "short_buffer.gltf", "base.bin", "short.bin", CG_ERR_GLTF_BUFFER, "short.bin" },
+        { "view_past_buffer.gltf", "\"byteOffset\":36,\"byteLength\":6", "\"byteOffset\":40,\"byteLength\":6",
+          CG_ERR_GLTF_BUFFER, "bufferView 1" },
+        { "view_no_buffer.gltf", "{\"buffer\":0,\"byteOffset\":0", "{\"buffer\":3,\"byteOffset\":0",
+          CG_ERR_GLTF_BUFFER, "buffer 3" },
+        { "accessor_past_view.gltf", "\"count\":3,\"type\":\"VEC3\"", "\"count\":30,\"type\":\"VEC3\"",
+          CG_ERR_GLTF_BUFFER, "accessor 0" },
+        { "position_vec2.gltf", "\"type\":\"VEC3\"", "\"type\":\"VEC2\"", CG_ERR_GLTF_ACCESSOR, "POSITION" },
+        { "position_bytes.gltf", "\"componentType\":5126", "\"componentType\":5121", CG_ERR_GLTF_ACCESSOR,
+          "POSITION" },
+        { "index_float.gltf", "\"componentType\":5123", "\"componentType\":5126", CG_ERR_GLTF_ACCESSOR,
+          "indices" },
+        { "index_vec2.gltf", "\"type\":\"SCALAR\"", "\"type\":\"VEC2\"", CG_ERR_GLTF_ACCESSOR, "indices" },
+        { "index_count.gltf", "\"count\":3,\"type\":\"SCALAR\"", "\"count\":2,\"type\":\"SCALAR\"",
+          CG_ERR_GLTF_ACCESSOR, "multiple of 3" },
+        { "no_such_accessor.gltf", "\"POSITION\":0", "\"POSITION\":7", CG_ERR_GLTF_ACCESSOR, "accessor 7" },
+        { "stride_short.gltf", "\"byteOffset\":0,\"byteLength\":36}", "\"byteOffset\":0,\"byteLength\":36,\"byteStride\":4}",
+          CG_ERR_GLTF_ACCESSOR, "byteStride" },
+        { "no_position.gltf", "\"POSITION\":0", "\"NORMAL\":0", CG_ERR_GLTF_ACCESSOR, "POSITION" },
+        { "index_range.gltf", "base.bin", "range.bin", CG_ERR_GLTF_INDEX_RANGE,
+          "mesh 'roof' primitive 0: index 812 out of range (accessor 0 has 3 vertices)" },
+        { "nan.gltf", "base.bin", "nan.bin", CG_ERR_GLTF_NONFINITE, "vertex 1" },
+        { "inf.gltf", "base.bin", "inf.bin", CG_ERR_GLTF_NONFINITE, "mesh 'roof'" },
+        { "cycle.gltf", "\"nodes\":[{\"mesh\":0}]", "\"nodes\":[{\"mesh\":0,\"children\":[1]},{\"children\":[2]},{\"children\":[1]}]",
+          CG_ERR_GLTF_NODE_CYCLE, "node 2" },
+        { "self_cycle.gltf", "\"nodes\":[{\"mesh\":0}]", "\"nodes\":[{\"mesh\":0,\"name\":\"loop\",\"children\":[0]}]",
+          CG_ERR_GLTF_NODE_CYCLE, "'loop'" },
+        { "bad_child.gltf", "\"nodes\":[{\"mesh\":0}]", "\"nodes\":[{\"mesh\":0,\"children\":[5]}]",
+          CG_ERR_GLTF_INDEX_RANGE, "child 5" },
+        { "bad_mesh.gltf", "\"nodes\":[{\"mesh\":0}]", "\"nodes\":[{\"mesh\":4}]", CG_ERR_GLTF_INDEX_RANGE,
+          "mesh 4" },
+        { "bad_scene_node.gltf", "\"scenes\":[{\"nodes\":[0]}]", "\"scenes\":[{\"nodes\":[9]}]",
+          CG_ERR_GLTF_INDEX_RANGE, "node 9" },
+        { "bad_material.gltf", "\"indices\":1}", "\"indices\":1,\"material\":3}", CG_ERR_GLTF_INDEX_RANGE,
+          "material 3" },
+        { "points_only.gltf", "\"indices\":1}", "\"indices\":1,\"mode\":0}", CG_ERR_GLTF_NO_TRIANGLES, "no triangles" },
+        { "lines_only.gltf", "\"indices\":1}", "\"indices\":1,\"mode\":1}", CG_ERR_GLTF_NO_TRIANGLES, "no triangles" },
+        { "empty_scene.gltf", "\"scenes\":[{\"nodes\":[0]}]", "\"scenes\":[{\"nodes\":[]}]",
+          CG_ERR_GLTF_NO_TRIANGLES, "no triangles" },
+        { "draco.gltf", "\"asset\":{\"version\":\"2.0\"},",
+          "\"asset\":{\"version\":\"2.0\"},\"extensionsUsed\":[\"KHR_draco_mesh_compression\"],"
+          "\"extensionsRequired\":[\"KHR_draco_mesh_compression\"],",
+          CG_ERR_GLTF_EXTENSION, "KHR_draco_mesh_compression" },
+        { "no_asset.gltf", "\"asset\":{\"version\":\"2.0\"},", "", CG_ERR_GLTF_PARSE, "asset" },
+        { "truncated.gltf", "\"nodes\":[{\"mesh\":0}]", "\"nodes\":[{\"mesh\":0}", CG_ERR_GLTF_PARSE, "" },
+    };
+    cg_error err = { 0 };
+    cg_scene s;
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
+        const bad_case *c = &cases[i];
+        const char *at = strstr(base_json, c->from);
+        assert_non_null(at);
+        char json[8192];
+        snprintf(json, sizeof json, "%.*s%s%s", (int)(at - base_json), base_json, c->to, at + strlen(c->from));
+        const char *path = write_text(c->name, json);
+        cg_error_clear(&err);
+        if (cg_scene_load(path, &s, &err))
+            fail_msg("%s loaded; expected %s", c->name, cg_status_name(c->expected));
+        if (err.status != c->expected)
+            fail_msg("%s: %s (%s); expected %s", c->name, cg_status_name(err.status), err.message,
+                     cg_status_name(c->expected));
+        if (!strstr(err.message, c->name) || !strstr(err.message, c->message_part))
+            fail_msg("%s: message '%s' should name the file and '%s'", c->name, err.message, c->message_part);
+        printf("# %s: %s\n", cg_status_name(err.status), strrchr(err.message, '/') + 1);
+        assert_int_equal(s.mesh_count, 0);
+        assert_null(s.meshes);
+    }
+}
+
+static void
+not_gltf_at_all(void **state)
+{
+    (void)state;
+    const struct {
+        const char *name;
+        const char *data;
+        size_t size;
+    } files[] = {
+        { "hello.gltf", "hello world\n", 0 },
+        { "empty.gltf", "", 0 },
+        { "array.gltf", "[1, 2, 3]", 0 },
+        { "object.gltf", "{}", 0 },
+        { "broken.gltf", "{\"asset\": {\"version\": ", 0 },
+        { "image.glb", "\x89PNG\r\n\x1a\n\0\0\0\rIHDR", 16 },
+        { "header_only.glb", "glTF\x02\0\0\0\x0c\0\0\0", 12 },
+        { "liar.glb", "glTF\x02\0\0\0\xff\xff\0\0{\"asset\":1}", 23 },
+    };
+    cg_error err = { 0 };
+    cg_scene s;
+    for (size_t i = 0; i < sizeof files / sizeof *files; i++) {
+        /* size 0: the text's strlen (0 for the empty file). */
+        const char *path = cg_test_write_file(files[i].name, files[i].data, files[i].size);
+        cg_error_clear(&err);
+        if (cg_scene_load(path, &s, &err))
+            fail_msg("%s loaded", files[i].name);
+        if (err.status != CG_ERR_GLTF_PARSE)
+            fail_msg("%s: %s (%s); expected CG_ERR_GLTF_PARSE", files[i].name, cg_status_name(err.status),
+                     err.message);
+        assert_non_null(strstr(err.message, files[i].name));
+        printf("# %s: %s\n", cg_status_name(err.status), strrchr(err.message, '/') + 1);
+    }
+    char missing[4200];
+    snprintf(missing, sizeof missing, "%s/nothing_here.gltf", cg_test_tmpdir());
+    assert_cg_status(cg_scene_load(missing, &s, &err), &err, CG_ERR_FILE_NOT_FOUND);
+    assert_non_null(strstr(err.message, "nothing_here.gltf"));
+}
+
+int
+main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(triangle_with_and_without_indices),
+        cmocka_unit_test(strips_and_fans),
+        cmocka_unit_test(points_and_lines_are_skipped),
+        cmocka_unit_test(node_hierarchy),
+        cmocka_unit_test(lights_and_cameras),
+        cmocka_unit_test(materials_and_textures),
+        cmocka_unit_test(binary_gltf),
+        cmocka_unit_test(heightfield_classification),
+        cmocka_unit_test(good_base_loads),
+        cmocka_unit_test(malformed_corpus),
+        cmocka_unit_test(not_gltf_at_all),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
