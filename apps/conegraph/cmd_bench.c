@@ -13,7 +13,7 @@
 #include <sys/stat.h>
 
 #include "app_common.h"
-#include "builtin.h"
+#include "app_registry.h"
 #include "cg/camera.h"
 #include "cg/error.h"
 #include "cg/fg.h"
@@ -131,6 +131,7 @@ bench_usage(FILE *out)
         "  --images              also write each setting's image, error heat map and the\n"
         "                        reference as PNG (linear radiance, clamped, sRGB-encoded)\n"
         "  --context egl|osmesa|glfw  GL context (default: $CONEGRAPH_CONTEXT, else EGL, then OSMesa)\n"
+        "Pass plugins in the directories of $CONEGRAPH_PLUGIN_PATH are loaded.\n"
         "\n"
         "Sweep file:\n"
         "  { \"scenes\": [\"builtin:cornell\"], \"size\": \"320x180\", \"frames\": 5, \"warmup\": 2,\n"
@@ -829,7 +830,7 @@ run_setting(const bench_config *c, fg_registry *registry, bench_scene *bs, cg_gp
     if (!app_read_resource(graph, hdr, false, &img, err) || !measure_errors(bs, &img, row, err))
         goto done;
     if (c->images) {
-        char name[1024], path[4096], scene_slug[BENCH_TEXT], params_slug[512];
+        char name[2048], path[4096], scene_slug[BENCH_TEXT], params_slug[512];
         slug(bs->source, scene_slug, sizeof scene_slug);
         snprintf(name, sizeof name, "%s %s", s->graph, row->params);
         slug(name, params_slug, sizeof params_slug);
@@ -1077,15 +1078,16 @@ bench(const bench_config *c)
     double t_start = app_now_ms();
     bench_scene *scenes = calloc((size_t)c->scene_count, sizeof *scenes);
     bench_rows rows = { 0 };
-    fg_registry *registry = fg_registry_create();
+    fg_registry *registry = NULL;
     cg_context *ctx = NULL;
     int loaded = 0;
-    if (!scenes || !registry) {
+    if (!scenes) {
         fprintf(stderr, "conegraph bench: out of memory\n");
         goto done;
     }
-    if (!cg_builtin_passes_register(registry, &err)) {
-        code = fail_with("built-in passes", &err);
+    registry = app_registry_create(NULL, 0, &err);
+    if (!registry) {
+        code = fail_with("passes", &err);
         goto done;
     }
     if (!make_dirs(c->out_dir, &err)) {

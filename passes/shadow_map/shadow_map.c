@@ -42,7 +42,7 @@ typedef struct shadow_block {
     float params[4];    /* constant bias, slope bias, filter radius, resolution */
     float frustum[4];   /* light index, orthographic, near, far */
     float light[4];     /* towards the light (orthographic) or light position */
-    float texel[4];     /* texel world size, or per metre of distance */
+    float texel[4];     /* xy: texel world size along light x and y, or per metre of distance */
 } shadow_block;
 
 _Static_assert(sizeof(shadow_block) == 192, "CgShadow is 192 bytes in std140");
@@ -199,7 +199,8 @@ fit_directional(const cg_scene *scene, const cg_light *light, int resolution, sh
     b->frustum[2] = znear;
     b->frustum[3] = zfar;
     glm_vec3_negate_to(dir, b->light);
-    b->texel[0] = fmaxf(right - left, top - bottom) / (float)resolution;
+    b->texel[0] = (right - left) / (float)resolution;
+    b->texel[1] = (top - bottom) / (float)resolution;
 }
 
 /* Perspective projection from the spot light covering its outer cone and reaching the
@@ -233,7 +234,7 @@ fit_spot(const cg_scene *scene, const cg_light *light, int resolution, shadow_bl
     b->frustum[2] = znear;
     b->frustum[3] = zfar;
     glm_vec3_copy(eye, b->light);
-    b->texel[0] = 2.0f * tanf(0.5f * fov) / (float)resolution;
+    b->texel[0] = b->texel[1] = 2.0f * tanf(0.5f * fov) / (float)resolution;
 }
 
 static bool

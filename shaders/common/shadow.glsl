@@ -17,7 +17,7 @@ layout(std140, binding = 2) uniform CgShadow {
     vec4 cg_shadow_params;      // x constant bias, y slope bias (texels), z filter radius (texels), w resolution
     vec4 cg_shadow_frustum;     // x light index (-1 = no shadow map), y 1 orthographic / 0 perspective, z near, w far
     vec4 cg_shadow_light;       // xyz: direction towards the light (orthographic) or light position (perspective)
-    vec4 cg_shadow_texel;       // x: texel world size (orthographic) or per metre of distance (perspective)
+    vec4 cg_shadow_texel;       // xy: texel world size along light x, y (orthographic) or per metre of distance (perspective)
 };
 
 // Distance along the light's view axis stored in a texel of window depth d.
@@ -50,18 +50,44 @@ cg_shadow_visibility(sampler2D shadow_map, int light_index, vec3 p, vec3 n)
     vec3 to_light = ortho ? cg_shadow_light.xyz : normalize(cg_shadow_light.xyz - p);
     float cos_theta = clamp(abs(dot(n, to_light)), 1e-3, 1.0);
     float tan_theta = min(sqrt(1.0 - cos_theta * cos_theta) / cos_theta, 10.0);
-    float texel = ortho ? cg_shadow_texel.x : cg_shadow_texel.x * dist;
+    vec2 texel2 = ortho ? cg_shadow_texel.xy : cg_shadow_texel.xy * dist;
+    float texel = max(texel2.x, texel2.y);
     float receiver = dist - texel * (cg_shadow_params.x + cg_shadow_params.y * tan_theta);
 
+    // Receiver-plane depth (Isidoro 2006, "Shadow mapping: GPU-based tips and techniques"):
+    // each tap compares against the receiver's plane continued to that texel's centre, so
+    // that filters over sloped receivers do not self-shadow. The change of depth is capped
+    // at 10 times the lateral offset, like the slope bias.
+    vec3 pv = (cg_shadow_view * vec4(p, 1.0)).xyz;
+    vec3 nv = mat3(cg_shadow_view) * n;
+    float plane = dot(nv, pv);
+    float nz = nv.z >= 0.0 ? max(nv.z, 1e-4) : min(nv.z, -1e-4);
     int resolution = int(cg_shadow_params.w);
     int radius = int(cg_shadow_params.z);
-    ivec2 center = ivec2(floor((ndc.xy * 0.5 + 0.5) * float(resolution)));
+    vec2 st = (ndc.xy * 0.5 + 0.5) * float(resolution);
+    ivec2 center = ivec2(floor(st));
     float lit = 0.0;
     for (int y = -radius; y <= radius; y++)
         for (int x = -radius; x <= radius; x++) {
             ivec2 t = clamp(center + ivec2(x, y), ivec2(0), ivec2(resolution - 1));
+            vec2 offset_texels = vec2(center + ivec2(x, y)) + 0.5 - st;
+            vec2 offset = offset_texels * texel2;   // metres across the light at the receiver
+            float delta;
+            if (ortho) {
+                // Parallel rays: depth changes by n.xy/n.z per metre across the light.
+                delta = dot(nv.xy, offset) / nz;
+            } else {
+                // The ray through the tap's texel centre, q = s (u, v, -1) at depth s, meets
+                // the plane n.q = n.p at s = n.p / n.(u, v, -1). A ray nearly parallel to
+                // the plane gives a huge delta, which the cap below bounds.
+                vec3 ray = vec3(pv.xy / dist + offset_texels * cg_shadow_texel.xy, -1.0);
+                float along = dot(nv, ray);
+                delta = abs(along) > 1e-6 ? plane / along - dist : 0.0;
+            }
+            float cap = 10.0 * length(offset);
+            delta = clamp(delta, -cap, cap);
             float occluder = cg_shadow_linear_depth(texelFetch(shadow_map, t, 0).r);
-            lit += receiver <= occluder ? 1.0 : 0.0;
+            lit += receiver + delta <= occluder ? 1.0 : 0.0;
         }
     float taps = float((2 * radius + 1) * (2 * radius + 1));
     return lit / taps;

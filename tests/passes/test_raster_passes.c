@@ -1,0 +1,431 @@
+/* Per-pass tests of shadow_map, gbuffer, direct_light and composite, each on a headless
+ * GL context with scenes of a few quads built in code (tests/passes/pass_fixtures.h). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "builtin.h"
+#include "cg/error.h"
+#include "cg/graphfile.h"
+#include "cg/image.h"
+#include "pass_fixtures.h"
+#include "test_support.h"
+
+#define SIZE 64
+#define PI 3.14159265358979323846
+
+static const float up_y[3] = { 0.0f, 1.0f, 0.0f };
+static const float up_z[3] = { 0.0f, 0.0f, -1.0f };
+
+static const float *
+texel(const float *rgba, int w, int x, int y)
+{
+    return rgba + ((size_t)y * (size_t)w + (size_t)x) * 4;
+}
+
+/* A 4x4 floor at y = 0 and a 0.5x0.5 occluder at y = 1 above its centre. */
+static void
+floor_and_occluder(fx_scene *s)
+{
+    fx_scene_init(s);
+    fx_add_quad(s, 1, 0.0f, -2.0f, 2.0f, -2.0f, 2.0f, 0);
+    fx_add_quad(s, 1, 1.0f, -0.25f, 0.25f, -0.25f, 0.25f, 0);
+}
+
+/* Straight down onto the floor: the orthographic map of a directional light fitted to the
+ * bounds sees the floor 1 m behind the occluder. Expected depths follow the fit: bounds
+ * y in [0, 1], radius = half the diagonal = 0.5 * sqrt(4^2 + 1 + 4^2) = sqrt(33)/2, the eye
+ * at the bounds' centre + radius up, a margin of 1% of the radius on near and far. */
+static void
+test_shadow_map_depth_of_plane(void **state)
+{
+    cg_context *ctx = cg_test_gl_context(state);
+    fx_scene s;
+    floor_and_occluder(&s);
+    fx_add_light(&s, CG_LIGHT_DIRECTIONAL, 1.0f);
+    fx_scene_finish(&s);
+    cg_view view;
+    fx_view_look_at((float[3]){ 0, 5, 0 }, (float[3]){ 0, 0, 0 }, up_z, 60.0f, SIZE, SIZE, &view);
+    fx_runner r;
+    fx_run(&r, &s, &view,
+           "{ \"version\": 1, \"passes\": { \"shadow\": { \"type\": \"shadow_map\","
+           "  \"params\": { \"resolution\": 64, \"filter\": \"none\" } } },"
+           "  \"outputs\": [ \"shadow.depth\", \"shadow.matrix\" ] }", NULL);
+    int w, h;
+    float *depth = fx_read_depth(fg_graph_texture(r.graph, "shadow.depth"), &w, &h);
+    assert_int_equal(w, 64);
+    assert_int_equal(h, 64);
+
+    double radius = 0.5 * sqrt(33.0), margin = 0.01 * radius;
+    double eye_y = 0.5 + radius;
+    double znear = (eye_y - 1.0) - margin, zfar = eye_y + margin;
+    double floor_depth = (eye_y - znear) / (zfar - znear);
+    double occluder_depth = (eye_y - 1.0 - znear) / (zfar - znear);
+    /* Near the map's corners the floor is seen; at its centre the occluder. */
+    assert_float_equal(depth[8 * w + 8], floor_depth, 1e-5);
+    assert_float_equal(depth[(h - 9) * w + (w - 9)], floor_depth, 1e-5);
+    assert_float_equal(depth[(h / 2) * w + w / 2], occluder_depth, 1e-5);
+    free(depth);
+    fx_runner_free(&r);
+    assert_no_gl_errors(ctx);
+}
+
+/* A quad facing +z seen head-on: normal (0,0,1), albedo = factor x sRGB-decoded texture,
+ * emissive = factor x strength, position on the quad; background pixels are empty. */
+static void
+test_gbuffer_normal_albedo(void **state)
+{
+    cg_context *ctx = cg_test_gl_context(state);
+    fx_scene s;
+    fx_scene_init(&s);
+    int m = fx_add_material(&s, 0.25f, 0.5f, 0.75f);
+    static uint8_t grey[2 * 2 * 4];
+    memset(grey, 128, sizeof grey);
+    s.textures[0] = (cg_texture){ .name = "grey", .width = 2, .height = 2, .rgba = grey, .srgb = true };
+    s.scene.texture_count = 1;
+    s.materials[m].base_color_texture = 0;
+    s.materials[m].emissive[0] = 1.0f;
+    s.materials[m].emissive[1] = 2.0f;
+    s.materials[m].emissive[2] = 3.0f;
+    s.materials[m].emissive_strength = 2.0f;
+    fx_add_quad(&s, 2, 0.0f, -1.0f, 1.0f, -1.0f, 1.0f, m);
+    fx_scene_finish(&s);
+    cg_view view;
+    fx_view_look_at((float[3]){ 0, 0, 3 }, (float[3]){ 0, 0, 0 }, up_y, 90.0f, SIZE, SIZE, &view);
+    fx_runner r;
+    fx_run(&r, &s, &view,
+           "{ \"version\": 1, \"passes\": { \"gbuf\": { \"type\": \"gbuffer\" } },"
+           "  \"outputs\": [ \"gbuf.position\", \"gbuf.normal\", \"gbuf.albedo\", \"gbuf.emissive\", \"gbuf.depth\" ] }",
+           NULL);
+    float *position = cg_test_read_texture(fg_graph_texture(r.graph, "gbuf.position"), 0, NULL, NULL, NULL);
+    float *normal = cg_test_read_texture(fg_graph_texture(r.graph, "gbuf.normal"), 0, NULL, NULL, NULL);
+    float *albedo = cg_test_read_texture(fg_graph_texture(r.graph, "gbuf.albedo"), 0, NULL, NULL, NULL);
+    float *emissive = cg_test_read_texture(fg_graph_texture(r.graph, "gbuf.emissive"), 0, NULL, NULL, NULL);
+
+    double grey_linear = cg_srgb_decode(128.0f / 255.0f);
+    const float *n = texel(normal, SIZE, SIZE / 2, SIZE / 2);
+    assert_float_equal(n[0], 0.0, 1e-3);
+    assert_float_equal(n[1], 0.0, 1e-3);
+    assert_float_equal(n[2], 1.0, 1e-3);
+    const float *a = texel(albedo, SIZE, SIZE / 2, SIZE / 2);
+    assert_float_equal(a[0], 0.25 * grey_linear, 2e-3);
+    assert_float_equal(a[1], 0.50 * grey_linear, 2e-3);
+    assert_float_equal(a[2], 0.75 * grey_linear, 2e-3);
+    const float *e = texel(emissive, SIZE, SIZE / 2, SIZE / 2);
+    assert_float_equal(e[0], 2.0, 1e-3);
+    assert_float_equal(e[1], 4.0, 1e-3);
+    assert_float_equal(e[2], 6.0, 1e-3);
+    const float *p = texel(position, SIZE, SIZE / 2, SIZE / 2);
+    assert_float_equal(p[2], 0.0, 1e-5);
+    assert_float_equal(p[3], 1.0, 0.0);
+    /* The quad covers the middle third of a 90-degree view from 3 m: corners are background. */
+    assert_float_equal(texel(position, SIZE, 2, 2)[3], 0.0, 0.0);
+    assert_float_equal(texel(albedo, SIZE, 2, 2)[0], 0.0, 0.0);
+    free(position);
+    free(normal);
+    free(albedo);
+    free(emissive);
+    fx_runner_free(&r);
+    assert_no_gl_errors(ctx);
+}
+
+static const char *const direct_graph =
+    "{ \"version\": 1, \"passes\": {"
+    "  \"shadow\": { \"type\": \"shadow_map\", \"params\": { \"resolution\": 256, \"filter\": \"FILTER\" } },"
+    "  \"gbuf\": { \"type\": \"gbuffer\" },"
+    "  \"direct\": { \"type\": \"direct_light\", \"inputs\": { \"position\": \"gbuf\", \"normal\": \"gbuf\","
+    "               \"albedo\": \"gbuf\", \"shadow\": \"shadow.depth\", \"shadow_matrix\": \"shadow.matrix\" } } },"
+    "  \"outputs\": [ \"direct.radiance\", \"gbuf.position\" ] }";
+
+static char *
+graph_with_filter(const char *filter)
+{
+    static char json[2048];
+    const char *at = strstr(direct_graph, "FILTER");
+    snprintf(json, sizeof json, "%.*s%s%s", (int)(at - direct_graph), direct_graph, filter, at + 6);
+    return json;
+}
+
+/* A white floor facing a directional light of irradiance E: radiance E/pi within 1%, and 0
+ * in the occluder's shadow (seen from a camera off to the side, past the occluder). */
+static void
+run_directional(void **state, const char *filter)
+{
+    cg_context *ctx = cg_test_gl_context(state);
+    const float E = 3.0f;
+    fx_scene s;
+    floor_and_occluder(&s);
+    fx_add_light(&s, CG_LIGHT_DIRECTIONAL, E);
+    fx_scene_finish(&s);
+    cg_view view;
+    fx_view_look_at((float[3]){ 3, 4, 0 }, (float[3]){ 0, 0, 0 }, up_y, 60.0f, SIZE, SIZE, &view);
+    fx_runner r;
+    fx_run(&r, &s, &view, graph_with_filter(filter), NULL);
+    float *radiance = cg_test_read_texture(fg_graph_texture(r.graph, "direct.radiance"), 0, NULL, NULL, NULL);
+    float *position = cg_test_read_texture(fg_graph_texture(r.graph, "gbuf.position"), 0, NULL, NULL, NULL);
+
+    int x, y;
+    fx_pixel_of(&view, (float[3]){ 0.0f, 0.0f, 0.0f }, &x, &y);
+    const float *p = texel(position, SIZE, x, y);
+    assert_float_equal(p[1], 0.0, 1e-4);  /* the floor, not the occluder */
+    for (int c = 0; c < 3; c++)
+        assert_float_equal(texel(radiance, SIZE, x, y)[c], 0.0, 1e-6);
+
+    const float lit_points[3][3] = { { -1.5f, 0.0f, 1.0f }, { 1.5f, 0.0f, -1.5f }, { -0.8f, 0.0f, -0.8f } };
+    for (int i = 0; i < 3; i++) {
+        fx_pixel_of(&view, lit_points[i], &x, &y);
+        assert_float_equal(texel(position, SIZE, x, y)[1], 0.0, 1e-4);
+        for (int c = 0; c < 3; c++)
+            assert_float_equal(texel(radiance, SIZE, x, y)[c], E / PI, 0.01 * E / PI);
+    }
+    /* The occluder's top is lit too. */
+    fx_pixel_of(&view, (float[3]){ 0.0f, 1.0f, 0.0f }, &x, &y);
+    assert_float_equal(texel(position, SIZE, x, y)[1], 1.0, 1e-4);
+    assert_float_equal(texel(radiance, SIZE, x, y)[0], E / PI, 0.01 * E / PI);
+    free(radiance);
+    free(position);
+    fx_runner_free(&r);
+    assert_no_gl_errors(ctx);
+}
+
+static void
+test_direct_directional_pcf3(void **state)
+{
+    run_directional(state, "pcf3");
+}
+
+static void
+test_direct_directional_unfiltered(void **state)
+{
+    run_directional(state, "none");
+}
+
+/* A point light of intensity I at height h over the floor: radiance I cos / (pi d^2) at every
+ * covered pixel (cos = h/d), checked against the G-buffer's own positions. The scene has no
+ * directional or spot light, so shadow_map has nothing to do and direct_light runs unshadowed. */
+static void
+test_direct_point_light(void **state)
+{
+    cg_context *ctx = cg_test_gl_context(state);
+    const float I = 5.0f;
+    const float light_pos[3] = { 0.5f, 2.0f, -0.3f };
+    fx_scene s;
+    fx_scene_init(&s);
+    fx_add_quad(&s, 1, 0.0f, -2.0f, 2.0f, -2.0f, 2.0f, 0);
+    cg_light *l = fx_add_light(&s, CG_LIGHT_POINT, I);
+    memcpy(l->position, light_pos, sizeof light_pos);
+    fx_scene_finish(&s);
+    cg_view view;
+    fx_view_look_at((float[3]){ 0, 6, 0.01f }, (float[3]){ 0, 0, 0 }, up_z, 60.0f, SIZE, SIZE, &view);
+    fx_runner r;
+    fx_run(&r, &s, &view, graph_with_filter("pcf3"), NULL);
+    assert_true(fg_pass_is_culled(fg_graph_find_pass(r.graph, "shadow")));
+    float *radiance = cg_test_read_texture(fg_graph_texture(r.graph, "direct.radiance"), 0, NULL, NULL, NULL);
+    float *position = cg_test_read_texture(fg_graph_texture(r.graph, "gbuf.position"), 0, NULL, NULL, NULL);
+    int covered = 0;
+    for (int y = 0; y < SIZE; y++)
+        for (int x = 0; x < SIZE; x++) {
+            const float *p = texel(position, SIZE, x, y);
+            if (p[3] == 0.0f)
+                continue;
+            covered++;
+            double dx = light_pos[0] - p[0], dy = light_pos[1] - p[1], dz = light_pos[2] - p[2];
+            double d2 = dx * dx + dy * dy + dz * dz;
+            double expected = I * (dy / sqrt(d2)) / (PI * d2);
+            assert_float_equal(texel(radiance, SIZE, x, y)[1], expected, 0.01 * expected);
+        }
+    assert_true(covered > SIZE * SIZE / 4);
+    free(radiance);
+    free(position);
+    fx_runner_free(&r);
+    assert_no_gl_errors(ctx);
+}
+
+/* A spot light straight down at height 2: at every covered pixel, I cos / (pi d^2) times the
+ * KHR_lights_punctual falloff ((cd - cos outer) / (cos inner - cos outer))^2 clamped to
+ * [0, 1], checked against the G-buffer's positions: inside the inner cone, on the ramp and
+ * outside the outer cone. The floor is lit (no occluder) although the spot's map is live. */
+static void
+test_direct_spot_light(void **state)
+{
+    cg_context *ctx = cg_test_gl_context(state);
+    const float I = 4.0f, inner = 0.3f, outer = 0.4f;
+    fx_scene s;
+    fx_scene_init(&s);
+    fx_add_quad(&s, 1, 0.0f, -2.0f, 2.0f, -2.0f, 2.0f, 0);
+    cg_light *l = fx_add_light(&s, CG_LIGHT_SPOT, I);
+    l->position[1] = 2.0f;
+    l->inner_cone_angle = inner;
+    l->outer_cone_angle = outer;
+    fx_scene_finish(&s);
+    cg_view view;
+    fx_view_look_at((float[3]){ 0, 6, 0.01f }, (float[3]){ 0, 0, 0 }, up_z, 60.0f, SIZE, SIZE, &view);
+    fx_runner r;
+    fx_run(&r, &s, &view, graph_with_filter("pcf3"), NULL);
+    assert_false(fg_pass_is_culled(fg_graph_find_pass(r.graph, "shadow")));
+    float *radiance = cg_test_read_texture(fg_graph_texture(r.graph, "direct.radiance"), 0, NULL, NULL, NULL);
+    float *position = cg_test_read_texture(fg_graph_texture(r.graph, "gbuf.position"), 0, NULL, NULL, NULL);
+    int inside = 0, ramp = 0, outside = 0;
+    for (int y = 0; y < SIZE; y++)
+        for (int x = 0; x < SIZE; x++) {
+            const float *p = texel(position, SIZE, x, y);
+            if (p[3] == 0.0f)
+                continue;
+            double dx = -p[0], dy = 2.0 - p[1], dz = -p[2];
+            double d2 = dx * dx + dy * dy + dz * dz, d = sqrt(d2);
+            double cd = dy / d; /* cosine to the spot axis, and to the floor normal */
+            double t = (cd - cos(outer)) / (cos(inner) - cos(outer));
+            t = t < 0.0 ? 0.0 : t > 1.0 ? 1.0 : t;
+            double expected = I * t * t * cd / (PI * d2);
+            inside += t == 1.0;
+            ramp += t > 0.0 && t < 1.0;
+            outside += t == 0.0;
+            assert_float_equal(texel(radiance, SIZE, x, y)[0], expected, 0.01 * expected + 1e-6);
+        }
+    assert_true(inside > 10 && ramp > 10 && outside > 10);
+    free(radiance);
+    free(position);
+    fx_runner_free(&r);
+    assert_no_gl_errors(ctx);
+}
+
+/* A test-only pass that fills its output `color` (RGBA16F, output size) with (r, g, b, 1). */
+static const fg_param_desc constant_params[] = {
+    { "r", FG_PARAM_FLOAT, 0.0, -100.0, 100.0, NULL, "red" },
+    { "g", FG_PARAM_FLOAT, 0.0, -100.0, 100.0, NULL, "green" },
+    { "b", FG_PARAM_FLOAT, 0.0, -100.0, 100.0, NULL, "blue" },
+};
+
+static bool
+constant_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
+{
+    (void)err;
+    const fg_frame *frame = fg_pass_frame(pass);
+    fg_resource_desc desc = { .kind = FG_TEXTURE_2D, .format = GL_RGBA16F, .width = frame->width,
+                              .height = frame->height, .depth = 1, .levels = 1 };
+    fg_declare_output(decl, "color", &desc, FG_ACCESS_TRANSFER);
+    return true;
+}
+
+static bool
+constant_execute(fg_pass *pass, void *state, cg_error *err)
+{
+    (void)state;
+    (void)err;
+    const float value[4] = { fg_param_float(pass, "r"), fg_param_float(pass, "g"), fg_param_float(pass, "b"), 1.0f };
+    glClearTexImage(fg_texture(pass, "color"), 0, GL_RGBA, GL_FLOAT, value);
+    return true;
+}
+
+static const fg_pass_type constant_type = {
+    .abi_version = FG_ABI_VERSION,
+    .name = "test_constant",
+    .doc = "Test pass: a constant colour.",
+    .params = constant_params,
+    .param_count = 3,
+    .declare = constant_declare,
+    .execute = constant_execute,
+};
+
+static float
+srgb_encode(float x)
+{
+    x = fminf(fmaxf(x, 0.0f), 1.0f);
+    return x <= 0.0031308f ? 12.92f * x : 1.055f * powf(x, 1.0f / 2.4f) - 0.055f;
+}
+
+/* hdr = direct + albedo x indirect + emissive; ldr = encode(tonemap(hdr x 2^EV)). */
+static void
+test_composite_sums_inputs(void **state)
+{
+    cg_context *ctx = cg_test_gl_context(state);
+    fx_scene s;
+    fx_scene_init(&s);
+    fx_add_quad(&s, 1, 0.0f, -1.0f, 1.0f, -1.0f, 1.0f, 0);
+    fx_scene_finish(&s);
+    cg_view view;
+    fx_view_look_at((float[3]){ 0, 3, 0.01f }, (float[3]){ 0, 0, 0 }, up_z, 60.0f, 8, 8, &view);
+    fx_runner r;
+    fx_run(&r, &s, &view,
+           "{ \"version\": 1, \"passes\": {"
+           "  \"d\": { \"type\": \"test_constant\", \"params\": { \"r\": 0.1, \"g\": 0.2, \"b\": 0.3 } },"
+           "  \"i\": { \"type\": \"test_constant\", \"params\": { \"r\": 1.0, \"g\": 2.0, \"b\": 4.0 } },"
+           "  \"a\": { \"type\": \"test_constant\", \"params\": { \"r\": 0.5, \"g\": 0.25, \"b\": 0.125 } },"
+           "  \"e\": { \"type\": \"test_constant\", \"params\": { \"r\": 0.0, \"g\": 0.05, \"b\": 0.5 } },"
+           "  \"final\": { \"type\": \"composite\", \"params\": { \"exposure\": 1, \"tonemap\": \"reinhard\" },"
+           "    \"inputs\": { \"direct\": \"d.color\", \"indirect\": \"i.color\", \"albedo\": \"a.color\","
+           "                  \"emissive\": \"e.color\" } },"
+           "  \"plain\": { \"type\": \"composite\", \"params\": { \"tonemap\": \"none\" },"
+           "    \"inputs\": { \"direct\": \"d.color\" } } },"
+           "  \"outputs\": [ \"final.hdr\", \"final.ldr\", \"plain.hdr\", \"plain.ldr\" ] }",
+           &constant_type);
+    float *hdr = cg_test_read_texture(fg_graph_texture(r.graph, "final.hdr"), 0, NULL, NULL, NULL);
+    float *ldr = cg_test_read_texture(fg_graph_texture(r.graph, "final.ldr"), 0, NULL, NULL, NULL);
+    float *plain_hdr = cg_test_read_texture(fg_graph_texture(r.graph, "plain.hdr"), 0, NULL, NULL, NULL);
+    float *plain_ldr = cg_test_read_texture(fg_graph_texture(r.graph, "plain.ldr"), 0, NULL, NULL, NULL);
+    const double expected[3] = { 0.1 + 0.5 * 1.0 + 0.0, 0.2 + 0.25 * 2.0 + 0.05, 0.3 + 0.125 * 4.0 + 0.5 };
+    const double direct[3] = { 0.1, 0.2, 0.3 };
+    double lum = 2.0 * (0.2126 * expected[0] + 0.7152 * expected[1] + 0.0722 * expected[2]);
+    for (int i = 0; i < 8 * 8; i++)
+        for (int c = 0; c < 3; c++) {
+            /* Inputs are half floats: 1e-3 relative. */
+            assert_float_equal(hdr[4 * i + c], expected[c], 1e-3 * expected[c]);
+            assert_float_equal(ldr[4 * i + c], srgb_encode((float)(2.0 * expected[c] / (1.0 + lum))), 1.0 / 255.0);
+            assert_float_equal(plain_hdr[4 * i + c], direct[c], 1e-3);
+            assert_float_equal(plain_ldr[4 * i + c], srgb_encode((float)direct[c]), 1.0 / 255.0);
+        }
+    free(hdr);
+    free(ldr);
+    free(plain_hdr);
+    free(plain_ldr);
+    fx_runner_free(&r);
+    assert_no_gl_errors(ctx);
+}
+
+/* The parameter tables drive validation: a shadow map for a light the scene lacks, or for
+ * a point light, is refused when the graph compiles. */
+static void
+test_shadow_map_refuses_bad_light(void **state)
+{
+    cg_context *ctx = cg_test_gl_context(state);
+    fx_scene s;
+    fx_scene_init(&s);
+    fx_add_quad(&s, 1, 0.0f, -1.0f, 1.0f, -1.0f, 1.0f, 0);
+    fx_add_light(&s, CG_LIGHT_POINT, 1.0f);
+    fx_scene_finish(&s);
+    cg_view view;
+    fx_view_look_at((float[3]){ 0, 3, 0.01f }, (float[3]){ 0, 0, 0 }, up_z, 60.0f, 8, 8, &view);
+    cg_error err = { 0 };
+    fg_registry *registry = fg_registry_create();
+    assert_cg_ok(cg_builtin_passes_register(registry, &err), &err);
+    const char *lights[] = { "0", "3" };
+    for (int i = 0; i < 2; i++) {
+        fg_graph *graph = fg_graph_create(registry);
+        assert_cg_ok(fg_graph_load_string(graph,
+            "{ \"version\": 1, \"passes\": { \"shadow\": { \"type\": \"shadow_map\" } },"
+            "  \"outputs\": [ \"shadow.depth\" ] }", "test graph", &err), &err);
+        assert_cg_ok(fg_graph_set_param(graph, "shadow", "light", lights[i], NULL, &err), &err);
+        fg_frame frame = { .scene = &s.scene, .view = view, .width = 8, .height = 8 };
+        fg_compile_options options = { 0 };
+        assert_cg_status(fg_graph_compile(graph, &frame, &options, &err), &err, CG_ERR_GRAPH_PARAM_RANGE);
+        fg_graph_destroy(graph);
+    }
+    fg_registry_destroy(registry);
+    assert_no_gl_errors(ctx);
+}
+
+int
+main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_shadow_map_depth_of_plane),
+        cmocka_unit_test(test_gbuffer_normal_albedo),
+        cmocka_unit_test(test_direct_directional_pcf3),
+        cmocka_unit_test(test_direct_directional_unfiltered),
+        cmocka_unit_test(test_direct_point_light),
+        cmocka_unit_test(test_direct_spot_light),
+        cmocka_unit_test(test_composite_sums_inputs),
+        cmocka_unit_test(test_shadow_map_refuses_bad_light),
+    };
+    return cmocka_run_group_tests(tests, cg_test_gl_setup, cg_test_gl_teardown);
+}

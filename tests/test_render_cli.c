@@ -1,0 +1,129 @@
+/* `conegraph render` as a user runs it: exit codes (0 done, 2 bad input before anything is
+ * written), the image, dumps and the JSON report on disk. Runs the built binary
+ * ($CONEGRAPH_EXE) on builtin:cornell at 32x32. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "cg/image.h"
+#include "test_support.h"
+
+static int
+run(const char *args)
+{
+    const char *exe = getenv("CONEGRAPH_EXE");
+    if (!exe)
+        fail_msg("CONEGRAPH_EXE is not set");
+    char cmd[8192];
+    snprintf(cmd, sizeof cmd, "'%s' render %s 2>/dev/null >/dev/null", exe, args);
+    int status = system(cmd);
+    if (status == -1 || !WIFEXITED(status))
+        fail_msg("could not run: %s", cmd);
+    return WEXITSTATUS(status);
+}
+
+static const char *
+tmp(const char *name)
+{
+    static char paths[8][4096];
+    static int next;
+    char *p = paths[next++ % 8];
+    snprintf(p, 4096, "%s/%s", cg_test_tmpdir(), name);
+    return p;
+}
+
+static bool
+exists(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0;
+}
+
+static void
+test_help_and_usage(void **state)
+{
+    (void)state;
+    assert_int_equal(run("--help"), 0);
+    assert_int_equal(run("builtin:cornell"), 2);                        /* no -o */
+    assert_int_equal(run("builtin:cornell -o x.jpg"), 2);               /* not .exr or .png */
+    assert_int_equal(run("builtin:cornell -o x.png --size 64"), 2);
+    assert_int_equal(run("builtin:cornell -o x.png --frames 0"), 2);
+    assert_int_equal(run("builtin:cornell -o x.png --context vulkan"), 2);
+    assert_int_equal(run("builtin:cornell -o x.png --bogus"), 2);
+    assert_int_equal(run("builtin:cornell -o x.png --dump gbuf.normal"), 2);
+}
+
+/* Every kind of bad input exits 2 and writes nothing. */
+static void
+test_bad_input_writes_nothing(void **state)
+{
+    (void)state;
+    const char *out = tmp("bad.png");
+    char args[8192];
+    const char *cases[] = {
+        "builtin:nosuchscene",
+        "builtin:cornell --set final.tonemap=filmic",
+        "builtin:cornell --set final.exposure=99",
+        "builtin:cornell --set nosuchpass.x=1",
+        "builtin:cornell --set shadow.resolution=1.5",
+        "builtin:cornell --graph no_such_graph.json",
+        "builtin:cornell --camera nosuchcamera",
+        "builtin:cornell --max-gpu-memory 1K",
+        "builtin:cornell --dump gbuf.nosuchoutput=x.exr",
+        "builtin:cornell --plugin /nonexistent/plugin.so",
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        snprintf(args, sizeof args, "%s --size 32x32 -o '%s'", cases[i], out);
+        int code = run(args);
+        if (code != 2)
+            fail_msg("'%s' exited with %d, expected 2", cases[i], code);
+        assert_false(exists(out));
+    }
+}
+
+static void
+test_render_png_exr_dump_report(void **state)
+{
+    (void)state;
+    const char *png = tmp("cornell.png"), *exr = tmp("cornell.exr");
+    const char *dump = tmp("normal.exr"), *report = tmp("report.json");
+    char args[8192];
+    snprintf(args, sizeof args,
+             "builtin:cornell --graph direct.json --size 32x24 --frames 2 -o '%s' --dump gbuf.normal='%s' "
+             "--report '%s' --set shadow.resolution=256", png, dump, report);
+    assert_int_equal(run(args), 0);
+    snprintf(args, sizeof args, "builtin:cornell --graph direct.json --size 32x24 -o '%s'", exr);
+    assert_int_equal(run(args), 0);
+
+    cg_error err = { 0 };
+    cg_image img;
+    assert_cg_ok(cg_image_read(png, &img, &err), &err);
+    assert_int_equal(img.width, 32);
+    assert_int_equal(img.height, 24);
+    cg_image_free(&img);
+    assert_cg_ok(cg_image_read(exr, &img, &err), &err);
+    assert_int_equal(img.width, 32);
+    double sum = 0.0;
+    for (int i = 0; i < 32 * 24 * 4; i++)
+        sum += img.rgba[i];
+    assert_true(sum > 0.0);
+    cg_image_free(&img);
+    assert_cg_ok(cg_image_read(dump, &img, &err), &err);
+    assert_int_equal(img.height, 24);
+    cg_image_free(&img);
+    assert_true(exists(report));
+}
+
+int
+main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_help_and_usage),
+        cmocka_unit_test(test_bad_input_writes_nothing),
+        cmocka_unit_test(test_render_png_exr_dump_report),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
