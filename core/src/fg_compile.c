@@ -708,7 +708,17 @@ build_resources(fg_graph *graph, cg_error *err)
             fg_input *in = &pass->inputs[i];
             if (in->source_output < 0 || in->absent)
                 continue;
-            in->resource = graph->passes[in->source_pass]->outputs[in->source_output].resource;
+            const fg_pass *source = graph->passes[in->source_pass];
+            const fg_connection *conn = &pass->connections[in->connection];
+            /* A previous-frame input was matched against the source's first declare round:
+             * the second must have stated the same output there. */
+            if (in->source_output >= source->output_count ||
+                (conn->source_output && strcmp(source->outputs[in->source_output].name, conn->source_output)))
+                return cg_fail(err, CG_ERR_PASS,
+                               "pass '%s' (type %s) declared different outputs in two declare rounds; "
+                               "declare() must depend only on parameters, scene and inputs",
+                               source->name, source->type->name);
+            in->resource = source->outputs[in->source_output].resource;
             fg_res *r = &graph->resources[in->resource];
             if (in->previous)
                 r->read_previous = true;
