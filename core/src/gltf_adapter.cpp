@@ -259,7 +259,13 @@ view_accessor(loader &L, int index, const std::string &what, std::initializer_li
     out->normalized = a.normalized;
     size_t elem = component_size(a.componentType) * (size_t)out->components;
     if (a.bufferView < 0) {
-        out->base = nullptr; // glTF 3.6.2.1: no bufferView means zeros
+        // glTF 3.6.2.1: no bufferView means zeros. Nothing bounds the count then, so a
+        // huge one is refused rather than allocated.
+        if (a.count > (1u << 24))
+            return fail(L, CG_ERR_GLTF_ACCESSOR,
+                        label + " has no bufferView and count " + std::to_string(a.count) +
+                            " (more than 16777216 implicit zero elements are refused)");
+        out->base = nullptr;
         out->stride = elem;
         return true;
     }

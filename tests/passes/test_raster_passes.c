@@ -200,11 +200,46 @@ test_direct_directional_unfiltered(void **state)
     run_directional(state, "none");
 }
 
-/* A point light of intensity I at height h over the floor: radiance I cos / (pi d^2) at every
- * covered pixel (cos = h/d), checked against the G-buffer's own positions. The scene has no
- * directional or spot light, so shadow_map has nothing to do and direct_light runs unshadowed. */
 static void
-test_direct_point_light(void **state)
+test_direct_directional_pcf5(void **state)
+{
+    run_directional(state, "pcf5");
+}
+
+/* A spot whose cone one perspective map cannot cover (outer angle 1.5 rad): shadow_map has
+ * nothing to do, and direct_light still lights the floor, unshadowed. */
+static void
+test_wide_spot_is_unshadowed(void **state)
+{
+    cg_context *ctx = cg_test_gl_context(state);
+    fx_scene s;
+    floor_and_occluder(&s);
+    cg_light *l = fx_add_light(&s, CG_LIGHT_SPOT, 4.0f);
+    l->position[1] = 2.0f;
+    l->inner_cone_angle = 1.2f;
+    l->outer_cone_angle = 1.5f;
+    fx_scene_finish(&s);
+    cg_view view;
+    fx_view_look_at((float[3]){ 3, 4, 0 }, (float[3]){ 0, 0, 0 }, up_y, 60.0f, SIZE, SIZE, &view);
+    fx_runner r;
+    fx_run(&r, &s, &view, graph_with_filter("pcf3"), NULL);
+    assert_true(fg_pass_is_culled(fg_graph_find_pass(r.graph, "shadow")));
+    float *radiance = cg_test_read_texture(fg_graph_texture(r.graph, "direct.radiance"), 0, NULL, NULL, NULL);
+    int x, y;
+    /* Under the occluder: lit, since nothing shadows this light (I cos / (pi d^2), d = 2). */
+    fx_pixel_of(&view, (float[3]){ 0.0f, 0.0f, 0.0f }, &x, &y);
+    assert_float_equal(texel(radiance, SIZE, x, y)[0], 4.0 / (PI * 4.0), 0.01 * 4.0 / (PI * 4.0));
+    free(radiance);
+    fx_runner_free(&r);
+    assert_no_gl_errors(ctx);
+}
+
+/* A point light of intensity I at height h over the floor: radiance I cos / (pi d^2) at every
+ * covered pixel (cos = h/d), checked against the G-buffer's own positions; with a range, times
+ * the window clamp(1 - (d/range)^4, 0, 1)^2. The scene has no directional or spot light, so
+ * shadow_map has nothing to do and direct_light runs unshadowed. */
+static void
+run_point_light(void **state, float range)
 {
     cg_context *ctx = cg_test_gl_context(state);
     const float I = 5.0f;
@@ -214,6 +249,7 @@ test_direct_point_light(void **state)
     fx_add_quad(&s, 1, 0.0f, -2.0f, 2.0f, -2.0f, 2.0f, 0);
     cg_light *l = fx_add_light(&s, CG_LIGHT_POINT, I);
     memcpy(l->position, light_pos, sizeof light_pos);
+    l->range = range;
     fx_scene_finish(&s);
     cg_view view;
     fx_view_look_at((float[3]){ 0, 6, 0.01f }, (float[3]){ 0, 0, 0 }, up_z, 60.0f, SIZE, SIZE, &view);
@@ -222,7 +258,7 @@ test_direct_point_light(void **state)
     assert_true(fg_pass_is_culled(fg_graph_find_pass(r.graph, "shadow")));
     float *radiance = cg_test_read_texture(fg_graph_texture(r.graph, "direct.radiance"), 0, NULL, NULL, NULL);
     float *position = cg_test_read_texture(fg_graph_texture(r.graph, "gbuf.position"), 0, NULL, NULL, NULL);
-    int covered = 0;
+    int covered = 0, beyond = 0;
     for (int y = 0; y < SIZE; y++)
         for (int x = 0; x < SIZE; x++) {
             const float *p = texel(position, SIZE, x, y);
@@ -232,13 +268,34 @@ test_direct_point_light(void **state)
             double dx = light_pos[0] - p[0], dy = light_pos[1] - p[1], dz = light_pos[2] - p[2];
             double d2 = dx * dx + dy * dy + dz * dz;
             double expected = I * (dy / sqrt(d2)) / (PI * d2);
-            assert_float_equal(texel(radiance, SIZE, x, y)[1], expected, 0.01 * expected);
+            if (range > 0.0f) {
+                double q = d2 / ((double)range * range);
+                double window = 1.0 - q * q;
+                window = window < 0.0 ? 0.0 : window;
+                expected *= window * window;
+                beyond += window == 0.0;
+            }
+            assert_float_equal(texel(radiance, SIZE, x, y)[1], expected, 0.01 * expected + 1e-6);
         }
     assert_true(covered > SIZE * SIZE / 4);
+    if (range > 0.0f)
+        assert_true(beyond > 10);
     free(radiance);
     free(position);
     fx_runner_free(&r);
     assert_no_gl_errors(ctx);
+}
+
+static void
+test_direct_point_light(void **state)
+{
+    run_point_light(state, 0.0f);
+}
+
+static void
+test_direct_point_light_range(void **state)
+{
+    run_point_light(state, 3.0f);
 }
 
 /* A spot light straight down at height 2: at every covered pixel, I cos / (pi d^2) times the
@@ -422,7 +479,10 @@ main(void)
         cmocka_unit_test(test_gbuffer_normal_albedo),
         cmocka_unit_test(test_direct_directional_pcf3),
         cmocka_unit_test(test_direct_directional_unfiltered),
+        cmocka_unit_test(test_direct_directional_pcf5),
+        cmocka_unit_test(test_wide_spot_is_unshadowed),
         cmocka_unit_test(test_direct_point_light),
+        cmocka_unit_test(test_direct_point_light_range),
         cmocka_unit_test(test_direct_spot_light),
         cmocka_unit_test(test_composite_sums_inputs),
         cmocka_unit_test(test_shadow_map_refuses_bad_light),

@@ -1,0 +1,129 @@
+/* Diffuse cone sets; see cg/cone.h and docs/vct.md for the weight derivation. */
+#include "cg/cone.h"
+
+#include <math.h>
+#include <stddef.h>
+
+static const int cone_set_sizes[] = {1, 6, 9, 16};
+
+/* The widest automatic cone: a hemisphere-wide cone (1-cone set) would have an infinite
+ * diameter, so its half-angle is capped here; the gather's aperture parameter overrides. */
+#define CONE_MAX_AUTO_HALF_ANGLE (60.0 * M_PI / 180.0)
+
+/* One ring of a set: `count` cones at polar angle `theta`, owning the band [lo, hi]. */
+typedef struct cone_ring {
+    int count;
+    double theta, lo, hi;
+    double azimuth_offset;  /* radians */
+} cone_ring;
+
+const int *
+cg_cone_set_sizes(int *count)
+{
+    *count = (int)(sizeof cone_set_sizes / sizeof cone_set_sizes[0]);
+    return cone_set_sizes;
+}
+
+bool
+cg_cone_set_valid_size(int count)
+{
+    for (size_t i = 0; i < sizeof cone_set_sizes / sizeof cone_set_sizes[0]; i++)
+        if (cone_set_sizes[i] == count)
+            return true;
+    return false;
+}
+
+static double
+deg(double d)
+{
+    return d * M_PI / 180.0;
+}
+
+/* Polar angle whose sin^2 is s: the bands of the 16-cone set are chosen by their cosine weight. */
+static double
+polar_of_sin2(double s)
+{
+    return asin(sqrt(s));
+}
+
+static int
+rings_for(int count, cone_ring rings[3])
+{
+    switch (count) {
+    case 1:
+        rings[0] = (cone_ring){1, 0.0, 0.0, deg(90.0), 0.0};
+        return 1;
+    case 6:
+        /* Crassin et al. 2011: one cone along the normal, five at 60 deg; the cell boundary
+         * is the mid polar angle, 30 deg, which yields their weights pi/4 and 3pi/20 (/pi). */
+        rings[0] = (cone_ring){1, 0.0, 0.0, deg(30.0), 0.0};
+        rings[1] = (cone_ring){5, deg(60.0), deg(30.0), deg(90.0), 0.0};
+        return 2;
+    case 9:
+        /* VCT paper 3.2.1: one forward cone and eight side cones rotated 45 deg from the
+         * normal in 45 deg azimuth increments; boundary at the mid polar angle, 22.5 deg. */
+        rings[0] = (cone_ring){1, 0.0, 0.0, deg(22.5), 0.0};
+        rings[1] = (cone_ring){8, deg(45.0), deg(22.5), deg(90.0), 0.0};
+        return 2;
+    case 16:
+        /* 1 + 5 + 10 with bands of equal cosine weight per cone: sin^2 of the band edges is
+         * 1/16 and 6/16; each ring sits at its band's cosine-weighted median. */
+        rings[0] = (cone_ring){1, 0.0, 0.0, polar_of_sin2(1.0 / 16.0), 0.0};
+        rings[1] = (cone_ring){5, polar_of_sin2(3.5 / 16.0), polar_of_sin2(1.0 / 16.0),
+                               polar_of_sin2(6.0 / 16.0), 0.0};
+        rings[2] = (cone_ring){10, polar_of_sin2(11.0 / 16.0), polar_of_sin2(6.0 / 16.0),
+                               deg(90.0), deg(18.0)};
+        return 3;
+    default:
+        return 0;
+    }
+}
+
+bool
+cg_cone_set_make(int count, cg_cone_set *out)
+{
+    cone_ring rings[3];
+    int ring_count = rings_for(count, rings);
+    if (ring_count == 0)
+        return false;
+    out->count = 0;
+    for (int r = 0; r < ring_count; r++) {
+        const cone_ring *ring = &rings[r];
+        double s_lo = sin(ring->lo), s_hi = sin(ring->hi);
+        /* (1/pi) * integral_{lo}^{hi} integral_{sector} cos(t) sin(t) dphi dt
+         *   = (sin^2 hi - sin^2 lo) / count */
+        double weight = (s_hi * s_hi - s_lo * s_lo) / ring->count;
+        /* Solid angle of the cell: 2 pi (cos lo - cos hi) / count; the cone with the same
+         * solid angle 2 pi (1 - cos a) has cos a = 1 - (cos lo - cos hi) / count. */
+        double half = acos(1.0 - (cos(ring->lo) - cos(ring->hi)) / ring->count);
+        if (half > CONE_MAX_AUTO_HALF_ANGLE)
+            half = CONE_MAX_AUTO_HALF_ANGLE;
+        for (int i = 0; i < ring->count; i++) {
+            double phi = ring->azimuth_offset + 2.0 * M_PI * i / ring->count;
+            cg_cone *c = &out->cones[out->count++];
+            c->direction[0] = (float)(sin(ring->theta) * cos(phi));
+            c->direction[1] = (float)(sin(ring->theta) * sin(phi));
+            c->direction[2] = (float)cos(ring->theta);
+            c->weight = (float)weight;
+            c->half_angle = (float)half;
+            c->cell_lo = (float)ring->lo;
+            c->cell_hi = (float)ring->hi;
+        }
+    }
+    return true;
+}
+
+void
+cg_cone_frame(const float n[3], float t[3], float b[3])
+{
+    /* Duff et al. 2017, listing 3 (sign chosen as in shaders/common/cone_trace.glsl). */
+    float sign = n[2] >= 0.0f ? 1.0f : -1.0f;
+    float a = -1.0f / (sign + n[2]);
+    float bb = n[0] * n[1] * a;
+    t[0] = 1.0f + sign * n[0] * n[0] * a;
+    t[1] = sign * bb;
+    t[2] = -sign * n[0];
+    b[0] = bb;
+    b[1] = sign + n[1] * n[1] * a;
+    b[2] = -n[1];
+}

@@ -1,0 +1,211 @@
+/* passes/cone_gather: indirect light by voxel cone tracing through a mipped 3D lightmap
+ * (VCT paper 3.2; hybrid eq. 3-4 and 8 for the weights and the level of detail).
+ *
+ * Inputs: position, normal (G-buffer), volume (a mip3d'd voxelize radiance), region
+ * (voxelize's block). Without a volume the pass has nothing to do and composite adapts.
+ * Outputs
+ *   radiance    RGBA16F: rgb = sum_k W_k L_k, the incident radiance integral E_i/pi that
+ *               composite multiplies by the albedo; a = ambient visibility (AO).
+ *   specular    RGBA16F (param specular): radiance along the mirror cone, a = its opacity.
+ *   visibility  R16F (param shadow_cone): transmittance of a cone towards one light.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "cg/cone.h"
+#include "cg/fg.h"
+#include "cg/gpu_scene.h"
+#include "cg/shader.h"
+
+#define REGION_BYTES 32
+
+static const fg_param_desc cone_gather_params[] = {
+    {"cones", FG_PARAM_INT, 6, 1, 16, NULL,
+     "diffuse cones: 1, 6 (Crassin et al.), 9 (VCT paper 3.2.1) or 16; weights integrate the cosine lobe to 1"},
+    {"aperture", FG_PARAM_FLOAT, 0, 0, 150, NULL,
+     "full apex angle of the diffuse cones in degrees; 0: per cone, the cone with its cell's solid angle"},
+    {"step", FG_PARAM_FLOAT, 0.5, 0.05, 4, NULL, "sample spacing as a fraction of the cone diameter"},
+    {"start_offset", FG_PARAM_FLOAT, 1.5, 0, 16, NULL,
+     "voxels the cone origin is moved along the normal, off the surface's own voxels"},
+    {"max_distance", FG_PARAM_FLOAT, 0, 0, 1e9, NULL, "metres a cone travels at most; 0: the volume's diagonal"},
+    {"specular", FG_PARAM_BOOL, 0, 0, 1, NULL, "also trace a mirror cone (output 'specular', VCT paper 3.2.2)"},
+    {"roughness", FG_PARAM_FLOAT, 0.3, 0, 1, NULL,
+     "specular cone: its half-angle has tangent roughness^2 (the GGX alpha), at least 0.01"},
+    {"shadow_cone", FG_PARAM_BOOL, 0, 0, 1, NULL,
+     "also trace a cone towards a light (output 'visibility', VCT paper 3.2.3)"},
+    {"shadow_light", FG_PARAM_INT, 0, 0, 65535, NULL, "shadow cone: index of the scene light"},
+    {"shadow_aperture", FG_PARAM_FLOAT, 10, 0.1, 90, NULL, "shadow cone: full apex angle in degrees"},
+};
+
+typedef struct cone_gather_state {
+    GLuint program;
+    GLuint sampler;
+    cg_cone_set set;
+    bool specular, shadow_cone;
+} cone_gather_state;
+
+static bool
+cone_gather_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
+{
+    int cones = fg_param_int(pass, "cones");
+    if (!cg_cone_set_valid_size(cones))
+        return cg_fail(err, CG_ERR_GRAPH_PARAM_RANGE,
+                       "pass '%s': cones = %d; expected 1, 6, 9 or 16", fg_pass_name(pass), cones);
+    const fg_resource_desc *position =
+        fg_declare_input(decl, "position", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, true);
+    fg_declare_input(decl, "normal", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, true);
+    const fg_resource_desc *volume = fg_declare_input(decl, "volume", FG_TEXTURE_3D, FG_ACCESS_SAMPLED, false);
+    const fg_resource_desc *region = fg_declare_input(decl, "region", FG_BUFFER, FG_ACCESS_UNIFORM, false);
+    if (!volume) {
+        fg_declare_nothing_to_do(decl, "no 3D lightmap (input 'volume' absent)");
+        return true;
+    }
+    if (!region)
+        return cg_fail(err, CG_ERR_GRAPH_MISSING_INPUT,
+                       "pass '%s': input 'volume' needs input 'region' (a voxelize pass's output 'region')",
+                       fg_pass_name(pass));
+    if (region->buffer_bytes < REGION_BYTES)
+        return cg_fail(err, CG_ERR_GRAPH_INCOMPATIBLE,
+                       "pass '%s': input 'region' holds %zu bytes; a voxelize 'region' holds %d",
+                       fg_pass_name(pass), region->buffer_bytes, REGION_BYTES);
+    if (!position)
+        return true;
+    fg_resource_desc out = {
+        .kind = FG_TEXTURE_2D, .format = GL_RGBA16F,
+        .width = position->width, .height = position->height, .depth = 1, .levels = 1,
+    };
+    fg_declare_output(decl, "radiance", &out, FG_ACCESS_IMAGE_STORE);
+    if (fg_param_bool(pass, "specular"))
+        fg_declare_output(decl, "specular", &out, FG_ACCESS_IMAGE_STORE);
+    if (fg_param_bool(pass, "shadow_cone")) {
+        out.format = GL_R16F;
+        fg_declare_output(decl, "visibility", &out, FG_ACCESS_IMAGE_STORE);
+    }
+    return true;
+}
+
+static bool
+cone_gather_prepare(fg_pass *pass, void **state, cg_error *err)
+{
+    cone_gather_state *s = calloc(1, sizeof *s);
+    if (!s)
+        return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "pass '%s': out of memory", fg_pass_name(pass));
+    if (!cg_cone_set_make(fg_param_int(pass, "cones"), &s->set)) {
+        free(s);
+        return cg_fail(err, CG_ERR_GRAPH_PARAM_RANGE, "pass '%s': no cone set of %d cones",
+                       fg_pass_name(pass), fg_param_int(pass, "cones"));
+    }
+    s->specular = fg_param_bool(pass, "specular");
+    s->shadow_cone = fg_param_bool(pass, "shadow_cone");
+    char defines[96];
+    snprintf(defines, sizeof defines, "%s%s", s->specular ? "#define SPECULAR\n" : "",
+             s->shadow_cone ? "#define SHADOW_CONE\n" : "");
+    if (!cg_program_compute("cone_gather/cone_gather.comp", defines, &s->program, err)) {
+        free(s);
+        return false;
+    }
+    /* Trilinear within and between levels; outside the volume reads as empty space. */
+    glCreateSamplers(1, &s->sampler);
+    glSamplerParameteri(s->sampler, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    glSamplerParameteri(s->sampler, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glSamplerParameteri(s->sampler, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_BORDER);
+    glSamplerParameteri(s->sampler, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_BORDER);
+    glSamplerParameteri(s->sampler, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_BORDER);
+    const float border[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    glSamplerParameterfv(s->sampler, GL_TEXTURE_BORDER_COLOR, border);
+    *state = s;
+    return true;
+}
+
+static double
+tan_half_degrees(double full_degrees)
+{
+    return tan(0.5 * full_degrees * M_PI / 180.0);
+}
+
+static bool
+cone_gather_execute(fg_pass *pass, void *state, cg_error *err)
+{
+    (void)err;
+    cone_gather_state *s = state;
+    const fg_frame *frame = fg_pass_frame(pass);
+    const fg_resource_desc *out = fg_resource(pass, "radiance");
+    double aperture = fg_param_float(pass, "aperture");
+
+    glUseProgram(s->program);
+    float cones[CG_CONE_MAX][4], tan_half[CG_CONE_MAX];
+    for (int k = 0; k < s->set.count; k++) {
+        const cg_cone *c = &s->set.cones[k];
+        cones[k][0] = c->direction[0];
+        cones[k][1] = c->direction[1];
+        cones[k][2] = c->direction[2];
+        cones[k][3] = c->weight;
+        tan_half[k] = (float)(aperture > 0.0 ? tan_half_degrees(aperture) : tan(c->half_angle));
+    }
+    glUniform4fv(0, s->set.count, &cones[0][0]);
+    glUniform1fv(16, s->set.count, tan_half);
+    glUniform1i(32, s->set.count);
+    glUniform1f(33, fg_param_float(pass, "step"));
+    glUniform1f(34, fg_param_float(pass, "start_offset"));
+    glUniform1f(35, fg_param_float(pass, "max_distance"));
+    glUniform3fv(36, 1, frame->view.position);
+    double roughness = fg_param_float(pass, "roughness");
+    glUniform1f(37, (float)fmax(roughness * roughness, 0.01));
+    glUniform1i(38, fg_param_int(pass, "shadow_light"));
+    glUniform1f(39, (float)tan_half_degrees(fg_param_float(pass, "shadow_aperture")));
+
+    if (frame->gpu_scene)
+        cg_gpu_scene_bind_lights(frame->gpu_scene);
+    glBindBufferBase(GL_UNIFORM_BUFFER, 3 /* CG_BINDING_VOLUME, common/volume.glsl */,
+                     fg_buffer(pass, "region"));
+    glBindTextureUnit(0, fg_texture(pass, "volume"));
+    glBindSampler(0, s->sampler);
+    glBindTextureUnit(1, fg_texture(pass, "position"));
+    glBindTextureUnit(2, fg_texture(pass, "normal"));
+    glBindImageTexture(0, fg_texture(pass, "radiance"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    if (s->specular)
+        glBindImageTexture(1, fg_texture(pass, "specular"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    if (s->shadow_cone)
+        glBindImageTexture(2, fg_texture(pass, "visibility"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
+    glDispatchCompute((GLuint)(out->width + 7) / 8, (GLuint)(out->height + 7) / 8, 1);
+    glBindSampler(0, 0);
+    glUseProgram(0);
+    return true;
+}
+
+static void
+cone_gather_destroy(void *state)
+{
+    cone_gather_state *s = state;
+    if (!s)
+        return;
+    glDeleteProgram(s->program);
+    glDeleteSamplers(1, &s->sampler);
+    free(s);
+}
+
+static const fg_pass_type cone_gather_type = {
+    .abi_version = FG_ABI_VERSION,
+    .name = "cone_gather",
+    .doc = "Indirect diffuse light by voxel cone tracing (VCT paper 3.2.1): 1, 6, 9 or 16 cones "
+           "around the normal, weighted by their share of the cosine lobe (hybrid eq. 3-4), each "
+           "accumulated front to back through the mip level of its diameter (hybrid eq. 8). "
+           "Output: the incident radiance integral E/pi (composite multiplies by the albedo) and "
+           "ambient visibility; optional specular cone (3.2.2) and shadow cone (3.2.3).",
+    .params = cone_gather_params,
+    .param_count = (int)(sizeof cone_gather_params / sizeof cone_gather_params[0]),
+    .declare = cone_gather_declare,
+    .prepare = cone_gather_prepare,
+    .execute = cone_gather_execute,
+    .destroy = cone_gather_destroy,
+};
+
+bool
+cg_pass_register_cone_gather(fg_registry *registry, uint32_t host_abi, cg_error *err)
+{
+    if (host_abi != FG_ABI_VERSION)
+        return cg_fail(err, CG_ERR_PLUGIN_ABI, "pass cone_gather: built for frame-graph ABI %u, host has %u",
+                       FG_ABI_VERSION, host_abi);
+    return fg_registry_add(registry, &cone_gather_type, err);
+}

@@ -1,0 +1,475 @@
+/* passes/voxelize: the scene's direct light voxelized into a 3D lightmap (VCT paper 3.1).
+ *
+ * Outputs
+ *   radiance      3D, resolution^3, RGBA16F or RGBA8, full mip chain declared (mip3d fills
+ *                 levels 1..): premultiplied outgoing diffuse radiance (direct light, shadowed
+ *                 through the optional shadow map, plus emission) and opacity in alpha.
+ *   region        32-byte std140 block for shaders/common/volume.glsl: where the volume lies
+ *                 and how its values decode (consumers bind it at CG_BINDING_VOLUME).
+ *   accumulation  3D R32UI, resolution^2 x 4 resolution: the fixed-point sums and counts of
+ *                 the fragments (shaders/voxelize/voxelize.frag), transient working memory,
+ *                 declared so that the memory report counts it.
+ * Inputs (optional, together): shadow (depth) and shadow_matrix (buffer) of a shadow_map pass.
+ *
+ * Cleared and rebuilt every frame, so the lightmap follows moving lights and geometry.
+ */
+#include <float.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cg/fg.h"
+#include "cg/gpu_scene.h"
+#include "cg/shader.h"
+
+#define SHADOW_BLOCK_BYTES 192
+#define REGION_BYTES 32
+/* Fragments of the brightest radiance that one voxel can sum without overflowing 32 bits. */
+#define FRAGMENT_HEADROOM 1024.0
+
+enum { FORMAT_RGBA8, FORMAT_RGBA16F };
+enum { REGION_MESHES, REGION_SCENE, REGION_EXPLICIT };
+
+static const fg_param_desc voxelize_params[] = {
+    {"resolution", FG_PARAM_INT, 128, 16, 512, NULL,
+     "voxels per edge of the cubic volume at level 0 (a power of two)"},
+    {"format", FG_PARAM_ENUM, FORMAT_RGBA16F, 0, 0, "rgba8|rgba16f",
+     "texel format: rgba8 as in the VCT paper (radiance scaled by a per-frame bound) or rgba16f"},
+    {"meshes", FG_PARAM_ENUM, CG_MESHES_ALL, 0, 0, "all|complex|heightfield",
+     "which meshes to voxelize (the hybrid method voxelizes only complex meshes)"},
+    {"region", FG_PARAM_ENUM, REGION_MESHES, 0, 0, "meshes|scene|explicit",
+     "volume bounds: the voxelized meshes' bounds, the whole scene's, or min_*/max_*"},
+    {"min_x", FG_PARAM_FLOAT, -1, -1e9, 1e9, NULL, "explicit region: minimum x (m)"},
+    {"min_y", FG_PARAM_FLOAT, -1, -1e9, 1e9, NULL, "explicit region: minimum y (m)"},
+    {"min_z", FG_PARAM_FLOAT, -1, -1e9, 1e9, NULL, "explicit region: minimum z (m)"},
+    {"max_x", FG_PARAM_FLOAT, 1, -1e9, 1e9, NULL, "explicit region: maximum x (m)"},
+    {"max_y", FG_PARAM_FLOAT, 1, -1e9, 1e9, NULL, "explicit region: maximum y (m)"},
+    {"max_z", FG_PARAM_FLOAT, 1, -1e9, 1e9, NULL, "explicit region: maximum z (m)"},
+    {"padding", FG_PARAM_FLOAT, 1, 0, 16, NULL,
+     "empty voxels added on each side of the bounds, so that surfaces on them lie inside"},
+    {"conservative", FG_PARAM_BOOL, 1, 0, 1, NULL,
+     "every voxel a triangle touches (dilation + exact overlap test); false: one voxel per "
+     "covered pixel centre, as plain rasterization gives (leaves holes)"},
+};
+
+typedef struct voxelize_state {
+    GLuint program;
+    GLuint resolve;
+    GLuint fbo;
+    GLuint no_shadow_block;
+    GLuint no_shadow_map;
+    GLenum format;
+    /* Nearest-surface distance per point/spot light, recomputed when a light moves. */
+    float *light_positions;
+    double *light_nearest;
+    int light_cache_count;
+} voxelize_state;
+
+/* Where the volume lies: a cube. */
+typedef struct voxel_region {
+    double origin[3];
+    double voxel;
+} voxel_region;
+
+static bool
+mesh_passes(cg_mesh_kind kind, cg_mesh_filter filter)
+{
+    return filter == CG_MESHES_ALL || (filter == CG_MESHES_COMPLEX && kind == CG_MESH_COMPLEX) ||
+           (filter == CG_MESHES_HEIGHTFIELD && kind == CG_MESH_HEIGHTFIELD);
+}
+
+static void
+transform_point(const float m[16], const float p[3], double out[3])
+{
+    for (int r = 0; r < 3; r++)
+        out[r] = m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r];
+}
+
+/* World bounds of the instances whose mesh passes the filter; false when there is none. */
+static bool
+filtered_bounds(const cg_scene *scene, cg_mesh_filter filter, double lo[3], double hi[3])
+{
+    bool any = false;
+    for (int k = 0; k < 3; k++)
+        lo[k] = DBL_MAX, hi[k] = -DBL_MAX;
+    for (int i = 0; i < scene->instance_count; i++) {
+        const cg_instance *inst = &scene->instances[i];
+        const cg_mesh *mesh = &scene->meshes[inst->mesh];
+        if (!mesh_passes(mesh->kind, filter) || mesh->index_count == 0)
+            continue;
+        for (int c = 0; c < 8; c++) {
+            float corner[3] = {
+                (c & 1) ? mesh->bounds_max[0] : mesh->bounds_min[0],
+                (c & 2) ? mesh->bounds_max[1] : mesh->bounds_min[1],
+                (c & 4) ? mesh->bounds_max[2] : mesh->bounds_min[2],
+            };
+            double w[3];
+            transform_point(inst->world, corner, w);
+            for (int k = 0; k < 3; k++) {
+                lo[k] = fmin(lo[k], w[k]);
+                hi[k] = fmax(hi[k], w[k]);
+            }
+        }
+        any = true;
+    }
+    return any;
+}
+
+/* The cube the volume covers. Fails (bad parameters) or returns false in *has (nothing to voxelize). */
+static bool
+voxelize_region(const fg_pass *pass, const cg_scene *scene, voxel_region *out, bool *has, cg_error *err)
+{
+    int mode = fg_param_enum(pass, "region");
+    cg_mesh_filter filter = (cg_mesh_filter)fg_param_enum(pass, "meshes");
+    int resolution = fg_param_int(pass, "resolution");
+    double padding = fg_param_float(pass, "padding");
+    double lo[3], hi[3];
+    *has = filtered_bounds(scene, filter, lo, hi);
+    if (mode == REGION_SCENE) {
+        for (int k = 0; k < 3; k++)
+            lo[k] = scene->bounds_min[k], hi[k] = scene->bounds_max[k];
+    } else if (mode == REGION_EXPLICIT) {
+        static const char *const mins[3] = {"min_x", "min_y", "min_z"};
+        static const char *const maxs[3] = {"max_x", "max_y", "max_z"};
+        for (int k = 0; k < 3; k++) {
+            lo[k] = fg_param_float(pass, mins[k]);
+            hi[k] = fg_param_float(pass, maxs[k]);
+            if (!(hi[k] > lo[k]))
+                return cg_fail(err, CG_ERR_GRAPH_PARAM_RANGE,
+                               "pass '%s': explicit region needs %s > %s (got %g and %g)",
+                               fg_pass_name(pass), maxs[k], mins[k], hi[k], lo[k]);
+        }
+    }
+    if (!*has)
+        return true;
+    double extent = fmax(hi[0] - lo[0], fmax(hi[1] - lo[1], hi[2] - lo[2]));
+    if (!(extent > 0.0) || !isfinite(extent)) {
+        *has = false;   /* all geometry in one point: no surface to voxelize */
+        return true;
+    }
+    /* Cubic voxels (VCT paper 3.1: the texture must be cubic); the padding is in voxels. */
+    double side = extent * resolution / (resolution - 2.0 * padding);
+    out->voxel = side / resolution;
+    for (int k = 0; k < 3; k++)
+        out->origin[k] = 0.5 * (lo[k] + hi[k]) - 0.5 * side;
+    return true;
+}
+
+static bool
+is_power_of_two(int v)
+{
+    return v > 0 && (v & (v - 1)) == 0;
+}
+
+static bool
+voxelize_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
+{
+    const fg_frame *frame = fg_pass_frame(pass);
+    int resolution = fg_param_int(pass, "resolution");
+    if (!is_power_of_two(resolution))
+        return cg_fail(err, CG_ERR_GRAPH_PARAM_RANGE,
+                       "pass '%s': resolution %d is not a power of two (16, 32, ..., 512)",
+                       fg_pass_name(pass), resolution);
+    if (2.0 * fg_param_float(pass, "padding") >= resolution / 2.0)
+        return cg_fail(err, CG_ERR_GRAPH_PARAM_RANGE,
+                       "pass '%s': padding %g voxels leaves less than half the volume for the scene",
+                       fg_pass_name(pass), fg_param_float(pass, "padding"));
+    const fg_resource_desc *shadow = fg_declare_input(decl, "shadow", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, false);
+    const fg_resource_desc *matrix = fg_declare_input(decl, "shadow_matrix", FG_BUFFER, FG_ACCESS_UNIFORM, false);
+    if (!shadow != !matrix)
+        return cg_fail(err, CG_ERR_GRAPH_MISSING_INPUT,
+                       "pass '%s': inputs 'shadow' and 'shadow_matrix' go together (a shadow_map "
+                       "pass's outputs 'depth' and 'matrix'); only one is present", fg_pass_name(pass));
+    if (shadow && shadow->format != GL_DEPTH_COMPONENT32F)
+        return cg_fail(err, CG_ERR_GRAPH_INCOMPATIBLE,
+                       "pass '%s': input 'shadow' must be a GL_DEPTH_COMPONENT32F shadow map", fg_pass_name(pass));
+    if (matrix && matrix->buffer_bytes < SHADOW_BLOCK_BYTES)
+        return cg_fail(err, CG_ERR_GRAPH_INCOMPATIBLE,
+                       "pass '%s': input 'shadow_matrix' holds %zu bytes, a shadow_map 'matrix' %d",
+                       fg_pass_name(pass), matrix->buffer_bytes, SHADOW_BLOCK_BYTES);
+
+    voxel_region region;
+    bool has = false;
+    if (!voxelize_region(pass, frame->scene, &region, &has, err))
+        return false;
+    if (!has) {
+        fg_declare_nothing_to_do(decl, "no mesh passes the 'meshes' filter (or all are degenerate)");
+        return true;
+    }
+    fg_resource_desc radiance = {
+        .kind = FG_TEXTURE_3D,
+        .format = fg_param_enum(pass, "format") == FORMAT_RGBA8 ? GL_RGBA8 : GL_RGBA16F,
+        .width = resolution, .height = resolution, .depth = resolution,
+        .levels = fg_mip_levels(resolution, resolution, resolution),
+        .gi = true,
+    };
+    fg_declare_output(decl, "radiance", &radiance, FG_ACCESS_IMAGE_STORE);
+    fg_resource_desc block = {.kind = FG_BUFFER, .depth = 1, .levels = 1, .buffer_bytes = REGION_BYTES};
+    fg_declare_output(decl, "region", &block, FG_ACCESS_TRANSFER);
+    fg_resource_desc accumulation = {
+        .kind = FG_TEXTURE_3D, .format = GL_R32UI,
+        .width = resolution, .height = resolution, .depth = 4 * resolution, .levels = 1,
+        .gi = true,
+    };
+    fg_declare_output(decl, "accumulation", &accumulation, FG_ACCESS_IMAGE_STORE | FG_ACCESS_TRANSFER);
+    return true;
+}
+
+static bool
+voxelize_prepare(fg_pass *pass, void **state, cg_error *err)
+{
+    voxelize_state *s = calloc(1, sizeof *s);
+    if (!s)
+        return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "pass '%s': out of memory", fg_pass_name(pass));
+    s->format = fg_resource(pass, "radiance")->format;
+    char defines[64];
+    snprintf(defines, sizeof defines, "#define FORMAT %s\n", s->format == GL_RGBA8 ? "rgba8" : "rgba16f");
+    if (!cg_program_graphics("voxelize/voxelize.vert", "voxelize/voxelize.geom", "voxelize/voxelize.frag",
+                             NULL, &s->program, err) ||
+        !cg_program_compute("voxelize/resolve.comp", defines, &s->resolve, err)) {
+        glDeleteProgram(s->program);
+        free(s);
+        return false;
+    }
+    glCreateFramebuffers(1, &s->fbo);
+    float block[SHADOW_BLOCK_BYTES / 4];
+    memset(block, 0, sizeof block);
+    block[36] = -1.0f; /* CgShadow.cg_shadow_frustum.x: light index -1, no light is shadowed */
+    glCreateBuffers(1, &s->no_shadow_block);
+    glNamedBufferStorage(s->no_shadow_block, sizeof block, block, 0);
+    glCreateTextures(GL_TEXTURE_2D, 1, &s->no_shadow_map);
+    glTextureStorage2D(s->no_shadow_map, 1, GL_DEPTH_COMPONENT32F, 1, 1);
+    const float far_depth = 1.0f;
+    glClearTexImage(s->no_shadow_map, 0, GL_DEPTH_COMPONENT, GL_FLOAT, &far_depth);
+    *state = s;
+    return true;
+}
+
+/* Squared distance from p to triangle abc (Ericson, Real-Time Collision Detection 5.1.5). */
+static double
+point_triangle_dist2(const double p[3], const double a[3], const double b[3], const double c[3])
+{
+    double ab[3], ac[3], ap[3], q[3];
+    for (int k = 0; k < 3; k++)
+        ab[k] = b[k] - a[k], ac[k] = c[k] - a[k], ap[k] = p[k] - a[k];
+#define DOT(u, v) ((u)[0] * (v)[0] + (u)[1] * (v)[1] + (u)[2] * (v)[2])
+    double d1 = DOT(ab, ap), d2 = DOT(ac, ap);
+    double bp[3], cp[3];
+    for (int k = 0; k < 3; k++)
+        bp[k] = p[k] - b[k], cp[k] = p[k] - c[k];
+    double d3 = DOT(ab, bp), d4 = DOT(ac, bp), d5 = DOT(ab, cp), d6 = DOT(ac, cp);
+    double vc = d1 * d4 - d3 * d2, vb = d5 * d2 - d1 * d6, va = d3 * d6 - d5 * d4;
+#undef DOT
+    if (d1 <= 0 && d2 <= 0) {
+        memcpy(q, a, sizeof q);
+    } else if (d3 >= 0 && d4 <= d3) {
+        memcpy(q, b, sizeof q);
+    } else if (d6 >= 0 && d5 <= d6) {
+        memcpy(q, c, sizeof q);
+    } else if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+        double v = d1 / (d1 - d3);
+        for (int k = 0; k < 3; k++) q[k] = a[k] + v * ab[k];
+    } else if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+        double w = d2 / (d2 - d6);
+        for (int k = 0; k < 3; k++) q[k] = a[k] + w * ac[k];
+    } else if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+        double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+        for (int k = 0; k < 3; k++) q[k] = b[k] + w * (c[k] - b[k]);
+    } else {
+        double denom = 1.0 / (va + vb + vc);
+        double v = vb * denom, w = vc * denom;
+        for (int k = 0; k < 3; k++) q[k] = a[k] + ab[k] * v + ac[k] * w;
+    }
+    double d2sum = 0;
+    for (int k = 0; k < 3; k++)
+        d2sum += (p[k] - q[k]) * (p[k] - q[k]);
+    return d2sum;
+}
+
+/* Distance from a point light to the nearest voxelized surface. */
+static double
+nearest_surface(const cg_scene *scene, cg_mesh_filter filter, const float light[3])
+{
+    double p[3] = {light[0], light[1], light[2]}, best = DBL_MAX;
+    for (int i = 0; i < scene->instance_count; i++) {
+        const cg_instance *inst = &scene->instances[i];
+        const cg_mesh *mesh = &scene->meshes[inst->mesh];
+        if (!mesh_passes(mesh->kind, filter))
+            continue;
+        for (uint32_t t = 0; t + 2 < mesh->index_count; t += 3) {
+            double v[3][3];
+            for (int j = 0; j < 3; j++)
+                transform_point(inst->world, &mesh->positions[3 * mesh->indices[t + j]], v[j]);
+            double d2 = point_triangle_dist2(p, v[0], v[1], v[2]);
+            if (d2 < best)
+                best = d2;
+        }
+    }
+    return sqrt(best);
+}
+
+/* An upper bound on the outgoing radiance of any voxelized surface: the brightest emission
+ * plus the brightest albedo lit by every light at once, point and spot lights at their
+ * nearest surface (never nearer than half a voxel, the scale at which radiance is averaged). */
+static bool
+radiance_bound(voxelize_state *s, const cg_scene *scene, cg_mesh_filter filter, double voxel,
+               double *bound, cg_error *err)
+{
+    double emission = 0.0, albedo = 0.0;
+    for (int m = 0; m < scene->material_count; m++) {
+        const cg_material *mat = &scene->materials[m];
+        for (int k = 0; k < 3; k++) {
+            emission = fmax(emission, (double)mat->emissive[k] * mat->emissive_strength);
+            albedo = fmax(albedo, mat->base_color[k]);
+        }
+    }
+    if (s->light_cache_count != scene->light_count) {
+        free(s->light_positions);
+        free(s->light_nearest);
+        s->light_positions = calloc((size_t)scene->light_count * 3 + 1, sizeof(float));
+        s->light_nearest = calloc((size_t)scene->light_count + 1, sizeof(double));
+        if (!s->light_positions || !s->light_nearest)
+            return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "voxelize: light cache");
+        for (int l = 0; l < scene->light_count; l++)
+            s->light_nearest[l] = -1.0;
+        s->light_cache_count = scene->light_count;
+    }
+    double irradiance = 0.0;
+    for (int l = 0; l < scene->light_count; l++) {
+        const cg_light *light = &scene->lights[l];
+        double e = light->intensity * fmax(light->color[0], fmax(light->color[1], light->color[2]));
+        if (light->type != CG_LIGHT_DIRECTIONAL) {
+            float *cached = &s->light_positions[3 * l];
+            if (s->light_nearest[l] < 0.0 || memcmp(cached, light->position, 3 * sizeof(float)) != 0) {
+                memcpy(cached, light->position, 3 * sizeof(float));
+                s->light_nearest[l] = nearest_surface(scene, filter, light->position);
+            }
+            double d = fmax(s->light_nearest[l], 0.5 * voxel);
+            e /= d * d;
+        }
+        irradiance += e;
+    }
+    *bound = emission + albedo * irradiance / M_PI;
+    return true;
+}
+
+static bool
+voxelize_execute(fg_pass *pass, void *state, cg_error *err)
+{
+    voxelize_state *s = state;
+    const fg_frame *frame = fg_pass_frame(pass);
+    const cg_scene *scene = frame->scene;
+    cg_mesh_filter filter = (cg_mesh_filter)fg_param_enum(pass, "meshes");
+    int resolution = fg_param_int(pass, "resolution");
+    voxel_region region;
+    bool has = false;
+    if (!voxelize_region(pass, scene, &region, &has, err))
+        return false;
+    double bound = 0.0;
+    if (!radiance_bound(s, scene, filter, region.voxel, &bound, err))
+        return false;
+    /* Fixed point: FRAGMENT_HEADROOM fragments at the bound sum to 2^32. RGBA16F stores
+     * radiance itself (so a dump of the volume reads in scene units) unless the bound nears
+     * the half-float maximum (65504); RGBA8 stores radiance / bound. A scene with no light
+     * and no emission is black. */
+    double fixed_scale = bound > 0.0 ? 4294967295.0 / (bound * FRAGMENT_HEADROOM) : 1.0;
+    double radiance_scale = 1.0;
+    if (s->format == GL_RGBA8 && bound > 0.0)
+        radiance_scale = bound;
+    else if (bound > 32768.0)
+        radiance_scale = bound / 32768.0;
+
+    GLuint accum = fg_texture(pass, "accumulation");
+    GLuint radiance = fg_texture(pass, "radiance");
+    const GLuint zero = 0;
+    glClearTexImage(accum, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+
+    GLint viewport[4];
+    glGetIntegerv(GL_VIEWPORT, viewport);
+    glNamedFramebufferParameteri(s->fbo, GL_FRAMEBUFFER_DEFAULT_WIDTH, resolution);
+    glNamedFramebufferParameteri(s->fbo, GL_FRAMEBUFFER_DEFAULT_HEIGHT, resolution);
+    glBindFramebuffer(GL_FRAMEBUFFER, s->fbo);
+    glViewport(0, 0, resolution, resolution);
+    /* VCT paper 3.1: no depth test, no culling; the fragments go to images only. */
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_CULL_FACE);
+
+    bool shadowed = fg_input_present(pass, "shadow");
+    glUseProgram(s->program);
+    glUniform4f(8, (float)region.origin[0], (float)region.origin[1], (float)region.origin[2],
+                (float)region.voxel);
+    glUniform1i(9, resolution);
+    glUniform1f(10, (float)fixed_scale);
+    glUniform1i(12, fg_param_bool(pass, "conservative") ? 1 : 0);
+    cg_gpu_scene_bind_lights(frame->gpu_scene);
+    glBindBufferBase(GL_UNIFORM_BUFFER, CG_BINDING_SHADOW,
+                     shadowed ? fg_buffer(pass, "shadow_matrix") : s->no_shadow_block);
+    glBindTextureUnit(2, shadowed ? fg_texture(pass, "shadow") : s->no_shadow_map);
+    glBindImageTexture(0, accum, 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
+    cg_gpu_scene_draw(frame->gpu_scene, filter);
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
+
+    glUseProgram(s->resolve);
+    glUniform1i(0, resolution);
+    glUniform1f(1, (float)fixed_scale);
+    glUniform1f(2, (float)radiance_scale);
+    glBindImageTexture(0, accum, 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
+    glBindImageTexture(1, radiance, 0, GL_TRUE, 0, GL_WRITE_ONLY, s->format);
+    GLuint groups = (GLuint)((resolution + 3) / 4);
+    glDispatchCompute(groups, groups, groups);
+    glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
+    glBindImageTexture(1, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, s->format);
+    glUseProgram(0);
+
+    const float block[REGION_BYTES / 4] = {
+        (float)region.origin[0], (float)region.origin[1], (float)region.origin[2], (float)region.voxel,
+        (float)resolution, (float)fg_resource(pass, "radiance")->levels, (float)radiance_scale, 0.0f,
+    };
+    glNamedBufferSubData(fg_buffer(pass, "region"), 0, sizeof block, block);
+    return true;
+}
+
+static void
+voxelize_destroy(void *state)
+{
+    voxelize_state *s = state;
+    if (!s)
+        return;
+    glDeleteProgram(s->program);
+    glDeleteProgram(s->resolve);
+    glDeleteFramebuffers(1, &s->fbo);
+    glDeleteBuffers(1, &s->no_shadow_block);
+    glDeleteTextures(1, &s->no_shadow_map);
+    free(s->light_positions);
+    free(s->light_nearest);
+    free(s);
+}
+
+static const fg_pass_type voxelize_type = {
+    .abi_version = FG_ABI_VERSION,
+    .name = "voxelize",
+    .doc = "Voxelizes the outgoing diffuse radiance of the scene's direct light (shadowed through "
+           "the optional shadow map) plus emission into a cubic 3D lightmap, opacity in alpha "
+           "(VCT paper 3.1): dominant-axis projection in a geometry shader, conservative coverage "
+           "by triangle dilation and an exact triangle/voxel test, fragments averaged by "
+           "fixed-point atomic sums. Rebuilt every frame.",
+    .params = voxelize_params,
+    .param_count = (int)(sizeof voxelize_params / sizeof voxelize_params[0]),
+    .declare = voxelize_declare,
+    .prepare = voxelize_prepare,
+    .execute = voxelize_execute,
+    .destroy = voxelize_destroy,
+};
+
+bool
+cg_pass_register_voxelize(fg_registry *registry, uint32_t host_abi, cg_error *err)
+{
+    if (host_abi != FG_ABI_VERSION)
+        return cg_fail(err, CG_ERR_PLUGIN_ABI, "pass voxelize: built for frame-graph ABI %u, host has %u",
+                       FG_ABI_VERSION, host_abi);
+    return fg_registry_add(registry, &voxelize_type, err);
+}

@@ -1,0 +1,97 @@
+// common/cone_trace.glsl: one cone marched front to back through a mipped 3D lightmap.
+//
+// Provides: CgCone, cg_cone_trace(), cg_cone_lod(), cg_tangent_frame().
+// Requires: common/volume.glsl.
+//
+// VCT paper 3.2 (after Crassin et al. 2011): the cone's footprint at distance t has the
+// diameter d = 2 t tan(half angle); the sample is read from the mip level whose voxels
+// are d wide (hybrid eq. 8: Lv = log2(d / voxel size)) and composited front to back,
+//     c += (1 - a) * alpha_s * c_s,   a += (1 - a) * alpha_s,
+// where the volume stores premultiplied colour (alpha_s * c_s), so it is added as read.
+// The march stops when a reaches CG_CONE_OPAQUE, past t_max, or once the footprint has
+// left the volume (VCT paper 3.2.1). The hybrid tracer reuses cg_cone_lod() and the
+// compositing step through cg_cone_composite().
+#ifndef CG_COMMON_CONE_TRACE_GLSL
+#define CG_COMMON_CONE_TRACE_GLSL
+
+#include "common/volume.glsl"
+
+#define CG_CONE_OPAQUE 0.999
+
+struct CgCone {
+    vec3 origin;        // world; already moved off the surface by the caller
+    vec3 direction;     // unit
+    float tan_half;     // tan of the half apex angle (> 0)
+    float t_start;      // world distance of the first sample
+    float t_max;        // world distance past which the march stops
+    float step_factor;  // sample spacing as a fraction of the footprint diameter (> 0)
+};
+
+// Footprint diameter at distance t, never below one voxel: log2 of a zero (or sub-voxel)
+// diameter would be -inf (or sample a finer level than exists), so the guard is here.
+float
+cg_cone_diameter(CgCone c, CgVolume v, float t)
+{
+    return max(2.0 * c.tan_half * t, v.voxel_size);
+}
+
+// Hybrid eq. 8, guarded by cg_cone_diameter: Lv = log2(diameter / voxel size) >= 0.
+float
+cg_cone_lod(CgVolume v, float diameter)
+{
+    return log2(diameter / v.voxel_size);
+}
+
+// One compositing step with a premultiplied sample, as the VCT paper and the issue state
+// it: c += (1 - a) * alpha_s * c_s; a += (1 - a) * alpha_s. No Beer-Lambert correction of
+// alpha_s for the step length: the voxels hold surfaces (alpha is coverage, not a density),
+// and with trilinear filtering the correction lets cones slip through walls that the coarse
+// levels have spread over a whole cell (docs/vct.md: the furnace falls 2.5% short with it).
+void
+cg_cone_composite(inout vec4 acc, vec4 s)
+{
+    float alpha = clamp(s.a, 0.0, 1.0);
+    acc.rgb += (1.0 - acc.a) * s.rgb;
+    acc.a += (1.0 - acc.a) * alpha;
+}
+
+// Returns the gathered radiance (rgb, already scaled to radiance) and the cone's opacity (a).
+vec4
+cg_cone_trace(sampler3D volume, CgVolume v, CgCone c)
+{
+    vec4 acc = vec4(0.0);
+    float extent = cg_volume_extent(v);
+    float top = v.levels - 1.0;
+    float t = c.t_start;
+    // The loop bound is a safety net against a zero step; steps grow with t, so real
+    // marches end far earlier (about log(t_max / t_start) / log(1 + 2 step tan) steps).
+    for (int i = 0; i < 4096 && t < c.t_max && acc.a < CG_CONE_OPAQUE; i++) {
+        float diameter = cg_cone_diameter(c, v, t);
+        vec3 p = c.origin + c.direction * t;
+        vec3 uvw = cg_volume_uvw(v, p);
+        float reach = 0.5 * diameter / extent;
+        if (any(lessThan(uvw, vec3(-reach))) || any(greaterThan(uvw, vec3(1.0 + reach))))
+            break;  // the whole footprint is outside the volume: nothing more to gather
+        float lod = min(cg_cone_lod(v, diameter), top);
+        vec4 s = textureLod(volume, uvw, lod);
+        cg_cone_composite(acc, s);
+        t += c.step_factor * diameter;
+    }
+    acc.rgb *= v.radiance_scale;
+    return acc;
+}
+
+// Orthonormal tangent frame for a unit normal, NaN-free for every normal including the
+// axes (Duff et al. 2017); the same construction as cg_cone_frame() in core/src/cone.c.
+mat3
+cg_tangent_frame(vec3 n)
+{
+    float s = n.z >= 0.0 ? 1.0 : -1.0;
+    float a = -1.0 / (s + n.z);
+    float b = n.x * n.y * a;
+    vec3 t = vec3(1.0 + s * n.x * n.x * a, s * b, -s * n.x);
+    vec3 bt = vec3(b, s + n.y * n.y * a, -n.y);
+    return mat3(t, bt, n);
+}
+
+#endif

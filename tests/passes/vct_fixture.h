@@ -1,0 +1,52 @@
+/* tests/passes/vct_fixture.h: scenes of a few free triangles and a graph runner for the
+ * VCT pass tests (voxelize, mip3d, cone_gather).
+ *
+ * Declares: vf_scene, vf_scene_init, vf_add_triangle, vf_finish, vf_runner, vf_start,
+ *           vf_frame, vf_stop, vf_read_volume.
+ */
+#ifndef CG_TEST_VCT_FIXTURE_H
+#define CG_TEST_VCT_FIXTURE_H
+
+#include <stdbool.h>
+
+#include "cg/fg.h"
+#include "cg/gpu_scene.h"
+#include "cg/scene.h"
+
+#define VF_MAX_TRIANGLES 16
+
+/* One mesh of up to VF_MAX_TRIANGLES unshared triangles, one material, lights. */
+typedef struct vf_scene {
+    cg_scene scene;
+    cg_mesh mesh;
+    cg_instance instance;
+    cg_material materials[2];
+    cg_light lights[2];
+    float positions[VF_MAX_TRIANGLES * 9], normals[VF_MAX_TRIANGLES * 9], texcoords[VF_MAX_TRIANGLES * 6];
+    uint32_t indices[VF_MAX_TRIANGLES * 3];
+} vf_scene;
+
+/* Material 1 (the mesh's) has albedo `albedo` and emits `emission`; no lights. */
+void vf_scene_init(vf_scene *s, float albedo, float emission);
+void vf_add_triangle(vf_scene *s, const double a[3], const double b[3], const double c[3]);
+/* Normals, bounds. */
+void vf_finish(vf_scene *s);
+
+typedef struct vf_runner {
+    fg_registry *registry;
+    fg_graph *graph;
+    cg_gpu_scene gpu;
+    bool uploaded;
+    fg_frame frame;
+} vf_runner;
+
+/* Uploads the scene, loads and compiles `json`, prepares; fails the test on error. */
+void vf_start(vf_runner *r, const cg_scene *scene, int width, int height, const char *json);
+/* Re-uploads the (changed) scene and runs one frame. */
+void vf_frame(vf_runner *r);
+void vf_stop(vf_runner *r);
+
+/* Level `level` of a graph resource as RGBA floats (x fastest, then y, then z). */
+float *vf_read_volume(const vf_runner *r, const char *source, int level, int *size);
+
+#endif

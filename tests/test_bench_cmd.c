@@ -1,0 +1,131 @@
+/* `conegraph bench` end to end at a tiny size: the sweep runs, CSV, Markdown and plots are
+ * written, the reference is cached, and bad input exits with 2. Not a timing test: it
+ * checks the instrument, not the figures. The executable comes from $CONEGRAPH_EXE. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+
+#include "cg/image.h"
+#include "test_support.h"
+
+static int
+run(const char *args, char *out, size_t size)
+{
+    const char *exe = getenv("CONEGRAPH_EXE");
+    assert_non_null(exe);
+    char cmd[8192];
+    snprintf(cmd, sizeof cmd, "'%s' %s 2>&1", exe, args);
+    FILE *p = popen(cmd, "r");
+    assert_non_null(p);
+    size_t n = fread(out, 1, size - 1, p);
+    out[n] = '\0';
+    int status = pclose(p);
+    assert_true(WIFEXITED(status));
+    return WEXITSTATUS(status);
+}
+
+static int
+count_lines(const char *path)
+{
+    FILE *fp = fopen(path, "r");
+    assert_non_null(fp);
+    int n = 0, c;
+    while ((c = fgetc(fp)) != EOF)
+        n += c == '\n';
+    fclose(fp);
+    return n;
+}
+
+static void
+sweep_runs_and_caches_the_reference(void **state)
+{
+    (void)state;
+    static char out[1 << 16];
+    char args[4096], path[4200];
+    const char *dir = cg_test_tmpdir();
+    snprintf(args, sizeof args,
+             "bench --scene builtin:cornell --graph direct.json --vary shadow.resolution=256,512 "
+             "--size 32x18 --ref-spp 4 --pt-spp 1,2 --frames 2 --warmup 1 --out '%s/b' --images", dir);
+    int code = run(args, out, sizeof out);
+    if (code != 0)
+        fail_msg("bench exited with %d:\n%s", code, out);
+    /* Header, 2 path tracer rows, 2 settings. */
+    snprintf(path, sizeof path, "%s/b/bench.csv", dir);
+    assert_int_equal(count_lines(path), 5);
+    snprintf(path, sizeof path, "%s/b/bench.md", dir);
+    assert_true(count_lines(path) > 4);
+    const char *plots[] = { "builtin-cornell-time.png", "builtin-cornell-memory.png", "builtin-cornell-reference.png" };
+    for (int i = 0; i < 3; i++) {
+        snprintf(path, sizeof path, "%s/b/%s", dir, plots[i]);
+        cg_image img = { 0 };
+        cg_error err = { 0 };
+        assert_cg_ok(cg_image_read(path, &img, &err), &err);
+        cg_image_free(&img);
+    }
+    assert_non_null(strstr(out, "shadow.resolution=512"));
+    assert_null(strstr(out, "from the cache"));
+    /* Again: both references come from the cache. */
+    code = run(args, out, sizeof out);
+    assert_int_equal(code, 0);
+    const char *first = strstr(out, "from the cache");
+    assert_non_null(first);
+    assert_non_null(strstr(first + 1, "from the cache"));
+}
+
+static void
+sweep_file(void **state)
+{
+    (void)state;
+    static char out[1 << 16];
+    const char *sweep = cg_test_write_file("sweep.json",
+        "{ \"scenes\": [\"builtin:cornell\"], \"size\": \"24x16\", \"frames\": 1, \"warmup\": 0,\n"
+        "  \"reference\": { \"spp\": 2, \"bounces\": 1 }, \"path_tracer_spp\": [1],\n"
+        "  \"settings\": [ { \"graph\": \"direct.json\", \"set\": { \"shadow.resolution\": 256 } } ] }\n", 0);
+    char args[4096], path[4200];
+    snprintf(args, sizeof args, "bench --sweep '%s' --out '%s/s'", sweep, cg_test_tmpdir());
+    int code = run(args, out, sizeof out);
+    if (code != 0)
+        fail_msg("bench exited with %d:\n%s", code, out);
+    snprintf(path, sizeof path, "%s/s/bench.csv", cg_test_tmpdir());
+    assert_int_equal(count_lines(path), 3);
+    assert_non_null(strstr(out, "shadow.resolution=256"));
+}
+
+static void
+bad_input_exits_with_2(void **state)
+{
+    (void)state;
+    static char out[1 << 16];
+    char args[4096];
+    const char *dir = cg_test_tmpdir();
+    assert_int_equal(run("bench --vary a.b=1,2", out, sizeof out), 2);
+    assert_int_equal(run("bench --size 0x10", out, sizeof out), 2);
+    assert_int_equal(run("bench --pt-spp 1,x", out, sizeof out), 2);
+    const char *bad = cg_test_write_file("bad.json", "{ \"scenes\": [\"builtin:cornell\"], \"nonsense\": 1 }", 0);
+    snprintf(args, sizeof args, "bench --sweep '%s' --out '%s/x'", bad, dir);
+    assert_int_equal(run(args, out, sizeof out), 2);
+    const char *broken = cg_test_write_file("broken.json", "{ \"scenes\": [", 0);
+    snprintf(args, sizeof args, "bench --sweep '%s' --out '%s/x'", broken, dir);
+    assert_int_equal(run(args, out, sizeof out), 2);
+    snprintf(args, sizeof args, "bench --scene builtin:nosuchscene --out '%s/x'", dir);
+    assert_int_equal(run(args, out, sizeof out), 2);
+    snprintf(args, sizeof args,
+             "bench --scene builtin:cornell --graph direct.json --set shadow.nosuchparam=1 --size 16x16 "
+             "--ref-spp 1 --pt-spp 1 --out '%s/x'", dir);
+    assert_int_equal(run(args, out, sizeof out), 2);
+    assert_int_equal(run("bench --help", out, sizeof out), 0);
+    assert_non_null(strstr(out, "usage: conegraph bench"));
+}
+
+int
+main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(sweep_runs_and_caches_the_reference),
+        cmocka_unit_test(sweep_file),
+        cmocka_unit_test(bad_input_exits_with_2),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
