@@ -280,11 +280,35 @@ material_texture(const cg_gpu_scene *gpu, int index)
     return gpu->textures[index];
 }
 
+/* Which of the scene uniform locations 0..2 the bound program keeps. A stage that does not
+ * read one (a depth-only shader and the normal matrix) lets the linker drop it, and the GL
+ * spec leaves glUniform on such a location to the driver (Mesa ignores it, others may
+ * raise GL_INVALID_OPERATION), so only the active ones are set. */
+static void
+active_scene_uniforms(bool active[3])
+{
+    GLint program = 0, count = 0;
+    active[0] = active[1] = active[2] = false;
+    glGetIntegerv(GL_CURRENT_PROGRAM, &program);
+    if (!program)
+        return;
+    glGetProgramInterfaceiv((GLuint)program, GL_UNIFORM, GL_ACTIVE_RESOURCES, &count);
+    for (GLint i = 0; i < count; i++) {
+        const GLenum prop = GL_LOCATION;
+        GLint location = -1;
+        glGetProgramResourceiv((GLuint)program, GL_UNIFORM, (GLuint)i, 1, &prop, 1, NULL, &location);
+        if (location >= 0 && location < 3)
+            active[location] = true;
+    }
+}
+
 size_t
 cg_gpu_scene_draw(const cg_gpu_scene *gpu, cg_mesh_filter filter)
 {
     const cg_scene *scene = gpu->scene;
     size_t triangles = 0;
+    bool active[3];
+    active_scene_uniforms(active);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_MATERIALS, gpu->material_buffer);
     for (int i = 0; i < scene->instance_count; i++) {
         const cg_instance *inst = &scene->instances[i];
@@ -301,9 +325,12 @@ cg_gpu_scene_draw(const cg_gpu_scene *gpu, cg_mesh_filter filter)
         int material = scene->meshes[inst->mesh].material;
         if (material < 0 || material >= scene->material_count)
             material = 0;
-        glUniformMatrix4fv(0, 1, GL_FALSE, (const float *)model);
-        glUniformMatrix3fv(1, 1, GL_FALSE, (const float *)normal_matrix);
-        glUniform1i(2, material);
+        if (active[0])
+            glUniformMatrix4fv(0, 1, GL_FALSE, (const float *)model);
+        if (active[1])
+            glUniformMatrix3fv(1, 1, GL_FALSE, (const float *)normal_matrix);
+        if (active[2])
+            glUniform1i(2, material);
         const cg_material *m = scene->material_count > 0 ? &scene->materials[material] : NULL;
         glBindTextureUnit(0, material_texture(gpu, m ? m->base_color_texture : -1));
         glBindTextureUnit(1, material_texture(gpu, m ? m->emissive_texture : -1));

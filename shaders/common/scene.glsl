@@ -1,7 +1,8 @@
 // common/scene.glsl: how a program sees the scene drawn by cg_gpu_scene_draw (cg/gpu_scene.h).
 //
-// Every program drawn with cg_gpu_scene_draw includes this file in each of its stages, so
-// that uniform locations 0..2 exist in every such program. A vertex stage defines
+// Every program drawn with cg_gpu_scene_draw includes this file, so that uniform locations
+// 0..2 mean the same in every such program (the draw sets those the program keeps active).
+// A vertex stage defines
 // CG_SCENE_VERTEX before the include to get the vertex inputs. Pass-specific uniforms
 // start at location 8.
 #ifndef CG_SCENE_GLSL

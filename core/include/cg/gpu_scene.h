@@ -9,7 +9,7 @@
  * 2 = int material index; SSBO binding 0 = materials (see scene.glsl); texture units
  * 0 = base colour, 1 = emissive (a 1x1 white texture when absent).
  * Every program drawn with cg_gpu_scene_draw includes common/scene.glsl, which declares
- * all three uniforms, so the locations exist in every such program.
+ * all three uniforms; cg_gpu_scene_draw sets those the program keeps active.
  *
  * Lights (shaders/common/lights.glsl): SSBO binding 1 = a uvec4 header (x = light count)
  * followed by a std430 array of struct CgLight, one per cg_scene light in scene order,
