@@ -231,12 +231,55 @@ bad_graph_corpus(void **state)
     }
 }
 
+/* Random edits of a good file (deterministic): whatever they break, loading and compiling
+ * either succeeds or fails with a named status and a message located in the file. */
+static void
+mutated_graphs_fail_with_locations(void **state)
+{
+    fixture *f = *state;
+    static const char alphabet[] = "{}[]\",:.@\\u0123456789abcdefxtrunl \n-+eE";
+    unsigned seed = 7;
+    char text[sizeof good_graph + 16];
+    int compiled = 0;
+    for (int i = 0; i < 3000; i++) {
+        strcpy(text, good_graph);
+        size_t n = strlen(text);
+        for (int m = 1 + rand_r(&seed) % 3; m > 0; m--) {
+            size_t at = (size_t)rand_r(&seed) % n;
+            char c = alphabet[rand_r(&seed) % (sizeof alphabet - 1)];
+            switch (rand_r(&seed) % 3) {
+            case 0: text[at] = c; break;
+            case 1: memmove(text + at, text + at + 1, n - at); n--; break;
+            default:
+                if (n + 1 < sizeof text) {
+                    memmove(text + at + 1, text + at, n - at + 1);
+                    text[at] = c;
+                    n++;
+                }
+            }
+        }
+        fg_graph_destroy(f->graph);
+        f->graph = fg_graph_create(f->registry);
+        cg_error_clear(&f->err);
+        if (fg_graph_load_string(f->graph, text, "m.json", &f->err) && compile(f, 0)) {
+            compiled++;
+            continue;
+        }
+        if (f->err.status == CG_OK || strncmp(f->err.message, "m.json:", 7))
+            fail_msg("mutant %d: %s: '%s' is not located in m.json:\n%s", i, cg_status_name(f->err.status),
+                     f->err.message, text);
+    }
+    /* Some edits are harmless (inside a description or a label), most are not. */
+    assert_true(compiled > 0 && compiled < 3000);
+}
+
 int
 main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_setup_teardown(good_graph_loads, setup, teardown),
         cmocka_unit_test_setup_teardown(bad_graph_corpus, setup, teardown),
+        cmocka_unit_test_setup_teardown(mutated_graphs_fail_with_locations, setup, teardown),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -410,6 +410,30 @@ materials_and_textures(void **state)
     /* Material 0 stays the default white. */
     assert_float_equal(s.materials[0].base_color[0], 1, 0);
     assert_float_equal(s.materials[0].emissive[0], 0, 0);
+
+    /* Export keeps textures (PNG inside the file) and emitted radiance: an emissive factor
+     * above 1 moves into the strength, since glTF keeps the factor in [0, 1]. */
+    s.materials[1].emissive[0] = 3;
+    s.materials[1].emissive[1] = 1.5f;
+    const char *outs[2] = { "material_out.gltf", "material_out.glb" };
+    for (int i = 0; i < 2; i++) {
+        char path[4200];
+        snprintf(path, sizeof path, "%s/%s", cg_test_tmpdir(), outs[i]);
+        cg_error err = { 0 };
+        assert_cg_ok(cg_scene_export_gltf(&s, path, &err), &err);
+        cg_scene back;
+        load_ok(path, &back);
+        assert_int_equal(back.texture_count, 1);
+        check_texture(&back.textures[0]);
+        const cg_material *b = &back.materials[1];
+        assert_float_equal(b->emissive[0] * b->emissive_strength, 3 * 4, 1e-5);
+        assert_float_equal(b->emissive[1] * b->emissive_strength, 1.5 * 4, 1e-5);
+        assert_true(b->emissive[0] <= 1);
+        assert_int_equal(b->base_color_texture, 0);
+        assert_int_equal(b->emissive_texture, 0);
+        assert_float_equal(back.meshes[0].texcoords[5], 1, 0);
+        cg_scene_free(&back);
+    }
     cg_scene_free(&s);
 }
 

@@ -409,6 +409,8 @@ normalize3(float v[3])
 #define OW_VALLEY_DEPTH 16.0
 #define OW_VALLEY_WIDTH 16.0
 #define OW_BRIDGE_X 20.0
+#define OW_ARCH_X -70.0      /* a gate in front of the town, facing the camera */
+#define OW_ARCH_Z 24.0
 
 typedef struct terrain {
     uint64_t seed;
@@ -611,7 +613,7 @@ arch_triangles(void)
 static void
 build_arch(mesh_builder *b, const terrain *t, double x, double z)
 {
-    const double span = 7.0, leg = 1.2, depth = 1.5, leg_height = 5.0;
+    const double span = 10.0, leg = 1.8, depth = 2.0, leg_height = 8.0;
     double ground = terrain_min_under(t, x - span - leg, z - depth, x + span + leg, z + depth) - 0.5;
     double spring = terrain_mesh_height(t, x, z) + leg_height;
     for (int s = -1; s <= 1; s += 2) {
@@ -689,8 +691,8 @@ build_openworld(cg_scene *scene, const char *query, cg_error *err)
         bd.colour = (int)(rng_next(&r) % 4);
         bd.roof = rng_next(&r) % 2 ? ROOF_GABLE : ROOF_FLAT;
         double rad = sqrt(bd.hx * bd.hx + bd.hz * bd.hz);
-        /* Keep the arch's square (around (-40, -40)) free. */
-        if (fabs(bd.x + 40) < 14 + rad && fabs(bd.z + 40) < 8 + rad)
+        /* Keep the arch's square free. */
+        if (fabs(bd.x - OW_ARCH_X) < 14 + rad && fabs(bd.z - OW_ARCH_Z) < 8 + rad)
             continue;
         if (overlaps(bs, placed, bd.x, bd.z, rad))
             continue;
@@ -729,7 +731,7 @@ build_openworld(cg_scene *scene, const char *query, cg_error *err)
         build_building(&walls[bd->colour], &roofs, bd, base);
     }
     build_bridge(&bridge, &t);
-    build_arch(&arch, &t, -40, -40);
+    build_arch(&arch, &t, OW_ARCH_X, OW_ARCH_Z);
     static const char *const wall_names[4] = { "buildings_red", "buildings_blue", "buildings_yellow",
                                                "buildings_white" };
     for (int c = 0; c < 4; c++) {

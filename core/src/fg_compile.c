@@ -210,8 +210,8 @@ fg_declare_input(fg_declare *decl, const char *name, fg_resource_kind kind, unsi
         return NULL;
     if (!name || !*name || find_input(pass, name) >= 0) {
         decl->failed = true;
-        cg_fail(decl->err, CG_ERR_PASS, "pass type '%s' declares input '%s' twice (or without a name)",
-                pass->type->name, name ? name : "");
+        cg_fail(decl->err, CG_ERR_PASS, "%spass '%s': its type '%s' declares input '%s' twice (or without a name)",
+                fg_loc_prefix(&pass->loc, at, sizeof at), pass->name, pass->type->name, name ? name : "");
         return NULL;
     }
     if (!fg_grow((void **)&pass->inputs, &pass->input_cap, pass->input_count + 1, sizeof *pass->inputs)) {
@@ -324,10 +324,11 @@ fg_declare_output(fg_declare *decl, const char *name, const fg_resource_desc *de
     if (decl->failed)
         return;
     if (!name || !*name || strchr(name, '.') || strchr(name, '@') || find_output(pass, name) >= 0) {
+        char at[512];
         decl->failed = true;
         cg_fail(decl->err, CG_ERR_PASS,
-                "pass type '%s' declares output '%s' twice or with '.' or '@' in its name",
-                pass->type->name, name ? name : "");
+                "%spass '%s': its type '%s' declares output '%s' twice or with '.' or '@' in its name",
+                fg_loc_prefix(&pass->loc, at, sizeof at), pass->name, pass->type->name, name ? name : "");
         return;
     }
     if (!fg_grow((void **)&pass->outputs, &pass->output_cap, pass->output_count + 1,
@@ -406,18 +407,22 @@ declare_pass(fg_graph *graph, fg_pass *pass, bool *any_pending, cg_error *err)
 {
     char at[512];
     clear_declared(pass, true);
-    fg_declare decl = { graph, pass, err, false };
-    bool ok = pass->type->declare(pass, &decl, err);
+    fg_loc_prefix(&pass->loc, at, sizeof at);
+    /* Errors the graph raises inside fg_declare_* carry their own location; a failure the pass
+     * reports itself gets the pass's. */
+    cg_error local = { 0 };
+    fg_declare decl = { graph, pass, &local, false };
+    bool ok = pass->type->declare(pass, &decl, &local);
     pass->declared = true;
     if (decl.failed)
-        return false;
+        return cg_fail(err, local.status, "%s", local.message);
     if (!ok) {
-        if (err && err->status == CG_OK)
-            cg_fail(err, CG_ERR_PASS, "pass '%s' (type %s): declare failed without a reason", pass->name,
-                    pass->type->name);
-        return false;
+        if (local.status == CG_OK)
+            return cg_fail(err, CG_ERR_PASS, "%spass '%s' (type %s): declare failed without a reason", at,
+                           pass->name, pass->type->name);
+        return cg_fail(err, local.status, "%spass '%s' (type %s): %s", at, pass->name, pass->type->name,
+                       local.message);
     }
-    fg_loc_prefix(&pass->loc, at, sizeof at);
     for (int i = 0; i < pass->input_count; i++) {
         fg_input *in = &pass->inputs[i];
         *any_pending |= in->pending;
@@ -708,7 +713,17 @@ build_resources(fg_graph *graph, cg_error *err)
             fg_input *in = &pass->inputs[i];
             if (in->source_output < 0 || in->absent)
                 continue;
-            in->resource = graph->passes[in->source_pass]->outputs[in->source_output].resource;
+            const fg_pass *source = graph->passes[in->source_pass];
+            const fg_connection *conn = &pass->connections[in->connection];
+            /* A previous-frame input was matched against the source's first declare round:
+             * the second must have stated the same output there. */
+            if (in->source_output >= source->output_count ||
+                (conn->source_output && strcmp(source->outputs[in->source_output].name, conn->source_output)))
+                return cg_fail(err, CG_ERR_PASS,
+                               "pass '%s' (type %s) declared different outputs in two declare rounds; "
+                               "declare() must depend only on parameters, scene and inputs",
+                               source->name, source->type->name);
+            in->resource = source->outputs[in->source_output].resource;
             fg_res *r = &graph->resources[in->resource];
             if (in->previous)
                 r->read_previous = true;

@@ -1,0 +1,128 @@
+/* cg_gpu_scene: what the upload holds (the light SSBO's layout that lights.glsl reads, byte
+ * accounting), mesh filters, light updates, and draws with a program. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cg/gpu_scene.h"
+#include "cg/shader.h"
+#include "passes/pass_fixtures.h"
+#include "test_support.h"
+
+static void
+test_light_buffer_layout(void **state)
+{
+    cg_context *ctx = cg_test_gl_context(state);
+    fx_scene s;
+    fx_scene_init(&s);
+    fx_add_quad(&s, 1, 0.0f, -1.0f, 1.0f, -1.0f, 1.0f, 0);
+    cg_light *sun = fx_add_light(&s, CG_LIGHT_DIRECTIONAL, 2.0f);
+    sun->color[1] = 0.5f;
+    sun->direction[0] = 3.0f;   /* not unit length: the upload normalises */
+    sun->direction[1] = -4.0f;
+    cg_light *spot = fx_add_light(&s, CG_LIGHT_SPOT, 8.0f);
+    spot->position[0] = 1.0f;
+    spot->position[1] = 2.0f;
+    spot->position[2] = 3.0f;
+    spot->range = 5.0f;
+    spot->inner_cone_angle = 0.2f;
+    spot->outer_cone_angle = 0.5f;
+    fx_scene_finish(&s);
+    cg_error err = { 0 };
+    cg_gpu_scene gpu;
+    assert_cg_ok(cg_gpu_scene_upload(&s.scene, &gpu, &err), &err);
+
+    float data[4 + 2 * 16];
+    glGetNamedBufferSubData(gpu.light_buffer, 0, sizeof data, data);
+    uint32_t count;
+    memcpy(&count, data, sizeof count);
+    assert_int_equal(count, 2);
+    const float *l0 = data + 4, *l1 = data + 4 + 16;
+    assert_float_equal(l0[3], 0.0, 0.0);                /* type directional */
+    assert_float_equal(l0[4], 0.6, 1e-6);               /* direction normalised */
+    assert_float_equal(l0[5], -0.8, 1e-6);
+    assert_float_equal(l0[8], 2.0, 1e-6);               /* color x intensity */
+    assert_float_equal(l0[9], 1.0, 1e-6);
+    assert_float_equal(l1[0], 1.0, 0.0);                /* position */
+    assert_float_equal(l1[2], 3.0, 0.0);
+    assert_float_equal(l1[3], 2.0, 0.0);                /* type spot */
+    assert_float_equal(l1[7], 5.0, 0.0);                /* range */
+    assert_float_equal(l1[8], 8.0, 1e-6);
+    double scale = 1.0 / (cos(0.2) - cos(0.5));
+    assert_float_equal(l1[12], scale, 1e-3 * scale);
+    assert_float_equal(l1[13], -cos(0.5) * scale, 1e-3 * scale);
+
+    /* Moving the sun and updating keeps the buffer; changing the light count is refused. */
+    sun->intensity = 4.0f;
+    assert_cg_ok(cg_gpu_scene_update_lights(&gpu, &err), &err);
+    glGetNamedBufferSubData(gpu.light_buffer, 0, sizeof data, data);
+    assert_float_equal(l0[8], 4.0, 1e-6);
+    s.scene.light_count = 1;
+    assert_cg_status(cg_gpu_scene_update_lights(&gpu, &err), &err, CG_ERR_USAGE);
+    s.scene.light_count = 2;
+    cg_gpu_scene_destroy(&gpu);
+    assert_no_gl_errors(ctx);
+}
+
+static void
+test_filters_bytes_and_draw(void **state)
+{
+    cg_context *ctx = cg_test_gl_context(state);
+    fx_scene s;
+    fx_scene_init(&s);
+    fx_add_quad(&s, 1, 0.0f, -1.0f, 1.0f, -1.0f, 1.0f, 0);
+    fx_add_quad(&s, 2, 0.0f, -1.0f, 1.0f, -1.0f, 1.0f, 0);
+    static uint8_t texels[4 * 4 * 4];
+    s.textures[0] = (cg_texture){ .name = "t", .width = 4, .height = 4, .rgba = texels, .srgb = true };
+    s.scene.texture_count = 1;
+    fx_scene_finish(&s);
+    cg_error err = { 0 };
+    cg_gpu_scene gpu;
+    assert_cg_ok(cg_gpu_scene_upload(&s.scene, &gpu, &err), &err);
+    assert_true(cg_gpu_scene_has(&gpu, CG_MESHES_ALL));
+    assert_true(cg_gpu_scene_has(&gpu, CG_MESHES_COMPLEX));
+    assert_false(cg_gpu_scene_has(&gpu, CG_MESHES_HEIGHTFIELD));
+    /* Two quads (4 vertices x 32 bytes + 6 indices x 4), one material (64), a 4x4 texture with
+     * its mips (64 + 16 + 4 texels x 4 bytes), the white texture (4), no lights (16-byte header). */
+    size_t expected = 2 * (4 * 32 + 6 * 4) + 64 + (16 + 4 + 1) * 4 + 4 + 16;
+    assert_int_equal(gpu.bytes, expected);
+
+    GLuint program;
+    assert_cg_ok(cg_program_graphics("shadow_map/depth.vert", NULL, NULL, NULL, &program, &err), &err);
+    GLuint fbo, depth;
+    glCreateTextures(GL_TEXTURE_2D, 1, &depth);
+    glTextureStorage2D(depth, 1, GL_DEPTH_COMPONENT32F, 8, 8);
+    glCreateFramebuffers(1, &fbo);
+    glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, depth, 0);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glViewport(0, 0, 8, 8);
+    glUseProgram(program);
+    static const float identity[16] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
+    glUniformMatrix4fv(8, 1, GL_FALSE, identity);
+    assert_int_equal(cg_gpu_scene_draw(&gpu, CG_MESHES_ALL), 4);
+    assert_int_equal(cg_gpu_scene_draw(&gpu, CG_MESHES_COMPLEX), 4);
+    assert_int_equal(cg_gpu_scene_draw(&gpu, CG_MESHES_HEIGHTFIELD), 0);
+    s.meshes[1].kind = CG_MESH_HEIGHTFIELD;
+    cg_gpu_scene_destroy(&gpu);
+    assert_cg_ok(cg_gpu_scene_upload(&s.scene, &gpu, &err), &err);
+    assert_true(cg_gpu_scene_has(&gpu, CG_MESHES_HEIGHTFIELD));
+    assert_int_equal(cg_gpu_scene_draw(&gpu, CG_MESHES_HEIGHTFIELD), 2);
+    assert_int_equal(cg_gpu_scene_draw(&gpu, CG_MESHES_COMPLEX), 2);
+    glUseProgram(0);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glDeleteFramebuffers(1, &fbo);
+    glDeleteTextures(1, &depth);
+    glDeleteProgram(program);
+    cg_gpu_scene_destroy(&gpu);
+    assert_no_gl_errors(ctx);
+}
+
+int
+main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_light_buffer_layout),
+        cmocka_unit_test(test_filters_bytes_and_draw),
+    };
+    return cmocka_run_group_tests(tests, cg_test_gl_setup, cg_test_gl_teardown);
+}
