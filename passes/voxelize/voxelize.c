@@ -56,6 +56,8 @@ static const fg_param_desc voxelize_params[] = {
 typedef struct voxelize_state {
     GLuint program;
     GLuint resolve;
+    GLuint find_max;        /* RGBA8 only: the largest radiance, for the stored scale */
+    GLuint max_buffer;
     GLuint fbo;
     GLuint no_shadow_block;
     GLuint no_shadow_map;
@@ -206,7 +208,7 @@ voxelize_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
     };
     fg_declare_output(decl, "radiance", &radiance, FG_ACCESS_IMAGE_STORE);
     fg_resource_desc block = {.kind = FG_BUFFER, .depth = 1, .levels = 1, .buffer_bytes = REGION_BYTES};
-    fg_declare_output(decl, "region", &block, FG_ACCESS_TRANSFER);
+    fg_declare_output(decl, "region", &block, FG_ACCESS_TRANSFER | FG_ACCESS_STORAGE);
     fg_resource_desc accumulation = {
         .kind = FG_TEXTURE_3D, .format = GL_R32UI,
         .width = resolution, .height = resolution, .depth = 4 * resolution, .levels = 1,
@@ -227,11 +229,16 @@ voxelize_prepare(fg_pass *pass, void **state, cg_error *err)
     snprintf(defines, sizeof defines, "#define FORMAT %s\n", s->format == GL_RGBA8 ? "rgba8" : "rgba16f");
     if (!cg_program_graphics("voxelize/voxelize.vert", "voxelize/voxelize.geom", "voxelize/voxelize.frag",
                              NULL, &s->program, err) ||
-        !cg_program_compute("voxelize/resolve.comp", defines, &s->resolve, err)) {
+        !cg_program_compute("voxelize/resolve.comp", defines, &s->resolve, err) ||
+        (s->format == GL_RGBA8 &&
+         !cg_program_compute("voxelize/resolve.comp", "#define FORMAT rgba8\n#define FIND_MAX\n", &s->find_max, err))) {
         glDeleteProgram(s->program);
+        glDeleteProgram(s->resolve);
         free(s);
         return false;
     }
+    glCreateBuffers(1, &s->max_buffer);
+    glNamedBufferStorage(s->max_buffer, sizeof(GLuint), NULL, GL_DYNAMIC_STORAGE_BIT);
     glCreateFramebuffers(1, &s->fbo);
     float block[SHADOW_BLOCK_BYTES / 4];
     memset(block, 0, sizeof block);
@@ -371,13 +378,12 @@ voxelize_execute(fg_pass *pass, void *state, cg_error *err)
         return false;
     /* Fixed point: FRAGMENT_HEADROOM fragments at the bound sum to 2^32. RGBA16F stores
      * radiance itself (so a dump of the volume reads in scene units) unless the bound nears
-     * the half-float maximum (65504); RGBA8 stores radiance / bound. A scene with no light
-     * and no emission is black. */
+     * the half-float maximum (65504); RGBA8 stores radiance / (the largest radiance in the
+     * volume), found on the GPU by a first resolve dispatch. A scene with no light and no
+     * emission is black. */
     double fixed_scale = bound > 0.0 ? 4294967295.0 / (bound * FRAGMENT_HEADROOM) : 1.0;
     double radiance_scale = 1.0;
-    if (s->format == GL_RGBA8 && bound > 0.0)
-        radiance_scale = bound;
-    else if (bound > 32768.0)
+    if (s->format != GL_RGBA8 && bound > 32768.0)
         radiance_scale = bound / 32768.0;
 
     GLuint accum = fg_texture(pass, "accumulation");
@@ -413,23 +419,38 @@ voxelize_execute(fg_pass *pass, void *state, cg_error *err)
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
 
-    glUseProgram(s->resolve);
-    glUniform1i(0, resolution);
-    glUniform1f(1, (float)fixed_scale);
-    glUniform1f(2, (float)radiance_scale);
-    glBindImageTexture(0, accum, 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
-    glBindImageTexture(1, radiance, 0, GL_TRUE, 0, GL_WRITE_ONLY, s->format);
-    GLuint groups = (GLuint)((resolution + 3) / 4);
-    glDispatchCompute(groups, groups, groups);
-    glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
-    glBindImageTexture(1, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, s->format);
-    glUseProgram(0);
-
     const float block[REGION_BYTES / 4] = {
         (float)region.origin[0], (float)region.origin[1], (float)region.origin[2], (float)region.voxel,
         (float)resolution, (float)fg_resource(pass, "radiance")->levels, (float)radiance_scale, 0.0f,
     };
-    glNamedBufferSubData(fg_buffer(pass, "region"), 0, sizeof block, block);
+    GLuint region_buffer = fg_buffer(pass, "region");
+    glNamedBufferSubData(region_buffer, 0, sizeof block, block);
+
+    GLuint groups = (GLuint)((resolution + 3) / 4);
+    bool from_max = s->format == GL_RGBA8;
+    glBindImageTexture(0, accum, 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, s->max_buffer);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, region_buffer);
+    if (from_max) {
+        glClearNamedBufferData(s->max_buffer, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+        glUseProgram(s->find_max);
+        glUniform1i(0, resolution);
+        glUniform1f(1, (float)fixed_scale);
+        glDispatchCompute(groups, groups, groups);
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    }
+    glUseProgram(s->resolve);
+    glUniform1i(0, resolution);
+    glUniform1f(1, (float)fixed_scale);
+    glUniform1f(2, (float)radiance_scale);
+    glUniform1i(3, from_max ? 1 : 0);
+    glBindImageTexture(1, radiance, 0, GL_TRUE, 0, GL_WRITE_ONLY, s->format);
+    glDispatchCompute(groups, groups, groups);
+    glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
+    glBindImageTexture(1, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, s->format);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, 0);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, 0);
+    glUseProgram(0);
     return true;
 }
 
@@ -441,6 +462,8 @@ voxelize_destroy(void *state)
         return;
     glDeleteProgram(s->program);
     glDeleteProgram(s->resolve);
+    glDeleteProgram(s->find_max);
+    glDeleteBuffers(1, &s->max_buffer);
     glDeleteFramebuffers(1, &s->fbo);
     glDeleteBuffers(1, &s->no_shadow_block);
     glDeleteTextures(1, &s->no_shadow_map);

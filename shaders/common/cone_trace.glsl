@@ -25,6 +25,7 @@ struct CgCone {
     float t_start;      // world distance of the first sample
     float t_max;        // world distance past which the march stops
     float step_factor;  // sample spacing as a fraction of the footprint diameter (> 0)
+    float lod_bias;     // added to the level of eq. 8 (see cg_cone_trace)
 };
 
 // Footprint diameter at distance t, never below one voxel: log2 of a zero (or sub-voxel)
@@ -72,7 +73,11 @@ cg_cone_trace(sampler3D volume, CgVolume v, CgCone c)
         float reach = 0.5 * diameter / extent;
         if (any(lessThan(uvw, vec3(-reach))) || any(greaterThan(uvw, vec3(1.0 + reach))))
             break;  // the whole footprint is outside the volume: nothing more to gather
-        float lod = min(cg_cone_lod(v, diameter), top);
+        // Eq. 8 picks the level whose voxel is as wide as the footprint; trilinear filtering
+        // then spreads the sample over two such voxels, so a bias of -1 keeps the sample's
+        // support within the footprint (and off the surface the cone starts from); the
+        // gather's default, -2, measured closer to the path tracer (docs/vct.md).
+        float lod = clamp(cg_cone_lod(v, diameter) + c.lod_bias, 0.0, top);
         vec4 s = textureLod(volume, uvw, lod);
         cg_cone_composite(acc, s);
         t += c.step_factor * diameter;

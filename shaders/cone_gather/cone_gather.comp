@@ -38,6 +38,7 @@ layout(location = 36) uniform vec3 u_camera;
 layout(location = 37) uniform float u_specular_tan_half;
 layout(location = 38) uniform int u_shadow_light;
 layout(location = 39) uniform float u_shadow_tan_half;
+layout(location = 40) uniform float u_lod_bias;
 
 void
 main()
@@ -61,21 +62,21 @@ main()
         diffuse = vec4(0.0);
         for (int k = 0; k < u_cone_count; k++) {
             CgCone cone = CgCone(origin, normalize(frame * u_cones[k].xyz), u_tan_half[k],
-                                 v.voxel_size, t_max, u_step);
+                                 v.voxel_size, t_max, u_step, u_lod_bias);
             vec4 r = cg_cone_trace(u_volume, v, cone);
             diffuse.rgb += u_cones[k].w * r.rgb;
             diffuse.a += u_cones[k].w * (1.0 - r.a);
         }
 #ifdef SPECULAR
         vec3 view = normalize(position.xyz - u_camera);
-        CgCone mirror = CgCone(origin, reflect(view, n), u_specular_tan_half, v.voxel_size, t_max, u_step);
+        CgCone mirror = CgCone(origin, reflect(view, n), u_specular_tan_half, v.voxel_size, t_max, u_step, u_lod_bias);
         specular = cg_cone_trace(u_volume, v, mirror);
 #endif
 #ifdef SHADOW_CONE
         if (u_shadow_light >= 0 && uint(u_shadow_light) < cg_light_count()) {
             CgLightSample s = cg_light_sample(cg_lights[u_shadow_light], position.xyz);
             CgCone towards = CgCone(origin, s.to_light, u_shadow_tan_half, v.voxel_size,
-                                    min(t_max, s.distance), u_step);
+                                    min(t_max, s.distance), u_step, u_lod_bias);
             visibility = 1.0 - cg_cone_trace(u_volume, v, towards).a;
         }
 #endif

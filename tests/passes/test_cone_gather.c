@@ -44,7 +44,7 @@ check_mip_chain(cg_context *ctx, const char *opacity)
     char json[1024];
     snprintf(json, sizeof json, mip_graph, opacity);
     vf_runner r;
-    vf_start(&r, &s->scene, 32, 32, json);
+    vf_start(&r, &s->scene, 32, 32, json, NULL);
     vf_frame(&r);
     bool use_max = strcmp(opacity, "max") == 0;
     int size = 0;
@@ -110,7 +110,7 @@ static const char gather_graph[] =
     " \"vox\": { \"type\": \"voxelize\", \"params\": { \"resolution\": %d %s } },"
     " \"mip\": { \"type\": \"mip3d\", \"params\": { \"opacity\": \"%s\" }, \"inputs\": { \"volume\": \"vox.radiance\" } },"
     " \"gather\": { \"type\": \"cone_gather\", \"params\": { \"cones\": %d, \"aperture\": %g,"
-    "   \"specular\": true, \"shadow_cone\": true },"
+    "   \"specular\": true, \"shadow_cone\": true %s },"
     "   \"inputs\": { \"position\": \"gbuf\", \"normal\": \"gbuf\", \"volume\": \"mip.volume\", \"region\": \"vox.region\" } } },"
     " \"outputs\": [ \"gather.radiance\", \"gather.specular\", \"gather.visibility\", \"gbuf.albedo\", \"gbuf.position\" ] }";
 
@@ -134,12 +134,12 @@ read_2d(const vf_runner *r, const char *source, int *w, int *h)
 
 static gather_result
 run_gather(cg_context *ctx, const cg_scene *scene, int resolution, const char *voxel_params,
-           const char *opacity, int cones, double aperture, double target)
+           const char *opacity, int cones, double aperture, const char *gather_params, double target)
 {
     char json[2048];
-    snprintf(json, sizeof json, gather_graph, resolution, voxel_params, opacity, cones, aperture);
+    snprintf(json, sizeof json, gather_graph, resolution, voxel_params, opacity, cones, aperture, gather_params);
     vf_runner r;
-    vf_start(&r, scene, 32, 32, json);
+    vf_start(&r, scene, 32, 32, json, NULL);
     vf_frame(&r);
     int w = 0, h = 0;
     float *gathered = read_2d(&r, "gather.radiance", &w, &h);
@@ -176,13 +176,19 @@ run_gather(cg_context *ctx, const cg_scene *scene, int resolution, const char *v
 
 /* Inside a closed box whose walls emit L and have albedo a, every direction sees L, so
  * albedo x gathered = a L at every pixel (DESIGN.md: the white furnace), within 2%, at
- * millimetre, metre and 10-kilometre scales: nothing in the tracer depends on units. */
+ * millimetre, metre and 10-kilometre scales (nothing in the tracer depends on units) and
+ * for every cone set. This holds where the march samples the level of eq. 8 (lod_bias 0,
+ * step 0.5): the check of the weights and the compositing. The defaults (lod_bias -2,
+ * step 0.25: closer to the path tracer on builtin:cornell) sample finer levels, where a
+ * one-voxel wall can fall between samples; the furnace then loses a few percent through
+ * the walls, which is measured and bounded here (docs/vct.md). */
 static void
 test_white_furnace(void **state)
 {
     cg_context *ctx = cg_test_gl_context(state);
     const double albedo = 0.5, radiance = 2.0;
     const double scales[] = {1e-3, 1.0, 1e4};
+    const char *eq8 = ", \"lod_bias\": 0, \"step\": 0.5";
     for (int i = 0; i < 3; i++) {
         char source[128];
         snprintf(source, sizeof source, "builtin:furnace?scale=%g&albedo=%g&radiance=%g", scales[i], albedo, radiance);
@@ -192,8 +198,8 @@ test_white_furnace(void **state)
         int sizes[] = {1, 6, 9, 16};
         for (int c = 0; c < (i == 1 ? 4 : 1); c++) {
             int cones = i == 1 ? sizes[c] : 6;
-            gather_result g = run_gather(ctx, &scene, 64, "", "max", cones, 0.0, albedo * radiance);
-            fprintf(stderr, "# furnace scale %g, %d cones: mean %.5f (target %.5f), worst pixel %.3f%%\n",
+            gather_result g = run_gather(ctx, &scene, 64, "", "max", cones, 0.0, eq8, albedo * radiance);
+            fprintf(stderr, "# furnace scale %g, %d cones, lod_bias 0: mean %.5f (target %.5f), worst pixel %.3f%%\n",
                     scales[i], cones, g.mean[0], albedo * radiance, 100.0 * g.worst_rel);
             assert_int_equal(g.nonfinite, 0);
             assert_int_equal(g.pixels, 32 * 32);
@@ -201,6 +207,12 @@ test_white_furnace(void **state)
                 fail_msg("furnace scale %g, %d cones: a pixel is %.2f%% off a L", scales[i], cones,
                          100.0 * g.worst_rel);
         }
+        gather_result g = run_gather(ctx, &scene, 64, "", "max", 6, 0.0, "", albedo * radiance);
+        fprintf(stderr, "# furnace scale %g, 6 cones, defaults: mean %.5f (target %.5f), worst pixel %.3f%%\n",
+                scales[i], g.mean[0], albedo * radiance, 100.0 * g.worst_rel);
+        assert_int_equal(g.nonfinite, 0);
+        if (g.mean[0] < 0.85 * albedo * radiance || g.mean[0] > 1.02 * albedo * radiance)
+            fail_msg("furnace scale %g, defaults: mean %.4f, outside [0.85, 1.02] a L", scales[i], g.mean[0]);
         cg_scene_free(&scene);
     }
 }
@@ -215,13 +227,13 @@ test_finite_everywhere(void **state)
     cg_scene scene;
     cg_error err = {0};
     assert_cg_ok(cg_scene_load("builtin:furnace", &scene, &err), &err);
-    gather_result g = run_gather(ctx, &scene, 32, "", "max", 16, 150.0, 0.0);
+    gather_result g = run_gather(ctx, &scene, 32, "", "max", 16, 150.0, "", 0.0);
     assert_int_equal(g.nonfinite, 0);
-    g = run_gather(ctx, &scene, 32, "", "average", 1, 0.0, 0.0);
+    g = run_gather(ctx, &scene, 32, "", "average", 1, 0.0, ", \"lod_bias\": 0", 0.0);
     assert_int_equal(g.nonfinite, 0);
     g = run_gather(ctx, &scene, 32,
                    ", \"region\": \"explicit\", \"min_x\": 10, \"min_y\": 10, \"min_z\": 10,"
-                   " \"max_x\": 11, \"max_y\": 11, \"max_z\": 11", "max", 9, 0.0, 0.0);
+                   " \"max_x\": 11, \"max_y\": 11, \"max_z\": 11", "max", 9, 0.0, "", 0.0);
     assert_int_equal(g.nonfinite, 0);
     assert_true(g.pixels > 0);
     assert_true(g.mean[0] == 0.0 && g.mean[1] == 0.0 && g.mean[2] == 0.0);
@@ -233,7 +245,7 @@ test_finite_everywhere(void **state)
     const double a[3] = {-0.5, -0.5, 0.0}, b[3] = {0.5, -0.5, 0.0}, c[3] = {0.0, 0.5, 0.0};
     vf_add_triangle(s, a, b, c);
     vf_finish(s);
-    g = run_gather(ctx, &s->scene, 32, "", "max", 6, 0.0, 0.0);
+    g = run_gather(ctx, &s->scene, 32, "", "max", 6, 0.0, "", 0.0);
     assert_int_equal(g.nonfinite, 0);
     assert_true(g.pixels > 0);
     free(s);

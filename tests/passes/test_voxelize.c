@@ -118,7 +118,7 @@ run_orientations(cg_context *ctx, bool conservative, int shape, int count, cover
     double identity[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
     build_shape(s, shape, identity);
     vf_runner r;
-    vf_start(&r, &s->scene, 32, 32, json);
+    vf_start(&r, &s->scene, 32, 32, json, NULL);
     uint64_t seed = 12345u + (uint64_t)shape;
     int worst = 0;
     *total = (coverage){0, 0, 0};
@@ -203,7 +203,7 @@ test_lit_surface_radiance(void **state)
     char json[1024];
     snprintf(json, sizeof json, graph_template, RES, "true");
     vf_runner r;
-    vf_start(&r, &s->scene, 32, 32, json);
+    vf_start(&r, &s->scene, 32, 32, json, NULL);
     vf_frame(&r);
     int size = 0;
     float *vox = vf_read_volume(&r, "vox.radiance", 0, &size);

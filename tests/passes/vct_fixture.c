@@ -1,10 +1,12 @@
 #include "vct_fixture.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "builtin.h"
+#include "cg/fs.h"
 #include "cg/graphfile.h"
 #include "test_support.h"
 
@@ -88,7 +90,8 @@ vf_finish(vf_scene *s)
 }
 
 void
-vf_start(vf_runner *r, const cg_scene *scene, int width, int height, const char *json)
+vf_start(vf_runner *r, const cg_scene *scene, int width, int height, const char *json,
+         const char *const *overrides)
 {
     cg_error err = {0};
     memset(r, 0, sizeof *r);
@@ -100,6 +103,8 @@ vf_start(vf_runner *r, const cg_scene *scene, int width, int height, const char 
     r->graph = fg_graph_create(r->registry);
     assert_non_null(r->graph);
     assert_cg_ok(fg_graph_load_string(r->graph, json, "test graph", &err), &err);
+    for (int i = 0; overrides && overrides[i]; i++)
+        assert_cg_ok(fg_graph_apply_override(r->graph, overrides[i], &err), &err);
     r->frame.scene = scene;
     r->frame.gpu_scene = &r->gpu;
     int camera = scene->camera_count > 0 ? 0 : -1;
@@ -109,6 +114,22 @@ vf_start(vf_runner *r, const cg_scene *scene, int width, int height, const char 
     fg_compile_options options = {0};
     assert_cg_ok(fg_graph_compile(r->graph, &r->frame, &options, &err), &err);
     assert_cg_ok(fg_graph_prepare(r->graph, &err), &err);
+}
+
+void
+vf_start_file(vf_runner *r, const cg_scene *scene, int width, int height, const char *graph,
+              const char *const *overrides)
+{
+    const char *dir = getenv("CONEGRAPH_GRAPH_DIR");
+    assert_non_null(dir);
+    char path[4096];
+    snprintf(path, sizeof path, "%s/%s", dir, graph);
+    char *json = NULL;
+    size_t size = 0;
+    cg_error err = {0};
+    assert_cg_ok(cg_read_file(path, &json, &size, &err), &err);
+    vf_start(r, scene, width, height, json, overrides);
+    free(json);
 }
 
 void

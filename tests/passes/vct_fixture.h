@@ -40,8 +40,13 @@ typedef struct vf_runner {
     fg_frame frame;
 } vf_runner;
 
-/* Uploads the scene, loads and compiles `json`, prepares; fails the test on error. */
-void vf_start(vf_runner *r, const cg_scene *scene, int width, int height, const char *json);
+/* Uploads the scene, loads `json`, applies `overrides` ("pass.param=value", NULL-terminated
+ * list, may be NULL), compiles and prepares; fails the test on error. */
+void vf_start(vf_runner *r, const cg_scene *scene, int width, int height, const char *json,
+              const char *const *overrides);
+/* The same with a file of $CONEGRAPH_GRAPH_DIR (e.g. "vct.json"). */
+void vf_start_file(vf_runner *r, const cg_scene *scene, int width, int height, const char *graph,
+                   const char *const *overrides);
 /* Re-uploads the (changed) scene and runs one frame. */
 void vf_frame(vf_runner *r);
 void vf_stop(vf_runner *r);

@@ -1,0 +1,124 @@
+/* End to end on builtin:cornell with the shipped graphs (graphs/direct.json, vct.json,
+ * vct-paper.json, reference.json) at 64x64: VCT adds colour bleeding that direct light alone
+ * cannot have (red on the white surfaces of the left half, green on the right half, as the
+ * path tracer shows too; direct light alone is white there), and its mean luminance is closer to the path-traced
+ * reference than the direct-only image's. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "cg/gl.h"
+#include "cg/scene.h"
+#include "test_support.h"
+#include "vct_fixture.h"
+
+#define SIZE 64
+
+typedef struct cornell_image {
+    float *hdr;         /* SIZE x SIZE RGBA, rows bottom to top */
+    double luminance;   /* mean over the image */
+    double bleed[2];    /* mean (R - G) / (R + G + B) over white surfaces, left and right halves */
+} cornell_image;
+
+static float *
+read_output(const vf_runner *r, const char *source)
+{
+    GLuint tex = fg_graph_texture(r->graph, source);
+    assert_true(tex != 0);
+    int w = 0, h = 0, d = 0;
+    float *data = cg_test_read_texture(tex, 0, &w, &h, &d);
+    assert_non_null(data);
+    assert_int_equal(w, SIZE);
+    assert_int_equal(h, SIZE);
+    return data;
+}
+
+/* White surfaces: where the G-buffer albedo is grey (the walls, floor, ceiling and blocks
+ * of material "white"), from a run of graphs/direct.json. */
+static void
+measure(cornell_image *img, const float *albedo)
+{
+    double lum = 0, bleed[2] = {0, 0};
+    int count[2] = {0, 0};
+    for (int y = 0; y < SIZE; y++)
+        for (int x = 0; x < SIZE; x++) {
+            const float *p = &img->hdr[4 * (y * SIZE + x)], *a = &albedo[4 * (y * SIZE + x)];
+            assert_true(isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]));
+            lum += 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
+            bool white = a[0] > 0.5f && fabsf(a[0] - a[1]) < 0.01f && fabsf(a[1] - a[2]) < 0.01f;
+            double sum = (double)p[0] + p[1] + p[2];
+            if (!white || sum <= 1e-6)
+                continue;
+            int side = x < SIZE / 2 ? 0 : 1;
+            bleed[side] += (p[0] - p[1]) / sum;
+            count[side]++;
+        }
+    assert_true(count[0] > 50 && count[1] > 50);
+    img->luminance = lum / (SIZE * SIZE);
+    img->bleed[0] = bleed[0] / count[0];
+    img->bleed[1] = bleed[1] / count[1];
+}
+
+static void
+render(const cg_scene *scene, const char *graph, const char *const *overrides, cornell_image *img,
+       float **albedo)
+{
+    vf_runner r;
+    vf_start_file(&r, scene, SIZE, SIZE, graph, overrides);
+    vf_frame(&r);
+    img->hdr = read_output(&r, "final.hdr");
+    if (albedo)
+        *albedo = read_output(&r, "gbuf.albedo");
+    vf_stop(&r);
+}
+
+static void
+test_cornell_bleeding_and_energy(void **state)
+{
+    cg_context *ctx = cg_test_gl_context(state);
+    cg_scene scene;
+    cg_error err = {0};
+    assert_cg_ok(cg_scene_load("builtin:cornell", &scene, &err), &err);
+    float *albedo = NULL;
+    cornell_image direct = {0}, vct = {0}, paper = {0}, ref = {0};
+    const char *const direct_set[] = {"final.exposure=0", NULL};
+    const char *const ref_set[] = {"trace.spp=64", NULL};
+    render(&scene, "direct.json", direct_set, &direct, &albedo);
+    render(&scene, "vct.json", NULL, &vct, NULL);
+    render(&scene, "vct-paper.json", NULL, &paper, NULL);
+    render(&scene, "reference.json", ref_set, &ref, NULL);
+    measure(&direct, albedo);
+    measure(&vct, albedo);
+    measure(&paper, albedo);
+    measure(&ref, albedo);
+    const cornell_image *all[4] = {&direct, &vct, &paper, &ref};
+    const char *names[4] = {"direct", "vct", "vct-paper", "path traced"};
+    for (int i = 0; i < 4; i++)
+        fprintf(stderr, "# %-12s mean luminance %.5f, (R-G)/(R+G+B) on white: left %+.4f right %+.4f\n",
+                names[i], all[i]->luminance, all[i]->bleed[0], all[i]->bleed[1]);
+    /* Direct light is white: no bleeding at all. The path tracer has red on the left and
+     * green (R < G) on the right; VCT must show the same signs, clearly. */
+    assert_true(fabs(direct.bleed[0]) < 0.01 && fabs(direct.bleed[1]) < 0.01);
+    assert_true(ref.bleed[0] > 0.01 && ref.bleed[1] < -0.01);
+    for (int i = 1; i <= 2; i++) {
+        if (!(all[i]->bleed[0] > 0.01 && all[i]->bleed[1] < -0.01))
+            fail_msg("%s: no colour bleeding (left %+.4f, right %+.4f)", names[i], all[i]->bleed[0], all[i]->bleed[1]);
+        if (!(fabs(all[i]->luminance - ref.luminance) < fabs(direct.luminance - ref.luminance)))
+            fail_msg("%s: mean luminance %.5f is not closer to the reference %.5f than direct's %.5f",
+                     names[i], all[i]->luminance, ref.luminance, direct.luminance);
+    }
+    for (int i = 0; i < 4; i++)
+        free(all[i]->hdr);
+    free(albedo);
+    assert_no_gl_errors(ctx);
+    cg_scene_free(&scene);
+}
+
+int
+main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_cornell_bleeding_and_energy),
+    };
+    return cmocka_run_group_tests(tests, cg_test_gl_setup, cg_test_gl_teardown);
+}
