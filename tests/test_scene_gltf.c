@@ -538,6 +538,70 @@ heightfield_classification(void **state)
     }
 }
 
+
+/* Sparse accessors (glTF 3.6.2.3): substitutions over a bufferView and over implicit zeros. */
+static const char sparse_json[] =
+    "{\"asset\":{\"version\":\"2.0\"},\"buffers\":[{\"uri\":\"sparse.bin\",\"byteLength\":80}],"
+    "\"bufferViews\":[{\"buffer\":0,\"byteOffset\":0,\"byteLength\":36},"
+    "{\"buffer\":0,\"byteOffset\":36,\"byteLength\":1},{\"buffer\":0,\"byteOffset\":40,\"byteLength\":12},"
+    "{\"buffer\":0,\"byteOffset\":52,\"byteLength\":4},{\"buffer\":0,\"byteOffset\":56,\"byteLength\":24}],"
+    "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":3,\"type\":\"VEC3\","
+    "\"sparse\":{\"count\":1,\"indices\":{\"bufferView\":1,\"componentType\":5121},\"values\":{\"bufferView\":2}}},"
+    "{\"componentType\":5126,\"count\":3,\"type\":\"VEC3\","
+    "\"sparse\":{\"count\":2,\"indices\":{\"bufferView\":3,\"componentType\":5123},\"values\":{\"bufferView\":4}}}],"
+    "\"meshes\":[{\"name\":\"over_view\",\"primitives\":[{\"attributes\":{\"POSITION\":0}}]},"
+    "{\"name\":\"over_zeros\",\"primitives\":[{\"attributes\":{\"POSITION\":1}}]}],"
+    "\"nodes\":[{\"mesh\":0},{\"mesh\":1}],\"scenes\":[{\"nodes\":[0,1]}]}";
+
+static void
+sparse_accessors(void **state)
+{
+    (void)state;
+    unsigned char bin[80] = { 0 };
+    float base[9] = { 0, 0, 0, 1, 0, 0, 5, 5, 5 }, one[3] = { 0, 1, 0 }, two[6] = { 1, 0, 0, 0, 1, 0 };
+    uint16_t two_at[2] = { 1, 2 };
+    memcpy(bin, base, 36);
+    bin[36] = 2;
+    memcpy(bin + 40, one, 12);
+    memcpy(bin + 52, two_at, 4);
+    memcpy(bin + 56, two, 24);
+    cg_test_write_file("sparse.bin", bin, sizeof bin);
+    cg_scene s;
+    load_ok(write_text("sparse.gltf", sparse_json), &s);
+    assert_int_equal(s.mesh_count, 2);
+    for (int m = 0; m < 2; m++)
+        assert_memory_equal(s.meshes[m].positions, triangle, sizeof triangle);
+    cg_scene_free(&s);
+
+    const struct {
+        const char *name, *from, *to;
+        cg_status expected;
+    } bad[] = {
+        { "sparse_range.gltf", "\"byteOffset\":52,\"byteLength\":4}", "\"byteOffset\":36,\"byteLength\":4}",
+          CG_ERR_GLTF_INDEX_RANGE }, /* indices 2, 0: the second is not above the first */
+        { "sparse_values.gltf", "\"byteOffset\":40,\"byteLength\":12}", "\"byteOffset\":40,\"byteLength\":8}",
+          CG_ERR_GLTF_BUFFER },
+        { "sparse_count.gltf", "\"sparse\":{\"count\":2", "\"sparse\":{\"count\":4", CG_ERR_GLTF_ACCESSOR },
+        { "sparse_float_indices.gltf", "\"componentType\":5121}", "\"componentType\":5126}", CG_ERR_GLTF_ACCESSOR },
+    };
+    cg_error err = { 0 };
+    for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
+        const char *at = strstr(sparse_json, bad[i].from);
+        assert_non_null(at);
+        char json[4096];
+        snprintf(json, sizeof json, "%.*s%s%s", (int)(at - sparse_json), sparse_json, bad[i].to,
+                 at + strlen(bad[i].from));
+        cg_error_clear(&err);
+        if (cg_scene_load(write_text(bad[i].name, json), &s, &err))
+            fail_msg("%s loaded", bad[i].name);
+        if (err.status != bad[i].expected)
+            fail_msg("%s: %s (%s); expected %s", bad[i].name, cg_status_name(err.status), err.message,
+                     cg_status_name(bad[i].expected));
+        assert_non_null(strstr(err.message, "sparse"));
+        printf("# %s: %s\n", cg_status_name(err.status), strrchr(err.message, '/') + 1);
+    }
+}
+
 /* ------------------------------------------------------------------ the malformed corpus */
 
 /* The base file: a triangle mesh 'roof' with 16-bit indices in base.bin (44 bytes). */
@@ -712,6 +776,7 @@ main(void)
         cmocka_unit_test(materials_and_textures),
         cmocka_unit_test(binary_gltf),
         cmocka_unit_test(heightfield_classification),
+        cmocka_unit_test(sparse_accessors),
         cmocka_unit_test(good_base_loads),
         cmocka_unit_test(malformed_corpus),
         cmocka_unit_test(not_gltf_at_all),

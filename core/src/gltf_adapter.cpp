@@ -165,6 +165,7 @@ component_type_name(int component_type)
 struct accessor_view {
     const unsigned char *base = nullptr; // nullptr: no bufferView, all elements are zero
     size_t stride = 0, count = 0;
+    std::vector<unsigned char> dense;    // a sparse accessor's elements, substituted
     int component_type = 0, components = 0;
     bool normalized = false;
 
@@ -221,6 +222,92 @@ struct accessor_view {
     }
 };
 
+// The bytes of `count` elements of `elem` bytes from `offset` in bufferView `view`, each
+// checked to lie inside the view and the view inside its buffer.
+bool
+checked_view(loader &L, const std::string &label, int view, size_t offset, size_t count, size_t elem,
+             const unsigned char **data, size_t *stride_out)
+{
+    const tinygltf::Model &M = L.model;
+    if (view < 0 || (size_t)view >= M.bufferViews.size())
+        return fail(L, CG_ERR_GLTF_BUFFER, label + ": bufferView " + std::to_string(view) + " does not exist");
+    const tinygltf::BufferView &bv = M.bufferViews[(size_t)view];
+    if (bv.buffer < 0 || (size_t)bv.buffer >= M.buffers.size())
+        return fail(L, CG_ERR_GLTF_BUFFER,
+                    label + ": bufferView " + std::to_string(view) + " refers to buffer " +
+                        std::to_string(bv.buffer) + ", which does not exist");
+    const tinygltf::Buffer &buf = M.buffers[(size_t)bv.buffer];
+    size_t stride = stride_out && bv.byteStride ? bv.byteStride : elem;
+    if (stride < elem)
+        return fail(L, CG_ERR_GLTF_ACCESSOR,
+                    label + ": byteStride " + std::to_string(stride) + " is shorter than an element (" +
+                        std::to_string(elem) + " bytes)");
+    // 64-bit sums of values each below 2^40 cannot wrap.
+    uint64_t view_end = (uint64_t)bv.byteOffset + bv.byteLength;
+    if (bv.byteOffset > (1ull << 40) || bv.byteLength > (1ull << 40) || view_end > buf.data.size())
+        return fail(L, CG_ERR_GLTF_BUFFER,
+                    label + ": bufferView " + std::to_string(view) + " (bytes " +
+                        std::to_string(bv.byteOffset) + ".." + std::to_string(view_end) +
+                        ") runs past the end of buffer " + std::to_string(bv.buffer) + " (" +
+                        std::to_string(buf.data.size()) + " bytes)");
+    if (count > (1ull << 32) || offset > (1ull << 40) ||
+        (uint64_t)offset + (uint64_t)stride * (count - 1) + elem > bv.byteLength)
+        return fail(L, CG_ERR_GLTF_BUFFER,
+                    label + ": " + std::to_string(count) + " elements from byte " + std::to_string(offset) +
+                        " need more than the " + std::to_string(bv.byteLength) + " bytes of bufferView " +
+                        std::to_string(view));
+    *data = buf.data.data() + bv.byteOffset + offset;
+    if (stride_out)
+        *stride_out = stride;
+    return true;
+}
+
+// glTF 3.6.2.3: a sparse accessor is its base (bufferView or zeros) with `sparse.count`
+// elements replaced, at strictly increasing indices, by the values.
+bool
+apply_sparse(loader &L, const std::string &label, const tinygltf::Accessor &a, size_t elem, accessor_view *out)
+{
+    const auto &sp = a.sparse;
+    std::string what = label + " sparse";
+    if (sp.count <= 0 || (size_t)sp.count > a.count)
+        return fail(L, CG_ERR_GLTF_ACCESSOR,
+                    what + ": count " + std::to_string(sp.count) + " outside 1.." + std::to_string(a.count));
+    size_t isize = component_size(sp.indices.componentType);
+    if (sp.indices.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+        sp.indices.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+        sp.indices.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+        return fail(L, CG_ERR_GLTF_ACCESSOR,
+                    what + ": indices are " + component_type_name(sp.indices.componentType) +
+                        "; expected UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT");
+    if (sp.indices.byteOffset < 0 || sp.values.byteOffset < 0)
+        return fail(L, CG_ERR_GLTF_BUFFER, what + ": negative byteOffset");
+    const unsigned char *indices, *values;
+    if (!checked_view(L, what + " indices", sp.indices.bufferView, (size_t)sp.indices.byteOffset,
+                      (size_t)sp.count, isize, &indices, nullptr) ||
+        !checked_view(L, what + " values", sp.values.bufferView, (size_t)sp.values.byteOffset,
+                      (size_t)sp.count, elem, &values, nullptr))
+        return false;
+    out->dense.assign(a.count * elem, 0);
+    if (out->base)
+        for (size_t i = 0; i < a.count; i++)
+            std::memcpy(out->dense.data() + i * elem, out->base + i * out->stride, elem);
+    uint64_t previous = 0;
+    for (size_t k = 0; k < (size_t)sp.count; k++) {
+        uint64_t index = 0;
+        std::memcpy(&index, indices + k * isize, isize); // little-endian, like glTF
+        if (index >= a.count || (k > 0 && index <= previous))
+            return fail(L, CG_ERR_GLTF_INDEX_RANGE,
+                        what + ": index " + std::to_string(index) + " at position " + std::to_string(k) +
+                            (index >= a.count ? " out of range (" + std::to_string(a.count) + " elements)"
+                                              : " not above the previous one"));
+        std::memcpy(out->dense.data() + index * elem, values + k * elem, elem);
+        previous = index;
+    }
+    out->base = out->dense.data();
+    out->stride = elem;
+    return true;
+}
+
 // `what` names the use ("mesh 'roof' primitive 0 POSITION"); `types` and `component_types`
 // are the accepted ones.
 bool
@@ -249,8 +336,6 @@ view_accessor(loader &L, int index, const std::string &what, std::initializer_li
                     label + " is " + type_name(a.type) + " of " + component_type_name(a.componentType) +
                         "; expected " + expected + " of " + expected_components);
     }
-    if (a.sparse.isSparse)
-        return fail(L, CG_ERR_GLTF_ACCESSOR, label + " is sparse, which conegraph does not read");
     if (a.count == 0)
         return fail(L, CG_ERR_GLTF_ACCESSOR, label + " has count 0");
     out->count = a.count;
@@ -267,40 +352,15 @@ view_accessor(loader &L, int index, const std::string &what, std::initializer_li
                             " (more than 16777216 implicit zero elements are refused)");
         out->base = nullptr;
         out->stride = elem;
-        return true;
+    } else {
+        const unsigned char *data;
+        size_t stride = 0;
+        if (!checked_view(L, label, a.bufferView, a.byteOffset, a.count, elem, &data, &stride))
+            return false;
+        out->base = data;
+        out->stride = stride;
     }
-    if ((size_t)a.bufferView >= M.bufferViews.size())
-        return fail(L, CG_ERR_GLTF_BUFFER,
-                    label + ": bufferView " + std::to_string(a.bufferView) + " does not exist");
-    const tinygltf::BufferView &bv = M.bufferViews[(size_t)a.bufferView];
-    if (bv.buffer < 0 || (size_t)bv.buffer >= M.buffers.size())
-        return fail(L, CG_ERR_GLTF_BUFFER,
-                    label + ": bufferView " + std::to_string(a.bufferView) + " refers to buffer " +
-                        std::to_string(bv.buffer) + ", which does not exist");
-    const tinygltf::Buffer &buf = M.buffers[(size_t)bv.buffer];
-    size_t stride = bv.byteStride ? bv.byteStride : elem;
-    if (stride < elem)
-        return fail(L, CG_ERR_GLTF_ACCESSOR,
-                    label + ": byteStride " + std::to_string(stride) + " is shorter than an element (" +
-                        std::to_string(elem) + " bytes)");
-    // 64-bit sums of values each below 2^40 cannot wrap.
-    uint64_t view_end = (uint64_t)bv.byteOffset + bv.byteLength;
-    if (bv.byteOffset > (1ull << 40) || bv.byteLength > (1ull << 40) || view_end > buf.data.size())
-        return fail(L, CG_ERR_GLTF_BUFFER,
-                    label + ": bufferView " + std::to_string(a.bufferView) + " (bytes " +
-                        std::to_string(bv.byteOffset) + ".." + std::to_string(view_end) +
-                        ") runs past the end of buffer " + std::to_string(bv.buffer) + " (" +
-                        std::to_string(buf.data.size()) + " bytes)");
-    if (a.count > (1ull << 32) || a.byteOffset > (1ull << 40) ||
-        (uint64_t)a.byteOffset + (uint64_t)stride * (a.count - 1) + elem > bv.byteLength)
-        return fail(L, CG_ERR_GLTF_BUFFER,
-                    label + ": " + std::to_string(a.count) + " elements from byte " +
-                        std::to_string(a.byteOffset) + " need more than the " +
-                        std::to_string(bv.byteLength) + " bytes of bufferView " +
-                        std::to_string(a.bufferView));
-    out->base = buf.data.data() + bv.byteOffset + a.byteOffset;
-    out->stride = stride;
-    return true;
+    return !a.sparse.isSparse || apply_sparse(L, label, a, elem, out);
 }
 
 // Triangle list from a primitive's (possibly implicit) index sequence and mode.
