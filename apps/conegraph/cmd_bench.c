@@ -845,7 +845,7 @@ run_setting(const bench_config *c, fg_registry *registry, bench_scene *bs, cg_gp
     if (c->images) {
         char name[2048], path[4096], scene_slug[BENCH_TEXT], params_slug[512];
         slug(bs->source, scene_slug, sizeof scene_slug);
-        snprintf(name, sizeof name, "%s %s", s->graph, row->params);
+        snprintf(name, sizeof name, "%s%s%s", s->graph, row->params[0] ? " " : "", row->params);
         slug(name, params_slug, sizeof params_slug);
         snprintf(path, sizeof path, "%s/%s-%s.png", c->out_dir, scene_slug, params_slug);
         cg_image heat = { 0 };
