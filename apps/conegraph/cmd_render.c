@@ -81,6 +81,7 @@ render_usage(FILE *out)
         "\n"
         "The graph directory is $CONEGRAPH_GRAPH_DIR if set, else the source tree's graphs/\n"
         "(a build run from its build tree), else the installed %s.\n"
+        "After the run, the per-pass times and resources of the last frame go to stdout.\n"
         "Bad input (scene, graph, parameters, sizes, memory budget) exits with 2 before\n"
         "anything is rendered or written; a failure while rendering exits with 1.\n",
         CONEGRAPH_GRAPH_INSTALL_DIR);
