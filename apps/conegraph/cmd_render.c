@@ -81,6 +81,7 @@ render_usage(FILE *out)
         "\n"
         "The graph directory is $CONEGRAPH_GRAPH_DIR if set, else the source tree's graphs/\n"
         "(a build run from its build tree), else the installed %s.\n"
+        "After the run, the per-pass times and resources of the last frame go to stdout.\n"
         "Bad input (scene, graph, parameters, sizes, memory budget) exits with 2 before\n"
         "anything is rendered or written; a failure while rendering exits with 1.\n",
         CONEGRAPH_GRAPH_INSTALL_DIR);
@@ -312,11 +313,11 @@ render(const render_options *o)
     fg_compile_options copts = { .max_gpu_memory = o->max_gpu_memory };
     /* A first compile without GL finds every bad-input error before the scene goes to the GPU. */
     if (!fg_graph_compile(graph, &frame, &copts, &err)) {
-        code = fail_with(graph_path, &err);
+        code = fail_with("graph", &err);
         goto done;
     }
     if (!check_images(o, graph, image_source, &err)) {
-        code = fail_with(graph_path, &err);
+        code = fail_with("graph", &err);
         goto done;
     }
 
@@ -333,7 +334,7 @@ render(const render_options *o)
     frame.gpu_scene = &gpu;
     /* Again with GL: the texture size limits are the context's. */
     if (!fg_graph_compile(graph, &frame, &copts, &err)) {
-        code = fail_with(graph_path, &err);
+        code = fail_with("graph", &err);
         goto done;
     }
     if (!fg_graph_prepare(graph, &err)) {
