@@ -1,0 +1,140 @@
+/* `conegraph graph` and `conegraph passes` end to end: exit codes, what is printed, that a
+ * bad graph writes nothing, plugins by --plugin and $CONEGRAPH_PLUGIN_PATH.
+ * argv[1]: the example plugin; argv[2]: graphs/direct.json; the executable: $CONEGRAPH_EXE. */
+#include "test_support.h"
+
+#include <limits.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+static const char *plugin_path, *direct_graph;
+
+/* Runs conegraph with `args`, stdout and stderr together in out; returns the exit code. */
+static int
+run(const char *args, char *out, size_t size)
+{
+    const char *exe = getenv("CONEGRAPH_EXE");
+    assert_non_null(exe);
+    char cmd[8192];
+    snprintf(cmd, sizeof cmd, "'%s' %s 2>&1", exe, args);
+    FILE *p = popen(cmd, "r");
+    assert_non_null(p);
+    size_t n = fread(out, 1, size - 1, p);
+    out[n] = '\0';
+    int status = pclose(p);
+    assert_true(WIFEXITED(status));
+    return WEXITSTATUS(status);
+}
+
+static char out[1 << 16];
+
+static void
+graph_check_and_report(void **state)
+{
+    (void)state;
+    char args[8192], report[4200];
+    snprintf(report, sizeof report, "%s/report.json", cg_test_tmpdir());
+    snprintf(args, sizeof args, "graph '%s' builtin:cornell --size 320x180 --report '%s'", direct_graph, report);
+    assert_int_equal(run(args, out, sizeof out), 0);
+    assert_non_null(strstr(out, "4 of 4 passes run"));
+    assert_non_null(strstr(out, "final.hdr"));
+    assert_non_null(strstr(out, "memory: resources"));
+    assert_int_equal(access(report, R_OK), 0);
+
+    snprintf(args, sizeof args, "graph '%s' builtin:cornell --dot", direct_graph);
+    assert_int_equal(run(args, out, sizeof out), 0);
+    assert_true(strncmp(out, "digraph", 7) == 0);
+
+    assert_int_equal(run("graph --help", out, sizeof out), 0);
+    assert_non_null(strstr(out, "--dot"));
+    assert_int_equal(run("graph", out, sizeof out), 2);
+    assert_int_equal(run("graph x.json --size 0x7", out, sizeof out), 2);
+}
+
+static void
+bad_graphs_exit_2_and_write_nothing(void **state)
+{
+    (void)state;
+    char args[8192], report[4200];
+    snprintf(report, sizeof report, "%s/never.json", cg_test_tmpdir());
+    snprintf(args, sizeof args, "graph '%s' builtin:cornell --set shadow.resolution=9 --report '%s'", direct_graph,
+             report);
+    assert_int_equal(run(args, out, sizeof out), 2);
+    assert_non_null(strstr(out, "--set:1:19: pass 'shadow' parameter 'resolution'"));
+    assert_int_not_equal(access(report, F_OK), 0);
+
+    const char *cycle = cg_test_write_file("cycle.json",
+        "{ \"version\": 1,\n  \"passes\": {\n"
+        "    \"g\": { \"type\": \"gbuffer\" },\n"
+        "    \"d\": { \"type\": \"direct_light\", \"inputs\": { \"position\": \"g\", \"normal\": \"g\", \"albedo\": \"c\" } },\n"
+        "    \"c\": { \"type\": \"composite\", \"inputs\": { \"direct\": \"d.radiance\", \"albedo\": \"g\", \"emissive\": \"g\" } } },\n"
+        "  \"outputs\": [ \"c.hdr\" ] }\n", 0);
+    snprintf(args, sizeof args, "graph '%s' builtin:cornell --report '%s'", cycle, report);
+    assert_int_equal(run(args, out, sizeof out), 2);
+    assert_non_null(strstr(out, "cycle.json:4:5: graph has a cycle: 'd' -> 'c' -> 'd'"));
+    assert_int_not_equal(access(report, F_OK), 0);
+
+    snprintf(args, sizeof args, "graph '%s' builtin:cornell --max-gpu-memory 1", direct_graph);
+    assert_int_equal(run(args, out, sizeof out), 2);
+    assert_non_null(strstr(out, "more than the allowed 1.00 MiB"));
+    snprintf(args, sizeof args, "graph '%s' builtin:no_such_scene", direct_graph);
+    assert_int_equal(run(args, out, sizeof out), 2);
+}
+
+static void
+passes_lists_tables_and_plugins(void **state)
+{
+    (void)state;
+    assert_int_equal(run("passes", out, sizeof out), 0);
+    assert_non_null(strstr(out, "shadow_map"));
+    assert_non_null(strstr(out, "composite"));
+    assert_int_equal(run("passes --markdown", out, sizeof out), 0);
+    assert_non_null(strstr(out, "## `shadow_map`"));
+    assert_non_null(strstr(out, "| `resolution` | int | `2048` | 16..16384 |"));
+    assert_int_equal(run("passes --plugin /nonexistent/plugin.so", out, sizeof out), 2);
+    assert_non_null(strstr(out, "/nonexistent/plugin.so"));
+
+    char args[8192];
+    snprintf(args, sizeof args, "passes --plugin '%s'", plugin_path);
+    assert_int_equal(run(args, out, sizeof out), 0);
+    assert_non_null(strstr(out, "example_fill"));
+
+    /* A graph using the plugin's pass, the plugin found through $CONEGRAPH_PLUGIN_PATH. */
+    char dir[4200], link[4300], target[PATH_MAX];
+    snprintf(dir, sizeof dir, "%s/plugins", cg_test_tmpdir());
+    mkdir(dir, 0700);
+    snprintf(link, sizeof link, "%s/example.so", dir);
+    assert_non_null(realpath(plugin_path, target));
+    assert_int_equal(symlink(target, link), 0);
+    const char *graph = cg_test_write_file("fill.json",
+        "{ \"version\": 1, \"passes\": { \"fill\": { \"type\": \"example_fill\", \"params\": { \"red\": 0.5 } } },\n"
+        "  \"outputs\": [ \"fill.color\" ] }\n", 0);
+    snprintf(args, sizeof args, "graph '%s' builtin:cornell", graph);
+    assert_int_equal(run(args, out, sizeof out), 2); /* not registered without the plugin */
+    assert_non_null(strstr(out, "unknown type 'example_fill'"));
+    setenv("CONEGRAPH_PLUGIN_PATH", dir, 1);
+    assert_int_equal(run(args, out, sizeof out), 0);
+    assert_non_null(strstr(out, "1 of 1 passes run"));
+    unsetenv("CONEGRAPH_PLUGIN_PATH");
+}
+
+int
+main(int argc, char **argv)
+{
+    if (argc < 3) {
+        fprintf(stderr, "usage: %s EXAMPLE_PLUGIN DIRECT_GRAPH\n", argv[0]);
+        return 2;
+    }
+    plugin_path = argv[1];
+    direct_graph = argv[2];
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(graph_check_and_report),
+        cmocka_unit_test(bad_graphs_exit_2_and_write_nothing),
+        cmocka_unit_test(passes_lists_tables_and_plugins),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
