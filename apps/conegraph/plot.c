@@ -190,8 +190,12 @@ axis_fit(axis *a, const plot_desc *plot, bool is_x)
         if (span <= 0.0)
             span = fabs(hi) > 0.0 ? fabs(hi) : 1.0;
         double step = pow(10.0, floor(log10(span / 4.0)));
+        bool non_negative = lo >= 0.0;
         lo = floor((lo - 0.05 * span) / step) * step;
         hi = ceil((hi + 0.05 * span) / step) * step;
+        /* Quantities that cannot be negative (bytes, times) keep their axis at 0. */
+        if (non_negative && lo < 0.0)
+            lo = 0.0;
     }
     a->lo = lo;
     a->hi = hi;
