@@ -4,10 +4,12 @@
  *
  * Inputs: lightmap (a heightmap_raster lightmap after mip2d), region (heightmap_raster's block).
  * Outputs
- *   table  mode pyramid: RG32F, one level per lightmap level, level L = exact (min, max) of
- *          the level-0 heights over 2^L x 2^L blocks;
- *          modes pnorm and power_mean: RGBA32F, level l = summed-area tables of level l's
- *          normalised height x, x^p and (1 - x)^p, each minus its level mean (Hensley 2005).
+ *   table  mode pyramid: RG32UI (float bits), n x n, one level per lightmap level, level L =
+ *          exact (min, max) of the level-0 heights over 2^L x 2^L blocks;
+ *          modes pnorm and power_mean: RGBA32UI, 2n x n, level l = summed-area tables of
+ *          level l's normalised height x, x^p and (1 - x)^p as doubles (two texels per
+ *          entry), each minus its level mean (Hensley 2005). fp32 tables were measured
+ *          2.6 m off in the mean height of small rectangles at 2048^2 (docs/hybrid.md).
  *   info   272-byte std430 block: mode, p, levels, and the per-level means.
  *
  * Why three modes: eq. 14 (power_mean) under-estimates the maximum by up to N^(-1/p) over N
@@ -64,8 +66,8 @@ hsat_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
                        fg_pass_name(pass), region->buffer_bytes, REGION_BYTES);
     bool pyramid = fg_param_enum(pass, "mode") == MODE_PYRAMID;
     fg_resource_desc table = {
-        .kind = FG_TEXTURE_2D, .format = pyramid ? GL_RG32F : GL_RGBA32F,
-        .width = lightmap->width, .height = lightmap->height, .depth = 1,
+        .kind = FG_TEXTURE_2D, .format = pyramid ? GL_RG32UI : GL_RGBA32UI,
+        .width = pyramid ? lightmap->width : 2 * lightmap->width, .height = lightmap->height, .depth = 1,
         .levels = lightmap->levels, .gi = true,
     };
     fg_declare_output(decl, "table", &table, FG_ACCESS_IMAGE_STORE | FG_ACCESS_IMAGE_LOAD);
@@ -150,14 +152,14 @@ hsat_execute(fg_pass *pass, void *state, cg_error *err)
             if (level == 0)
                 glBindImageTexture(0, lightmap, 0, GL_FALSE, 0, GL_READ_ONLY, s->lightmap_format);
             else
-                glBindImageTexture(0, table, level - 1, GL_FALSE, 0, GL_READ_ONLY, GL_RG32F);
-            glBindImageTexture(1, table, level, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
+                glBindImageTexture(0, table, level - 1, GL_FALSE, 0, GL_READ_ONLY, GL_RG32UI);
+            glBindImageTexture(1, table, level, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32UI);
             GLuint groups = (GLuint)((size + 7) / 8);
             glDispatchCompute(groups, groups, 1);
             glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
         }
-        glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RG32F);
-        glBindImageTexture(1, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
+        glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RG32UI);
+        glBindImageTexture(1, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32UI);
         glUseProgram(0);
         return true;
     }
@@ -171,7 +173,7 @@ hsat_execute(fg_pass *pass, void *state, cg_error *err)
     for (int level = 0; level < levels; level++) {
         int size = lightmap_desc->width >> level;
         glBindImageTexture(0, lightmap, level, GL_FALSE, 0, GL_READ_ONLY, s->lightmap_format);
-        glBindImageTexture(1, table, level, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+        glBindImageTexture(1, table, level, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32UI);
         for (int i = 0; i < 4; i++) {
             glUseProgram(stages[i]);
             glUniform1i(0, size);
@@ -182,7 +184,7 @@ hsat_execute(fg_pass *pass, void *state, cg_error *err)
         }
     }
     glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_ONLY, s->lightmap_format);
-    glBindImageTexture(1, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+    glBindImageTexture(1, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32UI);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, 0);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, 0);
     glUseProgram(0);

@@ -52,7 +52,7 @@ static const fg_param_desc hybrid_gather_params[] = {
 
 typedef struct hybrid_gather_state {
     GLuint program;
-    GLuint volume_sampler, map_sampler;
+    GLuint volume_sampler, map_sampler, table_sampler;
     GLuint empty_block;     /* bound where a map is absent, so no block is left unbound */
     cg_cone_set set;
     bool has_2d, has_3d;
@@ -123,6 +123,7 @@ hybrid_gather_destroy(void *state)
     glDeleteProgram(s->program);
     glDeleteSamplers(1, &s->volume_sampler);
     glDeleteSamplers(1, &s->map_sampler);
+    glDeleteSamplers(1, &s->table_sampler);
     glDeleteBuffers(1, &s->empty_block);
     free(s);
 }
@@ -161,6 +162,10 @@ hybrid_gather_prepare(fg_pass *pass, void **state, cg_error *err)
     glSamplerParameteri(s->map_sampler, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glSamplerParameteri(s->map_sampler, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glSamplerParameteri(s->map_sampler, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    /* The HSAT tables are integer textures: complete only with nearest filtering. */
+    glCreateSamplers(1, &s->table_sampler);
+    glSamplerParameteri(s->table_sampler, GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
+    glSamplerParameteri(s->table_sampler, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     glCreateBuffers(1, &s->empty_block);
     glNamedBufferStorage(s->empty_block, HSAT_INFO_BYTES, NULL, GL_DYNAMIC_STORAGE_BIT);
     const unsigned zero = 0;
@@ -212,10 +217,12 @@ hybrid_gather_execute(fg_pass *pass, void *state, cg_error *err)
     glBindTextureUnit(3, s->has_2d ? fg_texture(pass, "lightmap2d") : 0);
     glBindSampler(3, s->map_sampler);
     glBindTextureUnit(4, s->has_2d ? fg_texture(pass, "hsat") : 0);
+    glBindSampler(4, s->table_sampler);
     glBindImageTexture(0, fg_texture(pass, "radiance"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glDispatchCompute((GLuint)(out->width + 7) / 8, (GLuint)(out->height + 7) / 8, 1);
     glBindSampler(0, 0);
     glBindSampler(3, 0);
+    glBindSampler(4, 0);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, 0);
     glUseProgram(0);
     return true;

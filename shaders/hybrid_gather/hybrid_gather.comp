@@ -31,7 +31,7 @@ layout(binding = 0) uniform sampler3D u_volume;
 layout(binding = 1) uniform sampler2D u_position;
 layout(binding = 2) uniform sampler2D u_normal;
 layout(binding = 3) uniform sampler2D u_lightmap;
-layout(binding = 4) uniform sampler2D u_hsat;
+layout(binding = 4) uniform usampler2D u_hsat;
 
 layout(binding = 0, rgba16f) writeonly uniform image2D u_radiance;
 
