@@ -159,7 +159,10 @@ hybrid_trace(vec3 origin, vec3 dir, float tan_half, float t_start, float t_max)
                 cg_cone_composite(acc, vec4(s.rgb * v.radiance_scale, s.a));
             }
         }
-        if (acc.a < CG_CONE_OPAQUE && all(lessThan(max(c_lo, m_lo), min(c_hi, m_hi)))) {
+        // The height field fills everything below its surface: its box reaches down without
+        // bound (a flat terrain has y_min = y_max, and a cube under it is buried, not outside).
+        if (acc.a < CG_CONE_OPAQUE && all(lessThan(max(c_lo.xz, m_lo.xz), min(c_hi.xz, m_hi.xz))) &&
+            c_lo.y <= m_hi.y) {
             alive = true;
             // Eq. 8 with the 2D lightmap's xel.
             float lod = clamp(log2(d / cg_heightmap_xel(m)) + u_lod_bias, 0.0, top2);
