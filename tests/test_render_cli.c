@@ -74,6 +74,8 @@ test_bad_input_writes_nothing(void **state)
         "builtin:cornell --max-gpu-memory 1K",
         "builtin:cornell --dump gbuf.nosuchoutput=x.exr",
         "builtin:cornell --plugin /nonexistent/plugin.so",
+        "builtin:cornell --graph direct.json --dump shadow.matrix=x.exr",     /* a buffer */
+        "builtin:furnace --graph direct.json --dump shadow.depth=x.exr",      /* no light to shadow */
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         snprintf(args, sizeof args, "%s --size 32x32 -o '%s'", cases[i], out);

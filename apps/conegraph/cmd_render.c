@@ -81,6 +81,7 @@ render_usage(FILE *out)
         "\n"
         "The graph directory is $CONEGRAPH_GRAPH_DIR if set, else the source tree's graphs/\n"
         "(a build run from its build tree), else the installed %s.\n"
+        "After the run, the per-pass times and resources of the last frame go to stdout.\n"
         "Bad input (scene, graph, parameters, sizes, memory budget) exits with 2 before\n"
         "anything is rendered or written; a failure while rendering exits with 1.\n",
         CONEGRAPH_GRAPH_INSTALL_DIR);
@@ -239,6 +240,28 @@ build_graph(const render_options *o, const char *graph_path, fg_graph *graph, cg
     return true;
 }
 
+/* Everything to be written as an image must be a texture that this scene produces (a pass
+ * with nothing to do leaves its outputs absent): known after compile, before rendering. */
+static bool
+check_images(const render_options *o, const fg_graph *graph, const char *image_source, cg_error *err)
+{
+    for (int i = -1; i < o->dump_count; i++) {
+        const char *source = i < 0 ? image_source : o->dumps[i].source;
+        const fg_resource_info *info = fg_graph_find_resource(graph, source);
+        char pass_name[256];
+        snprintf(pass_name, sizeof pass_name, "%.*s", (int)strcspn(source, "."), source);
+        const fg_pass *pass = fg_graph_find_pass(graph, pass_name);
+        if ((!info || info->absent) && pass && fg_pass_is_culled(pass))
+            return cg_fail(err, CG_ERR_USAGE, "%s: absent for scene '%s' (pass '%s': %s), so it cannot "
+                           "be written", source, o->scene, pass_name, fg_pass_cull_reason(pass));
+        if (!info || info->absent)
+            return cg_fail(err, CG_ERR_GRAPH_DANGLING, "%s: no such resource", source);
+        if (info->desc.kind == FG_BUFFER)
+            return cg_fail(err, CG_ERR_USAGE, "%s: a buffer; only textures can be written as images", source);
+    }
+    return true;
+}
+
 static int
 render(const render_options *o)
 {
@@ -290,7 +313,11 @@ render(const render_options *o)
     fg_compile_options copts = { .max_gpu_memory = o->max_gpu_memory };
     /* A first compile without GL finds every bad-input error before the scene goes to the GPU. */
     if (!fg_graph_compile(graph, &frame, &copts, &err)) {
-        code = fail_with(graph_path, &err);
+        code = fail_with("graph", &err);
+        goto done;
+    }
+    if (!check_images(o, graph, image_source, &err)) {
+        code = fail_with("graph", &err);
         goto done;
     }
 
@@ -307,7 +334,7 @@ render(const render_options *o)
     frame.gpu_scene = &gpu;
     /* Again with GL: the texture size limits are the context's. */
     if (!fg_graph_compile(graph, &frame, &copts, &err)) {
-        code = fail_with(graph_path, &err);
+        code = fail_with("graph", &err);
         goto done;
     }
     if (!fg_graph_prepare(graph, &err)) {

@@ -35,7 +35,7 @@ static const fg_param_desc voxelize_params[] = {
     {"resolution", FG_PARAM_INT, 128, 16, 512, NULL,
      "voxels per edge of the cubic volume at level 0 (a power of two)"},
     {"format", FG_PARAM_ENUM, FORMAT_RGBA16F, 0, 0, "rgba8|rgba16f",
-     "texel format: rgba8 as in the VCT paper (radiance scaled by a per-frame bound) or rgba16f"},
+     "texel format: rgba8 as in the VCT paper (radiance over the volume's maximum) or rgba16f"},
     {"meshes", FG_PARAM_ENUM, CG_MESHES_ALL, 0, 0, "all|complex|heightfield",
      "which meshes to voxelize (the hybrid method voxelizes only complex meshes)"},
     {"region", FG_PARAM_ENUM, REGION_MESHES, 0, 0, "meshes|scene|explicit",

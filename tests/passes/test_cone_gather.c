@@ -1,7 +1,7 @@
 /* mip3d and cone_gather alone on a software context (small sizes: 32^3-64^3 volumes,
  * 32x32 images): the mip chain against a CPU 2x2x2 box filter, the white furnace at three
  * scene scales and for every cone set, and finite output for axis normals, wide (grazing)
- * cones, an empty volume and a single triangle. */
+ * cones, an empty volume, a single triangle and a scene with no triangles. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -248,6 +248,29 @@ test_finite_everywhere(void **state)
     g = run_gather(ctx, &s->scene, 32, "", "max", 6, 0.0, "", 0.0);
     assert_int_equal(g.nonfinite, 0);
     assert_true(g.pixels > 0);
+
+    /* A scene with no triangles through the shipped graph: voxelize has nothing to do, the
+     * gather is culled with it, composite adapts, and the image is finite (and black). */
+    vf_scene_init(s, 0.8f, 0.0f);
+    cg_light *sun = &s->lights[s->scene.light_count++];
+    sun->type = CG_LIGHT_DIRECTIONAL;
+    sun->color[0] = sun->color[1] = sun->color[2] = 1.0f;
+    sun->intensity = 2.0f;
+    sun->direction[1] = -1.0f;
+    vf_finish(s);
+    vf_runner r;
+    vf_start_file(&r, &s->scene, 32, 32, "vct.json", NULL);
+    vf_frame(&r);
+    assert_true(fg_pass_is_culled(fg_graph_find_pass(r.graph, "vox")));
+    assert_true(fg_pass_is_culled(fg_graph_find_pass(r.graph, "gather")));
+    int w = 0, h = 0;
+    float *hdr = read_2d(&r, "final.hdr", &w, &h);
+    for (int i = 0; i < 4 * w * h; i++)
+        if (!isfinite(hdr[i]) || (i % 4 != 3 && hdr[i] != 0.0f))
+            fail_msg("empty scene: value %g at %d", hdr[i], i);
+    free(hdr);
+    assert_no_gl_errors(ctx);
+    vf_stop(&r);
     free(s);
 }
 

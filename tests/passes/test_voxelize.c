@@ -5,8 +5,10 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "cg/gl.h"
+#include "cg/scene.h"
 #include "test_support.h"
 #include "tribox_ref.h"
 #include "vct_fixture.h"
@@ -15,7 +17,7 @@
 
 static const char graph_template[] =
     "{ \"version\": 1, \"passes\": { \"vox\": { \"type\": \"voxelize\", \"params\": {"
-    " \"resolution\": %d, \"region\": \"explicit\", \"padding\": 0, \"conservative\": %s,"
+    " \"resolution\": %d, \"region\": \"explicit\", \"padding\": 0, \"conservative\": %s, \"format\": \"%s\","
     " \"min_x\": 0, \"min_y\": 0, \"min_z\": 0, \"max_x\": 1, \"max_y\": 1, \"max_z\": 1 } } },"
     " \"outputs\": [ \"vox.radiance\" ] }";
 
@@ -112,7 +114,7 @@ static int
 run_orientations(cg_context *ctx, bool conservative, int shape, int count, coverage *total)
 {
     char json[1024];
-    snprintf(json, sizeof json, graph_template, RES, conservative ? "true" : "false");
+    snprintf(json, sizeof json, graph_template, RES, conservative ? "true" : "false", "rgba16f");
     vf_scene *s = calloc(1, sizeof *s);
     assert_non_null(s);
     double identity[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
@@ -181,11 +183,11 @@ test_plain_rasterization_leaves_holes(void **state)
 
 /* A white-ish quad facing a directional light of irradiance E: every voxel it occupies
  * holds albedo E / pi + emission (DESIGN.md units), within the fixed-point and half-float
- * rounding; voxels away from it stay empty and black. */
+ * rounding (RGBA8: as a fraction of the published scale); voxels away from it stay empty and black. */
 static void
-test_lit_surface_radiance(void **state)
+check_lit_surface(cg_context *ctx, const char *format)
 {
-    cg_context *ctx = cg_test_gl_context(state);
+    bool rgba8 = strcmp(format, "rgba8") == 0;
     const float albedo = 0.6f, emission = 0.05f, irradiance = 3.0f;
     vf_scene *s = calloc(1, sizeof *s);
     assert_non_null(s);
@@ -201,13 +203,27 @@ test_lit_surface_radiance(void **state)
     sun->direction[1] = -1.0f;
     vf_finish(s);
     char json[1024];
-    snprintf(json, sizeof json, graph_template, RES, "true");
+    snprintf(json, sizeof json, graph_template, RES, "true", format);
     vf_runner r;
     vf_start(&r, &s->scene, 32, 32, json, NULL);
     vf_frame(&r);
     int size = 0;
     float *vox = vf_read_volume(&r, "vox.radiance", 0, &size);
-    const double expected = albedo * irradiance / M_PI + emission;
+    const double radiance = albedo * irradiance / M_PI + emission;
+    /* The region block (common/volume.glsl): origin, voxel size, resolution, levels, scale. */
+    float block[8];
+    glGetNamedBufferSubData(fg_graph_texture(r.graph, "vox.region"), 0, sizeof block, block);
+    assert_float_equal(block[0], 0.0, 1e-7);
+    assert_float_equal(block[3], 1.0 / RES, 1e-7);
+    assert_float_equal(block[4], RES, 0.0);
+    assert_float_equal(block[5], 6, 0.0);
+    /* RGBA16F holds radiance itself; RGBA8 radiance over the volume's maximum, published as the scale. */
+    if (rgba8)
+        assert_float_equal(block[6], radiance, 1e-5 * radiance);
+    else
+        assert_float_equal(block[6], 1.0, 0.0);
+    const double expected = rgba8 ? 1.0 : radiance;
+    const double tolerance = rgba8 ? 0.5 / 255.0 : 2e-3 * expected;
     int occupied = 0;
     for (int z = 0; z < RES; z++)
         for (int y = 0; y < RES; y++)
@@ -217,7 +233,7 @@ test_lit_surface_radiance(void **state)
                     occupied++;
                     assert_int_equal(y, 16);
                     for (int k = 0; k < 3; k++)
-                        if (fabs(v[k] - expected) > 2e-3 * expected)
+                        if (fabs(v[k] - expected) > tolerance)
                             fail_msg("voxel (%d,%d,%d): radiance %g, expected %g", x, y, z, v[k], expected);
                 } else {
                     assert_true(v[0] == 0.0f && v[1] == 0.0f && v[2] == 0.0f);
@@ -236,6 +252,80 @@ test_lit_surface_radiance(void **state)
     free(s);
 }
 
+static void
+test_lit_surface_radiance(void **state)
+{
+    cg_context *ctx = cg_test_gl_context(state);
+    check_lit_surface(ctx, "rgba16f");
+    check_lit_surface(ctx, "rgba8");
+}
+
+/* The `meshes` filter (the hybrid method voxelizes complex meshes only): over one region,
+ * the terrain's voxels and the buildings' voxels together are exactly the voxels of all
+ * meshes; a filter no mesh passes culls the pass. */
+static float *
+occupancy(cg_context *ctx, const cg_scene *scene, const char *meshes, bool *culled)
+{
+    char json[512];
+    snprintf(json, sizeof json,
+             "{ \"version\": 1, \"passes\": { \"vox\": { \"type\": \"voxelize\", \"params\": {"
+             " \"resolution\": %d, \"meshes\": \"%s\", \"region\": \"scene\" } } },"
+             " \"outputs\": [ \"vox.radiance\" ] }", RES, meshes);
+    vf_runner r;
+    vf_start(&r, scene, 32, 32, json, NULL);
+    *culled = fg_pass_is_culled(fg_graph_find_pass(r.graph, "vox"));
+    float *vox = NULL;
+    if (!*culled) {
+        vf_frame(&r);
+        int size = 0;
+        vox = vf_read_volume(&r, "vox.radiance", 0, &size);
+    }
+    assert_no_gl_errors(ctx);
+    vf_stop(&r);
+    assert_false(*culled);
+    return vox;
+}
+
+static void
+test_mesh_filter(void **state)
+{
+    cg_context *ctx = cg_test_gl_context(state);
+    cg_scene scene;
+    cg_error err = {0};
+    assert_cg_ok(cg_scene_load("builtin:openworld?triangles=5000", &scene, &err), &err);
+    bool culled = false;
+    float *all = occupancy(ctx, &scene, "all", &culled);
+    float *terrain = occupancy(ctx, &scene, "heightfield", &culled);
+    float *complex = occupancy(ctx, &scene, "complex", &culled);
+    int n_all = 0, n_terrain = 0, n_complex = 0;
+    for (int i = 0; i < RES * RES * RES; i++) {
+        bool a = all[4 * i + 3] > 0.5f, t = terrain[4 * i + 3] > 0.5f, c = complex[4 * i + 3] > 0.5f;
+        n_all += a, n_terrain += t, n_complex += c;
+        if (a != (t || c))
+            fail_msg("voxel %d: all %d, heightfield %d, complex %d", i, a, t, c);
+    }
+    fprintf(stderr, "# openworld 5000 triangles at %d^3: %d voxels, %d terrain, %d complex\n", RES, n_all,
+            n_terrain, n_complex);
+    assert_true(n_terrain > 0 && n_complex > 0 && n_complex < n_all && n_terrain < n_all);
+    free(all);
+    free(terrain);
+    free(complex);
+    cg_scene_free(&scene);
+
+    /* builtin:cornell has no height field: voxelize and the gather are culled, the frame runs. */
+    assert_cg_ok(cg_scene_load("builtin:cornell", &scene, &err), &err);
+    const char *const heightfield_only[] = {"vox.meshes=heightfield", NULL};
+    vf_runner r;
+    vf_start_file(&r, &scene, 32, 32, "vct.json", heightfield_only);
+    vf_frame(&r);
+    assert_true(fg_pass_is_culled(fg_graph_find_pass(r.graph, "vox")));
+    assert_true(fg_pass_is_culled(fg_graph_find_pass(r.graph, "gather")));
+    assert_false(fg_pass_is_culled(fg_graph_find_pass(r.graph, "final")));
+    assert_no_gl_errors(ctx);
+    vf_stop(&r);
+    cg_scene_free(&scene);
+}
+
 int
 main(void)
 {
@@ -243,6 +333,7 @@ main(void)
         cmocka_unit_test(test_coverage_exact),
         cmocka_unit_test(test_plain_rasterization_leaves_holes),
         cmocka_unit_test(test_lit_surface_radiance),
+        cmocka_unit_test(test_mesh_filter),
     };
     return cmocka_run_group_tests(tests, cg_test_gl_setup, cg_test_gl_teardown);
 }

@@ -82,8 +82,9 @@ vf_finish(vf_scene *s)
             s->mesh.bounds_min[k] = fminf(s->mesh.bounds_min[k], s->positions[3 * v + k]);
             s->mesh.bounds_max[k] = fmaxf(s->mesh.bounds_max[k], s->positions[3 * v + k]);
         }
-        s->scene.bounds_min[k] = s->mesh.bounds_min[k];
-        s->scene.bounds_max[k] = s->mesh.bounds_max[k];
+        /* An empty scene has empty bounds at the origin (what a camera can be framed from). */
+        s->scene.bounds_min[k] = s->mesh.vertex_count ? s->mesh.bounds_min[k] : 0.0f;
+        s->scene.bounds_max[k] = s->mesh.vertex_count ? s->mesh.bounds_max[k] : 0.0f;
     }
     s->scene.mesh_count = s->mesh.index_count > 0 ? 1 : 0;
     s->scene.instance_count = s->scene.mesh_count;
