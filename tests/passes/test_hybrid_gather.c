@@ -241,7 +241,7 @@ test_openworld(void **state)
     size_t hybrid = gi_bytes(&scene, "hybrid.json", NULL);
     size_t vct_256 = gi_bytes(&scene, "vct.json", vct256);
     size_t vct_128 = gi_bytes(&scene, "vct.json", NULL);
-    printf("# builtin:openworld GI bytes: hybrid.json (128^3 + 1024^2) %zu, vct.json 128^3 %zu, vct.json 256^3 %zu\n",
+    printf("# builtin:openworld GI bytes: hybrid.json (128^3 + 512^2) %zu, vct.json 128^3 %zu, vct.json 256^3 %zu\n",
            hybrid, vct_128, vct_256);
     assert_true(hybrid < vct_256);
     cg_scene_free(&scene);
