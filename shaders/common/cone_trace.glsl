@@ -91,14 +91,56 @@ cg_cone_sample(sampler3D volume, vec3 uvw, float lod, vec3 d)
 #endif
 }
 
-// Returns the gathered radiance (rgb, already scaled to radiance) and the cone's opacity (a).
+// The matched level: the mip level whose filtered sample covers the cone's footprint.
+// Eq. 8 (hybrid paper; VCT paper 3.2) picks the level whose voxel is as wide as the
+// footprint diameter d, but a sample there is wider than d: the level is a 2x2x2 box pyramid
+// (per-axis variance about s^2/12 for voxels s wide) and the trilinear tent that reads it
+// adds s^2/6 on average over sample positions, s^2/4 in all, while the cone's disc of
+// diameter d has the per-axis variance d^2/16. Equal for s = d/2: one level below eq. 8.
+float
+cg_cone_level(CgVolume v, float diameter)
+{
+    return cg_cone_lod(v, diameter) - 1.0;
+}
+
+// One step of the march with a premultiplied sample s read at a level whose voxels are
+// `cell` wide, standing for the path length `span` (world units) around the sample.
+// The voxels hold surfaces: alpha is the solid fraction of a cell, so alpha * span / cell
+// is the length of solid the step crosses, in cells, and the coverage adds up, not
+// multiplies (one wall is one occluder, not independent layers). A trilinear tent sampled
+// at any spacing up to one cell sums to the cell count (partition of unity), so a wall one
+// cell thick at the sampled level gathers exactly coverage 1, whatever the step and the
+// phase of the samples: no leak, and the result does not depend on the step (docs/vct.md).
+// The colour is the sample's (s.rgb / alpha) weighted by the coverage it adds.
+void
+cg_cone_composite_span(inout vec4 acc, vec4 s, float span, float cell)
+{
+    float alpha = clamp(s.a, 0.0, 1.0);
+    if (alpha <= 0.0)
+        return;
+    float w = min(alpha * span / cell, 1.0 - acc.a);
+    acc.rgb += s.rgb * (w / alpha);
+    acc.a += w;
+}
+
+// The march from a surface: `surface` = (unit normal of the surface the cone leaves, height
+// of c.origin above that surface), or w < 0 for a cone with no surface behind it. A sample
+// reads the voxels within one voxel of its own (the trilinear support), and the surface's
+// voxels at a level with voxels s wide have centres up to s / 2 off its plane, along the
+// normal n at most 1.5 s |n|_1 away: below that height the sample would read the cone's own
+// surface (self-occlusion and self-illumination: black ceilings, bright lit floors). So the
+// level is capped at the coarsest whose support stays above the plane, and the step at one
+// voxel of that level, which keeps the coverage of cg_cone_composite_span exact.
+// Returns the gathered radiance (rgb, already scaled to radiance) and the cone's coverage (a).
 vec4
-cg_cone_trace(sampler3D volume, CgVolume v, CgCone c)
+cg_cone_trace_surface(sampler3D volume, CgVolume v, CgCone c, vec4 surface)
 {
     vec4 acc = vec4(0.0);
     float extent = cg_volume_extent(v);
     float top = v.levels - 1.0;
     float t = c.t_start;
+    float support = 1.5 * (abs(surface.x) + abs(surface.y) + abs(surface.z));
+    float rise = dot(c.direction, surface.xyz);
     // The loop bound is a safety net against a zero step; steps grow with t, so real
     // marches end far earlier (about log(t_max / t_start) / log(1 + 2 step tan) steps).
     for (int i = 0; i < 4096 && t < c.t_max && acc.a < CG_CONE_OPAQUE; i++) {
@@ -108,17 +150,27 @@ cg_cone_trace(sampler3D volume, CgVolume v, CgCone c)
         float reach = 0.5 * diameter / extent;
         if (any(lessThan(uvw, vec3(-reach))) || any(greaterThan(uvw, vec3(1.0 + reach))))
             break;  // the whole footprint is outside the volume: nothing more to gather
-        // Eq. 8 picks the level whose voxel is as wide as the footprint; trilinear filtering
-        // then spreads the sample over two such voxels, so a bias of -1 keeps the sample's
-        // support within the footprint (and off the surface the cone starts from); the
-        // gather's default, -2, measured closer to the path tracer (docs/vct.md).
-        float lod = clamp(cg_cone_lod(v, diameter) + c.lod_bias, 0.0, top);
+        float lod = cg_cone_level(v, diameter) + c.lod_bias;
+        if (surface.w >= 0.0) {
+            float height = surface.w + t * rise;
+            lod = min(lod, log2(max(height, 1e-30) / (support * v.voxel_size)));
+        }
+        lod = clamp(lod, 0.0, top);
+        float cell = v.voxel_size * exp2(lod);
+        float span = c.step_factor * min(diameter, 2.0 * cell);
         vec4 s = cg_cone_sample(volume, uvw, lod, c.direction);
-        cg_cone_composite(acc, s);
-        t += c.step_factor * diameter;
+        cg_cone_composite_span(acc, s, span, cell);
+        t += span;
     }
     acc.rgb *= v.radiance_scale;
     return acc;
+}
+
+// A cone with no surface behind it (see cg_cone_trace_surface).
+vec4
+cg_cone_trace(sampler3D volume, CgVolume v, CgCone c)
+{
+    return cg_cone_trace_surface(volume, v, c, vec4(0.0, 0.0, 0.0, -1.0));
 }
 
 // Orthonormal tangent frame for a unit normal, NaN-free for every normal including the

@@ -58,26 +58,28 @@ main()
         float t_max = u_max_distance > 0.0 ? u_max_distance : cg_volume_extent(v) * sqrt(3.0);
         // Start off the surface's own voxels, which would otherwise light it (VCT self-illumination).
         vec3 origin = position.xyz + n * (u_start_offset * v.voxel_size);
+        // The surface every cone leaves: no sample may read its voxels (cg_cone_trace_surface).
+        vec4 surface = vec4(n, u_start_offset * v.voxel_size);
         mat3 frame = cg_tangent_frame(n);
         diffuse = vec4(0.0);
         for (int k = 0; k < u_cone_count; k++) {
             CgCone cone = CgCone(origin, normalize(frame * u_cones[k].xyz), u_tan_half[k],
                                  v.voxel_size, t_max, u_step, u_lod_bias);
-            vec4 r = cg_cone_trace(u_volume, v, cone);
+            vec4 r = cg_cone_trace_surface(u_volume, v, cone, surface);
             diffuse.rgb += u_cones[k].w * r.rgb;
             diffuse.a += u_cones[k].w * (1.0 - r.a);
         }
 #ifdef SPECULAR
         vec3 view = normalize(position.xyz - u_camera);
         CgCone mirror = CgCone(origin, reflect(view, n), u_specular_tan_half, v.voxel_size, t_max, u_step, u_lod_bias);
-        specular = cg_cone_trace(u_volume, v, mirror);
+        specular = cg_cone_trace_surface(u_volume, v, mirror, surface);
 #endif
 #ifdef SHADOW_CONE
         if (u_shadow_light >= 0 && uint(u_shadow_light) < cg_light_count()) {
             CgLightSample s = cg_light_sample(cg_lights[u_shadow_light], position.xyz);
             CgCone towards = CgCone(origin, s.to_light, u_shadow_tan_half, v.voxel_size,
                                     min(t_max, s.distance), u_step, u_lod_bias);
-            visibility = 1.0 - cg_cone_trace(u_volume, v, towards).a;
+            visibility = 1.0 - cg_cone_trace_surface(u_volume, v, towards, surface).a;
         }
 #endif
     }
