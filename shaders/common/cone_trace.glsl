@@ -129,8 +129,8 @@ cg_cone_composite_span(inout vec4 acc, vec4 s, float span, float cell)
 // voxels at a level with voxels s wide have centres up to s / 2 off its plane, along the
 // normal n at most 1.5 s |n|_1 away: below that height the sample would read the cone's own
 // surface (self-occlusion and self-illumination: black ceilings, bright lit floors). So the
-// level is capped at the coarsest whose support stays above the plane, and the step at one
-// voxel of that level, which keeps the coverage of cg_cone_composite_span exact.
+// level is capped at the coarsest whole level whose support stays above the plane, and the
+// step at one voxel of that level (step 0.5), which keeps cg_cone_composite_span exact.
 // Returns the gathered radiance (rgb, already scaled to radiance) and the cone's coverage (a).
 vec4
 cg_cone_trace_surface(sampler3D volume, CgVolume v, CgCone c, vec4 surface)
@@ -152,8 +152,10 @@ cg_cone_trace_surface(sampler3D volume, CgVolume v, CgCone c, vec4 surface)
             break;  // the whole footprint is outside the volume: nothing more to gather
         float lod = cg_cone_level(v, diameter) + c.lod_bias;
         if (surface.w >= 0.0) {
+            // A fractional level blends in the next coarser level, whose support is twice
+            // as deep: that one must clear the plane, hence the 1 below the bound.
             float height = surface.w + t * rise;
-            lod = min(lod, log2(max(height, 1e-30) / (support * v.voxel_size)));
+            lod = min(lod, log2(max(height, 1e-30) / (support * v.voxel_size)) - 1.0);
         }
         lod = clamp(lod, 0.0, top);
         float cell = v.voxel_size * exp2(lod);

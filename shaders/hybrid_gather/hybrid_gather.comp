@@ -231,10 +231,11 @@ main()
         CgVolume v = cg_volume();
         float t_max = u_max_distance > 0.0 ? u_max_distance : cg_volume_extent(v) * sqrt(3.0);
         vec3 origin = position.xyz + n * (u_start_offset * v.voxel_size);
+        vec4 surface = vec4(n, u_start_offset * v.voxel_size);
         for (int k = 0; k < u_cone_count; k++) {
             CgCone cone = CgCone(origin, normalize(frame * u_cones[k].xyz), u_tan_half[k],
                                  v.voxel_size, t_max, u_step, u_lod_bias);
-            vec4 r = cg_cone_trace(u_volume, v, cone);
+            vec4 r = cg_cone_trace_surface(u_volume, v, cone, surface);
             diffuse.rgb += u_cones[k].w * r.rgb;
             diffuse.a += u_cones[k].w * (1.0 - r.a);
         }

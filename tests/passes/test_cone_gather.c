@@ -10,6 +10,7 @@
 #include "cg/gl.h"
 #include "cg/scene.h"
 #include "test_support.h"
+#include "hybrid_fixture.h"
 #include "vct_fixture.h"
 
 /* ------------------------------------------------------------------ mip3d
@@ -224,21 +225,56 @@ run_gather(cg_context *ctx, const cg_scene *scene, int resolution, const char *v
     return g;
 }
 
+/* albedo x gathered over the covered pixels of a run of a graph file (gather.radiance,
+ * gbuf.albedo): the mean luminance-free value of channel 0, and the worst |v - target| / target. */
+static gather_result
+run_graph_file(cg_context *ctx, const cg_scene *scene, int size, const char *graph, const char *const *overrides,
+               double target)
+{
+    vf_runner r;
+    vf_start_file(&r, scene, size, size, graph, overrides);
+    vf_frame(&r);
+    int w = 0, h = 0;
+    float *gathered = read_2d(&r, "gather.radiance", &w, &h);
+    float *albedo = read_2d(&r, "gbuf.albedo", &w, &h);
+    float *position = read_2d(&r, "gbuf.position", &w, &h);
+    gather_result g = {0};
+    for (int i = 0; i < w * h; i++) {
+        for (int k = 0; k < 4; k++)
+            g.nonfinite += !isfinite(gathered[4 * i + k]);
+        if (position[4 * i + 3] <= 0.0f)
+            continue;
+        g.pixels++;
+        for (int k = 0; k < 3; k++) {
+            double v = (double)albedo[4 * i + k] * gathered[4 * i + k];
+            g.mean[k] += v;
+            g.worst_rel = fmax(g.worst_rel, target > 0 ? fabs(v - target) / target : fabs(v));
+        }
+    }
+    for (int k = 0; k < 3; k++)
+        g.mean[k] /= g.pixels > 0 ? g.pixels : 1;
+    free(gathered);
+    free(albedo);
+    free(position);
+    assert_no_gl_errors(ctx);
+    vf_stop(&r);
+    return g;
+}
+
 /* Inside a closed box whose walls emit L and have albedo a, every direction sees L, so
  * albedo x gathered = a L at every pixel (DESIGN.md: the white furnace), within 2%, at
- * millimetre, metre and 10-kilometre scales (nothing in the tracer depends on units) and
- * for every cone set. This holds where the march samples the level of eq. 8 (lod_bias 0,
- * step 0.5): the check of the weights and the compositing. The defaults (lod_bias -2,
- * step 0.25: closer to the path tracer on builtin:cornell) sample finer levels, where a
- * one-voxel wall can fall between samples; the furnace then loses a few percent through
- * the walls, which is measured and bounded here (docs/vct.md). */
+ * millimetre, metre and 10-kilometre scales (nothing in the tracer depends on units):
+ * for every cone set at the matched level (lod_bias 0) and, the figure users get, with the
+ * shipped graphs vct.json and vct-paper.json as they stand (lod_bias -1, step 0.5). Before
+ * the coverage compositing of cg_cone_composite_span the shipped defaults gathered 0.90 a L
+ * here (worst pixel 15% short: cones leaked through walls one sampled cell thick). */
 static void
 test_white_furnace(void **state)
 {
     cg_context *ctx = cg_test_gl_context(state);
     const double albedo = 0.5, radiance = 2.0;
     const double scales[] = {1e-3, 1.0, 1e4};
-    const char *eq8 = ", \"lod_bias\": 0, \"step\": 0.5";
+    const char *matched = ", \"lod_bias\": 0, \"step\": 0.5";
     for (int i = 0; i < 3; i++) {
         char source[128];
         snprintf(source, sizeof source, "builtin:furnace?scale=%g&albedo=%g&radiance=%g", scales[i], albedo, radiance);
@@ -248,7 +284,7 @@ test_white_furnace(void **state)
         int sizes[] = {1, 6, 9, 16};
         for (int c = 0; c < (i == 1 ? 4 : 1); c++) {
             int cones = i == 1 ? sizes[c] : 6;
-            gather_result g = run_gather(ctx, &scene, 64, "", "max", cones, 0.0, eq8, albedo * radiance);
+            gather_result g = run_gather(ctx, &scene, 64, "", "max", cones, 0.0, matched, albedo * radiance);
             fprintf(stderr, "# furnace scale %g, %d cones, lod_bias 0: mean %.5f (target %.5f), worst pixel %.3f%%\n",
                     scales[i], cones, g.mean[0], albedo * radiance, 100.0 * g.worst_rel);
             assert_int_equal(g.nonfinite, 0);
@@ -257,13 +293,95 @@ test_white_furnace(void **state)
                 fail_msg("furnace scale %g, %d cones: a pixel is %.2f%% off a L", scales[i], cones,
                          100.0 * g.worst_rel);
         }
-        gather_result g = run_gather(ctx, &scene, 64, "", "max", 6, 0.0, "", albedo * radiance);
-        fprintf(stderr, "# furnace scale %g, 6 cones, defaults: mean %.5f (target %.5f), worst pixel %.3f%%\n",
-                scales[i], g.mean[0], albedo * radiance, 100.0 * g.worst_rel);
-        assert_int_equal(g.nonfinite, 0);
-        if (g.mean[0] < 0.85 * albedo * radiance || g.mean[0] > 1.02 * albedo * radiance)
-            fail_msg("furnace scale %g, defaults: mean %.4f, outside [0.85, 1.02] a L", scales[i], g.mean[0]);
+        static const char *const graphs[] = {"vct.json", "vct-paper.json"};
+        for (int k = 0; k < 2; k++) {
+            gather_result g = run_graph_file(ctx, &scene, 32, graphs[k], NULL, albedo * radiance);
+            fprintf(stderr, "# furnace scale %g, %s as shipped: mean %.5f (target %.5f), worst pixel %.3f%%\n",
+                    scales[i], graphs[k], g.mean[0], albedo * radiance, 100.0 * g.worst_rel);
+            assert_int_equal(g.nonfinite, 0);
+            assert_int_equal(g.pixels, 32 * 32);
+            if (g.worst_rel > 0.02)
+                fail_msg("furnace scale %g, %s: a pixel is %.2f%% off a L", scales[i], graphs[k], 100.0 * g.worst_rel);
+        }
         cg_scene_free(&scene);
+    }
+}
+
+/* The step is a sampling rate, not a physical parameter: halving it must not change the
+ * light gathered. builtin:cornell through vct.json, albedo x gathered averaged over the
+ * image at step 0.5 (shipped) and 0.25: within 2%. Before the coverage compositing the two
+ * differed by 15% (indirect luminance 1.08 and 0.93 of the path tracer's, docs/vct.md), and
+ * docs/RESULTS.md's bench found step 0.25 giving exactly the errors of 0.5 (the setting did
+ * not reach the pass it was meant for). */
+static void
+test_step_independence(void **state)
+{
+    cg_context *ctx = cg_test_gl_context(state);
+    cg_scene scene;
+    cg_error err = {0};
+    assert_cg_ok(cg_scene_load("builtin:cornell", &scene, &err), &err);
+    const char *const half[] = {"gather.step=0.5", NULL};
+    const char *const quarter[] = {"gather.step=0.25", NULL};
+    gather_result a = run_graph_file(ctx, &scene, 48, "vct.json", half, 0.0);
+    gather_result b = run_graph_file(ctx, &scene, 48, "vct.json", quarter, 0.0);
+    double la = 0.2126 * a.mean[0] + 0.7152 * a.mean[1] + 0.0722 * a.mean[2];
+    double lb = 0.2126 * b.mean[0] + 0.7152 * b.mean[1] + 0.0722 * b.mean[2];
+    fprintf(stderr, "# builtin:cornell albedo x gathered, luminance: step 0.5 %.5f, step 0.25 %.5f (ratio %.4f)\n",
+            la, lb, lb / la);
+    assert_int_equal(a.nonfinite + b.nonfinite, 0);
+    assert_true(la > 0.0);
+    if (fabs(lb / la - 1.0) > 0.02)
+        fail_msg("step 0.25 gathers %.4f of step 0.5's light; expected within 2%%", lb / la);
+    cg_scene_free(&scene);
+}
+
+/* A lone emissive plane under a black sky: nothing but its own surface lies in front of it,
+ * so every pixel gathers 0. The cone's footprint at the level of eq. 8 (and the trilinear
+ * support around a sample) reaches back to the plane; before the samples were kept off the
+ * cone's own surface (cg_cone_trace_surface) the plane lit itself, the self-illumination
+ * that made VCT's indirect light on builtin:openworld's terrain 2.6 to 5 times the path
+ * tracer's. Flat and tilted by 30 degrees (normal off the axes: the support bound uses
+ * |n|_1), 1 cone (60 degrees half-angle, the widest) and 6. */
+static double
+flat(double x, double z, const void *user)
+{
+    (void)x, (void)z, (void)user;
+    return 0.0;
+}
+
+static double
+tilted(double x, double z, const void *user)
+{
+    (void)z, (void)user;
+    return 0.57735 * x;
+}
+
+static void
+test_no_self_illumination(void **state)
+{
+    cg_context *ctx = cg_test_gl_context(state);
+    const float radiance = 3.0f;
+    hf_height_fn shapes[2] = {flat, tilted};
+    for (int shape = 0; shape < 2; shape++) {
+        hf_scene s;
+        hf_init(&s);
+        hf_material(&s, 1, 0.5f, radiance);
+        hf_grid(&s, 8, -50.0, -50.0, 100.0, shapes[shape], NULL);
+        const double high[3] = {0, 60, 0}, down[3] = {0, -1, 0.3}, north[3] = {0, 1, 0};
+        hf_camera_looking(&s, high, down, north, 0.8f);
+        hf_finish(&s);
+        static const char *const cones[2][2] = {{"gather.cones=1", NULL}, {"gather.cones=6", NULL}};
+        for (int c = 0; c < 2; c++) {
+            gather_result g = run_graph_file(ctx, &s.scene, 32, "vct.json", cones[c], 0.0);
+            fprintf(stderr, "# lone emissive plane (%s), %s: albedo x gathered mean %.3g, worst %.3g (L = %.1f)\n",
+                    shape ? "tilted 30 deg" : "flat", cones[c][0], g.mean[0], g.worst_rel, radiance);
+            assert_int_equal(g.nonfinite, 0);
+            assert_true(g.pixels > 0);
+            if (g.worst_rel > 1e-3 * radiance)
+                fail_msg("lone emissive plane (%s), %s: a pixel gathers %.4g of its own light", shape ? "tilted" : "flat",
+                         cones[c][0], g.worst_rel);
+        }
+        hf_free(&s);
     }
 }
 
@@ -330,6 +448,8 @@ main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_mip3d_matches_cpu_box_filter),
         cmocka_unit_test(test_white_furnace),
+        cmocka_unit_test(test_step_independence),
+        cmocka_unit_test(test_no_self_illumination),
         cmocka_unit_test(test_finite_everywhere),
     };
     return cmocka_run_group_tests(tests, cg_test_gl_setup, cg_test_gl_teardown);
