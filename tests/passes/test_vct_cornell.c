@@ -83,16 +83,20 @@ test_cornell_bleeding_and_energy(void **state)
     cornell_image direct = {0}, vct = {0}, paper = {0}, aniso = {0}, ref = {0};
     const char *const direct_set[] = {"final.exposure=0", NULL};
     const char *const ref_set[] = {"trace.spp=64", NULL};
+    const char *const ref0_set[] = {"trace.spp=16", "trace.bounces=0", NULL};
+    cornell_image ref0 = {0};
     render(&scene, "direct.json", direct_set, &direct, &albedo);
     render(&scene, "vct.json", NULL, &vct, NULL);
     render(&scene, "vct-paper.json", NULL, &paper, NULL);
     render(&scene, "vct-aniso.json", NULL, &aniso, NULL);
     render(&scene, "reference.json", ref_set, &ref, NULL);
+    render(&scene, "reference.json", ref0_set, &ref0, NULL);
     measure(&direct, albedo);
     measure(&vct, albedo);
     measure(&paper, albedo);
     measure(&aniso, albedo);
     measure(&ref, albedo);
+    measure(&ref0, albedo);
     const cornell_image *all[5] = {&direct, &vct, &paper, &aniso, &ref};
     const char *names[5] = {"direct", "vct", "vct-paper", "vct-aniso", "path traced"};
     for (int i = 0; i < 5; i++)
@@ -109,6 +113,22 @@ test_cornell_bleeding_and_energy(void **state)
             fail_msg("%s: mean luminance %.5f is not closer to the reference %.5f than direct's %.5f",
                      names[i], all[i]->luminance, ref.luminance, direct.luminance);
     }
+    /* The indirect light alone (image minus the path tracer's direct light, against the
+     * path tracer's one bounce minus the same): its mean luminance within 15% of the path
+     * tracer's for vct.json (measured 1.10 at 160x90 against 256 spp, docs/vct.md) and the
+     * anisotropic graph. Before the samples were kept off the cone's own surface and the
+     * coverage made exact, the ratio rested on two errors cancelling (a leak of 10% and an
+     * over-estimate of 14%). vct-paper.json (64^3 RGBA8, 9 cones) gathers more (1.4 at
+     * 160x90): printed, and bounded only by the energy test above. */
+    double ref_indirect = ref.luminance - ref0.luminance;
+    assert_true(ref_indirect > 0.0);
+    for (int i = 1; i <= 3; i++) {
+        double ratio = (all[i]->luminance - ref0.luminance) / ref_indirect;
+        fprintf(stderr, "# %-12s indirect luminance / path tracer's: %.4f\n", names[i], ratio);
+        if (i != 2 && fabs(ratio - 1.0) > 0.15)
+            fail_msg("%s: indirect luminance %.4f of the path tracer's, expected within 15%%", names[i], ratio);
+    }
+    free(ref0.hdr);
     for (int i = 0; i < 5; i++)
         free(all[i]->hdr);
     free(albedo);
