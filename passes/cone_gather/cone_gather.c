@@ -25,13 +25,14 @@ static const fg_param_desc cone_gather_params[] = {
      "diffuse cones: 1, 6 (Crassin et al.), 9 (VCT paper 3.2.1) or 16; weights integrate the cosine lobe to 1"},
     {"aperture", FG_PARAM_FLOAT, 0, 0, 150, NULL,
      "full apex angle of the diffuse cones in degrees; 0: per cone, the cone with its cell's solid angle"},
-    {"step", FG_PARAM_FLOAT, 0.25, 0.05, 4, NULL,
-     "sample spacing as a fraction of the cone diameter (with lod_bias -2: one sampled voxel)"},
+    {"step", FG_PARAM_FLOAT, 0.5, 0.05, 4, NULL,
+     "sample spacing as a fraction of the cone diameter; 0.5 and less: one sampled voxel or less, "
+     "where the coverage per step is exact and the result independent of the step"},
     {"start_offset", FG_PARAM_FLOAT, 1.5, 0, 16, NULL,
      "voxels the cone origin is moved along the normal, off the surface's own voxels"},
-    {"lod_bias", FG_PARAM_FLOAT, -2, -4, 4, NULL,
-     "added to the mip level of hybrid eq. 8; -1 keeps a trilinear sample within the footprint, "
-     "-2 (measured best on builtin:cornell, docs/vct.md) also keeps coarse walls from over-occluding"},
+    {"lod_bias", FG_PARAM_FLOAT, 0, -4, 4, NULL,
+     "added to the matched level, one below hybrid eq. 8 (a trilinear sample there spans the "
+     "footprint); -1 (graphs/vct.json) measured closer to the path tracer, docs/vct.md"},
     {"max_distance", FG_PARAM_FLOAT, 0, 0, 1e9, NULL, "metres a cone travels at most; 0: the volume's diagonal"},
     {"specular", FG_PARAM_BOOL, 0, 0, 1, NULL, "also trace a mirror cone (output 'specular', VCT paper 3.2.2)"},
     {"roughness", FG_PARAM_FLOAT, 0.3, 0, 1, NULL,
