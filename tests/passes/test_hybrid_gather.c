@@ -136,6 +136,73 @@ test_flat_emissive_terrain(void **state)
     hf_free(&s);
 }
 
+static double
+ridge(double x, double z, const void *user)
+{
+    (void)x;
+    double height = *(const double *)user;
+    return height * fmax(0.0, 1.0 - fabs(z) / 1.5);
+}
+
+/* Occlusion by the height field (eq. 16, the DDA, HSAT): a receiver facing an emissive wall
+ * (a complex mesh, so in the 3D lightmap) across a black terrain ridge. Through a flat terrain
+ * the receiver gathers the wall's light; behind a 6 m ridge, which hides the whole wall from
+ * it, it must gather (almost) none of it. */
+static double
+gather_over_ridge(cg_context *ctx, double height, const char *params)
+{
+    hf_scene s;
+    hf_init(&s);
+    hf_material(&s, 1, 0.0f, 0.0f);
+    hf_material(&s, 2, 0.0f, 1.0f);     /* the wall: emits 1 */
+    hf_material(&s, 3, 0.8f, 0.0f);     /* the receiver */
+    hf_grid(&s, 160, -20.0, -20.0, 40.0, ridge, &height);
+    const double wall[3] = {-10, 0, 3}, up4[3] = {0, 4, 0}, across[3] = {20, 0, 0};
+    hf_quad(&s, wall, up4, across);     /* normal -z, towards the receiver */
+    const double plate[3] = {-0.5, 0.5, -3}, ex[3] = {1, 0, 0}, ey[3] = {0, 1, 0};
+    hf_quad(&s, plate, ex, ey);         /* normal +z, towards the ridge and the wall */
+    const double eye[3] = {0, 1, -2}, back[3] = {0, 0, -1}, up[3] = {0, 1, 0};
+    hf_camera_looking(&s, eye, back, up, 0.6f);
+    hf_finish(&s);
+    gathered g = gather(ctx, &s.scene, "pyramid", 9, params, 0.0);
+    assert_int_equal(g.nonfinite, 0);
+    assert_int_equal(g.pixels, 24 * 24);
+    hf_free(&s);
+    return g.mean;
+}
+
+/* Albedo x the cosine-weighted view factor of the wall from the receiver's centre, by a
+ * midpoint sum over the wall: what the flat case should gather. */
+static double
+wall_view_factor(void)
+{
+    const int n = 400;
+    double f = 0;
+    for (int i = 0; i < n; i++)
+        for (int j = 0; j < n; j++) {
+            double dx = -10.0 + 20.0 * (i + 0.5) / n, dy = 4.0 * (j + 0.5) / n - 1.0, dz = 6.0;
+            double r2 = dx * dx + dy * dy + dz * dz;
+            f += (dz * dz / r2) / (M_PI * r2) * (20.0 / n) * (4.0 / n);
+        }
+    return 0.8 * f;
+}
+
+static void
+test_ridge_occludes(void **state)
+{
+    cg_context *ctx = cg_test_gl_context(state);
+    double expected = wall_view_factor();
+    static const char *const variants[] = {"", ", \"dda\": false", ", \"occlusion\": \"eq17\"", ", \"skip\": false"};
+    for (size_t i = 0; i < sizeof variants / sizeof variants[0]; i++) {
+        double open = gather_over_ridge(ctx, 0.0, variants[i]);
+        double hidden = gather_over_ridge(ctx, 6.0, variants[i]);
+        printf("# emissive wall seen across a flat terrain: albedo x gathered %.4f (view factor: %.4f); behind a "
+               "6 m ridge: %.4f (ratio %.3f)%s\n", open, expected, hidden, hidden / open, variants[i]);
+        assert_true(fabs(open - expected) < 0.2 * expected);
+        assert_true(hidden < 0.1 * open);
+    }
+}
+
 static float *
 render_final(const cg_scene *scene, int w, int h, const char *graph, const char *const *overrides, vf_runner *keep)
 {
@@ -252,6 +319,7 @@ main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_flat_emissive_terrain),
+        cmocka_unit_test(test_ridge_occludes),
         cmocka_unit_test(test_cornell_equals_vct),
         cmocka_unit_test(test_openworld),
     };
