@@ -338,6 +338,8 @@ test_openworld(void **state)
     printf("# builtin:openworld GI bytes: hybrid.json (128^3 + 512^2) %zu, vct.json 128^3 %zu, vct.json 256^3 %zu\n",
            hybrid, vct_128, vct_256);
     assert_true(hybrid < vct_256);
+    /* The paper's setting compiles too (2048^2 map, eq. 14 HSAT, eq. 17). */
+    assert_true(gi_bytes(&scene, "hybrid-paper.json", NULL) > hybrid);
     cg_scene_free(&scene);
 }
 
