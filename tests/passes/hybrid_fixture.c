@@ -12,7 +12,7 @@ hf_init(hf_scene *s)
 {
     memset(s, 0, sizeof *s);
     snprintf(s->scene.name, sizeof s->scene.name, "hybrid test scene");
-    for (int m = 0; m < 3; m++) {
+    for (int m = 0; m < 4; m++) {
         cg_material *mat = &s->materials[m];
         snprintf(mat->name, sizeof mat->name, "material %d", m);
         for (int k = 0; k < 4; k++)
@@ -23,10 +23,10 @@ hf_init(hf_scene *s)
         mat->roughness = 1.0f;
     }
     s->scene.materials = s->materials;
-    s->scene.material_count = 3;
+    s->scene.material_count = 4;
     s->scene.meshes = s->meshes;
     s->scene.instances = s->instances;
-    for (int i = 0; i < 2; i++)
+    for (int i = 0; i < 3; i++)
         for (int k = 0; k < 4; k++)
             s->instances[i].world[5 * k] = 1.0f;
 }
@@ -91,9 +91,11 @@ hf_grid(hf_scene *s, int n, double x0, double z0, double size, hf_height_fn heig
 void
 hf_quad(hf_scene *s, const double corner[3], const double e1[3], const double e2[3])
 {
-    cg_mesh *mesh = add_mesh(s, 1, "quad", 4, 6);
+    int slot = s->meshes[1].index_count == 0 ? 1 : 2;
+    assert_int_equal(s->meshes[slot].index_count, 0);
+    cg_mesh *mesh = add_mesh(s, slot, "quad", 4, 6);
     mesh->kind = CG_MESH_COMPLEX;
-    mesh->material = 2;
+    mesh->material = slot + 1;
     double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
     double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
     for (int v = 0; v < 4; v++)
@@ -159,16 +161,15 @@ hf_camera_looking(hf_scene *s, const double eye[3], const double forward[3], con
 void
 hf_finish(hf_scene *s)
 {
-    int count = 0;
-    for (int m = 0; m < 2; m++)
-        if (s->meshes[m].index_count > 0)
-            count = m + 1;
-    /* The mesh slots in use must be contiguous from 0 (a quad alone goes to slot 1: move it). */
-    if (s->meshes[0].index_count == 0 && s->meshes[1].index_count > 0) {
+    /* The mesh slots in use must be contiguous from 0: without a terrain, the quads move down. */
+    if (s->meshes[0].index_count == 0) {
         s->meshes[0] = s->meshes[1];
-        memset(&s->meshes[1], 0, sizeof s->meshes[1]);
-        count = 1;
+        s->meshes[1] = s->meshes[2];
+        memset(&s->meshes[2], 0, sizeof s->meshes[2]);
     }
+    int count = 0;
+    while (count < 3 && s->meshes[count].index_count > 0)
+        count++;
     for (int m = 0; m < count; m++) {
         cg_mesh *mesh = &s->meshes[m];
         for (int k = 0; k < 3; k++) {
@@ -189,7 +190,7 @@ hf_finish(hf_scene *s)
 void
 hf_free(hf_scene *s)
 {
-    for (int m = 0; m < 2; m++) {
+    for (int m = 0; m < 3; m++) {
         free(s->meshes[m].positions);
         free(s->meshes[m].normals);
         free(s->meshes[m].texcoords);
