@@ -70,8 +70,13 @@ layout(binding = CG_CONE_ANISO_BINDING + 5) uniform sampler3D cg_aniso_nz;
 #endif
 
 // One filtered sample of the volume at level `lod` for a cone travelling along unit `d`.
-// Anisotropic: the three directional chains facing d, weighted by d's squared components
-// (they sum to 1); below level 1 blended with the isotropic level 0.
+// Anisotropic: the three directional chains facing d, weighted by |d_i| (not normalised;
+// below level 1 blended with the isotropic level 0). Chain i holds the covered fraction of a
+// cell's face across axis i; a path of length l along d crosses l |d_i| of the cell's depth
+// along i, so sum_i |d_i| alpha_i is the coverage per cell of path: a wall across axis i
+// (alpha_i = 1) is crossed over cell / |d_i| of path and adds exactly 1, at any angle, while a
+// surface seen edge-on (alpha = its share of the cell) adds its share. The returned alpha can
+// exceed 1 (up to sqrt 3): a coverage rate for cg_cone_composite_span, not an opacity.
 vec4
 cg_cone_sample(sampler3D volume, vec3 uvw, float lod, vec3 d)
 {
@@ -79,7 +84,7 @@ cg_cone_sample(sampler3D volume, vec3 uvw, float lod, vec3 d)
     vec4 s = vec4(0.0);
     if (lod > 0.0) {
         float k = max(lod - 1.0, 0.0);
-        vec3 w = d * d;
+        vec3 w = abs(d);
         s = w.x * (d.x >= 0.0 ? textureLod(cg_aniso_px, uvw, k) : textureLod(cg_aniso_nx, uvw, k)) +
             w.y * (d.y >= 0.0 ? textureLod(cg_aniso_py, uvw, k) : textureLod(cg_aniso_ny, uvw, k)) +
             w.z * (d.z >= 0.0 ? textureLod(cg_aniso_pz, uvw, k) : textureLod(cg_aniso_nz, uvw, k));
@@ -116,7 +121,7 @@ cg_cone_level(CgVolume v, float diameter)
 void
 cg_cone_composite_span(inout vec4 acc, vec4 s, float span, float cell)
 {
-    float alpha = clamp(s.a, 0.0, 1.0);
+    float alpha = max(s.a, 0.0);
     if (alpha <= 0.0)
         return;
     float w = min(alpha * span / cell, 1.0 - acc.a);

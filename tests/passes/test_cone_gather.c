@@ -265,7 +265,8 @@ run_graph_file(cg_context *ctx, const cg_scene *scene, int size, const char *gra
  * albedo x gathered = a L at every pixel (DESIGN.md: the white furnace), within 2%, at
  * millimetre, metre and 10-kilometre scales (nothing in the tracer depends on units):
  * for every cone set at the matched level (lod_bias 0) and, the figure users get, with the
- * shipped graphs vct.json and vct-paper.json as they stand (lod_bias -1, step 0.5). Before
+ * shipped graphs vct.json, vct-paper.json (lod_bias -1, step 0.5) and vct-aniso.json (the
+ * directional chains weighted by |d_i|, cg_cone_sample) as they stand. Before
  * the coverage compositing of cg_cone_composite_span the shipped defaults gathered 0.90 a L
  * here (worst pixel 15% short: cones leaked through walls one sampled cell thick). */
 static void
@@ -293,8 +294,8 @@ test_white_furnace(void **state)
                 fail_msg("furnace scale %g, %d cones: a pixel is %.2f%% off a L", scales[i], cones,
                          100.0 * g.worst_rel);
         }
-        static const char *const graphs[] = {"vct.json", "vct-paper.json"};
-        for (int k = 0; k < 2; k++) {
+        static const char *const graphs[] = {"vct.json", "vct-paper.json", "vct-aniso.json"};
+        for (int k = 0; k < 3; k++) {
             gather_result g = run_graph_file(ctx, &scene, 32, graphs[k], NULL, albedo * radiance);
             fprintf(stderr, "# furnace scale %g, %s as shipped: mean %.5f (target %.5f), worst pixel %.3f%%\n",
                     scales[i], graphs[k], g.mean[0], albedo * radiance, 100.0 * g.worst_rel);
