@@ -1,0 +1,154 @@
+/* conegraph-demo in a window, as a user runs it with --frames: exit 0 (the demo exits 1
+ * on any GL error the context counts), a screenshot of what the window shows that is
+ * finite, not black, and the same image `conegraph render` writes for the same scene,
+ * graph and size (so the blit is the right way up and nothing is lost on the way).
+ * Needs an X display: .ci/test runs the suite under xvfb-run; without one the program
+ * reports SKIP. $CONEGRAPH_DEMO_EXE and $CONEGRAPH_EXE name the executables. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+
+#include "cg/image.h"
+#include "test_support.h"
+
+static int
+run(const char *exe_var, const char *args, const char *stdout_path)
+{
+    const char *exe = getenv(exe_var);
+    if (!exe)
+        fail_msg("%s is not set", exe_var);
+    char cmd[8192];
+    snprintf(cmd, sizeof cmd, "'%s' %s >'%s' 2>&1", exe, args, stdout_path ? stdout_path : "/dev/null");
+    int status = system(cmd);
+    if (status == -1 || !WIFEXITED(status))
+        fail_msg("could not run: %s", cmd);
+    if (WEXITSTATUS(status) && stdout_path) {
+        /* Show what the program said, for the log. */
+        char show[4200];
+        snprintf(show, sizeof show, "cat '%s' >&2", stdout_path);
+        if (system(show) == -1)
+            fail_msg("could not show %s", stdout_path);
+    }
+    return WEXITSTATUS(status);
+}
+
+static const char *
+tmp(const char *name)
+{
+    static char paths[8][4096];
+    static int next;
+    char *p = paths[next++ % 8];
+    snprintf(p, 4096, "%s/%s", cg_test_tmpdir(), name);
+    return p;
+}
+
+/* Mean of RGB; fails on a non-finite or negative pixel or a wrong size. */
+static double
+check_image(const cg_image *img, int w, int h)
+{
+    assert_int_equal(img->width, w);
+    assert_int_equal(img->height, h);
+    double sum = 0;
+    for (size_t i = 0; i < (size_t)w * (size_t)h; i++)
+        for (int c = 0; c < 3; c++) {
+            float v = img->rgba[4 * i + c];
+            if (!isfinite(v) || v < 0)
+                fail_msg("pixel %zu channel %d is %g", i, c, (double)v);
+            sum += v;
+        }
+    return sum / (3.0 * w * h);
+}
+
+static char *
+read_text(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    assert_non_null(f);
+    static char buf[1 << 16];
+    size_t n = fread(buf, 1, sizeof buf - 1, f);
+    buf[n] = '\0';
+    fclose(f);
+    return buf;
+}
+
+static void
+test_direct_matches_render(void **state)
+{
+    (void)state;
+    cg_error err = { 0 };
+    const char *shot = tmp("demo.png"), *ref = tmp("render.png"), *log = tmp("demo.txt");
+    char args[8192];
+    snprintf(args, sizeof args,
+             "builtin:cornell --graph direct.json --size 64x64 --frames 3 --screenshot '%s'", shot);
+    assert_int_equal(run("CONEGRAPH_DEMO_EXE", args, log), 0);
+    snprintf(args, sizeof args, "render builtin:cornell --graph direct.json --size 64x64 -o '%s'", ref);
+    assert_int_equal(run("CONEGRAPH_EXE", args, NULL), 0);
+
+    cg_image a = { 0 }, b = { 0 };
+    assert_cg_ok(cg_image_read(shot, &a, &err), &err);
+    assert_cg_ok(cg_image_read(ref, &b, &err), &err);
+    double mean = check_image(&a, 64, 64);
+    check_image(&b, 64, 64);
+    assert_true(mean > 0.01);
+    /* Both are 8-bit sRGB: compare the stored levels. */
+    int worst = 0;
+    for (size_t i = 0; i < 64 * 64 * 4; i++) {
+        if (i % 4 == 3)
+            continue;
+        int la = (int)lroundf(cg_srgb_encode(a.rgba[i]) * 255.0f);
+        int lb = (int)lroundf(cg_srgb_encode(b.rgba[i]) * 255.0f);
+        int d = abs(la - lb);
+        worst = d > worst ? d : worst;
+    }
+    if (worst > 1)
+        fail_msg("the demo's screenshot differs from `conegraph render` by %d levels", worst);
+    cg_image_free(&a);
+    cg_image_free(&b);
+
+    /* stdout: the selected parameter, per-pass times, the report and the median. */
+    const char *out = read_text(log);
+    assert_non_null(strstr(out, "param: shadow.light = -1"));
+    assert_non_null(strstr(out, "| direct "));
+    assert_non_null(strstr(out, "| final "));
+    assert_non_null(strstr(out, "median frame"));
+}
+
+/* The VCT graph with a --set, at a size that is not square: runs clean, shows light, and
+ * reports the GI memory of its volume. */
+static void
+test_vct_runs(void **state)
+{
+    (void)state;
+    cg_error err = { 0 };
+    const char *shot = tmp("vct.png"), *log = tmp("vct.txt");
+    char args[8192];
+    snprintf(args, sizeof args,
+             "builtin:cornell --graph vct.json --set vox.resolution=32 --size 48x32 --frames 2 "
+             "--timing sync --screenshot '%s'", shot);
+    assert_int_equal(run("CONEGRAPH_DEMO_EXE", args, log), 0);
+    cg_image a = { 0 };
+    assert_cg_ok(cg_image_read(shot, &a, &err), &err);
+    assert_true(check_image(&a, 48, 32) > 0.01);
+    cg_image_free(&a);
+    const char *out = read_text(log);
+    assert_non_null(strstr(out, "| gather "));
+    const char *gi = strstr(out, "| GI ");
+    assert_non_null(gi);
+    /* 32^3 RGBA16F with mips is about 0.3 MiB. */
+    assert_true(atof(gi + 5) > 0.1);
+}
+
+int
+main(void)
+{
+    const char *display = getenv("DISPLAY");
+    if (!display || !*display)
+        return cg_test_skip_program("no DISPLAY for the demo window (.ci/test runs it under xvfb-run)");
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_direct_matches_render),
+        cmocka_unit_test(test_vct_runs),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
