@@ -371,6 +371,10 @@ test_bad_input(void **state)
         "builtin:cornell --set gather.cones=99",
         "builtin:cornell --set nosuchpass.x=1",
         "builtin:cornell --plugin /nonexistent/plugin.so",
+        "builtin:cornell --keys tab,bogus",
+        "builtin:cornell --keys tab,",
+        "builtin:cornell --keys ''",
+        "builtin:cornell --keys shift+",
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++)
         if (run_demo(cases[i]) != 2)

@@ -140,6 +140,48 @@ test_vct_runs(void **state)
     assert_true(atof(gi + 5) > 0.1);
 }
 
+static double
+mean_of(const char *path)
+{
+    cg_error err = { 0 };
+    cg_image img = { 0 };
+    assert_cg_ok(cg_image_read(path, &img, &err), &err);
+    double mean = check_image(&img, img.width, img.height);
+    cg_image_free(&img);
+    return mean;
+}
+
+/* Keys typed through --keys take the same path as the window's: Shift+Tab from the first
+ * pass wraps to the last (final, composite), whose first parameter is exposure; two steps
+ * of Right raise it by 1 EV, recompile, and the image brightens. Key 2 shows another resource. */
+static void
+test_keys(void **state)
+{
+    (void)state;
+    const char *plain = tmp("plain.png"), *bright = tmp("bright.png"), *other = tmp("other.png");
+    const char *log = tmp("keys.txt");
+    char args[8192];
+    snprintf(args, sizeof args, "builtin:cornell --graph direct.json --size 48x32 --frames 1 --screenshot '%s'",
+             plain);
+    assert_int_equal(run("CONEGRAPH_DEMO_EXE", args, NULL), 0);
+    snprintf(args, sizeof args, "builtin:cornell --graph direct.json --size 48x32 --frames 4 "
+             "--keys shift+tab,right,right --screenshot '%s'", bright);
+    assert_int_equal(run("CONEGRAPH_DEMO_EXE", args, log), 0);
+    const char *out = read_text(log);
+    assert_non_null(strstr(out, "param: final.exposure = 0.5 (float -20..20, step 0.5)"));
+    assert_non_null(strstr(out, "param: final.exposure = 1 (float -20..20, step 0.5)"));
+    assert_non_null(strstr(out, "graph: compiled and prepared for 48x32"));
+    double m0 = mean_of(plain), m1 = mean_of(bright);
+    if (!(m1 > m0 * 1.3))
+        fail_msg("+1 EV: mean %g, before %g", m1, m0);
+
+    snprintf(args, sizeof args, "builtin:cornell --graph direct.json --size 48x32 --frames 2 "
+             "--keys 2 --screenshot '%s'", other);
+    assert_int_equal(run("CONEGRAPH_DEMO_EXE", args, log), 0);
+    assert_non_null(strstr(read_text(log), "show: 2 "));
+    assert_true(fabs(mean_of(other) - m0) > 0.01);
+}
+
 int
 main(void)
 {
@@ -149,6 +191,7 @@ main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_direct_matches_render),
         cmocka_unit_test(test_vct_runs),
+        cmocka_unit_test(test_keys),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -27,6 +27,12 @@
 #define FRAME_HISTORY 64
 #define SUN_DEGREES_PER_SECOND 20.0
 
+/* A key press given on the command line (--keys). */
+typedef struct scripted_key {
+    int key;                    /* GLFW_KEY_* */
+    int mods;                   /* GLFW_MOD_SHIFT or 0 */
+} scripted_key;
+
 typedef struct demo_options {
     const char *scene;
     const char *graph;
@@ -39,6 +45,8 @@ typedef struct demo_options {
     const char *screenshot;
     fg_timing_mode timing;
     bool timing_given;
+    scripted_key keys[MAX_LIST];  /* --keys: pressed one per frame from the first */
+    int key_count;
 } demo_options;
 
 /* A parameter changed by a key since the last compile, with its old text for undoing it. */
@@ -68,7 +76,8 @@ typedef struct demo {
     bool flying;
     float speed, base_speed;    /* metres per second */
     bool dragging;
-    double drag_x, drag_y;
+    bool have_cursor;
+    double drag_x, drag_y;      /* the last cursor position seen */
 
     demo_selection sel;
     pending_change changes[MAX_LIST];
@@ -116,6 +125,9 @@ usage(FILE *out)
         "  --timing sync|queries|none  per-pass timing: glFinish + CPU clock, GL_TIMESTAMP\n"
         "                          queries read a frame late, or none (default: sync on a\n"
         "                          software renderer such as llvmpipe, queries on a GPU)\n"
+        "  --keys K1,K2,...        press these keys, one per frame from the first, as if typed\n"
+        "                          (for recordings and tests): tab, shift+tab, up, down, left,\n"
+        "                          right, 1..9, r, l, p, f12, esc\n"
         "\n"
         "Keys: WASD fly, E/Q up/down, Shift x4 speed, left mouse drag to look, scroll for\n"
         "speed, R resets the camera; Tab/Shift+Tab pass, Up/Down parameter, Left/Right\n"
@@ -143,6 +155,48 @@ has_extension(const char *path, const char *ext)
 {
     size_t n = strlen(path), e = strlen(ext);
     return n > e && !strcasecmp(path + n - e, ext);
+}
+
+static const struct {
+    const char *name;
+    int key;
+} key_names[] = {
+    { "tab", GLFW_KEY_TAB }, { "up", GLFW_KEY_UP }, { "down", GLFW_KEY_DOWN },
+    { "left", GLFW_KEY_LEFT }, { "right", GLFW_KEY_RIGHT }, { "1", GLFW_KEY_1 }, { "2", GLFW_KEY_2 },
+    { "3", GLFW_KEY_3 }, { "4", GLFW_KEY_4 }, { "5", GLFW_KEY_5 }, { "6", GLFW_KEY_6 },
+    { "7", GLFW_KEY_7 }, { "8", GLFW_KEY_8 }, { "9", GLFW_KEY_9 }, { "r", GLFW_KEY_R },
+    { "l", GLFW_KEY_L }, { "p", GLFW_KEY_P }, { "f12", GLFW_KEY_F12 }, { "esc", GLFW_KEY_ESCAPE },
+};
+
+/* "tab,shift+tab,right" into o->keys; false on an unknown name or too many keys. */
+static bool
+parse_keys(const char *list, demo_options *o)
+{
+    const char *p = list;
+    while (*p) {
+        size_t len = strcspn(p, ",");
+        char name[32];
+        if (len == 0 || len >= sizeof name || o->key_count == MAX_LIST)
+            return false;
+        memcpy(name, p, len);
+        name[len] = '\0';
+        scripted_key k = { 0, 0 };
+        const char *base = name;
+        if (!strncasecmp(name, "shift+", 6)) {
+            k.mods = GLFW_MOD_SHIFT;
+            base += 6;
+        }
+        for (size_t i = 0; i < sizeof key_names / sizeof key_names[0]; i++)
+            if (!strcasecmp(base, key_names[i].name))
+                k.key = key_names[i].key;
+        if (!k.key)
+            return false;
+        o->keys[o->key_count++] = k;
+        p += len;
+        if (*p == ',' && *++p == '\0')
+            return false;
+    }
+    return o->key_count > 0;
 }
 
 static int
@@ -183,6 +237,10 @@ parse_args(int argc, char **argv, demo_options *o)
             if (!app_parse_timing(v, &o->timing))
                 return usage_error("--timing wants sync, queries or none, not '%s'", v);
             o->timing_given = true;
+        } else if (!strcmp(a, "--keys")) {
+            if (!parse_keys(v, o))
+                return usage_error("--keys wants a comma-separated list of tab, shift+tab, up, down, "
+                                   "left, right, 1..9, r, l, p, f12, esc (at most 64), not '%s'", v);
         } else if (option) {
             return usage_error("unknown option '%s'", a);
         } else {
@@ -389,17 +447,13 @@ show(demo *d, int index)
     fflush(stdout);
 }
 
+/* A key pressed (repeat: held down, auto-repeated), from the window or from --keys. */
 static void
-on_key(GLFWwindow *window, int key, int scancode, int action, int mods)
+press(demo *d, int key, int mods, bool repeat)
 {
-    (void)scancode;
-    demo *d = glfwGetWindowUserPointer(window);
-    if (action == GLFW_RELEASE)
-        return;
-    bool repeat = action == GLFW_REPEAT;
     switch (key) {
     case GLFW_KEY_ESCAPE:
-        glfwSetWindowShouldClose(window, GLFW_TRUE);
+        glfwSetWindowShouldClose(d->window, GLFW_TRUE);
         break;
     case GLFW_KEY_TAB:
         demo_select_pass(d->graph, &d->sel, (mods & GLFW_MOD_SHIFT) ? -1 : 1);
@@ -445,6 +499,14 @@ on_key(GLFWwindow *window, int key, int scancode, int action, int mods)
 }
 
 static void
+on_key(GLFWwindow *window, int key, int scancode, int action, int mods)
+{
+    (void)scancode;
+    if (action != GLFW_RELEASE)
+        press(glfwGetWindowUserPointer(window), key, mods, action == GLFW_REPEAT);
+}
+
+static void
 on_mouse_button(GLFWwindow *window, int button, int action, int mods)
 {
     (void)mods;
@@ -452,7 +514,6 @@ on_mouse_button(GLFWwindow *window, int button, int action, int mods)
     if (button != GLFW_MOUSE_BUTTON_LEFT)
         return;
     d->dragging = action == GLFW_PRESS;
-    glfwGetCursorPos(window, &d->drag_x, &d->drag_y);
 }
 
 static void
@@ -468,16 +529,24 @@ static void
 on_cursor(GLFWwindow *window, double x, double y)
 {
     demo *d = glfwGetWindowUserPointer(window);
-    if (!d->dragging)
-        return;
-    double dx = x - d->drag_x, dy = y - d->drag_y;
+    /* Deltas between cursor events: the first event after entering has none to go by. */
+    double dx = d->have_cursor ? x - d->drag_x : 0, dy = d->have_cursor ? y - d->drag_y : 0;
     d->drag_x = x;
     d->drag_y = y;
-    if (dx == 0 && dy == 0)
+    d->have_cursor = true;
+    if (!d->dragging || (dx == 0 && dy == 0))
         return;
     start_flying(d);
     /* 0.004 rad per pixel: a 1280-pixel drag turns about 290 degrees. */
     demo_camera_look(&d->cam, (float)(dx * 0.004), (float)(-dy * 0.004));
+}
+
+static void
+on_cursor_enter(GLFWwindow *window, int entered)
+{
+    (void)entered;
+    /* Positions from before leaving say nothing about where the cursor comes back. */
+    ((demo *)glfwGetWindowUserPointer(window))->have_cursor = false;
 }
 
 static void
@@ -684,6 +753,11 @@ run(demo *d)
             last = app_now_ms();
             continue;
         }
+        if (frames_run < d->o.key_count) {
+            press(d, d->o.keys[frames_run].key, d->o.keys[frames_run].mods, false);
+            if (glfwWindowShouldClose(d->window))
+                break;
+        }
         if (w != d->frame.width || h != d->frame.height) {
             d->frame.width = w;
             d->frame.height = h;
@@ -821,6 +895,7 @@ demo_main(demo *d)
     glfwSetKeyCallback(d->window, on_key);
     glfwSetMouseButtonCallback(d->window, on_mouse_button);
     glfwSetCursorPosCallback(d->window, on_cursor);
+    glfwSetCursorEnterCallback(d->window, on_cursor_enter);
     glfwSetScrollCallback(d->window, on_scroll);
     /* Frame times measure the frames, not the display's refresh. */
     glfwSwapInterval(0);
