@@ -115,8 +115,9 @@ test_direct_matches_render(void **state)
     assert_non_null(strstr(out, "median frame"));
 }
 
-/* The VCT graph with a --set, at a size that is not square: runs clean, shows light, and
- * reports the GI memory of its volume. */
+/* The VCT graph with a --set, at a size that is not square: runs clean, shows light,
+ * reports the GI memory of its volume, and steps the cone count over the values the pass
+ * refuses. */
 static void
 test_vct_runs(void **state)
 {
@@ -125,8 +126,8 @@ test_vct_runs(void **state)
     const char *shot = tmp("vct.png"), *log = tmp("vct.txt");
     char args[8192];
     snprintf(args, sizeof args,
-             "builtin:cornell --graph vct.json --set vox.resolution=32 --size 48x32 --frames 2 "
-             "--timing sync --screenshot '%s'", shot);
+             "builtin:cornell --graph vct.json --set vox.resolution=32 --size 48x32 --frames 3 "
+             "--timing sync --keys shift+tab,shift+tab,right --screenshot '%s'", shot);
     assert_int_equal(run("CONEGRAPH_DEMO_EXE", args, log), 0);
     cg_image a = { 0 };
     assert_cg_ok(cg_image_read(shot, &a, &err), &err);
@@ -134,6 +135,10 @@ test_vct_runs(void **state)
     cg_image_free(&a);
     const char *out = read_text(log);
     assert_non_null(strstr(out, "| gather "));
+    /* Shift+Tab twice from the first pass: gather (final, then gather). Right from 6 cones
+     * steps past 7 and 8, which the pass refuses, to 9. */
+    assert_non_null(strstr(out, "param: gather.cones = 9 "));
+    assert_null(strstr(out, "gather.cones = 7"));
     const char *gi = strstr(out, "| GI ");
     assert_non_null(gi);
     /* 32^3 RGBA16F with mips is about 0.3 MiB. */
