@@ -128,7 +128,8 @@ bench_usage(FILE *out)
         "  --ref-bounces N       diffuse bounces of the reference (default 1, as the GI graphs)\n"
         "  --pt-spp LIST         path tracer sample counts to time, e.g. 1,4,16,64 (default)\n"
         "  --out DIR             output directory (default bench-out)\n"
-        "  --cache DIR           reference cache (default OUT/cache)\n"
+        "  --cache DIR           reference cache (default OUT/cache); entries are keyed by the\n"
+        "                        scene's contents, view, size, spp, bounces, seed and tracer version\n"
         "  --images              also write each setting's image, error heat map and the\n"
         "                        reference as PNG (linear radiance, clamped, sRGB-encoded)\n"
         "  --context egl|osmesa|glfw  GL context (default: $CONEGRAPH_CONTEXT, else EGL, then OSMesa)\n"
@@ -542,12 +543,67 @@ slug(const char *text, char *out, size_t size)
 }
 
 static uint64_t
+fnv1a_bytes(uint64_t h, const void *data, size_t size)
+{
+    const unsigned char *p = data;
+    for (size_t i = 0; i < size; i++) {
+        h ^= p[i];
+        h *= 0x100000001b3ull;
+    }
+    return h;
+}
+
+static uint64_t
 fnv1a(const char *text)
 {
+    return fnv1a_bytes(0xcbf29ce484222325ull, text, strlen(text));
+}
+
+/* A hash of everything the path tracer reads from a scene, so that a cached reference is
+ * never reused for a scene that changed under the same name (built-in scenes change with
+ * the code that builds them; files can be rewritten). */
+static uint64_t
+scene_hash(const cg_scene *s)
+{
     uint64_t h = 0xcbf29ce484222325ull;
-    for (const unsigned char *s = (const unsigned char *)text; *s; s++) {
-        h ^= *s;
-        h *= 0x100000001b3ull;
+    for (int i = 0; i < s->mesh_count; i++) {
+        const cg_mesh *m = &s->meshes[i];
+        h = fnv1a_bytes(h, &m->material, sizeof m->material);
+        h = fnv1a_bytes(h, m->positions, sizeof(float) * 3 * m->vertex_count);
+        h = fnv1a_bytes(h, m->normals, sizeof(float) * 3 * m->vertex_count);
+        if (m->texcoords)
+            h = fnv1a_bytes(h, m->texcoords, sizeof(float) * 2 * m->vertex_count);
+        h = fnv1a_bytes(h, m->indices, sizeof(uint32_t) * m->index_count);
+    }
+    for (int i = 0; i < s->instance_count; i++) {
+        h = fnv1a_bytes(h, &s->instances[i].mesh, sizeof s->instances[i].mesh);
+        h = fnv1a_bytes(h, s->instances[i].world, sizeof s->instances[i].world);
+    }
+    for (int i = 0; i < s->material_count; i++) {
+        const cg_material *m = &s->materials[i];
+        h = fnv1a_bytes(h, m->base_color, sizeof m->base_color);
+        h = fnv1a_bytes(h, &m->base_color_texture, sizeof m->base_color_texture);
+        h = fnv1a_bytes(h, m->emissive, sizeof m->emissive);
+        h = fnv1a_bytes(h, &m->emissive_texture, sizeof m->emissive_texture);
+        h = fnv1a_bytes(h, &m->emissive_strength, sizeof m->emissive_strength);
+    }
+    for (int i = 0; i < s->texture_count; i++) {
+        const cg_texture *t = &s->textures[i];
+        h = fnv1a_bytes(h, &t->width, sizeof t->width);
+        h = fnv1a_bytes(h, &t->height, sizeof t->height);
+        h = fnv1a_bytes(h, &t->srgb, sizeof t->srgb);
+        h = fnv1a_bytes(h, t->rgba, (size_t)t->width * (size_t)t->height * 4);
+    }
+    for (int i = 0; i < s->light_count; i++) {
+        const cg_light *l = &s->lights[i];
+        h = fnv1a_bytes(h, &l->type, sizeof l->type);
+        h = fnv1a_bytes(h, l->color, sizeof l->color);
+        h = fnv1a_bytes(h, &l->intensity, sizeof l->intensity);
+        h = fnv1a_bytes(h, l->position, sizeof l->position);
+        h = fnv1a_bytes(h, l->direction, sizeof l->direction);
+        h = fnv1a_bytes(h, &l->range, sizeof l->range);
+        h = fnv1a_bytes(h, &l->inner_cone_angle, sizeof l->inner_cone_angle);
+        h = fnv1a_bytes(h, &l->outer_cone_angle, sizeof l->outer_cone_angle);
     }
     return h;
 }
@@ -575,19 +631,18 @@ typedef struct bench_scene {
 } bench_scene;
 
 /* The reference image for (scene, camera, size, spp, bounces, seed), from the cache or rendered
- * and cached. Files are keyed by a hash of all of these and, for files, their size and time. */
+ * and cached. Files are keyed by a hash of all of these, the scene by its contents. */
 static bool
 reference_image(const bench_config *c, bench_scene *bs, int spp, int bounces, cg_image *out, cg_error *err)
 {
     char key[2048];
     struct stat st;
-    long long fsize = 0, fmtime = 0;
-    if (stat(bs->source, &st) == 0) {
-        fsize = (long long)st.st_size;
-        fmtime = (long long)st.st_mtime;
-    }
-    snprintf(key, sizeof key, "conegraph-reference-v1|%s|%lld|%lld|camera %d|%dx%d|spp %d|bounces %d|seed %d",
-             bs->source, fsize, fmtime, bs->camera, c->width, c->height, spp, bounces, c->ref_seed);
+    /* The view's matrices stand for the camera; the scene by the hash of its contents. */
+    uint64_t view_hash = fnv1a_bytes(0xcbf29ce484222325ull, bs->view.inv_view_proj, sizeof bs->view.inv_view_proj);
+    snprintf(key, sizeof key,
+             "conegraph-reference-v2|pt %d|%s|scene %016llx|view %016llx|%dx%d|spp %d|bounces %d|seed %d",
+             PT_RENDER_VERSION, bs->source, (unsigned long long)scene_hash(&bs->scene),
+             (unsigned long long)view_hash, c->width, c->height, spp, bounces, c->ref_seed);
     char path[4096];
     snprintf(path, sizeof path, "%s/ref-%016llx.exr", c->cache_dir, (unsigned long long)fnv1a(key));
     if (stat(path, &st) == 0) {

@@ -26,13 +26,47 @@ typedef struct v3 {
     float x, y, z;
 } v3;
 
-static inline v3 mk(float x, float y, float z) { return (v3){ x, y, z }; }
-static inline v3 add(v3 a, v3 b) { return mk(a.x + b.x, a.y + b.y, a.z + b.z); }
-static inline v3 sub(v3 a, v3 b) { return mk(a.x - b.x, a.y - b.y, a.z - b.z); }
-static inline v3 mul(v3 a, v3 b) { return mk(a.x * b.x, a.y * b.y, a.z * b.z); }
-static inline v3 scale(v3 a, float s) { return mk(a.x * s, a.y * s, a.z * s); }
-static inline float dot(v3 a, v3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-static inline v3 neg(v3 a) { return mk(-a.x, -a.y, -a.z); }
+static inline v3
+mk(float x, float y, float z)
+{
+    return (v3){ x, y, z };
+}
+
+static inline v3
+add(v3 a, v3 b)
+{
+    return mk(a.x + b.x, a.y + b.y, a.z + b.z);
+}
+
+static inline v3
+sub(v3 a, v3 b)
+{
+    return mk(a.x - b.x, a.y - b.y, a.z - b.z);
+}
+
+static inline v3
+mul(v3 a, v3 b)
+{
+    return mk(a.x * b.x, a.y * b.y, a.z * b.z);
+}
+
+static inline v3
+scale(v3 a, float s)
+{
+    return mk(a.x * s, a.y * s, a.z * s);
+}
+
+static inline float
+dot(v3 a, v3 b)
+{
+    return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+
+static inline v3
+neg(v3 a)
+{
+    return mk(-a.x, -a.y, -a.z);
+}
 
 static inline v3
 normalize(v3 a)
@@ -581,6 +615,11 @@ static void
 progress_print(int done, int total, int *last_shown)
 {
     int percent = (int)((int64_t)done * 100 / total);
+    /* On a terminal the bar redraws in place at every percent; into a log file it is
+     * written every 10% so that logs stay short. */
+    int step = isatty(STDERR_FILENO) ? 1 : 10;
+    if (percent / step == *last_shown / step && percent != 100)
+        return;
     if (percent == *last_shown)
         return;
     *last_shown = percent;

@@ -1,6 +1,6 @@
 /* passes/path_trace/pt_render.h: the CPU path tracer behind the path_trace pass (Embree 3).
  *
- * Declares: pt_settings, pt_settings_default, pt_scene, pt_scene_create, pt_scene_destroy,
+ * Declares: PT_RENDER_VERSION, pt_settings, pt_settings_default, pt_scene, pt_scene_create, pt_scene_destroy,
  *           pt_scene_triangle_count, pt_render, pt_rays_traced.
  *
  * Pure C, no GL: it renders a cg_scene seen through a cg_view into linear float RGBA
@@ -35,6 +35,10 @@
 #include "cg/camera.h"
 #include "cg/error.h"
 #include "cg/scene.h"
+
+/* Bumped whenever a change makes pt_render give other images for the same input, so that
+ * images cached by `conegraph bench` are not reused across it. */
+#define PT_RENDER_VERSION 1
 
 typedef struct pt_settings {
     int spp;            /* samples per pixel, >= 1 */

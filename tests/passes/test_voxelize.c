@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "cg/gl.h"
+#include "cg/scene.h"
 #include "test_support.h"
 #include "tribox_ref.h"
 #include "vct_fixture.h"
@@ -259,6 +260,72 @@ test_lit_surface_radiance(void **state)
     check_lit_surface(ctx, "rgba8");
 }
 
+/* The `meshes` filter (the hybrid method voxelizes complex meshes only): over one region,
+ * the terrain's voxels and the buildings' voxels together are exactly the voxels of all
+ * meshes; a filter no mesh passes culls the pass. */
+static float *
+occupancy(cg_context *ctx, const cg_scene *scene, const char *meshes, bool *culled)
+{
+    char json[512];
+    snprintf(json, sizeof json,
+             "{ \"version\": 1, \"passes\": { \"vox\": { \"type\": \"voxelize\", \"params\": {"
+             " \"resolution\": %d, \"meshes\": \"%s\", \"region\": \"scene\" } } },"
+             " \"outputs\": [ \"vox.radiance\" ] }", RES, meshes);
+    vf_runner r;
+    vf_start(&r, scene, 32, 32, json, NULL);
+    *culled = fg_pass_is_culled(fg_graph_find_pass(r.graph, "vox"));
+    float *vox = NULL;
+    if (!*culled) {
+        vf_frame(&r);
+        int size = 0;
+        vox = vf_read_volume(&r, "vox.radiance", 0, &size);
+    }
+    assert_no_gl_errors(ctx);
+    vf_stop(&r);
+    assert_false(*culled);
+    return vox;
+}
+
+static void
+test_mesh_filter(void **state)
+{
+    cg_context *ctx = cg_test_gl_context(state);
+    cg_scene scene;
+    cg_error err = {0};
+    assert_cg_ok(cg_scene_load("builtin:openworld?triangles=5000", &scene, &err), &err);
+    bool culled = false;
+    float *all = occupancy(ctx, &scene, "all", &culled);
+    float *terrain = occupancy(ctx, &scene, "heightfield", &culled);
+    float *complex = occupancy(ctx, &scene, "complex", &culled);
+    int n_all = 0, n_terrain = 0, n_complex = 0;
+    for (int i = 0; i < RES * RES * RES; i++) {
+        bool a = all[4 * i + 3] > 0.5f, t = terrain[4 * i + 3] > 0.5f, c = complex[4 * i + 3] > 0.5f;
+        n_all += a, n_terrain += t, n_complex += c;
+        if (a != (t || c))
+            fail_msg("voxel %d: all %d, heightfield %d, complex %d", i, a, t, c);
+    }
+    fprintf(stderr, "# openworld 5000 triangles at %d^3: %d voxels, %d terrain, %d complex\n", RES, n_all,
+            n_terrain, n_complex);
+    assert_true(n_terrain > 0 && n_complex > 0 && n_complex < n_all && n_terrain < n_all);
+    free(all);
+    free(terrain);
+    free(complex);
+    cg_scene_free(&scene);
+
+    /* builtin:cornell has no height field: voxelize and the gather are culled, the frame runs. */
+    assert_cg_ok(cg_scene_load("builtin:cornell", &scene, &err), &err);
+    const char *const heightfield_only[] = {"vox.meshes=heightfield", NULL};
+    vf_runner r;
+    vf_start_file(&r, &scene, 32, 32, "vct.json", heightfield_only);
+    vf_frame(&r);
+    assert_true(fg_pass_is_culled(fg_graph_find_pass(r.graph, "vox")));
+    assert_true(fg_pass_is_culled(fg_graph_find_pass(r.graph, "gather")));
+    assert_false(fg_pass_is_culled(fg_graph_find_pass(r.graph, "final")));
+    assert_no_gl_errors(ctx);
+    vf_stop(&r);
+    cg_scene_free(&scene);
+}
+
 int
 main(void)
 {
@@ -266,6 +333,7 @@ main(void)
         cmocka_unit_test(test_coverage_exact),
         cmocka_unit_test(test_plain_rasterization_leaves_holes),
         cmocka_unit_test(test_lit_surface_radiance),
+        cmocka_unit_test(test_mesh_filter),
     };
     return cmocka_run_group_tests(tests, cg_test_gl_setup, cg_test_gl_teardown);
 }
