@@ -98,7 +98,8 @@ typedef struct demo {
     int frame_ms_count;
     double *all_frame_ms;       /* --frames N: every frame, for the median */
     double last_status;
-    char status[2048];
+    char status[2048];          /* frame time, per-pass times, GI memory, size, shown resource */
+    char selection[1536];       /* the selected parameter: value, type, range, doc */
 } demo;
 
 static void
@@ -342,6 +343,15 @@ compile_and_prepare(demo *d, cg_error *err)
     return true;
 }
 
+/* The title: the selected parameter line, then the latest status line. */
+static void
+update_title(demo *d)
+{
+    char title[sizeof d->selection + sizeof d->status + 32];
+    snprintf(title, sizeof title, "conegraph-demo | %s | %s", d->selection, d->status);
+    glfwSetWindowTitle(d->window, title);
+}
+
 static void
 print_selection(demo *d)
 {
@@ -349,16 +359,16 @@ print_selection(demo *d)
     const fg_param_desc *desc;
     char line[1024];
     if (!demo_selected(d->graph, &d->sel, &pass, &desc)) {
-        printf("param: the graph has no pass parameters\n");
-        fflush(stdout);
-        return;
+        snprintf(d->selection, sizeof d->selection, "the graph has no pass parameters");
+    } else {
+        demo_param_describe(pass, desc, line, sizeof line);
+        const char *culled = fg_pass_cull_reason(pass);
+        snprintf(d->selection, sizeof d->selection, "%s%s%s%s", line, culled ? " [pass culled: " : "",
+                 culled ? culled : "", culled ? "]" : "");
     }
-    demo_param_describe(pass, desc, line, sizeof line);
-    const char *culled = fg_pass_cull_reason(pass);
-    printf("param: %s%s%s\n", line, culled ? " [pass culled: " : "", culled ? culled : "");
-    if (culled)
-        printf("       (culled passes keep their parameters; a change may bring the pass back)\n");
+    printf("param: %s\n", d->selection);
     fflush(stdout);
+    update_title(d);
 }
 
 /* Compiles again after parameter changes; when that fails, says why, undoes the changes
@@ -736,23 +746,7 @@ report_status(demo *d, bool force)
     printf("%s\n", d->status);
     fflush(stdout);
 
-    char title[1024], param[256] = "no parameters";
-    fg_pass *pass;
-    const fg_param_desc *desc;
-    if (demo_selected(d->graph, &d->sel, &pass, &desc)) {
-        double value = demo_param_value(pass, desc);
-        char text[128];
-        if (desc->type == FG_PARAM_FLOAT)
-            snprintf(text, sizeof text, "%g", value);
-        else if (desc->type == FG_PARAM_STRING)
-            snprintf(text, sizeof text, "%s", fg_param_string(pass, desc->name));
-        else
-            demo_param_format(desc, value, text, sizeof text);
-        snprintf(param, sizeof param, "%s.%s = %s", fg_pass_name(pass), desc->name, text);
-    }
-    snprintf(title, sizeof title, "conegraph-demo | %s | %.1f ms | GI %.1f MiB | %s", param, frame,
-             (double)mem.gi_bytes / (1024.0 * 1024.0), d->shown[d->shown_index]);
-    glfwSetWindowTitle(d->window, title);
+    update_title(d);
 }
 
 static const char *
