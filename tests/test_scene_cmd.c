@@ -70,6 +70,9 @@ info_gl_reports_the_context(void **state)
         assert_non_null(strstr(out_text, line));
     }
     assert_int_equal(run("info builtin:cornell --gl --context nothing"), 2);
+    /* --context alone asks for the GL report too. */
+    assert_int_equal(run("info builtin:cornell --context osmesa"), 0);
+    assert_non_null(strstr(out_text, "gl context osmesa"));
 }
 
 static void

@@ -23,8 +23,8 @@ usage(FILE *out)
             "\n"
             "options:\n"
             "  --gl             also create a GL 4.5 core context and print its version and renderer\n"
-            "  --context NAME   the context backend for --gl (default: CONEGRAPH_CONTEXT, else egl\n"
-            "                   then osmesa)\n"
+            "  --context NAME   create the context with this backend (implies --gl; without it:\n"
+            "                   CONEGRAPH_CONTEXT, else egl then osmesa)\n"
             "  -h, --help       this help\n"
             "\n"
             "Exit codes: 0 done, 1 failed while running (no GL context), 2 bad scene or usage.\n");
@@ -121,6 +121,7 @@ cmd_info(int argc, char **argv)
                 fprintf(stderr, "conegraph info: --context expects egl, osmesa, glfw or auto\n");
                 return 2;
             }
+            gl = true;
             i++;
         } else if (argv[i][0] == '-' && argv[i][1]) {
             fprintf(stderr, "conegraph info: unknown option '%s' (see conegraph info --help)\n", argv[i]);
