@@ -46,8 +46,11 @@ typedef struct cone_gather_state {
     GLuint program;
     GLuint sampler;
     cg_cone_set set;
-    bool specular, shadow_cone;
+    bool specular, shadow_cone, anisotropic;
 } cone_gather_state;
+
+/* mip3d's directional chains (anisotropic = true), texture units 3..8 (CG_CONE_ANISO_BINDING). */
+static const char *const direction_names[6] = {"px", "nx", "py", "ny", "pz", "nz"};
 
 static bool
 cone_gather_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
@@ -61,6 +64,13 @@ cone_gather_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
     fg_declare_input(decl, "normal", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, true);
     const fg_resource_desc *volume = fg_declare_input(decl, "volume", FG_TEXTURE_3D, FG_ACCESS_SAMPLED, false);
     const fg_resource_desc *region = fg_declare_input(decl, "region", FG_BUFFER, FG_ACCESS_UNIFORM, false);
+    int directions = 0;
+    for (int d = 0; d < 6; d++)
+        directions += fg_declare_input(decl, direction_names[d], FG_TEXTURE_3D, FG_ACCESS_SAMPLED, false) != NULL;
+    if (directions != 0 && directions != 6)
+        return cg_fail(err, CG_ERR_GRAPH_MISSING_INPUT,
+                       "pass '%s': the anisotropic inputs px nx py ny pz nz go together (a mip3d pass's "
+                       "outputs with anisotropic = true); %d of 6 are present", fg_pass_name(pass), directions);
     if (!volume) {
         fg_declare_nothing_to_do(decl, "no 3D lightmap (input 'volume' absent)");
         return true;
@@ -102,9 +112,11 @@ cone_gather_prepare(fg_pass *pass, void **state, cg_error *err)
     }
     s->specular = fg_param_bool(pass, "specular");
     s->shadow_cone = fg_param_bool(pass, "shadow_cone");
-    char defines[96];
-    snprintf(defines, sizeof defines, "%s%s", s->specular ? "#define SPECULAR\n" : "",
-             s->shadow_cone ? "#define SHADOW_CONE\n" : "");
+    s->anisotropic = fg_resource(pass, "px") != NULL;
+    char defines[128];
+    snprintf(defines, sizeof defines, "%s%s%s", s->specular ? "#define SPECULAR\n" : "",
+             s->shadow_cone ? "#define SHADOW_CONE\n" : "",
+             s->anisotropic ? "#define CG_CONE_ANISOTROPIC\n" : "");
     if (!cg_program_compute("cone_gather/cone_gather.comp", defines, &s->program, err)) {
         free(s);
         return false;
@@ -166,6 +178,11 @@ cone_gather_execute(fg_pass *pass, void *state, cg_error *err)
                      fg_buffer(pass, "region"));
     glBindTextureUnit(0, fg_texture(pass, "volume"));
     glBindSampler(0, s->sampler);
+    if (s->anisotropic)
+        for (int d = 0; d < 6; d++) {
+            glBindTextureUnit(3 + (GLuint)d, fg_texture(pass, direction_names[d]));
+            glBindSampler(3 + (GLuint)d, s->sampler);
+        }
     glBindTextureUnit(1, fg_texture(pass, "position"));
     glBindTextureUnit(2, fg_texture(pass, "normal"));
     glBindImageTexture(0, fg_texture(pass, "radiance"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
@@ -175,6 +192,9 @@ cone_gather_execute(fg_pass *pass, void *state, cg_error *err)
         glBindImageTexture(2, fg_texture(pass, "visibility"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
     glDispatchCompute((GLuint)(out->width + 7) / 8, (GLuint)(out->height + 7) / 8, 1);
     glBindSampler(0, 0);
+    if (s->anisotropic)
+        for (int d = 0; d < 6; d++)
+            glBindSampler(3 + (GLuint)d, 0);
     glUseProgram(0);
     return true;
 }

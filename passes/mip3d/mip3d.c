@@ -14,11 +14,19 @@
 static const fg_param_desc mip3d_params[] = {
     {"opacity", FG_PARAM_ENUM, 0, 0, 0, "max|average",
      "coarse opacity: max of the 8 children (thin walls stay opaque) or their average (volume fraction)"},
+    {"anisotropic", FG_PARAM_BOOL, 0, 0, 1, NULL,
+     "also build six directional chains of levels 1.. (outputs px nx py ny pz nz, Crassin et al. 2011)"},
 };
+
+/* Outputs of the anisotropic chains: level k holds global level k + 1 as seen by a cone
+ * travelling along +x, -x, +y, -y, +z, -z. */
+static const char *const direction_names[6] = {"px", "nx", "py", "ny", "pz", "nz"};
 
 typedef struct mip3d_state {
     GLuint program;
+    GLuint directional;
     GLenum format;
+    bool anisotropic;
 } mip3d_state;
 
 static bool
@@ -41,6 +49,15 @@ mip3d_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
     }
     /* Same name as the input: the graph updates that resource in place. */
     fg_declare_output(decl, "volume", in, FG_ACCESS_IMAGE_STORE);
+    if (fg_param_bool(pass, "anisotropic")) {
+        fg_resource_desc dir = *in;
+        dir.width = dir.height = dir.depth = in->width / 2;
+        dir.levels = in->levels - 1;
+        dir.persistent = false;
+        dir.gi = true;
+        for (int d = 0; d < 6; d++)
+            fg_declare_output(decl, direction_names[d], &dir, FG_ACCESS_IMAGE_STORE);
+    }
     return true;
 }
 
@@ -56,7 +73,12 @@ mip3d_prepare(fg_pass *pass, void **state, cg_error *err)
     snprintf(defines, sizeof defines, "#define FORMAT %s\n#define %s\n",
              s->format == GL_RGBA8 ? "rgba8" : "rgba16f",
              fg_param_enum(pass, "opacity") == 0 ? "OPACITY_MAX" : "OPACITY_AVERAGE");
-    if (!cg_program_compute("mip3d/downsample.comp", defines, &s->program, err)) {
+    s->anisotropic = fg_param_bool(pass, "anisotropic");
+    char format_define[64];
+    snprintf(format_define, sizeof format_define, "#define FORMAT %s\n", s->format == GL_RGBA8 ? "rgba8" : "rgba16f");
+    if (!cg_program_compute("mip3d/downsample.comp", defines, &s->program, err) ||
+        (s->anisotropic && !cg_program_compute("mip3d/directional.comp", format_define, &s->directional, err))) {
+        glDeleteProgram(s->program);
         free(s);
         return false;
     }
@@ -83,6 +105,27 @@ mip3d_execute(fg_pass *pass, void *state, cg_error *err)
         /* The next level reads what this one wrote. */
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     }
+    if (s->anisotropic) {
+        glUseProgram(s->directional);
+        for (int d = 0; d < 6; d++) {
+            GLuint dir = fg_texture(pass, direction_names[d]);
+            glUniform1i(0, d / 2);
+            glUniform1i(1, d % 2 == 0 ? 1 : -1);
+            for (int k = 0; k < desc->levels - 1; k++) {
+                int size = desc->width >> (k + 1);
+                /* Directional level 0 comes from the isotropic level 0, the others from
+                 * the same direction's level below. */
+                if (k == 0)
+                    glBindImageTexture(0, tex, 0, GL_TRUE, 0, GL_READ_ONLY, s->format);
+                else
+                    glBindImageTexture(0, dir, k - 1, GL_TRUE, 0, GL_READ_ONLY, s->format);
+                glBindImageTexture(1, dir, k, GL_TRUE, 0, GL_WRITE_ONLY, s->format);
+                GLuint groups = (GLuint)((size + 3) / 4);
+                glDispatchCompute(groups, groups, groups);
+                glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+            }
+        }
+    }
     glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_ONLY, s->format);
     glBindImageTexture(1, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, s->format);
     return true;
@@ -95,6 +138,7 @@ mip3d_destroy(void *state)
     if (!s)
         return;
     glDeleteProgram(s->program);
+    glDeleteProgram(s->directional);
     free(s);
 }
 

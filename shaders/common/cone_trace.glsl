@@ -56,6 +56,41 @@ cg_cone_composite(inout vec4 acc, vec4 s)
     acc.a += (1.0 - acc.a) * alpha;
 }
 
+#ifdef CG_CONE_ANISOTROPIC
+// Six directional chains of levels 1.. (mip3d with anisotropic = true): level k of cg_aniso_px
+// is level k + 1 as seen by a cone travelling along +x, and so on (Crassin et al. 2011).
+#define CG_CONE_ANISO_BINDING 3
+layout(binding = CG_CONE_ANISO_BINDING + 0) uniform sampler3D cg_aniso_px;
+layout(binding = CG_CONE_ANISO_BINDING + 1) uniform sampler3D cg_aniso_nx;
+layout(binding = CG_CONE_ANISO_BINDING + 2) uniform sampler3D cg_aniso_py;
+layout(binding = CG_CONE_ANISO_BINDING + 3) uniform sampler3D cg_aniso_ny;
+layout(binding = CG_CONE_ANISO_BINDING + 4) uniform sampler3D cg_aniso_pz;
+layout(binding = CG_CONE_ANISO_BINDING + 5) uniform sampler3D cg_aniso_nz;
+#endif
+
+// One filtered sample of the volume at level `lod` for a cone travelling along unit `d`.
+// Anisotropic: the three directional chains facing d, weighted by d's squared components
+// (they sum to 1); below level 1 blended with the isotropic level 0.
+vec4
+cg_cone_sample(sampler3D volume, vec3 uvw, float lod, vec3 d)
+{
+#ifdef CG_CONE_ANISOTROPIC
+    vec4 s = vec4(0.0);
+    if (lod > 0.0) {
+        float k = max(lod - 1.0, 0.0);
+        vec3 w = d * d;
+        s = w.x * (d.x >= 0.0 ? textureLod(cg_aniso_px, uvw, k) : textureLod(cg_aniso_nx, uvw, k)) +
+            w.y * (d.y >= 0.0 ? textureLod(cg_aniso_py, uvw, k) : textureLod(cg_aniso_ny, uvw, k)) +
+            w.z * (d.z >= 0.0 ? textureLod(cg_aniso_pz, uvw, k) : textureLod(cg_aniso_nz, uvw, k));
+    }
+    if (lod < 1.0)
+        s = mix(textureLod(volume, uvw, 0.0), s, lod);
+    return s;
+#else
+    return textureLod(volume, uvw, lod);
+#endif
+}
+
 // Returns the gathered radiance (rgb, already scaled to radiance) and the cone's opacity (a).
 vec4
 cg_cone_trace(sampler3D volume, CgVolume v, CgCone c)
@@ -78,7 +113,7 @@ cg_cone_trace(sampler3D volume, CgVolume v, CgCone c)
         // support within the footprint (and off the surface the cone starts from); the
         // gather's default, -2, measured closer to the path tracer (docs/vct.md).
         float lod = clamp(cg_cone_lod(v, diameter) + c.lod_bias, 0.0, top);
-        vec4 s = textureLod(volume, uvw, lod);
+        vec4 s = cg_cone_sample(volume, uvw, lod, c.direction);
         cg_cone_composite(acc, s);
         t += c.step_factor * diameter;
     }

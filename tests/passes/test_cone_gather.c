@@ -12,13 +12,62 @@
 #include "test_support.h"
 #include "vct_fixture.h"
 
-/* ------------------------------------------------------------------ mip3d */
+/* ------------------------------------------------------------------ mip3d
+ * Both opacity rules, and the six anisotropic chains, against the CPU. */
 
 static const char mip_graph[] =
     "{ \"version\": 1, \"passes\": {"
     " \"vox\": { \"type\": \"voxelize\", \"params\": { \"resolution\": 32 } },"
-    " \"mip\": { \"type\": \"mip3d\", \"params\": { \"opacity\": \"%s\" }, \"inputs\": { \"volume\": \"vox.radiance\" } } },"
-    " \"outputs\": [ \"mip.volume\" ] }";
+    " \"mip\": { \"type\": \"mip3d\", \"params\": { \"opacity\": \"%s\", \"anisotropic\": true },"
+    "   \"inputs\": { \"volume\": \"vox.radiance\" } } },"
+    " \"outputs\": [ \"mip.volume\", \"mip.px\", \"mip.nx\", \"mip.py\", \"mip.ny\", \"mip.pz\", \"mip.nz\" ] }";
+
+/* The anisotropic chains against the CPU: a coarse voxel seen along +-axis is its 2x2 columns
+ * of children composited front to back along the axis, averaged. Level 0 of each chain comes
+ * from the isotropic level 0, level k from the same chain's level k - 1. */
+static void
+check_directional_chains(const vf_runner *r, int size)
+{
+    static const char *const names[6] = {"mip.px", "mip.nx", "mip.py", "mip.ny", "mip.pz", "mip.nz"};
+    for (int d = 0; d < 6; d++) {
+        int axis = d / 2, front = d % 2 == 0 ? 0 : 1;
+        int n0 = 0;
+        float *fine = vf_read_volume(r, "mip.volume", 0, &n0);
+        assert_int_equal(n0, size);
+        int level = 0;
+        for (int n = size / 2; n >= 1; n /= 2, level++) {
+            int got = 0;
+            float *coarse = vf_read_volume(r, names[d], level, &got);
+            assert_int_equal(got, n);
+            for (int z = 0; z < n; z++)
+                for (int y = 0; y < n; y++)
+                    for (int x = 0; x < n; x++) {
+                        double expect[4] = {0, 0, 0, 0};
+                        for (int i = 0; i < 4; i++) {
+                            int c[3] = {0, 0, 0};
+                            c[(axis + 1) % 3] = i & 1;
+                            c[(axis + 2) % 3] = i >> 1;
+                            int f[3] = {2 * x + c[0], 2 * y + c[1], 2 * z + c[2]};
+                            int b[3] = {f[0], f[1], f[2]};
+                            f[axis] += front;
+                            b[axis] += 1 - front;
+                            const float *pf = &fine[4 * ((size_t)(f[2] * 2 * n + f[1]) * 2 * n + f[0])];
+                            const float *pb = &fine[4 * ((size_t)(b[2] * 2 * n + b[1]) * 2 * n + b[0])];
+                            for (int k = 0; k < 4; k++)
+                                expect[k] += 0.25 * (pf[k] + (1.0 - pf[3]) * pb[k]);
+                        }
+                        const float *g = &coarse[4 * ((size_t)(z * n + y) * n + x)];
+                        for (int k = 0; k < 4; k++)
+                            if (fabs(g[k] - expect[k]) > 1e-3 * fabs(expect[k]) + 1e-6)
+                                fail_msg("%s level %d voxel (%d,%d,%d) channel %d: %g, CPU %g", names[d], level,
+                                         x, y, z, k, g[k], expect[k]);
+                    }
+            free(fine);
+            fine = coarse;
+        }
+        free(fine);
+    }
+}
 
 static void
 check_mip_chain(cg_context *ctx, const char *opacity)
@@ -89,6 +138,7 @@ check_mip_chain(cg_context *ctx, const char *opacity)
     }
     free(fine);
     assert_int_equal(level, 6); /* 32 -> 16, 8, 4, 2, 1 */
+    check_directional_chains(&r, size);
     assert_no_gl_errors(ctx);
     vf_stop(&r);
     free(s);

@@ -1,5 +1,5 @@
 /* End to end on builtin:cornell with the shipped graphs (graphs/direct.json, vct.json,
- * vct-paper.json, reference.json) at 64x64: VCT adds colour bleeding that direct light alone
+ * vct-paper.json, vct-aniso.json, reference.json) at 64x64: VCT adds colour bleeding that direct light alone
  * cannot have (red on the white surfaces of the left half, green on the right half, as the
  * path tracer shows too; direct light alone is white there), and its mean luminance is closer to the path-traced
  * reference than the direct-only image's. */
@@ -80,34 +80,36 @@ test_cornell_bleeding_and_energy(void **state)
     cg_error err = {0};
     assert_cg_ok(cg_scene_load("builtin:cornell", &scene, &err), &err);
     float *albedo = NULL;
-    cornell_image direct = {0}, vct = {0}, paper = {0}, ref = {0};
+    cornell_image direct = {0}, vct = {0}, paper = {0}, aniso = {0}, ref = {0};
     const char *const direct_set[] = {"final.exposure=0", NULL};
     const char *const ref_set[] = {"trace.spp=64", NULL};
     render(&scene, "direct.json", direct_set, &direct, &albedo);
     render(&scene, "vct.json", NULL, &vct, NULL);
     render(&scene, "vct-paper.json", NULL, &paper, NULL);
+    render(&scene, "vct-aniso.json", NULL, &aniso, NULL);
     render(&scene, "reference.json", ref_set, &ref, NULL);
     measure(&direct, albedo);
     measure(&vct, albedo);
     measure(&paper, albedo);
+    measure(&aniso, albedo);
     measure(&ref, albedo);
-    const cornell_image *all[4] = {&direct, &vct, &paper, &ref};
-    const char *names[4] = {"direct", "vct", "vct-paper", "path traced"};
-    for (int i = 0; i < 4; i++)
+    const cornell_image *all[5] = {&direct, &vct, &paper, &aniso, &ref};
+    const char *names[5] = {"direct", "vct", "vct-paper", "vct-aniso", "path traced"};
+    for (int i = 0; i < 5; i++)
         fprintf(stderr, "# %-12s mean luminance %.5f, (R-G)/(R+G+B) on white: left %+.4f right %+.4f\n",
                 names[i], all[i]->luminance, all[i]->bleed[0], all[i]->bleed[1]);
     /* Direct light is white: no bleeding at all. The path tracer has red on the left and
      * green (R < G) on the right; VCT must show the same signs, clearly. */
     assert_true(fabs(direct.bleed[0]) < 0.01 && fabs(direct.bleed[1]) < 0.01);
     assert_true(ref.bleed[0] > 0.01 && ref.bleed[1] < -0.01);
-    for (int i = 1; i <= 2; i++) {
+    for (int i = 1; i <= 3; i++) {
         if (!(all[i]->bleed[0] > 0.01 && all[i]->bleed[1] < -0.01))
             fail_msg("%s: no colour bleeding (left %+.4f, right %+.4f)", names[i], all[i]->bleed[0], all[i]->bleed[1]);
         if (!(fabs(all[i]->luminance - ref.luminance) < fabs(direct.luminance - ref.luminance)))
             fail_msg("%s: mean luminance %.5f is not closer to the reference %.5f than direct's %.5f",
                      names[i], all[i]->luminance, ref.luminance, direct.luminance);
     }
-    for (int i = 0; i < 4; i++)
+    for (int i = 0; i < 5; i++)
         free(all[i]->hdr);
     free(albedo);
     assert_no_gl_errors(ctx);
