@@ -1,0 +1,113 @@
+/* passes/mip2d: the mip chain of a 2D lightmap, in place (hybrid paper V.B).
+ *
+ * Input and output `lightmap` (the same resource: level 0 is read, levels 1.. written).
+ * A 2x2 box filter of radiance and height by compute, one dispatch per level, as mip3d
+ * does for the 3D lightmap. Height keeps the average in alpha, as the paper does; the
+ * min and max heights per level come from the hsat pass.
+ */
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "cg/fg.h"
+#include "cg/shader.h"
+
+typedef struct mip2d_state {
+    GLuint program;
+    GLenum format;
+} mip2d_state;
+
+static bool
+mip2d_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
+{
+    const fg_resource_desc *in = fg_declare_input(decl, "lightmap", FG_TEXTURE_2D,
+                                                  FG_ACCESS_IMAGE_LOAD | FG_ACCESS_IMAGE_STORE, true);
+    if (!in)
+        return true;
+    if (in->format != GL_RGBA16F && in->format != GL_RGBA32F)
+        return cg_fail(err, CG_ERR_GRAPH_INCOMPATIBLE,
+                       "pass '%s': input 'lightmap' must be RGBA16F or RGBA32F", fg_pass_name(pass));
+    if (in->width != in->height || (in->width & (in->width - 1)) != 0)
+        return cg_fail(err, CG_ERR_GRAPH_INCOMPATIBLE,
+                       "pass '%s': input 'lightmap' must be square with a power-of-two side, got %dx%d",
+                       fg_pass_name(pass), in->width, in->height);
+    if (in->levels < 2) {
+        fg_declare_nothing_to_do(decl, "the lightmap has a single mip level");
+        return true;
+    }
+    /* Same name as the input: the graph updates that resource in place. */
+    fg_declare_output(decl, "lightmap", in, FG_ACCESS_IMAGE_STORE);
+    return true;
+}
+
+static bool
+mip2d_prepare(fg_pass *pass, void **state, cg_error *err)
+{
+    mip2d_state *s = calloc(1, sizeof *s);
+    if (!s)
+        return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "pass '%s': out of memory", fg_pass_name(pass));
+    s->format = fg_resource(pass, "lightmap")->format;
+    char defines[64];
+    snprintf(defines, sizeof defines, "#define FORMAT %s\n", s->format == GL_RGBA16F ? "rgba16f" : "rgba32f");
+    if (!cg_program_compute("mip2d/downsample.comp", defines, &s->program, err)) {
+        free(s);
+        return false;
+    }
+    *state = s;
+    return true;
+}
+
+static bool
+mip2d_execute(fg_pass *pass, void *state, cg_error *err)
+{
+    (void)err;
+    mip2d_state *s = state;
+    const fg_resource_desc *desc = fg_resource(pass, "lightmap");
+    GLuint tex = fg_texture(pass, "lightmap");
+    glUseProgram(s->program);
+    for (int level = 1; level < desc->levels; level++) {
+        int size = desc->width >> level;
+        glBindImageTexture(0, tex, level - 1, GL_FALSE, 0, GL_READ_ONLY, s->format);
+        glBindImageTexture(1, tex, level, GL_FALSE, 0, GL_WRITE_ONLY, s->format);
+        GLuint groups = (GLuint)((size + 7) / 8);
+        glDispatchCompute(groups, groups, 1);
+        /* The next level reads what this one wrote. */
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    }
+    glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_ONLY, s->format);
+    glBindImageTexture(1, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, s->format);
+    glUseProgram(0);
+    return true;
+}
+
+static void
+mip2d_destroy(void *state)
+{
+    mip2d_state *s = state;
+    if (!s)
+        return;
+    glDeleteProgram(s->program);
+    free(s);
+}
+
+static const fg_pass_type mip2d_type = {
+    .abi_version = FG_ABI_VERSION,
+    .name = "mip2d",
+    .doc = "Mip chain of a 2D lightmap (hybrid paper V.B) by a 2x2 box filter, one compute dispatch "
+           "per level, in place: mean radiance in rgb, mean height in alpha (the paper's filtered "
+           "geometry; per-level height extremes come from hsat).",
+    .params = NULL,
+    .param_count = 0,
+    .declare = mip2d_declare,
+    .prepare = mip2d_prepare,
+    .execute = mip2d_execute,
+    .destroy = mip2d_destroy,
+};
+
+bool
+cg_pass_register_mip2d(fg_registry *registry, uint32_t host_abi, cg_error *err)
+{
+    if (host_abi != FG_ABI_VERSION)
+        return cg_fail(err, CG_ERR_PLUGIN_ABI, "pass mip2d: built for frame-graph ABI %u, host has %u",
+                       FG_ABI_VERSION, host_abi);
+    return fg_registry_add(registry, &mip2d_type, err);
+}

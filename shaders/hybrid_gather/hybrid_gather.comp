@@ -1,0 +1,244 @@
+// hybrid_gather: indirect light of every G-buffer pixel by hybrid cone tracing (hybrid
+// paper VI) through a mipped 3D lightmap of the complex meshes and a mipped 2D lightmap of
+// the height-field meshes with its min/max height tables (HSAT).
+//
+// Diffuse cones and weights as cone_gather (hybrid eq. 3-4: the weights integrate the
+// cosine lobe to 1, core/src/cone.c); the output is sum_k W_k L_k (rgb) and the ambient
+// visibility (a), which composite multiplies by the albedo.
+//
+// Without a 2D lightmap (HAS_2D undefined) every cone is cg_cone_trace(), the VCT march,
+// so a scene without terrain gathers exactly what cone_gather does. With one, each step of
+// a cone is an axis-aligned fitting cube (eq. 10-11, common/fitting_cube.glsl) and:
+//   3D (Case 1): the cube meets the 3D lightmap's box (eq. 12) -> sample its mip level of
+//     eq. 8 at the geometric centre of the intersection (eq. 15), composite front to back.
+//   2D (Case 2): the cube meets the height field's box -> HSAT gives the terrain's height
+//     range under the cube's xz footprint; a cube above the highest terrain is empty space
+//     and skipped; otherwise the 2D lightmap at its level of eq. 8 is walked along the
+//     cone's projection by a 2D DDA, and the part of the cube below the terrain (its
+//     coverage) occludes and lights the cone (eq. 16, or eq. 17 by a switch).
+//   Mixed: 3D first, then 2D, in the same step (the paper's mix case).
+#version 450 core
+#include "common/cone_trace.glsl"
+#ifdef HAS_2D
+#include "common/heightmap.glsl"
+#include "common/hsat.glsl"
+#include "common/fitting_cube.glsl"
+#endif
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+layout(binding = 0) uniform sampler3D u_volume;
+layout(binding = 1) uniform sampler2D u_position;
+layout(binding = 2) uniform sampler2D u_normal;
+layout(binding = 3) uniform sampler2D u_lightmap;
+layout(binding = 4) uniform usampler2D u_hsat;
+
+layout(binding = 0, rgba16f) writeonly uniform image2D u_radiance;
+
+#define MAX_CONES 16
+layout(location = 0) uniform vec4 u_cones[MAX_CONES];       // xyz tangent-space direction, w weight
+layout(location = 16) uniform float u_tan_half[MAX_CONES];
+layout(location = 32) uniform int u_cone_count;
+layout(location = 33) uniform float u_step;                  // fraction of the cone diameter
+layout(location = 34) uniform float u_start_offset;          // xels along the normal
+layout(location = 35) uniform float u_max_distance;          // world; <= 0: the maps' diagonal
+layout(location = 40) uniform float u_lod_bias;
+layout(location = 41) uniform bool u_has_3d;
+layout(location = 42) uniform bool u_eq11;                   // eq. 11 (else eq. 10 for every cone)
+layout(location = 43) uniform int u_occlusion;               // 0: eq. 16 (coverage), 1: eq. 17
+layout(location = 44) uniform bool u_dda;                    // 2D DDA (else one sample at the cube's centre)
+layout(location = 45) uniform bool u_skip;                   // HSAT empty-space skipping
+
+#define OCCLUSION_EQ16 0
+#define OCCLUSION_EQ17 1
+#define DDA_MAX_CELLS 16
+
+#ifdef HAS_2D
+// Exit distance of the ray from the box, -1 when it misses (slab test).
+float
+ray_box_exit(vec3 o, vec3 d, vec3 lo, vec3 hi)
+{
+    vec3 inv = 1.0 / d;     // +-inf for a zero component: the slab is then all or nothing
+    vec3 t0 = (lo - o) * inv, t1 = (hi - o) * inv;
+    vec3 tmin = min(t0, t1), tmax = max(t0, t1);
+    float enter = max(max(tmin.x, tmin.y), tmin.z), leave = min(min(tmax.x, tmax.y), tmax.z);
+    return leave >= max(enter, 0.0) ? leave : -1.0;
+}
+
+// Fraction of the vertical extent [y0, y1] below the terrain height h: the occluded part
+// of the step's cross-section (A in eq. 16).
+float
+coverage(float h, float y0, float y1)
+{
+    return clamp((h - y0) / max(y1 - y0, 1e-30), 0.0, 1.0);
+}
+
+// The terrain in one step: rgb = radiance of the most occluding texel, a = its coverage of
+// the cube's vertical extent. The DDA walks the texels of level `level` that the cone axis
+// crosses between t0 and t1 (Amanatides and Woo 1987); at each, the cube is centred on the
+// axis height there. When one texel occludes, later ones count only where they rise higher
+// (the paper's "dynamic distance": the previous height decides whether a sample is kept).
+vec4
+terrain_sample(CgHeightmap m, vec3 origin, vec3 dir, float t0, float t1, CgFittingCube cube, float lod)
+{
+    float half_side = 0.5 * cube.side;
+    if (!u_dda) {
+        vec4 s = textureLod(u_lightmap, cg_heightmap_uv(m, cube.centre.xz), lod);
+        return vec4(s.rgb, coverage(s.a, cube.centre.y - half_side, cube.centre.y + half_side));
+    }
+    int level = int(lod);
+    int n = max(int(m.resolution) >> level, 1);
+    vec2 cell_size = m.texel * float(1 << level);
+    vec3 p0 = origin + dir * t0;
+    vec2 a = (p0.xz - m.origin) / cell_size;
+    vec2 span = dir.xz * (t1 - t0) / cell_size;     // texels crossed over the step
+    ivec2 cell = ivec2(floor(a));
+    ivec2 stride = ivec2(sign(span));
+    vec2 inv = vec2(span.x != 0.0 ? 1.0 / abs(span.x) : 1e30, span.y != 0.0 ? 1.0 / abs(span.y) : 1e30);
+    // Parameter s in [0,1] along the step at which the walk crosses the next cell edge.
+    vec2 next = vec2(span.x > 0.0 ? (floor(a.x) + 1.0 - a.x) : (a.x - floor(a.x)),
+                     span.y > 0.0 ? (floor(a.y) + 1.0 - a.y) : (a.y - floor(a.y))) * inv;
+    float s_in = 0.0;
+    vec4 best = vec4(0.0);
+    for (int i = 0; i < DDA_MAX_CELLS && s_in < 1.0; i++) {
+        float s_out = min(min(next.x, next.y), 1.0);
+        if (all(greaterThanEqual(cell, ivec2(0))) && all(lessThan(cell, ivec2(n)))) {
+            vec4 texel = texelFetch(u_lightmap, cell, level);
+            float y = p0.y + dir.y * (t1 - t0) * 0.5 * (s_in + s_out);
+            float o = coverage(texel.a, y - half_side, y + half_side);
+            if (o > best.a)
+                best = vec4(texel.rgb, o);
+        }
+        if (next.x < next.y) {
+            cell.x += stride.x;
+            next.x += inv.x;
+        } else {
+            cell.y += stride.y;
+            next.y += inv.y;
+        }
+        s_in = s_out;
+    }
+    return best;
+}
+
+vec4
+hybrid_trace(vec3 origin, vec3 dir, float tan_half, float t_start, float t_max)
+{
+    CgVolume v = cg_volume();
+    CgHeightmap m = cg_heightmap();
+    vec3 v_lo = v.origin, v_hi = v.origin + vec3(cg_volume_extent(v));
+    vec3 m_lo = vec3(m.origin.x, m.y_min, m.origin.y);
+    vec3 m_hi = vec3(m.origin.x + m.texel.x * m.resolution, m.y_max, m.origin.y + m.texel.y * m.resolution);
+    float xel = cg_heightmap_xel(m);
+    if (u_has_3d)
+        xel = min(xel, v.voxel_size);
+    float t_leave = ray_box_exit(origin, dir, m_lo, m_hi);
+    if (u_has_3d)
+        t_leave = max(t_leave, ray_box_exit(origin, dir, v_lo, v_hi));
+    float half_angle = atan(tan_half);
+    float top3 = v.levels - 1.0, top2 = m.levels - 1.0;
+    vec4 acc = vec4(0.0);
+    float covered = 0.0;    // part of the cone's section already below the terrain
+    float t = t_start;
+    for (int i = 0; i < 4096 && t < t_max && acc.a < CG_CONE_OPAQUE; i++) {
+        // Eq. 8's diameter, never below the finest xel: log2 of zero is -inf.
+        float d = max(2.0 * tan_half * t, xel);
+        float dt = u_step * d;
+        CgFittingCube cube = cg_fitting_cube(origin, dir, half_angle, t, d, u_eq11);
+        vec3 c_lo = cube.centre - 0.5 * cube.side, c_hi = cube.centre + 0.5 * cube.side;
+        bool alive = false;
+        if (u_has_3d) {
+            // Eq. 12: the cube against the 3D lightmap's box; their intersection is a box.
+            vec3 lo = max(c_lo, v_lo), hi = min(c_hi, v_hi);
+            if (all(lessThan(lo, hi))) {
+                alive = true;
+                // Eq. 15: the mean of the intersection's corners, its centre.
+                vec3 centre = 0.5 * (lo + hi);
+                float lod = clamp(cg_cone_lod(v, d) + u_lod_bias, 0.0, top3);
+                vec4 s = textureLod(u_volume, cg_volume_uvw(v, centre), lod);
+                cg_cone_composite(acc, vec4(s.rgb * v.radiance_scale, s.a));
+            }
+        }
+        // The height field fills everything below its surface: its box reaches down without
+        // bound (a flat terrain has y_min = y_max, and a cube under it is buried, not outside).
+        if (acc.a < CG_CONE_OPAQUE && all(lessThan(max(c_lo.xz, m_lo.xz), min(c_hi.xz, m_hi.xz))) &&
+            c_lo.y <= m_hi.y) {
+            alive = true;
+            // Eq. 8 with the 2D lightmap's xel.
+            float lod = clamp(log2(d / cg_heightmap_xel(m)) + u_lod_bias, 0.0, top2);
+            bool empty = false;
+            if (u_skip) {
+                vec2 range = cg_hsat_range(u_hsat, m, c_lo.xz, c_hi.xz, int(lod));
+                empty = range.x > range.y || c_lo.y > range.y;
+            }
+            if (!empty) {
+                vec4 s = terrain_sample(m, origin, dir, t, t + dt, cube, lod);
+                float alpha = 0.0;
+                if (u_occlusion == OCCLUSION_EQ17) {
+                    // Eq. 17: a = step_diameter / current_step_length wherever the cube meets the terrain.
+                    alpha = s.a > 0.0 ? min(d / t, 1.0) : 0.0;
+                } else if (s.a > covered) {
+                    // Eq. 16: the newly occluded part of the section, over what was still open.
+                    alpha = (s.a - covered) / max(1.0 - covered, 1e-6);
+                    covered = s.a;
+                }
+                cg_cone_composite(acc, vec4(alpha * s.rgb, alpha));
+            }
+        }
+        // Past both maps along the axis and meeting neither: nothing more to gather.
+        if (!alive && t > t_leave)
+            break;
+        t += dt;
+    }
+    return acc;
+}
+#endif
+
+void
+main()
+{
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(pixel, imageSize(u_radiance))))
+        return;
+    vec4 position = texelFetch(u_position, pixel, 0);
+    vec3 normal = texelFetch(u_normal, pixel, 0).xyz;
+    vec4 diffuse = vec4(0.0, 0.0, 0.0, 1.0);
+    // Background pixels (w = 0) and a degenerate normal gather nothing.
+    if (position.w > 0.0 && dot(normal, normal) > 1e-12) {
+        vec3 n = normalize(normal);
+        mat3 frame = cg_tangent_frame(n);
+        diffuse = vec4(0.0);
+#ifdef HAS_2D
+        CgVolume v = cg_volume();
+        CgHeightmap m = cg_heightmap();
+        // The coarser of the two xels: off the surface's own voxels and texels (self-influence, VI.B).
+        float xel = u_has_3d ? max(v.voxel_size, cg_heightmap_xel(m)) : cg_heightmap_xel(m);
+        vec3 origin = position.xyz + n * (u_start_offset * xel);
+        vec3 lo = vec3(m.origin.x, m.y_min, m.origin.y);
+        vec3 hi = vec3(m.origin.x + m.texel.x * m.resolution, m.y_max, m.origin.y + m.texel.y * m.resolution);
+        if (u_has_3d) {
+            lo = min(lo, v.origin);
+            hi = max(hi, v.origin + vec3(cg_volume_extent(v)));
+        }
+        float t_max = u_max_distance > 0.0 ? u_max_distance : length(hi - lo);
+        for (int k = 0; k < u_cone_count; k++) {
+            vec4 r = hybrid_trace(origin, normalize(frame * u_cones[k].xyz), u_tan_half[k], xel, t_max);
+            diffuse.rgb += u_cones[k].w * r.rgb;
+            diffuse.a += u_cones[k].w * (1.0 - r.a);
+        }
+#else
+        // No 2D lightmap: the VCT march, exactly as cone_gather runs it.
+        CgVolume v = cg_volume();
+        float t_max = u_max_distance > 0.0 ? u_max_distance : cg_volume_extent(v) * sqrt(3.0);
+        vec3 origin = position.xyz + n * (u_start_offset * v.voxel_size);
+        for (int k = 0; k < u_cone_count; k++) {
+            CgCone cone = CgCone(origin, normalize(frame * u_cones[k].xyz), u_tan_half[k],
+                                 v.voxel_size, t_max, u_step, u_lod_bias);
+            vec4 r = cg_cone_trace(u_volume, v, cone);
+            diffuse.rgb += u_cones[k].w * r.rgb;
+            diffuse.a += u_cones[k].w * (1.0 - r.a);
+        }
+#endif
+    }
+    imageStore(u_radiance, pixel, diffuse);
+}

@@ -1,0 +1,327 @@
+/* hybrid_gather on a software context, small sizes:
+ *   - energy: the underside of a plate above a wide, flat, emissive terrain (radiance L)
+ *     sees L over its whole hemisphere, so albedo x gathered = albedo x L (a white furnace
+ *     for the 2D branch), for the parameter variants; a flat emissive terrain alone gathers
+ *     nothing from its own lightmap (no self-illumination);
+ *   - builtin:cornell (no height field): graphs/hybrid.json culls the 2D branch and its
+ *     image equals graphs/vct.json's, bit for bit;
+ *   - builtin:openworld renders finite through hybrid.json, and its GI memory is below
+ *     vct.json's at the paper's pairing (hybrid 128^3 + 2D vs VCT 256^3). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "builtin.h"
+#include "cg/fs.h"
+#include "cg/gl.h"
+#include "cg/graphfile.h"
+#include "hybrid_fixture.h"
+#include "test_support.h"
+
+static double
+flat(double x, double z, const void *user)
+{
+    (void)x, (void)z, (void)user;
+    return 0.0;
+}
+
+static const char furnace_graph[] =
+    "{ \"version\": 1, \"passes\": {"
+    " \"gbuf\": { \"type\": \"gbuffer\" },"
+    " \"vox\": { \"type\": \"voxelize\", \"params\": { \"resolution\": 32, \"meshes\": \"complex\" } },"
+    " \"voxmip\": { \"type\": \"mip3d\", \"inputs\": { \"volume\": \"vox.radiance\" } },"
+    " \"terrain\": { \"type\": \"heightmap_raster\", \"params\": { \"resolution\": 256 } },"
+    " \"terrainmip\": { \"type\": \"mip2d\", \"inputs\": { \"lightmap\": \"terrain.lightmap\" } },"
+    " \"hsat\": { \"type\": \"hsat\", \"params\": { \"mode\": \"%s\" },"
+    "   \"inputs\": { \"lightmap\": \"terrainmip.lightmap\", \"region\": \"terrain.region\" } },"
+    " \"gather\": { \"type\": \"hybrid_gather\", \"params\": { \"cones\": %d %s },"
+    "   \"inputs\": { \"position\": \"gbuf\", \"normal\": \"gbuf\", \"volume\": \"voxmip.volume\", \"region\": \"vox.region\","
+    "     \"lightmap2d\": \"terrainmip.lightmap\", \"region2d\": \"terrain.region\", \"hsat\": \"hsat.table\","
+    "     \"hsat_info\": \"hsat.info\" } } },"
+    " \"outputs\": [ \"gather.radiance\", \"gbuf.albedo\", \"gbuf.position\" ] }";
+
+typedef struct gathered {
+    int pixels, nonfinite;
+    double mean, worst;     /* albedo x gathered (grey: channel 0..2 averaged), worst |. - target| */
+} gathered;
+
+static gathered
+gather(cg_context *ctx, const cg_scene *scene, const char *mode, int cones, const char *params, double target)
+{
+    char json[4096];
+    snprintf(json, sizeof json, furnace_graph, mode, cones, params);
+    vf_runner r;
+    vf_start(&r, scene, 24, 24, json, NULL);
+    vf_frame(&r);
+    int w = 0, h = 0;
+    float *g = hf_read_2d(&r, "gather.radiance", 0, &w, &h);
+    float *albedo = hf_read_2d(&r, "gbuf.albedo", 0, &w, &h);
+    float *position = hf_read_2d(&r, "gbuf.position", 0, &w, &h);
+    gathered out = {0};
+    for (int i = 0; i < w * h; i++) {
+        for (int k = 0; k < 4; k++)
+            out.nonfinite += !isfinite(g[4 * i + k]);
+        if (position[4 * i + 3] <= 0.0f)
+            continue;
+        out.pixels++;
+        double v = 0;
+        for (int k = 0; k < 3; k++)
+            v += albedo[4 * i + k] * g[4 * i + k] / 3.0;
+        out.mean += v;
+        out.worst = fmax(out.worst, fabs(v - target));
+    }
+    out.mean /= out.pixels > 0 ? out.pixels : 1;
+    free(g);
+    free(albedo);
+    free(position);
+    assert_no_gl_errors(ctx);
+    vf_stop(&r);
+    return out;
+}
+
+static void
+test_flat_emissive_terrain(void **state)
+{
+    cg_context *ctx = cg_test_gl_context(state);
+    const float radiance = 2.0f, albedo = 0.8f;
+    hf_scene s;
+    hf_init(&s);
+    hf_material(&s, 1, 0.5f, radiance);
+    hf_material(&s, 2, albedo, 0.0f);
+    hf_grid(&s, 8, -50.0, -50.0, 100.0, flat, NULL);
+    const double corner[3] = {-0.5, 1.0, -0.5}, e1[3] = {1, 0, 0}, e2[3] = {0, 0, 1};
+    hf_quad(&s, corner, e1, e2);    /* normal e1 x e2 = -y: facing the terrain */
+    const double eye[3] = {0, 0.3, 0}, up_dir[3] = {0, 1, 0}, up[3] = {0, 0, 1};
+    hf_camera_looking(&s, eye, up_dir, up, 0.8f);
+    hf_finish(&s);
+    /* The 100 m square at 1 m covers all but ~1e-4 of the plate's cosine lobe. */
+    const double target = albedo * radiance;
+    static const struct { const char *mode; int cones; const char *params; } variants[] = {
+        {"pyramid", 6, ""},
+        {"pyramid", 16, ""},
+        {"pyramid", 9, ", \"cube\": \"eq10\""},
+        {"pyramid", 6, ", \"dda\": false"},
+        {"pyramid", 6, ", \"occlusion\": \"eq17\""},
+        {"pyramid", 6, ", \"skip\": false"},
+        {"pnorm", 6, ""},
+        {"power_mean", 6, ""},
+    };
+    for (size_t i = 0; i < sizeof variants / sizeof variants[0]; i++) {
+        gathered g = gather(ctx, &s.scene, variants[i].mode, variants[i].cones, variants[i].params, target);
+        printf("# flat emissive terrain under a plate: hsat %s, %d cones%s: albedo x gathered %.4f "
+               "(target %.4f), worst pixel %.4f off, %d pixels\n", variants[i].mode, variants[i].cones,
+               variants[i].params, g.mean, target, g.worst, g.pixels);
+        assert_int_equal(g.nonfinite, 0);
+        assert_int_equal(g.pixels, 24 * 24);
+        if (fabs(g.mean - target) > 0.03 * target)
+            fail_msg("variant %zu: albedo x gathered %.4f, expected %.4f within 3%%", i, g.mean, target);
+    }
+
+    /* The terrain alone, seen from above: nothing above it to gather, and its own lightmap
+     * must not light it. */
+    hf_free(&s);
+    hf_init(&s);
+    hf_material(&s, 1, 0.5f, radiance);
+    hf_grid(&s, 8, -50.0, -50.0, 100.0, flat, NULL);
+    const double high[3] = {0, 20, 0}, down[3] = {0, -1, 0.3}, north[3] = {0, 1, 0};
+    hf_camera_looking(&s, high, down, north, 0.8f);
+    hf_finish(&s);
+    gathered g = gather(ctx, &s.scene, "pyramid", 6, "", 0.0);
+    printf("# flat emissive terrain alone: albedo x gathered %.3g (radiance %.1f), worst pixel %.3g\n", g.mean,
+           radiance, g.worst);
+    assert_int_equal(g.nonfinite, 0);
+    assert_true(g.pixels > 0);
+    assert_true(g.worst < 1e-3 * radiance);
+    hf_free(&s);
+}
+
+static double
+ridge(double x, double z, const void *user)
+{
+    (void)x;
+    double height = *(const double *)user;
+    return height * fmax(0.0, 1.0 - fabs(z) / 1.5);
+}
+
+/* Occlusion by the height field (eq. 16, the DDA, HSAT): a receiver facing an emissive wall
+ * (a complex mesh, so in the 3D lightmap) across a black terrain ridge. Through a flat terrain
+ * the receiver gathers the wall's light; behind a 6 m ridge, which hides the whole wall from
+ * it, it must gather (almost) none of it. */
+static double
+gather_over_ridge(cg_context *ctx, double height, const char *params)
+{
+    hf_scene s;
+    hf_init(&s);
+    hf_material(&s, 1, 0.0f, 0.0f);
+    hf_material(&s, 2, 0.0f, 1.0f);     /* the wall: emits 1 */
+    hf_material(&s, 3, 0.8f, 0.0f);     /* the receiver */
+    hf_grid(&s, 160, -20.0, -20.0, 40.0, ridge, &height);
+    const double wall[3] = {-10, 0, 3}, up4[3] = {0, 4, 0}, across[3] = {20, 0, 0};
+    hf_quad(&s, wall, up4, across);     /* normal -z, towards the receiver */
+    const double plate[3] = {-0.5, 0.5, -3}, ex[3] = {1, 0, 0}, ey[3] = {0, 1, 0};
+    hf_quad(&s, plate, ex, ey);         /* normal +z, towards the ridge and the wall */
+    const double eye[3] = {0, 1, -2}, back[3] = {0, 0, -1}, up[3] = {0, 1, 0};
+    hf_camera_looking(&s, eye, back, up, 0.6f);
+    hf_finish(&s);
+    gathered g = gather(ctx, &s.scene, "pyramid", 9, params, 0.0);
+    assert_int_equal(g.nonfinite, 0);
+    assert_int_equal(g.pixels, 24 * 24);
+    hf_free(&s);
+    return g.mean;
+}
+
+/* Albedo x the cosine-weighted view factor of the wall from the receiver's centre, by a
+ * midpoint sum over the wall: what the flat case should gather. */
+static double
+wall_view_factor(void)
+{
+    const int n = 400;
+    double f = 0;
+    for (int i = 0; i < n; i++)
+        for (int j = 0; j < n; j++) {
+            double dx = -10.0 + 20.0 * (i + 0.5) / n, dy = 4.0 * (j + 0.5) / n - 1.0, dz = 6.0;
+            double r2 = dx * dx + dy * dy + dz * dz;
+            f += (dz * dz / r2) / (M_PI * r2) * (20.0 / n) * (4.0 / n);
+        }
+    return 0.8 * f;
+}
+
+static void
+test_ridge_occludes(void **state)
+{
+    cg_context *ctx = cg_test_gl_context(state);
+    double expected = wall_view_factor();
+    static const char *const variants[] = {"", ", \"dda\": false", ", \"occlusion\": \"eq17\"", ", \"skip\": false"};
+    for (size_t i = 0; i < sizeof variants / sizeof variants[0]; i++) {
+        double open = gather_over_ridge(ctx, 0.0, variants[i]);
+        double hidden = gather_over_ridge(ctx, 6.0, variants[i]);
+        printf("# emissive wall seen across a flat terrain: albedo x gathered %.4f (view factor: %.4f); behind a "
+               "6 m ridge: %.4f (ratio %.3f)%s\n", open, expected, hidden, hidden / open, variants[i]);
+        assert_true(fabs(open - expected) < 0.2 * expected);
+        assert_true(hidden < 0.1 * open);
+    }
+}
+
+static float *
+render_final(const cg_scene *scene, int w, int h, const char *graph, const char *const *overrides, vf_runner *keep)
+{
+    vf_runner r;
+    vf_start_file(&r, scene, w, h, graph, overrides);
+    vf_frame(&r);
+    int rw = 0, rh = 0;
+    float *hdr = hf_read_2d(&r, "final.hdr", 0, &rw, &rh);
+    if (keep)
+        *keep = r;
+    else
+        vf_stop(&r);
+    return hdr;
+}
+
+static void
+test_cornell_equals_vct(void **state)
+{
+    cg_context *ctx = cg_test_gl_context(state);
+    cg_scene scene;
+    cg_error err = {0};
+    assert_cg_ok(cg_scene_load("builtin:cornell", &scene, &err), &err);
+    const char *const set[] = {"vox.resolution=32", "shadow.resolution=512", NULL};
+    vf_runner r;
+    float *hybrid = render_final(&scene, 48, 48, "hybrid.json", set, &r);
+    static const char *const branch[] = {"terrain", "terrainmip", "hsat"};
+    for (int i = 0; i < 3; i++)
+        if (!fg_pass_is_culled(fg_graph_find_pass(r.graph, branch[i])))
+            fail_msg("builtin:cornell: pass '%s' of the 2D branch is live", branch[i]);
+    assert_false(fg_pass_is_culled(fg_graph_find_pass(r.graph, "gather")));
+    vf_stop(&r);
+    float *vct = render_final(&scene, 48, 48, "vct.json", set, NULL);
+    double worst = 0, sum = 0;
+    for (int i = 0; i < 48 * 48 * 4; i++) {
+        worst = fmax(worst, fabs(hybrid[i] - vct[i]));
+        sum += vct[i];
+    }
+    printf("# builtin:cornell hybrid.json vs vct.json: largest difference %g (mean value %g)\n", worst,
+           sum / (48 * 48 * 4));
+    assert_true(sum > 0);
+    assert_true(worst == 0.0);
+    free(hybrid);
+    free(vct);
+    assert_no_gl_errors(ctx);
+    cg_scene_free(&scene);
+}
+
+/* GI bytes of a graph file compiled for a scene (no GL needed). */
+static size_t
+gi_bytes(const cg_scene *scene, const char *graph, const char *const *overrides)
+{
+    cg_error err = {0};
+    fg_registry *registry = fg_registry_create();
+    assert_cg_ok(cg_builtin_passes_register(registry, &err), &err);
+    fg_graph *g = fg_graph_create(registry);
+    char path[4096];
+    snprintf(path, sizeof path, "%s/%s", getenv("CONEGRAPH_GRAPH_DIR"), graph);
+    assert_cg_ok(fg_graph_load_file(g, path, &err), &err);
+    for (int i = 0; overrides && overrides[i]; i++)
+        assert_cg_ok(fg_graph_apply_override(g, overrides[i], &err), &err);
+    fg_frame frame = {.scene = scene, .width = 1280, .height = 720};
+    cg_view_from_scene(scene, 0, 1280, 720, &frame.view);
+    fg_compile_options options = {0};
+    assert_cg_ok(fg_graph_compile(g, &frame, &options, &err), &err);
+    fg_memory_report report;
+    fg_graph_memory_report(g, &report);
+    fg_graph_destroy(g);
+    fg_registry_destroy(registry);
+    return report.gi_bytes;
+}
+
+static void
+test_openworld(void **state)
+{
+    cg_context *ctx = cg_test_gl_context(state);
+    cg_scene scene;
+    cg_error err = {0};
+    assert_cg_ok(cg_scene_load("builtin:openworld", &scene, &err), &err);
+    const char *const small[] = {"vox.resolution=32", "terrain.resolution=256", "shadow.resolution=512", NULL};
+    vf_runner r;
+    float *hdr = render_final(&scene, 64, 36, "hybrid.json", small, &r);
+    for (int i = 0; i < 3; i++)
+        assert_false(fg_pass_is_culled(fg_graph_find_pass(r.graph, (const char *[]){"terrain", "terrainmip", "hsat"}[i])));
+    int w = 0, h = 0;
+    float *indirect = hf_read_2d(&r, "gather.radiance", 0, &w, &h);
+    vf_stop(&r);
+    int nonfinite = 0;
+    double mean = 0;
+    for (int i = 0; i < w * h * 4; i++) {
+        nonfinite += !isfinite(hdr[i]) + !isfinite(indirect[i]);
+        if (i % 4 < 3)
+            mean += indirect[i] / (w * h * 3);
+    }
+    printf("# builtin:openworld through hybrid.json at 64x36: mean gathered radiance %.4g\n", mean);
+    assert_int_equal(nonfinite, 0);
+    assert_true(mean > 0.0);
+    free(hdr);
+    free(indirect);
+    assert_no_gl_errors(ctx);
+
+    /* GI memory: the paper's pairing (hybrid 128^3 3D + 2D lightmap, VCT 256^3) and equal 3D resolutions. */
+    const char *const vct256[] = {"vox.resolution=256", NULL};
+    size_t hybrid = gi_bytes(&scene, "hybrid.json", NULL);
+    size_t vct_256 = gi_bytes(&scene, "vct.json", vct256);
+    size_t vct_128 = gi_bytes(&scene, "vct.json", NULL);
+    printf("# builtin:openworld GI bytes: hybrid.json (128^3 + 512^2) %zu, vct.json 128^3 %zu, vct.json 256^3 %zu\n",
+           hybrid, vct_128, vct_256);
+    assert_true(hybrid < vct_256);
+    cg_scene_free(&scene);
+}
+
+int
+main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_flat_emissive_terrain),
+        cmocka_unit_test(test_ridge_occludes),
+        cmocka_unit_test(test_cornell_equals_vct),
+        cmocka_unit_test(test_openworld),
+    };
+    return cmocka_run_group_tests(tests, cg_test_gl_setup, cg_test_gl_teardown);
+}
