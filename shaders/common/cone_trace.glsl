@@ -1,6 +1,7 @@
 // common/cone_trace.glsl: one cone marched front to back through a mipped 3D lightmap.
 //
-// Provides: CgCone, cg_cone_trace(), cg_cone_lod(), cg_tangent_frame().
+// Provides: CgCone, cg_cone_trace(), cg_cone_lod(), cg_cone_origin(), cg_cone_reach(),
+//           cg_cone_gather_diffuse(), cg_tangent_frame().
 // Requires: common/volume.glsl.
 //
 // VCT paper 3.2 (after Crassin et al. 2011): the cone's footprint at distance t has the
@@ -119,6 +120,42 @@ cg_cone_trace(sampler3D volume, CgVolume v, CgCone c)
     }
     acc.rgb *= v.radiance_scale;
     return acc;
+}
+
+// Where the cones of a surface point start and how far they go (VCT paper 3.2.1): start_offset
+// voxels along the normal, off the surface's own voxels (VCT self-illumination), for at most
+// max_distance, or the volume's diagonal when that is 0.
+vec3
+cg_cone_origin(CgVolume v, vec3 position, vec3 n, float start_offset)
+{
+    return position + n * (start_offset * v.voxel_size);
+}
+
+float
+cg_cone_reach(CgVolume v, float max_distance)
+{
+    return max_distance > 0.0 ? max_distance : cg_volume_extent(v) * sqrt(3.0);
+}
+
+#define CG_CONE_SET_MAX 16
+
+// The diffuse gather of one surface point (VCT paper 3.2.1; hybrid eq. 3-4): cones[k] = (tangent-
+// space direction, weight W_k), frame = the point's tangent frame. Returns sum_k W_k L_k (rgb)
+// and the ambient visibility sum_k W_k (1 - a_k) (a). cone_gather and hybrid_gather (without a
+// 2D lightmap) both call this, so that they agree bit for bit.
+vec4
+cg_cone_gather_diffuse(sampler3D volume, CgVolume v, vec3 origin, mat3 frame, vec4 cones[CG_CONE_SET_MAX],
+                       float tan_half[CG_CONE_SET_MAX], int count, float t_max, float step, float lod_bias)
+{
+    vec4 diffuse = vec4(0.0);
+    for (int k = 0; k < count; k++) {
+        CgCone cone = CgCone(origin, normalize(frame * cones[k].xyz), tan_half[k], v.voxel_size, t_max,
+                             step, lod_bias);
+        vec4 r = cg_cone_trace(volume, v, cone);
+        diffuse.rgb += cones[k].w * r.rgb;
+        diffuse.a += cones[k].w * (1.0 - r.a);
+    }
+    return diffuse;
 }
 
 // Orthonormal tangent frame for a unit normal, NaN-free for every normal including the

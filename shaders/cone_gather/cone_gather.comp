@@ -55,18 +55,11 @@ main()
     if (position.w > 0.0 && dot(normal, normal) > 1e-12) {
         CgVolume v = cg_volume();
         vec3 n = normalize(normal);
-        float t_max = u_max_distance > 0.0 ? u_max_distance : cg_volume_extent(v) * sqrt(3.0);
-        // Start off the surface's own voxels, which would otherwise light it (VCT self-illumination).
-        vec3 origin = position.xyz + n * (u_start_offset * v.voxel_size);
+        float t_max = cg_cone_reach(v, u_max_distance);
+        vec3 origin = cg_cone_origin(v, position.xyz, n, u_start_offset);
         mat3 frame = cg_tangent_frame(n);
-        diffuse = vec4(0.0);
-        for (int k = 0; k < u_cone_count; k++) {
-            CgCone cone = CgCone(origin, normalize(frame * u_cones[k].xyz), u_tan_half[k],
-                                 v.voxel_size, t_max, u_step, u_lod_bias);
-            vec4 r = cg_cone_trace(u_volume, v, cone);
-            diffuse.rgb += u_cones[k].w * r.rgb;
-            diffuse.a += u_cones[k].w * (1.0 - r.a);
-        }
+        diffuse = cg_cone_gather_diffuse(u_volume, v, origin, frame, u_cones, u_tan_half, u_cone_count, t_max,
+                                         u_step, u_lod_bias);
 #ifdef SPECULAR
         vec3 view = normalize(position.xyz - u_camera);
         CgCone mirror = CgCone(origin, reflect(view, n), u_specular_tan_half, v.voxel_size, t_max, u_step, u_lod_bias);

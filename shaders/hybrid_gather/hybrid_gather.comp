@@ -227,17 +227,11 @@ main()
             diffuse.a += u_cones[k].w * (1.0 - r.a);
         }
 #else
-        // No 2D lightmap: the VCT march, exactly as cone_gather runs it.
+        // No 2D lightmap: the VCT gather, the very function cone_gather calls.
         CgVolume v = cg_volume();
-        float t_max = u_max_distance > 0.0 ? u_max_distance : cg_volume_extent(v) * sqrt(3.0);
-        vec3 origin = position.xyz + n * (u_start_offset * v.voxel_size);
-        for (int k = 0; k < u_cone_count; k++) {
-            CgCone cone = CgCone(origin, normalize(frame * u_cones[k].xyz), u_tan_half[k],
-                                 v.voxel_size, t_max, u_step, u_lod_bias);
-            vec4 r = cg_cone_trace(u_volume, v, cone);
-            diffuse.rgb += u_cones[k].w * r.rgb;
-            diffuse.a += u_cones[k].w * (1.0 - r.a);
-        }
+        diffuse = cg_cone_gather_diffuse(u_volume, v, cg_cone_origin(v, position.xyz, n, u_start_offset), frame,
+                                         u_cones, u_tan_half, u_cone_count, cg_cone_reach(v, u_max_distance),
+                                         u_step, u_lod_bias);
 #endif
     }
     imageStore(u_radiance, pixel, diffuse);

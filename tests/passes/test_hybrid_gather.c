@@ -1,8 +1,10 @@
 /* hybrid_gather on a software context, small sizes:
  *   - energy: the underside of a plate above a wide, flat, emissive terrain (radiance L)
  *     sees L over its whole hemisphere, so albedo x gathered = albedo x L (a white furnace
- *     for the 2D branch), for the parameter variants; a flat emissive terrain alone gathers
- *     nothing from its own lightmap (no self-illumination);
+ *     for the 2D branch), for the parameter variants and at millimetre and 10 km scales; a
+ *     flat emissive terrain alone gathers nothing from its own lightmap (no self-illumination);
+ *   - occlusion: a terrain ridge hides an emissive wall that a flat terrain lets the
+ *     receiver see (there within 20% of the wall's view factor);
  *   - builtin:cornell (no height field): graphs/hybrid.json culls the 2D branch and its
  *     image equals graphs/vct.json's, bit for bit;
  *   - builtin:openworld renders finite through hybrid.json, and its GI memory is below
@@ -117,10 +119,35 @@ test_flat_emissive_terrain(void **state)
         if (fabs(g.mean - target) > 0.03 * target)
             fail_msg("variant %zu: albedo x gathered %.4f, expected %.4f within 3%%", i, g.mean, target);
     }
+    hf_free(&s);
+
+    /* The same at a millimetre and at 10 km: nothing in the tracer depends on units. */
+    const double scales[2] = {1e-3, 1e4};
+    for (int i = 0; i < 2; i++) {
+        double k = scales[i];
+        hf_init(&s);
+        hf_material(&s, 1, 0.5f, radiance);
+        hf_material(&s, 2, albedo, 0.0f);
+        hf_grid(&s, 8, -50.0 * k, -50.0 * k, 100.0 * k, flat, NULL);
+        const double c[3] = {-0.5 * k, k, -0.5 * k}, a[3] = {k, 0, 0}, b[3] = {0, 0, k};
+        hf_quad(&s, c, a, b);
+        const double at[3] = {0, 0.3 * k, 0};
+        hf_camera_looking(&s, at, up_dir, up, 0.8f);
+        s.camera.znear = (float)(0.01 * k);
+        s.camera.zfar = (float)(1000.0 * k);
+        hf_finish(&s);
+        gathered g = gather(ctx, &s.scene, "pyramid", 6, "", target);
+        printf("# flat emissive terrain under a plate, %g m scale: albedo x gathered %.4f (target %.4f)\n", k,
+               g.mean, target);
+        assert_int_equal(g.nonfinite, 0);
+        assert_int_equal(g.pixels, 24 * 24);
+        if (fabs(g.mean - target) > 0.03 * target)
+            fail_msg("scale %g: albedo x gathered %.4f, expected %.4f within 3%%", k, g.mean, target);
+        hf_free(&s);
+    }
 
     /* The terrain alone, seen from above: nothing above it to gather, and its own lightmap
      * must not light it. */
-    hf_free(&s);
     hf_init(&s);
     hf_material(&s, 1, 0.5f, radiance);
     hf_grid(&s, 8, -50.0, -50.0, 100.0, flat, NULL);
@@ -311,6 +338,8 @@ test_openworld(void **state)
     printf("# builtin:openworld GI bytes: hybrid.json (128^3 + 512^2) %zu, vct.json 128^3 %zu, vct.json 256^3 %zu\n",
            hybrid, vct_128, vct_256);
     assert_true(hybrid < vct_256);
+    /* The paper's setting compiles too (2048^2 map, eq. 14 HSAT, eq. 17). */
+    assert_true(gi_bytes(&scene, "hybrid-paper.json", NULL) > hybrid);
     cg_scene_free(&scene);
 }
 
