@@ -3,7 +3,8 @@
  * finite, not black, and the same image `conegraph render` writes for the same scene,
  * graph and size (so the blit is the right way up and nothing is lost on the way).
  * Needs an X display: .ci/test runs the suite under xvfb-run; without one the program
- * reports SKIP. $CONEGRAPH_DEMO_EXE and $CONEGRAPH_EXE name the executables. */
+ * reports SKIP. $CONEGRAPH_DEMO_EXE and $CONEGRAPH_EXE name the executables; the argument
+ * is tests/plugin/demo_test_plugin.so. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -187,9 +188,62 @@ test_keys(void **state)
     assert_true(fabs(mean_of(other) - m0) > 0.01);
 }
 
-int
-main(void)
+static const char *plugin_path;
+
+static const char *
+write_fill_graph(const char *name, int error_frame)
 {
+    char json[512];
+    snprintf(json, sizeof json,
+             "{ \"version\": 1, \"passes\": { \"fill\": { \"type\": \"demo_test_fill\", "
+             "\"params\": { \"error_frame\": %d } } }, \"outputs\": [ \"fill.ldr\" ] }", error_frame);
+    return cg_test_write_file(name, json, 0);
+}
+
+/* A pass plugin fills the ldr output with known 8-bit levels: the window shows exactly those
+ * (the blit copies bytes: no sRGB conversion, no filtering), and a GL error the pass provokes
+ * on frame 2 stops the demo there with exit 1. */
+static void
+test_plugin_levels_and_gl_error(void **state)
+{
+    (void)state;
+    cg_error err = { 0 };
+    const char *shot = tmp("fill.png"), *log = tmp("fill.txt");
+    char args[8192];
+    snprintf(args, sizeof args, "builtin:cornell --plugin '%s' --graph '%s' --size 40x24 --frames 3 "
+             "--screenshot '%s'", plugin_path, write_fill_graph("fill.json", -1), shot);
+    assert_int_equal(run("CONEGRAPH_DEMO_EXE", args, log), 0);
+    cg_image img = { 0 };
+    assert_cg_ok(cg_image_read(shot, &img, &err), &err);
+    check_image(&img, 40, 24);
+    const int want[3] = { 200, 100, 50 };
+    for (size_t i = 0; i < 40 * 24; i++)
+        for (int c = 0; c < 3; c++) {
+            int level = (int)lroundf(cg_srgb_encode(img.rgba[4 * i + c]) * 255.0f);
+            if (abs(level - want[c]) > 1)
+                fail_msg("pixel %zu channel %d: level %d, the pass stored %d", i, c, level, want[c]);
+        }
+    cg_image_free(&img);
+
+    const char *broken = tmp("broken.png");
+    snprintf(args, sizeof args, "builtin:cornell --plugin '%s' --graph '%s' --size 40x24 --frames 5 "
+             "--screenshot '%s'", plugin_path, write_fill_graph("error.json", 2), broken);
+    assert_int_equal(run("CONEGRAPH_DEMO_EXE", args, log), 1);
+    assert_non_null(strstr(read_text(log), "GL error(s) in frame 3"));
+    FILE *f = fopen(broken, "rb");
+    if (f)
+        fclose(f);
+    assert_null(f); /* stopped before the last frame's screenshot */
+}
+
+int
+main(int argc, char **argv)
+{
+    if (argc != 2) {
+        fprintf(stderr, "usage: %s DEMO_TEST_PLUGIN.so\n", argv[0]);
+        return 2;
+    }
+    plugin_path = argv[1];
     const char *display = getenv("DISPLAY");
     if (!display || !*display)
         return cg_test_skip_program("no DISPLAY for the demo window (.ci/test runs it under xvfb-run)");
@@ -197,6 +251,7 @@ main(void)
         cmocka_unit_test(test_direct_matches_render),
         cmocka_unit_test(test_vct_runs),
         cmocka_unit_test(test_keys),
+        cmocka_unit_test(test_plugin_levels_and_gl_error),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

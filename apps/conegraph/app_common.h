@@ -1,4 +1,4 @@
-/* apps/conegraph/app_common.h: what `render` and `bench` share: finding graph files,
+/* apps/conegraph/app_common.h: what `render`, `bench` and `conegraph-demo` share: finding graph files,
  * reading graph resources back into images, parsing sizes and counts, a clock.
  *
  * Declares: app_graph_dir, app_resolve_graph, app_load_graph, app_find_output, app_read_resource,
