@@ -375,6 +375,7 @@ test_bad_input(void **state)
         "builtin:cornell --keys tab,",
         "builtin:cornell --keys ''",
         "builtin:cornell --keys shift+",
+        "builtin:cornell --keys shift+x",
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++)
         if (run_demo(cases[i]) != 2)

@@ -74,6 +74,29 @@ read_text(const char *path)
     return buf;
 }
 
+/* Largest difference between two images of the same size, in 8-bit sRGB levels. */
+static int
+max_level_difference(const char *path_a, const char *path_b)
+{
+    cg_error err = { 0 };
+    cg_image a = { 0 }, b = { 0 };
+    assert_cg_ok(cg_image_read(path_a, &a, &err), &err);
+    assert_cg_ok(cg_image_read(path_b, &b, &err), &err);
+    assert_int_equal(a.width, b.width);
+    assert_int_equal(a.height, b.height);
+    int worst = 0;
+    for (size_t i = 0; i < (size_t)a.width * (size_t)a.height * 4; i++) {
+        if (i % 4 == 3)
+            continue;
+        int d = abs((int)lroundf(cg_srgb_encode(a.rgba[i]) * 255.0f) -
+                    (int)lroundf(cg_srgb_encode(b.rgba[i]) * 255.0f));
+        worst = d > worst ? d : worst;
+    }
+    cg_image_free(&a);
+    cg_image_free(&b);
+    return worst;
+}
+
 static void
 test_direct_matches_render(void **state)
 {
@@ -93,20 +116,12 @@ test_direct_matches_render(void **state)
     double mean = check_image(&a, 64, 64);
     check_image(&b, 64, 64);
     assert_true(mean > 0.01);
-    /* Both are 8-bit sRGB: compare the stored levels. */
-    int worst = 0;
-    for (size_t i = 0; i < 64 * 64 * 4; i++) {
-        if (i % 4 == 3)
-            continue;
-        int la = (int)lroundf(cg_srgb_encode(a.rgba[i]) * 255.0f);
-        int lb = (int)lroundf(cg_srgb_encode(b.rgba[i]) * 255.0f);
-        int d = abs(la - lb);
-        worst = d > worst ? d : worst;
-    }
-    if (worst > 1)
-        fail_msg("the demo's screenshot differs from `conegraph render` by %d levels", worst);
     cg_image_free(&a);
     cg_image_free(&b);
+    /* Both are 8-bit sRGB: compare the stored levels. */
+    int worst = max_level_difference(shot, ref);
+    if (worst > 1)
+        fail_msg("the demo's screenshot differs from `conegraph render` by %d levels", worst);
 
     /* stdout: the selected parameter, per-pass times, the report and the median. */
     const char *out = read_text(log);
@@ -180,6 +195,21 @@ test_keys(void **state)
     double m0 = mean_of(plain), m1 = mean_of(bright);
     if (!(m1 > m0 * 1.3))
         fail_msg("+1 EV: mean %g, before %g", m1, m0);
+
+    /* Scripted flight: held for a fixed 0.25 s each, so the same distance on any machine.
+     * Forward twice and right at 4x speed changes the view; R brings back the scene's. */
+    const char *flown = tmp("flown.png"), *back = tmp("back.png");
+    snprintf(args, sizeof args, "builtin:cornell --graph direct.json --size 48x32 --frames 3 "
+             "--keys shift+w,shift+w,shift+d --screenshot '%s'", flown);
+    assert_int_equal(run("CONEGRAPH_DEMO_EXE", args, NULL), 0);
+    int moved = max_level_difference(plain, flown);
+    if (moved < 40)
+        fail_msg("flying forward and right changed the image by %d levels at most", moved);
+    snprintf(args, sizeof args, "builtin:cornell --graph direct.json --size 48x32 --frames 4 "
+             "--keys shift+w,shift+w,shift+d,r --screenshot '%s'", back);
+    assert_int_equal(run("CONEGRAPH_DEMO_EXE", args, log), 0);
+    assert_non_null(strstr(read_text(log), "camera: reset to the scene's view"));
+    assert_true(max_level_difference(plain, back) <= 1);
 
     snprintf(args, sizeof args, "builtin:cornell --graph direct.json --size 48x32 --frames 2 "
              "--keys 2 --screenshot '%s'", other);

@@ -128,7 +128,8 @@ usage(FILE *out)
         "                          software renderer such as llvmpipe, queries on a GPU)\n"
         "  --keys K1,K2,...        press these keys, one per frame from the first, as if typed\n"
         "                          (for recordings and tests): tab, shift+tab, up, down, left,\n"
-        "                          right, 1..9, r, l, p, f12, esc\n"
+        "                          right, 1..9, r, l, p, f12, esc; w, a, s, d, q, e (optionally\n"
+        "                          shift+) are held for 0.25 s of flight\n"
         "\n"
         "Keys: WASD fly, E/Q up/down, Shift x4 speed, left mouse drag to look, scroll for\n"
         "speed, R resets the camera; Tab/Shift+Tab pass, Up/Down parameter, Left/Right\n"
@@ -167,7 +168,20 @@ static const struct {
     { "3", GLFW_KEY_3 }, { "4", GLFW_KEY_4 }, { "5", GLFW_KEY_5 }, { "6", GLFW_KEY_6 },
     { "7", GLFW_KEY_7 }, { "8", GLFW_KEY_8 }, { "9", GLFW_KEY_9 }, { "r", GLFW_KEY_R },
     { "l", GLFW_KEY_L }, { "p", GLFW_KEY_P }, { "f12", GLFW_KEY_F12 }, { "esc", GLFW_KEY_ESCAPE },
+    { "w", GLFW_KEY_W }, { "a", GLFW_KEY_A }, { "s", GLFW_KEY_S }, { "d", GLFW_KEY_D },
+    { "q", GLFW_KEY_Q }, { "e", GLFW_KEY_E },
 };
+
+/* A scripted movement key is held for this long, whatever the frame's wall time, so that a
+ * script moves the camera the same distance on any machine. */
+#define SCRIPTED_HOLD_SECONDS 0.25f
+
+static bool
+is_movement_key(int key)
+{
+    return key == GLFW_KEY_W || key == GLFW_KEY_A || key == GLFW_KEY_S || key == GLFW_KEY_D ||
+           key == GLFW_KEY_Q || key == GLFW_KEY_E;
+}
 
 /* "tab,shift+tab,right" into o->keys; false on an unknown name or too many keys. */
 static bool
@@ -241,7 +255,8 @@ parse_args(int argc, char **argv, demo_options *o)
         } else if (!strcmp(a, "--keys")) {
             if (!parse_keys(v, o))
                 return usage_error("--keys wants a comma-separated list of tab, shift+tab, up, down, "
-                                   "left, right, 1..9, r, l, p, f12, esc (at most 64), not '%s'", v);
+                                   "left, right, 1..9, r, l, p, f12, esc, w, a, s, d, q, e "
+                                   "(at most 64), not '%s'", v);
         } else if (option) {
             return usage_error("unknown option '%s'", a);
         } else {
@@ -605,21 +620,29 @@ on_scroll(GLFWwindow *window, double xoffset, double yoffset)
     fflush(stdout);
 }
 
-static void
-move_camera(demo *d, float seconds)
+static bool
+held(const demo *d, const scripted_key *script, int key)
 {
-    GLFWwindow *w = d->window;
+    return glfwGetKey(d->window, key) == GLFW_PRESS || (script && script->key == key);
+}
+
+/* Flies with the keys held down (or the scripted one, held for SCRIPTED_HOLD_SECONDS). */
+static void
+move_camera(demo *d, float seconds, const scripted_key *script)
+{
     float forward = 0, right = 0, up = 0;
-    forward += glfwGetKey(w, GLFW_KEY_W) == GLFW_PRESS;
-    forward -= glfwGetKey(w, GLFW_KEY_S) == GLFW_PRESS;
-    right += glfwGetKey(w, GLFW_KEY_D) == GLFW_PRESS;
-    right -= glfwGetKey(w, GLFW_KEY_A) == GLFW_PRESS;
-    up += glfwGetKey(w, GLFW_KEY_E) == GLFW_PRESS;
-    up -= glfwGetKey(w, GLFW_KEY_Q) == GLFW_PRESS;
+    forward += held(d, script, GLFW_KEY_W);
+    forward -= held(d, script, GLFW_KEY_S);
+    right += held(d, script, GLFW_KEY_D);
+    right -= held(d, script, GLFW_KEY_A);
+    up += held(d, script, GLFW_KEY_E);
+    up -= held(d, script, GLFW_KEY_Q);
     if (forward == 0 && right == 0 && up == 0)
         return;
-    bool fast = glfwGetKey(w, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS ||
-                glfwGetKey(w, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
+    if (script)
+        seconds = SCRIPTED_HOLD_SECONDS;
+    bool fast = held(d, NULL, GLFW_KEY_LEFT_SHIFT) || held(d, NULL, GLFW_KEY_RIGHT_SHIFT) ||
+                (script && (script->mods & GLFW_MOD_SHIFT));
     float metres = d->speed * seconds * (fast ? 4.0f : 1.0f);
     start_flying(d);
     demo_camera_move(&d->cam, forward * metres, right * metres, up * metres);
@@ -780,8 +803,10 @@ run(demo *d)
             last = app_now_ms();
             continue;
         }
-        if (frames_run < d->o.key_count) {
-            press(d, d->o.keys[frames_run].key, d->o.keys[frames_run].mods, false);
+        const scripted_key *script = frames_run < d->o.key_count ? &d->o.keys[frames_run] : NULL;
+        if (script && !is_movement_key(script->key)) {
+            press(d, script->key, script->mods, false);
+            script = NULL;
             if (glfwWindowShouldClose(d->window))
                 break;
         }
@@ -804,7 +829,7 @@ run(demo *d)
         }
         /* A long compile or a stall must not throw the camera or the sun across the scene. */
         float step = (float)(seconds < 0.25 ? seconds : 0.25);
-        move_camera(d, step);
+        move_camera(d, step, script);
         if (d->sun_moving && !move_sun(d, step, &err))
             return fail_with("sun", &err);
         update_view(d);
