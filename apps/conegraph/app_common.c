@@ -8,6 +8,8 @@
 #include <sys/stat.h>
 #include <time.h>
 
+#include "cg/graphfile.h"
+
 static bool
 file_exists(const char *path)
 {
@@ -44,6 +46,17 @@ app_resolve_graph(const char *given, char *out, size_t size)
     if (file_exists(out))
         return;
     snprintf(out, size, "%s/direct.json", app_graph_dir());
+}
+
+bool
+app_load_graph(fg_graph *graph, const char *path, const char *const *sets, int set_count, cg_error *err)
+{
+    if (!fg_graph_load_file(graph, path, err))
+        return false;
+    for (int i = 0; i < set_count; i++)
+        if (!fg_graph_apply_override(graph, sets[i], err))
+            return false;
+    return true;
 }
 
 const char *
@@ -142,6 +155,20 @@ app_parse_size(const char *text, int *w, int *h)
         return false;
     *w = (int)lw;
     *h = (int)lh;
+    return true;
+}
+
+bool
+app_parse_timing(const char *text, fg_timing_mode *out)
+{
+    if (!strcmp(text, "sync"))
+        *out = FG_TIMING_SYNC;
+    else if (!strcmp(text, "queries"))
+        *out = FG_TIMING_QUERIES;
+    else if (!strcmp(text, "none"))
+        *out = FG_TIMING_NONE;
+    else
+        return false;
     return true;
 }
 

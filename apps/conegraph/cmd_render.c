@@ -185,13 +185,7 @@ parse_args(int argc, char **argv, render_options *o)
             if (!parse_bytes(v, &o->max_gpu_memory))
                 return usage_error("--max-gpu-memory wants a positive byte count (suffix K, M or G), not '%s'", v);
         } else if (!strcmp(a, "--timing")) {
-            if (!strcmp(v, "sync"))
-                o->timing = FG_TIMING_SYNC;
-            else if (!strcmp(v, "queries"))
-                o->timing = FG_TIMING_QUERIES;
-            else if (!strcmp(v, "none"))
-                o->timing = FG_TIMING_NONE;
-            else
+            if (!app_parse_timing(v, &o->timing))
                 return usage_error("--timing wants sync, queries or none, not '%s'", v);
         } else if (a[0] == '-' && a[1] != '\0') {
             return usage_error("unknown option '%s'", a);
@@ -224,11 +218,8 @@ fail_with(const char *what, const cg_error *err)
 static bool
 build_graph(const render_options *o, const char *graph_path, fg_graph *graph, cg_error *err)
 {
-    if (!fg_graph_load_file(graph, graph_path, err))
+    if (!app_load_graph(graph, graph_path, o->sets, o->set_count, err))
         return false;
-    for (int i = 0; i < o->set_count; i++)
-        if (!fg_graph_apply_override(graph, o->sets[i], err))
-            return false;
     for (int i = 0; i < o->dump_count; i++) {
         /* Marked as outputs so that they are kept and never pooled away before the read-back. */
         bool marked = false;

@@ -177,9 +177,11 @@ heightmap_execute(fg_pass *pass, void *state, cg_error *err)
     int resolution = desc->width;
     GLuint lightmap = fg_texture(pass, "lightmap");
     /* Depth: 0 at the top of the bounds, 1 at the bottom, with 1% slack on each side so
-     * that the highest and lowest vertices are not clipped. */
+     * that the highest and lowest vertices are not clipped. A flat height field has no
+     * extent: the slack is then 1e-6 of its height (well above a float's 6e-8 ulp, so the
+     * uniform `top` stays above it) or 1e-6 m. */
     double dy = region.hi[1] - region.lo[1];
-    double slack = 0.01 * fmax(dy, 1e-6 * fmax(fabs(region.hi[1]), 1.0)) + 1e-30;
+    double slack = fmax(0.01 * dy, 1e-6 * fmax(fabs(region.hi[1]), 1.0));
     double top = region.hi[1] + slack, range = dy + 2.0 * slack;
 
     glNamedFramebufferTexture(s->fbo, GL_COLOR_ATTACHMENT0, lightmap, 0);

@@ -107,6 +107,40 @@ test_heightmap_tilted_plane(void **state)
     check_tilted_plane(ctx, "rgba16f", 4e-3);
 }
 
+static double
+flat_far(double x, double z, const void *user)
+{
+    (void)x, (void)z, (void)user;
+    return 12345.5;
+}
+
+/* A flat height field (no height extent) 12 km up and 100 km out: every texel covered, at
+ * its height exactly (the depth range must not collapse onto the near plane). */
+static void
+test_heightmap_flat_far(void **state)
+{
+    cg_context *ctx = cg_test_gl_context(state);
+    hf_scene s;
+    hf_init(&s);
+    hf_material(&s, 1, 0.5f, 0.25f);
+    hf_grid(&s, 4, 1.0e5, -1.0e5, 500.0, flat_far, NULL);
+    hf_finish(&s);
+    char json[1024];
+    snprintf(json, sizeof json, raster_graph, "rgba32f");
+    vf_runner r;
+    vf_start(&r, &s.scene, 16, 16, json, NULL);
+    vf_frame(&r);
+    int w = 0, h = 0;
+    float *map = hf_read_2d(&r, "mip.lightmap", 0, &w, &h);
+    for (int i = 0; i < w * h; i++)
+        if (map[4 * i + 3] != 12345.5f || fabsf(map[4 * i] - 0.25f) > 1e-6f)
+            fail_msg("texel %d: height %.4f radiance %g; expected 12345.5 and 0.25", i, map[4 * i + 3], map[4 * i]);
+    free(map);
+    assert_no_gl_errors(ctx);
+    vf_stop(&r);
+    hf_free(&s);
+}
+
 static void
 test_heightmap_culled_without_terrain(void **state)
 {
@@ -509,6 +543,7 @@ main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_heightmap_tilted_plane),
+        cmocka_unit_test(test_heightmap_flat_far),
         cmocka_unit_test(test_heightmap_culled_without_terrain),
         cmocka_unit_test(test_hsat_against_brute_force),
         cmocka_unit_test(test_fitting_cube),

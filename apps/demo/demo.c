@@ -1,0 +1,1018 @@
+/* conegraph-demo: renders a graph file on a scene in a GLFW window every frame, with a fly
+ * camera, the pass parameters on the keyboard (driven by the parameter tables), per-pass
+ * times and GI memory in the title and on stdout. docs/demo.md describes it. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+
+#include "app_common.h"
+#include "app_registry.h"
+#include "cg/camera.h"
+#include "cg/error.h"
+#include "cg/fg.h"
+#include "cg/gl.h"
+#include "cg/gpu_scene.h"
+#include "cg/image.h"
+#include "cg/scene.h"
+#include "demo_camera.h"
+#include "demo_params.h"
+
+#define MAX_LIST 64
+#define MAX_SHOWN 9
+#define FRAME_HISTORY 64
+#define SUN_DEGREES_PER_SECOND 20.0
+
+/* A key press given on the command line (--keys). */
+typedef struct scripted_key {
+    int key;                    /* GLFW_KEY_* */
+    int mods;                   /* GLFW_MOD_SHIFT or 0 */
+} scripted_key;
+
+typedef struct demo_options {
+    const char *scene;
+    const char *graph;
+    int width, height;
+    const char *sets[MAX_LIST];
+    int set_count;
+    const char *plugins[MAX_LIST];
+    int plugin_count;
+    int frames;                 /* 0: until the window closes */
+    const char *screenshot;
+    fg_timing_mode timing;
+    bool timing_given;
+    scripted_key keys[MAX_LIST];  /* --keys: pressed one per frame from the first */
+    int key_count;
+} demo_options;
+
+/* A parameter changed by a key since the last compile, with its old text for undoing it. */
+typedef struct pending_change {
+    char pass[128];
+    char param[128];
+    char previous[256];
+} pending_change;
+
+typedef struct demo {
+    demo_options o;
+    char graph_path[4096];
+    cg_scene scene;
+    int camera_index;
+    fg_registry *registry;
+    fg_graph *graph;
+    cg_context *ctx;
+    GLFWwindow *window;
+    cg_gpu_scene gpu;
+    bool uploaded;
+    fg_frame frame;
+    fg_timing_mode timing;
+    GLuint read_fbo;
+
+    /* Camera: the scene's view until the first move or look. */
+    demo_camera cam;
+    bool flying;
+    float speed, base_speed;    /* metres per second */
+    bool dragging;
+    bool have_cursor;
+    double drag_x, drag_y;      /* the last cursor position seen */
+
+    demo_selection sel;
+    pending_change changes[MAX_LIST];
+    int change_count;
+    bool recompile;
+
+    /* Keys 1..9: the ldr output, then the graph's other 2D colour textures. */
+    char shown[MAX_SHOWN][256];
+    int shown_count;
+    int shown_index;
+
+    bool sun_moving;
+    bool screenshot_requested;
+    int screenshot_serial;
+    bool print_report;
+
+    double frame_ms[FRAME_HISTORY];
+    int frame_ms_count;
+    double *all_frame_ms;       /* --frames N: every frame, for the median */
+    double last_status;
+    char status[2048];          /* frame time, per-pass times, GI memory, size, shown resource */
+    char selection[1536];       /* the selected parameter: value, type, range, doc */
+} demo;
+
+static void
+usage(FILE *out)
+{
+    fprintf(out,
+        "usage: conegraph-demo [SCENE] [options]\n"
+        "\n"
+        "Opens a window and renders SCENE through a frame graph every frame, showing the\n"
+        "graph's ldr output, with a fly camera and the pass parameters on the keyboard.\n"
+        "\n"
+        "  SCENE                   a .gltf/.glb file or builtin:NAME[?key=value&...]\n"
+        "                          (default builtin:openworld)\n"
+        "  --graph FILE            graph file (default: vct.json if it exists, else direct.json,\n"
+        "                          from the graph directory); it must mark an output *.ldr\n"
+        "  --size WxH              window size in pixels (default 1280x720); the graph renders\n"
+        "                          at the window's framebuffer size and recompiles on resize\n"
+        "  --set PASS.PARAM=VALUE  override a parameter, validated like the file; repeatable\n"
+        "  --plugin PATH           load a pass plugin (.so); repeatable. Directories in\n"
+        "                          $CONEGRAPH_PLUGIN_PATH are loaded too\n"
+        "  --frames N              run N frames, then exit (default: until the window closes)\n"
+        "  --screenshot FILE.png   where F12 writes (default conegraph-demo-N.png); with\n"
+        "                          --frames, the last frame is written there too\n"
+        "  --timing sync|queries|none  per-pass timing: glFinish + CPU clock, GL_TIMESTAMP\n"
+        "                          queries read a frame late, or none (default: sync on a\n"
+        "                          software renderer such as llvmpipe, queries on a GPU)\n"
+        "  --keys K1,K2,...        press these keys, one per frame from the first, as if typed\n"
+        "                          (for recordings and tests): tab, shift+tab, up, down, left,\n"
+        "                          right, 1..9, r, l, p, f12, esc; w, a, s, d, q, e (optionally\n"
+        "                          shift+) are held for 0.25 s of flight\n"
+        "\n"
+        "Keys: WASD fly, E/Q up/down, Shift x4 speed, left mouse drag to look, scroll for\n"
+        "speed, R resets the camera; Tab/Shift+Tab pass, Up/Down parameter, Left/Right\n"
+        "decrease/increase it; 1..9 shown resource; L moves the sun; P prints the per-pass\n"
+        "report; F12 screenshot; Esc quits. docs/demo.md has the details.\n"
+        "\n"
+        "The selected parameter, per-pass milliseconds, frame time and GI memory are shown in\n"
+        "the window title and printed on stdout when they change (times once a second).\n"
+        "Needs a display (DISPLAY; xvfb-run for a virtual one). Bad input (scene, graph,\n"
+        "parameters, sizes) exits with 2; a failure while running, a GL error included,\n"
+        "with 1.\n");
+}
+
+static int
+usage_error(const char *fmt, const char *arg)
+{
+    fprintf(stderr, "conegraph-demo: ");
+    fprintf(stderr, fmt, arg);
+    fprintf(stderr, " (see conegraph-demo --help)\n");
+    return 2;
+}
+
+static bool
+has_extension(const char *path, const char *ext)
+{
+    size_t n = strlen(path), e = strlen(ext);
+    return n > e && !strcasecmp(path + n - e, ext);
+}
+
+static const struct {
+    const char *name;
+    int key;
+} key_names[] = {
+    { "tab", GLFW_KEY_TAB }, { "up", GLFW_KEY_UP }, { "down", GLFW_KEY_DOWN },
+    { "left", GLFW_KEY_LEFT }, { "right", GLFW_KEY_RIGHT }, { "1", GLFW_KEY_1 }, { "2", GLFW_KEY_2 },
+    { "3", GLFW_KEY_3 }, { "4", GLFW_KEY_4 }, { "5", GLFW_KEY_5 }, { "6", GLFW_KEY_6 },
+    { "7", GLFW_KEY_7 }, { "8", GLFW_KEY_8 }, { "9", GLFW_KEY_9 }, { "r", GLFW_KEY_R },
+    { "l", GLFW_KEY_L }, { "p", GLFW_KEY_P }, { "f12", GLFW_KEY_F12 }, { "esc", GLFW_KEY_ESCAPE },
+    { "w", GLFW_KEY_W }, { "a", GLFW_KEY_A }, { "s", GLFW_KEY_S }, { "d", GLFW_KEY_D },
+    { "q", GLFW_KEY_Q }, { "e", GLFW_KEY_E },
+};
+
+/* A scripted movement key is held for this long, whatever the frame's wall time, so that a
+ * script moves the camera the same distance on any machine. */
+#define SCRIPTED_HOLD_SECONDS 0.25f
+
+static bool
+is_movement_key(int key)
+{
+    return key == GLFW_KEY_W || key == GLFW_KEY_A || key == GLFW_KEY_S || key == GLFW_KEY_D ||
+           key == GLFW_KEY_Q || key == GLFW_KEY_E;
+}
+
+/* "tab,shift+tab,right" into o->keys; false on an unknown name or too many keys. */
+static bool
+parse_keys(const char *list, demo_options *o)
+{
+    const char *p = list;
+    while (*p) {
+        size_t len = strcspn(p, ",");
+        char name[32];
+        if (len == 0 || len >= sizeof name || o->key_count == MAX_LIST)
+            return false;
+        memcpy(name, p, len);
+        name[len] = '\0';
+        scripted_key k = { 0, 0 };
+        const char *base = name;
+        if (!strncasecmp(name, "shift+", 6)) {
+            k.mods = GLFW_MOD_SHIFT;
+            base += 6;
+        }
+        for (size_t i = 0; i < sizeof key_names / sizeof key_names[0]; i++)
+            if (!strcasecmp(base, key_names[i].name))
+                k.key = key_names[i].key;
+        if (!k.key)
+            return false;
+        o->keys[o->key_count++] = k;
+        p += len;
+        if (*p == ',' && *++p == '\0')
+            return false;
+    }
+    return o->key_count > 0;
+}
+
+static int
+parse_args(int argc, char **argv, demo_options *o)
+{
+    memset(o, 0, sizeof *o);
+    o->width = 1280;
+    o->height = 720;
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        const char *v = i + 1 < argc ? argv[i + 1] : NULL;
+        bool option = a[0] == '-' && a[1] != '\0';
+        if (option && !v)
+            return usage_error("%s needs a value", a);
+        if (!strcmp(a, "--graph")) {
+            o->graph = v;
+        } else if (!strcmp(a, "--size")) {
+            if (!app_parse_size(v, &o->width, &o->height))
+                return usage_error("--size wants WxH with 1..65536 pixels each, not '%s'", v);
+        } else if (!strcmp(a, "--set")) {
+            if (o->set_count == MAX_LIST)
+                return usage_error("%s: too many --set options", v);
+            o->sets[o->set_count++] = v;
+        } else if (!strcmp(a, "--plugin")) {
+            if (o->plugin_count == MAX_LIST)
+                return usage_error("%s: too many --plugin options", v);
+            o->plugins[o->plugin_count++] = v;
+        } else if (!strcmp(a, "--frames")) {
+            long n;
+            if (!app_parse_int(v, 1, 1000000, &n))
+                return usage_error("--frames wants a count from 1 to 1000000, not '%s'", v);
+            o->frames = (int)n;
+        } else if (!strcmp(a, "--screenshot")) {
+            if (!has_extension(v, ".png"))
+                return usage_error("--screenshot writes .png files only, not '%s'", v);
+            o->screenshot = v;
+        } else if (!strcmp(a, "--timing")) {
+            if (!app_parse_timing(v, &o->timing))
+                return usage_error("--timing wants sync, queries or none, not '%s'", v);
+            o->timing_given = true;
+        } else if (!strcmp(a, "--keys")) {
+            if (!parse_keys(v, o))
+                return usage_error("--keys wants a comma-separated list of tab, shift+tab, up, down, "
+                                   "left, right, 1..9, r, l, p, f12, esc, w, a, s, d, q, e "
+                                   "(at most 64), not '%s'", v);
+        } else if (option) {
+            return usage_error("unknown option '%s'", a);
+        } else {
+            if (o->scene)
+                return usage_error("one scene only; '%s' is a second one", a);
+            o->scene = a;
+            continue;
+        }
+        i++;
+    }
+    if (!o->scene)
+        o->scene = "builtin:openworld";
+    return 0;
+}
+
+static int
+fail_with(const char *what, const cg_error *err)
+{
+    fprintf(stderr, "conegraph-demo: %s: %s\n", what, err->message);
+    int code = cg_status_exit_code(err->status);
+    return code ? code : 1;
+}
+
+/* ------------------------------------------------------------ view and graph */
+
+static void
+update_view(demo *d)
+{
+    cg_view base;
+    cg_view_from_scene(&d->scene, d->camera_index, d->frame.width, d->frame.height, &base);
+    if (d->flying)
+        demo_camera_view(&d->cam, &d->scene, &base, &d->frame.view);
+    else
+        d->frame.view = base;
+}
+
+static bool
+is_depth_or_integer(GLenum format)
+{
+    switch (format) {
+    case GL_DEPTH_COMPONENT16: case GL_DEPTH_COMPONENT24: case GL_DEPTH_COMPONENT32:
+    case GL_DEPTH_COMPONENT32F: case GL_DEPTH24_STENCIL8: case GL_DEPTH32F_STENCIL8:
+    case GL_STENCIL_INDEX8:
+    case GL_R8UI: case GL_R16UI: case GL_R32UI: case GL_RG8UI: case GL_RG16UI: case GL_RG32UI:
+    case GL_RGBA8UI: case GL_RGBA16UI: case GL_RGBA32UI: case GL_RGB10_A2UI:
+    case GL_R8I: case GL_R16I: case GL_R32I: case GL_RG8I: case GL_RG16I: case GL_RG32I:
+    case GL_RGBA8I: case GL_RGBA16I: case GL_RGBA32I:
+        return true;
+    default:
+        return false;
+    }
+}
+
+/* Keys 1..9: the ldr output first, then every present 2D colour texture in resource order
+ * (a blit can show those; depth and integer formats it cannot). Kept by name so that a
+ * recompile keeps what is shown when it still exists. */
+static void
+list_shown(demo *d, const char *ldr)
+{
+    char current[256];
+    snprintf(current, sizeof current, "%s", d->shown_count ? d->shown[d->shown_index] : ldr);
+    d->shown_count = 0;
+    snprintf(d->shown[d->shown_count++], sizeof d->shown[0], "%s", ldr);
+    for (int i = 0; i < fg_graph_resource_count(d->graph) && d->shown_count < MAX_SHOWN; i++) {
+        const fg_resource_info *info = fg_graph_resource_at(d->graph, i);
+        if (info->absent || info->desc.kind != FG_TEXTURE_2D || is_depth_or_integer(info->desc.format) ||
+            !strcmp(info->name, ldr))
+            continue;
+        snprintf(d->shown[d->shown_count++], sizeof d->shown[0], "%s", info->name);
+    }
+    d->shown_index = 0;
+    for (int i = 0; i < d->shown_count; i++)
+        if (!strcmp(d->shown[i], current))
+            d->shown_index = i;
+}
+
+static bool
+is_output(const fg_graph *graph, const char *source)
+{
+    for (int i = 0; i < fg_graph_output_count(graph); i++)
+        if (!strcmp(fg_graph_output_at(graph, i), source))
+            return true;
+    return false;
+}
+
+/* Compiles for the current size and camera, then prepares (GL storage, programs). */
+static bool
+compile_and_prepare(demo *d, cg_error *err)
+{
+    update_view(d);
+    fg_compile_options copts = { 0 };
+    if (!fg_graph_compile(d->graph, &d->frame, &copts, err) || !fg_graph_prepare(d->graph, err))
+        return false;
+    const char *ldr = app_find_output(d->graph, "ldr");
+    const fg_resource_info *info = ldr ? fg_graph_find_resource(d->graph, ldr) : NULL;
+    if (!info || info->absent || info->desc.kind != FG_TEXTURE_2D)
+        return cg_fail(err, CG_ERR_USAGE, "%s: the graph's ldr output is absent for this scene", d->graph_path);
+    list_shown(d, ldr);
+    return true;
+}
+
+/* The title: the selected parameter line, then the latest status line. */
+static void
+update_title(demo *d)
+{
+    char title[sizeof d->selection + sizeof d->status + 32];
+    snprintf(title, sizeof title, "conegraph-demo | %s | %s", d->selection, d->status);
+    glfwSetWindowTitle(d->window, title);
+}
+
+static void
+print_selection(demo *d)
+{
+    fg_pass *pass;
+    const fg_param_desc *desc;
+    char line[1024];
+    if (!demo_selected(d->graph, &d->sel, &pass, &desc)) {
+        snprintf(d->selection, sizeof d->selection, "the graph has no pass parameters");
+    } else {
+        demo_param_describe(pass, desc, line, sizeof line);
+        const char *culled = fg_pass_cull_reason(pass);
+        snprintf(d->selection, sizeof d->selection, "%s%s%s%s", line, culled ? " [pass culled: " : "",
+                 culled ? culled : "", culled ? "]" : "");
+    }
+    printf("param: %s\n", d->selection);
+    fflush(stdout);
+    update_title(d);
+}
+
+/* Compiles again after parameter changes; when that fails, says why, undoes the changes
+ * and compiles the graph as it was. False only when even that fails. */
+static bool
+apply_changes(demo *d, cg_error *err)
+{
+    d->recompile = false;
+    cg_error why = { 0 };
+    if (compile_and_prepare(d, &why)) {
+        d->change_count = 0;
+        return true;
+    }
+    fprintf(stderr, "conegraph-demo: %s; change undone\n", why.message);
+    for (int i = d->change_count - 1; i >= 0; i--) {
+        const pending_change *c = &d->changes[i];
+        cg_error undo = { 0 };
+        if (!fg_graph_set_param(d->graph, c->pass, c->param, c->previous, NULL, &undo))
+            fprintf(stderr, "conegraph-demo: undoing %s.%s: %s\n", c->pass, c->param, undo.message);
+    }
+    d->change_count = 0;
+    if (!compile_and_prepare(d, err))
+        return false;
+    print_selection(d);
+    return true;
+}
+
+/* ------------------------------------------------------------ input */
+
+/* Most that one key press steps past values the graph refuses. */
+#define MAX_REFUSED_STEPS 64
+
+/* Left/Right. A table range can be wider than what a pass accepts (cone_gather's cones is
+ * 1..16 but only 1, 6, 9 or 16 make a cone set; its declare says so), and a value can pass
+ * the table yet not compile (a resolution past the GL limits): the key then goes on stepping
+ * the same way until the graph compiles, and if it never does within the range, nothing
+ * changes and the first refusal is printed. */
+static void
+adjust(demo *d, int direction)
+{
+    if (d->change_count == MAX_LIST) {
+        /* Compile what is pending first so that every change can still be undone. */
+        d->recompile = true;
+        return;
+    }
+    pending_change *c = &d->changes[d->change_count];
+    fg_pass *pass;
+    const fg_param_desc *desc;
+    if (!demo_selected(d->graph, &d->sel, &pass, &desc))
+        return;
+    cg_error refused = { 0 };
+    bool stepped = false, compiled = false;
+    for (int tries = 0; tries < MAX_REFUSED_STEPS && !compiled; tries++) {
+        cg_error err = { 0 };
+        bool changed = false;
+        char previous[sizeof c->previous];
+        if (!demo_adjust(d->graph, &d->sel, direction, &changed, previous, sizeof previous, &err)) {
+            fprintf(stderr, "conegraph-demo: %s\n", err.message);
+            break;
+        }
+        if (!changed)
+            break;
+        if (!stepped)
+            memcpy(c->previous, previous, sizeof previous);
+        stepped = true;
+        /* Compiling needs no new GL objects; it does release the graph's, so a prepare
+         * follows before the next frame in any case. */
+        update_view(d);
+        fg_compile_options copts = { 0 };
+        compiled = fg_graph_compile(d->graph, &d->frame, &copts, &err);
+        if (!compiled && refused.status == CG_OK)
+            refused = err;
+    }
+    if (!stepped) {
+        printf("param: %s.%s: no step %s from here\n", fg_pass_name(pass), desc->name,
+               desc->type == FG_PARAM_STRING ? "(a string)" : direction > 0 ? "up" : "down");
+        fflush(stdout);
+        return;
+    }
+    d->recompile = true;
+    if (!compiled) {
+        cg_error err = { 0 };
+        fprintf(stderr, "conegraph-demo: %s; no value that way compiles, change undone\n", refused.message);
+        if (!fg_graph_set_param(d->graph, fg_pass_name(pass), desc->name, c->previous, NULL, &err))
+            fprintf(stderr, "conegraph-demo: undoing %s.%s: %s\n", fg_pass_name(pass), desc->name, err.message);
+        print_selection(d);
+        return;
+    }
+    snprintf(c->pass, sizeof c->pass, "%s", fg_pass_name(pass));
+    snprintf(c->param, sizeof c->param, "%s", desc->name);
+    d->change_count++;
+    print_selection(d);
+}
+
+static void
+show(demo *d, int index)
+{
+    if (index >= d->shown_count) {
+        printf("show: no resource %d (1..%d: ", index + 1, d->shown_count);
+        for (int i = 0; i < d->shown_count; i++)
+            printf("%s%s", i ? ", " : "", d->shown[i]);
+        printf(")\n");
+        fflush(stdout);
+        return;
+    }
+    d->shown_index = index;
+    if (!is_output(d->graph, d->shown[index])) {
+        /* Marked as an output so that it is kept and not pooled away before the blit. */
+        cg_error err = { 0 };
+        if (!fg_graph_mark_output(d->graph, d->shown[index], NULL, &err)) {
+            fprintf(stderr, "conegraph-demo: %s\n", err.message);
+            d->shown_index = 0;
+            return;
+        }
+        d->recompile = true;
+    }
+    printf("show: %d %s%s\n", index + 1, d->shown[index],
+           index ? " (raw values, clamped to [0,1] by the blit)" : "");
+    fflush(stdout);
+}
+
+/* A key pressed (repeat: held down, auto-repeated), from the window or from --keys. */
+static void
+press(demo *d, int key, int mods, bool repeat)
+{
+    switch (key) {
+    case GLFW_KEY_ESCAPE:
+        glfwSetWindowShouldClose(d->window, GLFW_TRUE);
+        break;
+    case GLFW_KEY_TAB:
+        demo_select_pass(d->graph, &d->sel, (mods & GLFW_MOD_SHIFT) ? -1 : 1);
+        print_selection(d);
+        break;
+    case GLFW_KEY_UP:
+    case GLFW_KEY_DOWN:
+        demo_select_param(d->graph, &d->sel, key == GLFW_KEY_DOWN ? 1 : -1);
+        print_selection(d);
+        break;
+    case GLFW_KEY_LEFT:
+    case GLFW_KEY_RIGHT:
+        adjust(d, key == GLFW_KEY_RIGHT ? 1 : -1);
+        break;
+    case GLFW_KEY_R:
+        if (!repeat) {
+            d->flying = false;
+            d->speed = d->base_speed;
+            printf("camera: reset to the scene's view\n");
+            fflush(stdout);
+        }
+        break;
+    case GLFW_KEY_L:
+        if (!repeat) {
+            d->sun_moving = !d->sun_moving;
+            printf("sun: %s\n", d->sun_moving ? "moving" : "still");
+            fflush(stdout);
+        }
+        break;
+    case GLFW_KEY_P:
+        if (!repeat)
+            d->print_report = true;
+        break;
+    case GLFW_KEY_F12:
+        if (!repeat)
+            d->screenshot_requested = true;
+        break;
+    default:
+        if (key >= GLFW_KEY_1 && key <= GLFW_KEY_9 && !repeat)
+            show(d, key - GLFW_KEY_1);
+        break;
+    }
+}
+
+static void
+on_key(GLFWwindow *window, int key, int scancode, int action, int mods)
+{
+    (void)scancode;
+    if (action != GLFW_RELEASE)
+        press(glfwGetWindowUserPointer(window), key, mods, action == GLFW_REPEAT);
+}
+
+static void
+on_mouse_button(GLFWwindow *window, int button, int action, int mods)
+{
+    (void)mods;
+    demo *d = glfwGetWindowUserPointer(window);
+    if (button != GLFW_MOUSE_BUTTON_LEFT)
+        return;
+    d->dragging = action == GLFW_PRESS;
+}
+
+static void
+start_flying(demo *d)
+{
+    if (d->flying)
+        return;
+    demo_camera_from_view(&d->frame.view, &d->cam);
+    d->flying = true;
+}
+
+static void
+on_cursor(GLFWwindow *window, double x, double y)
+{
+    demo *d = glfwGetWindowUserPointer(window);
+    /* Deltas between cursor events: the first event after entering has none to go by. */
+    double dx = d->have_cursor ? x - d->drag_x : 0, dy = d->have_cursor ? y - d->drag_y : 0;
+    d->drag_x = x;
+    d->drag_y = y;
+    d->have_cursor = true;
+    if (!d->dragging || (dx == 0 && dy == 0))
+        return;
+    start_flying(d);
+    /* 0.004 rad per pixel: a 1280-pixel drag turns about 290 degrees. */
+    demo_camera_look(&d->cam, (float)(dx * 0.004), (float)(-dy * 0.004));
+}
+
+static void
+on_cursor_enter(GLFWwindow *window, int entered)
+{
+    (void)entered;
+    /* Positions from before leaving say nothing about where the cursor comes back. */
+    ((demo *)glfwGetWindowUserPointer(window))->have_cursor = false;
+}
+
+static void
+on_scroll(GLFWwindow *window, double xoffset, double yoffset)
+{
+    (void)xoffset;
+    demo *d = glfwGetWindowUserPointer(window);
+    float speed = d->speed * powf(1.25f, (float)yoffset);
+    /* Within 1/1000 to 1000 times the starting speed: a scroll never makes it 0 or infinite. */
+    if (speed >= d->base_speed * 1e-3f && speed <= d->base_speed * 1e3f)
+        d->speed = speed;
+    printf("camera: speed %g m/s\n", d->speed);
+    fflush(stdout);
+}
+
+static bool
+held(const demo *d, const scripted_key *script, int key)
+{
+    return glfwGetKey(d->window, key) == GLFW_PRESS || (script && script->key == key);
+}
+
+/* Flies with the keys held down (or the scripted one, held for SCRIPTED_HOLD_SECONDS). */
+static void
+move_camera(demo *d, float seconds, const scripted_key *script)
+{
+    float forward = 0, right = 0, up = 0;
+    forward += held(d, script, GLFW_KEY_W);
+    forward -= held(d, script, GLFW_KEY_S);
+    right += held(d, script, GLFW_KEY_D);
+    right -= held(d, script, GLFW_KEY_A);
+    up += held(d, script, GLFW_KEY_E);
+    up -= held(d, script, GLFW_KEY_Q);
+    if (forward == 0 && right == 0 && up == 0)
+        return;
+    if (script)
+        seconds = SCRIPTED_HOLD_SECONDS;
+    bool fast = held(d, NULL, GLFW_KEY_LEFT_SHIFT) || held(d, NULL, GLFW_KEY_RIGHT_SHIFT) ||
+                (script && (script->mods & GLFW_MOD_SHIFT));
+    float metres = d->speed * seconds * (fast ? 4.0f : 1.0f);
+    start_flying(d);
+    demo_camera_move(&d->cam, forward * metres, right * metres, up * metres);
+}
+
+/* Turns every directional light about world +y: the sun circles at its elevation, and
+ * the shadow map, voxels and cones all follow on the next frame (nothing is baked). */
+static bool
+move_sun(demo *d, double seconds, cg_error *err)
+{
+    float angle = (float)(seconds * SUN_DEGREES_PER_SECOND * 3.14159265358979 / 180.0);
+    float c = cosf(angle), s = sinf(angle);
+    bool any = false;
+    for (int i = 0; i < d->scene.light_count; i++) {
+        cg_light *l = &d->scene.lights[i];
+        if (l->type != CG_LIGHT_DIRECTIONAL)
+            continue;
+        float x = l->direction[0], z = l->direction[2];
+        l->direction[0] = c * x + s * z;
+        l->direction[2] = -s * x + c * z;
+        any = true;
+    }
+    return !any || cg_gpu_scene_update_lights(&d->gpu, err);
+}
+
+/* ------------------------------------------------------------ frame */
+
+static void
+blit(demo *d)
+{
+    const char *source = d->shown[d->shown_index];
+    const fg_resource_info *info = fg_graph_find_resource(d->graph, source);
+    GLuint texture = fg_graph_texture(d->graph, source);
+    /* The last writer may have used image stores (composite does). */
+    glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+    glDisable(GL_SCISSOR_TEST);
+    glDisable(GL_FRAMEBUFFER_SRGB);
+    if (!info || !texture) {
+        glClearNamedFramebufferfv(0, GL_COLOR, 0, (const GLfloat[4]){ 0, 0, 0, 1 });
+        return;
+    }
+    glNamedFramebufferTexture(d->read_fbo, GL_COLOR_ATTACHMENT0, texture, 0);
+    glNamedFramebufferReadBuffer(d->read_fbo, GL_COLOR_ATTACHMENT0);
+    int sw = info->desc.width, sh = info->desc.height;
+    bool same = sw == d->frame.width && sh == d->frame.height;
+    /* Texture rows and the window both run bottom to top in GL: no flip is needed. */
+    glBlitNamedFramebuffer(d->read_fbo, 0, 0, 0, sw, sh, 0, 0, d->frame.width, d->frame.height,
+                           GL_COLOR_BUFFER_BIT, same ? GL_NEAREST : GL_LINEAR);
+}
+
+/* Reads the window's back buffer (what is shown) into a PNG, written atomically. */
+static bool
+write_screenshot(demo *d, const char *path, cg_error *err)
+{
+    int w = d->frame.width, h = d->frame.height;
+    unsigned char *px = malloc((size_t)w * (size_t)h * 4);
+    if (!px)
+        return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "%s: %dx%d pixels", path, w, h);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    glReadBuffer(GL_BACK);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, px);
+    cg_image image = { 0 };
+    if (!cg_image_alloc(&image, w, h, err)) {
+        free(px);
+        return false;
+    }
+    /* The window holds sRGB-encoded bytes; cg_image is linear and the PNG writer encodes.
+     * Window rows go bottom to top, image rows top to bottom. */
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            const unsigned char *src = px + ((size_t)y * (size_t)w + (size_t)x) * 4;
+            float *dst = image.rgba + ((size_t)(h - 1 - y) * (size_t)w + (size_t)x) * 4;
+            for (int c = 0; c < 3; c++)
+                dst[c] = cg_srgb_decode((float)src[c] / 255.0f);
+            dst[3] = 1.0f;
+        }
+    free(px);
+    bool ok = cg_image_write(path, &image, CG_EXR_HALF, err);
+    cg_image_free(&image);
+    return ok;
+}
+
+static double
+median_ms(const double *values, int count)
+{
+    double sorted[FRAME_HISTORY];
+    memcpy(sorted, values, (size_t)count * sizeof *sorted);
+    qsort(sorted, (size_t)count, sizeof *sorted, app_compare_double);
+    return sorted[count / 2];
+}
+
+/* Title and stdout: the selection, frame time, per-pass times and GI memory. */
+static void
+report_status(demo *d, bool force)
+{
+    double now = app_now_ms();
+    if (!force && now - d->last_status < 1000.0)
+        return;
+    d->last_status = now;
+    fg_memory_report mem;
+    fg_graph_memory_report(d->graph, &mem);
+    double frame = d->frame_ms_count ? median_ms(d->frame_ms, d->frame_ms_count) : 0;
+    char passes[1536] = "";
+    size_t len = 0;
+    const int *order;
+    int live = fg_graph_order(d->graph, &order);
+    for (int k = 0; k < live && len < sizeof passes; k++) {
+        const fg_pass *pass = fg_graph_pass_at(d->graph, order[k]);
+        double ms = fg_pass_milliseconds(pass);
+        int n = ms >= 0 ? snprintf(passes + len, sizeof passes - len, "%s%s %.1f", k ? " | " : "",
+                                   fg_pass_name(pass), ms)
+                        : snprintf(passes + len, sizeof passes - len, "%s%s -", k ? " | " : "",
+                                   fg_pass_name(pass));
+        if (n < 0)
+            break;
+        len += (size_t)n;
+    }
+    if (len >= sizeof passes)
+        len = sizeof passes - 1;
+    snprintf(d->status, sizeof d->status, "frame %.1f ms | %s ms | GI %.1f MiB | %dx%d | %s",
+             frame, passes, (double)mem.gi_bytes / (1024.0 * 1024.0), d->frame.width,
+             d->frame.height, d->shown[d->shown_index]);
+    printf("%s\n", d->status);
+    fflush(stdout);
+
+    update_title(d);
+}
+
+static const char *
+screenshot_path(demo *d, char *buf, size_t size)
+{
+    if (d->o.screenshot)
+        return d->o.screenshot;
+    snprintf(buf, size, "conegraph-demo-%d.png", d->screenshot_serial++);
+    return buf;
+}
+
+static bool
+is_software(const char *renderer)
+{
+    return strstr(renderer, "llvmpipe") || strstr(renderer, "softpipe") || strstr(renderer, "swrast");
+}
+
+/* Runs the window until it closes (or --frames). Returns the exit code. */
+static int
+run(demo *d)
+{
+    cg_error err = { 0 };
+    int frames_run = 0;
+    double last = app_now_ms();
+    while (!glfwWindowShouldClose(d->window) && (!d->o.frames || frames_run < d->o.frames)) {
+        glfwPollEvents();
+        int w, h;
+        glfwGetFramebufferSize(d->window, &w, &h);
+        if (w <= 0 || h <= 0) {
+            glfwWaitEvents(); /* minimised: nothing to draw */
+            last = app_now_ms();
+            continue;
+        }
+        const scripted_key *script = frames_run < d->o.key_count ? &d->o.keys[frames_run] : NULL;
+        if (script && !is_movement_key(script->key)) {
+            press(d, script->key, script->mods, false);
+            script = NULL;
+            if (glfwWindowShouldClose(d->window))
+                break;
+        }
+        if (w != d->frame.width || h != d->frame.height) {
+            d->frame.width = w;
+            d->frame.height = h;
+            d->recompile = true;
+        }
+        double now = app_now_ms();
+        double seconds = (now - last) * 1e-3;
+        last = now;
+        if (d->recompile) {
+            double t0 = app_now_ms();
+            if (!apply_changes(d, &err))
+                return fail_with("graph", &err);
+            printf("graph: compiled and prepared for %dx%d in %.0f ms\n", d->frame.width, d->frame.height,
+                   app_now_ms() - t0);
+            fflush(stdout);
+            report_status(d, true);
+        }
+        /* A long compile or a stall must not throw the camera or the sun across the scene. */
+        float step = (float)(seconds < 0.25 ? seconds : 0.25);
+        move_camera(d, step, script);
+        if (d->sun_moving && !move_sun(d, step, &err))
+            return fail_with("sun", &err);
+        update_view(d);
+
+        d->frame.index = (uint64_t)frames_run;
+        double t0 = app_now_ms();
+        if (!fg_graph_execute(d->graph, &d->frame, d->timing, &err))
+            return fail_with("frame", &err);
+        blit(d);
+        bool last_frame = d->o.frames && frames_run + 1 == d->o.frames;
+        if (d->screenshot_requested || (last_frame && d->o.screenshot)) {
+            char buf[64];
+            const char *path = screenshot_path(d, buf, sizeof buf);
+            d->screenshot_requested = false;
+            if (!write_screenshot(d, path, &err))
+                return fail_with(path, &err);
+            printf("screenshot: %s\n", path);
+            fflush(stdout);
+        }
+        cg_context_swap(d->ctx);
+        /* With sync or no timing, finish here so that the frame time is the frame's work,
+         * not how far the driver queued ahead. */
+        if (d->timing != FG_TIMING_QUERIES)
+            glFinish();
+        double ms = app_now_ms() - t0;
+        if (d->frame_ms_count == FRAME_HISTORY)
+            memmove(d->frame_ms, d->frame_ms + 1, (FRAME_HISTORY - 1) * sizeof *d->frame_ms);
+        else
+            d->frame_ms_count++;
+        d->frame_ms[d->frame_ms_count - 1] = ms;
+        if (d->all_frame_ms)
+            d->all_frame_ms[frames_run] = ms;
+        frames_run++;
+
+        int errors = cg_context_gl_error_count(d->ctx);
+        if (errors > 0) {
+            fprintf(stderr, "conegraph-demo: %d GL error(s) in frame %d (logged above)\n", errors, frames_run);
+            return 1;
+        }
+        if (d->print_report) {
+            d->print_report = false;
+            fg_graph_print_report(d->graph, stdout);
+            fflush(stdout);
+        }
+        report_status(d, frames_run == 1);
+    }
+    report_status(d, true);
+    fg_graph_print_report(d->graph, stdout);
+    if (d->all_frame_ms && frames_run > 0) {
+        qsort(d->all_frame_ms, (size_t)frames_run, sizeof *d->all_frame_ms, app_compare_double);
+        printf("demo: %s %dx%d, graph %s, on %s: median frame %.1f ms over %d frame(s)\n", d->scene.name,
+               d->frame.width, d->frame.height, d->graph_path, cg_context_renderer(d->ctx),
+               d->all_frame_ms[frames_run / 2], frames_run);
+    }
+    fflush(stdout);
+    return 0;
+}
+
+/* Loads, checks and opens everything, runs, and tears down. */
+static int
+demo_main(demo *d)
+{
+    cg_error err = { 0 };
+    int code = 1;
+    app_resolve_graph(d->o.graph, d->graph_path, sizeof d->graph_path);
+    if (!cg_scene_load(d->o.scene, &d->scene, &err))
+        return fail_with("scene", &err);
+    if (!cg_camera_select(&d->scene, NULL, &d->camera_index, &err)) {
+        code = fail_with("camera", &err);
+        goto done;
+    }
+    d->registry = app_registry_create(d->o.plugins, d->o.plugin_count, &err);
+    if (!d->registry) {
+        code = fail_with("passes", &err);
+        goto done;
+    }
+    d->graph = fg_graph_create(d->registry);
+    if (!d->graph) {
+        fprintf(stderr, "conegraph-demo: out of memory\n");
+        goto done;
+    }
+    if (!app_load_graph(d->graph, d->graph_path, d->o.sets, d->o.set_count, &err)) {
+        code = fail_with("graph", &err);
+        goto done;
+    }
+    if (!app_find_output(d->graph, "ldr")) {
+        fprintf(stderr, "conegraph-demo: %s: the graph marks no output named *.ldr to show\n", d->graph_path);
+        code = 2;
+        goto done;
+    }
+    d->frame = (fg_frame){ .scene = &d->scene, .width = d->o.width, .height = d->o.height };
+    update_view(d);
+    /* A first compile without GL finds every bad-input error before a window opens. */
+    fg_compile_options copts = { 0 };
+    if (!fg_graph_compile(d->graph, &d->frame, &copts, &err)) {
+        code = fail_with("graph", &err);
+        goto done;
+    }
+    if (d->o.frames) {
+        d->all_frame_ms = calloc((size_t)d->o.frames, sizeof *d->all_frame_ms);
+        if (!d->all_frame_ms) {
+            fprintf(stderr, "conegraph-demo: out of memory\n");
+            goto done;
+        }
+    }
+
+    cg_context_desc cdesc = { .backend = CG_CONTEXT_GLFW, .width = d->o.width, .height = d->o.height,
+                              .title = "conegraph-demo", .debug = true };
+    if (!cg_context_create(&cdesc, &d->ctx, &err)) {
+        code = fail_with("window", &err);
+        goto done;
+    }
+    d->window = cg_context_window(d->ctx);
+    glfwSetWindowUserPointer(d->window, d);
+    glfwSetKeyCallback(d->window, on_key);
+    glfwSetMouseButtonCallback(d->window, on_mouse_button);
+    glfwSetCursorPosCallback(d->window, on_cursor);
+    glfwSetCursorEnterCallback(d->window, on_cursor_enter);
+    glfwSetScrollCallback(d->window, on_scroll);
+    /* Frame times measure the frames, not the display's refresh. */
+    glfwSwapInterval(0);
+    d->timing = d->o.timing_given ? d->o.timing
+                                  : is_software(cg_context_renderer(d->ctx)) ? FG_TIMING_SYNC : FG_TIMING_QUERIES;
+    glCreateFramebuffers(1, &d->read_fbo);
+
+    if (!cg_gpu_scene_upload(&d->scene, &d->gpu, &err)) {
+        code = fail_with("scene upload", &err);
+        goto done;
+    }
+    d->uploaded = true;
+    d->frame.gpu_scene = &d->gpu;
+    glfwGetFramebufferSize(d->window, &d->frame.width, &d->frame.height);
+    if (!compile_and_prepare(d, &err)) {
+        code = fail_with("graph", &err);
+        goto done;
+    }
+    float diagonal = 0;
+    for (int k = 0; k < 3; k++)
+        diagonal += (d->scene.bounds_max[k] - d->scene.bounds_min[k]) * (d->scene.bounds_max[k] - d->scene.bounds_min[k]);
+    /* A tenth of the scene per second. */
+    d->base_speed = d->speed = diagonal > 0 ? sqrtf(diagonal) * 0.1f : 1.0f;
+
+    printf("conegraph-demo: %s, graph %s, %dx%d, %s on %s, timing %s\n", d->scene.name, d->graph_path,
+           d->frame.width, d->frame.height, cg_context_version(d->ctx), cg_context_renderer(d->ctx),
+           d->timing == FG_TIMING_SYNC ? "sync" : d->timing == FG_TIMING_QUERIES ? "queries" : "none");
+    printf("keys: WASD/QE fly, drag look, scroll speed, R reset, Tab/Shift+Tab pass, Up/Down param, "
+           "Left/Right value, 1..%d show, L sun, P report, F12 screenshot, Esc quit\n", d->shown_count);
+    demo_select_first(d->graph, &d->sel);
+    print_selection(d);
+    code = run(d);
+
+done:
+    free(d->all_frame_ms);
+    if (d->graph)
+        fg_graph_destroy(d->graph);
+    if (d->read_fbo)
+        glDeleteFramebuffers(1, &d->read_fbo);
+    if (d->uploaded)
+        cg_gpu_scene_destroy(&d->gpu);
+    if (d->ctx)
+        cg_context_destroy(d->ctx);
+    if (d->registry)
+        fg_registry_destroy(d->registry);
+    cg_scene_free(&d->scene);
+    return code;
+}
+
+int
+main(int argc, char **argv)
+{
+    for (int i = 1; i < argc; i++)
+        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
+            usage(stdout);
+            return 0;
+        }
+    demo *d = calloc(1, sizeof *d);
+    if (!d) {
+        fprintf(stderr, "conegraph-demo: out of memory\n");
+        return 1;
+    }
+    int code = parse_args(argc, argv, &d->o);
+    if (!code)
+        code = demo_main(d);
+    free(d);
+    return code;
+}

@@ -1,0 +1,62 @@
+/* apps/demo/demo_params.h: the demo's parameter controls, driven by the pass parameter tables
+ * (fg_param_desc) exactly as validation, `conegraph passes` and the docs are.
+ *
+ * Declares: demo_param_step, demo_param_step_size, demo_param_format, demo_param_value,
+ *           demo_param_describe, demo_selection, demo_select_first, demo_select_pass,
+ *           demo_select_param, demo_selected, demo_adjust.
+ *
+ * Stepping (Left/Right in the demo), a pure function of the table entry and the value:
+ * - bool toggles; enum moves to the next or previous choice, wrapping round;
+ * - int: +-1, or doubled/halved when the range starts at 1 or more and is wider than 64
+ *   (resolutions, sample counts: 128 -> 256 -> 512 rather than 128 -> 129);
+ * - float: the largest 1, 2 or 5 x 10^k not above 1/50 of the range, or, when the range is
+ *   wider than 1000 (unbounded-like: distances, region corners), not above a quarter of
+ *   max(|value|, 1); the value lands on a multiple of the step;
+ * - the range bounds stop the step (there is no step beyond them); strings do not step.
+ */
+#ifndef CONEGRAPH_DEMO_PARAMS_H
+#define CONEGRAPH_DEMO_PARAMS_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "cg/error.h"
+#include "cg/fg.h"
+
+/* The value one step up (direction > 0) or down (direction < 0) from `value`. False when
+ * there is none: a string parameter, or the value is already at that end of the range. */
+bool demo_param_step(const fg_param_desc *desc, double value, int direction, double *out);
+/* The step of an int or float parameter at `value` (a factor of 2 for doubling ints is
+ * reported as 0); 0 for the other types. */
+double demo_param_step_size(const fg_param_desc *desc, double value);
+/* `value` as the text fg_graph_set_param takes ("7", "0.35", "true", "aces"). */
+void demo_param_format(const fg_param_desc *desc, double value, char *out, size_t size);
+/* The current value of a pass's parameter as a number (enum: its index; string: 0). */
+double demo_param_value(const fg_pass *pass, const fg_param_desc *desc);
+/* One line: "pass.param = value (type range): doc". */
+void demo_param_describe(const fg_pass *pass, const fg_param_desc *desc, char *out, size_t size);
+
+/* Which pass (file order) and which of its parameters the keys act on; -1 when the graph
+ * has no pass with parameters. */
+typedef struct demo_selection {
+    int pass;
+    int param;
+} demo_selection;
+
+/* The first pass with parameters, its first parameter. */
+void demo_select_first(const fg_graph *graph, demo_selection *sel);
+/* The next (direction > 0) or previous pass that has parameters, wrapping round; its first parameter. */
+void demo_select_pass(const fg_graph *graph, demo_selection *sel, int direction);
+/* The next or previous parameter of the selected pass, wrapping round. */
+void demo_select_param(const fg_graph *graph, demo_selection *sel, int direction);
+/* The selected pass and parameter; false when nothing is selected. */
+bool demo_selected(const fg_graph *graph, const demo_selection *sel, fg_pass **pass,
+                   const fg_param_desc **desc);
+
+/* Steps the selected parameter through fg_graph_set_param (the same validation as graph
+ * files and --set). *changed is false when there was no step to take; `previous` receives
+ * the old value's text (for undoing the change if the graph then fails to compile). */
+bool demo_adjust(fg_graph *graph, const demo_selection *sel, int direction, bool *changed,
+                 char *previous, size_t previous_size, cg_error *err);
+
+#endif

@@ -1,0 +1,63 @@
+/* demo_test_plugin: a pass for tests/test_demo_window.c, loaded with --plugin. It fills an
+ * RGBA8 output named `ldr` (so the demo shows it) with a colour given as 8-bit levels, and on
+ * frame `error_frame` provokes a GL error on purpose, so that the test sees the demo stop
+ * with exit 1 on a GL error counted by the context. */
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "cg/error.h"
+#include "cg/fg.h"
+
+static const fg_param_desc params[] = {
+    { "red", FG_PARAM_INT, 200, 0, 255, NULL, "red level stored in the ldr output" },
+    { "green", FG_PARAM_INT, 100, 0, 255, NULL, "green level stored in the ldr output" },
+    { "blue", FG_PARAM_INT, 50, 0, 255, NULL, "blue level stored in the ldr output" },
+    { "error_frame", FG_PARAM_INT, -1, -1, 1000000, NULL,
+      "frame index on which to provoke GL_INVALID_ENUM; -1 = never" },
+};
+
+static bool
+declare(fg_pass *pass, fg_declare *decl, cg_error *err)
+{
+    (void)err;
+    const fg_frame *frame = fg_pass_frame(pass);
+    fg_resource_desc desc = { .kind = FG_TEXTURE_2D, .format = GL_RGBA8, .width = frame->width,
+                              .height = frame->height, .depth = 1, .levels = 1 };
+    fg_declare_output(decl, "ldr", &desc, FG_ACCESS_TRANSFER);
+    return true;
+}
+
+static bool
+execute(fg_pass *pass, void *state, cg_error *err)
+{
+    (void)state;
+    (void)err;
+    const GLubyte rgba[4] = { (GLubyte)fg_param_int(pass, "red"), (GLubyte)fg_param_int(pass, "green"),
+                              (GLubyte)fg_param_int(pass, "blue"), 255 };
+    glClearTexImage(fg_texture(pass, "ldr"), 0, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
+    if ((int64_t)fg_pass_frame(pass)->index == fg_param_int(pass, "error_frame"))
+        glEnable(0x7fff); /* no such capability: GL_INVALID_ENUM */
+    return true;
+}
+
+static const fg_pass_type fill_type = {
+    .abi_version = FG_ABI_VERSION,
+    .name = "demo_test_fill",
+    .doc = "Test pass for the demo: fills an RGBA8 'ldr' output with given 8-bit levels and "
+           "provokes a GL error on a chosen frame.",
+    .params = params,
+    .param_count = (int)(sizeof params / sizeof params[0]),
+    .declare = declare,
+    .execute = execute,
+};
+
+bool conegraph_plugin_register(fg_registry *registry, uint32_t host_abi, cg_error *err);
+
+bool
+conegraph_plugin_register(fg_registry *registry, uint32_t host_abi, cg_error *err)
+{
+    if (host_abi != FG_ABI_VERSION)
+        return cg_fail(err, CG_ERR_PLUGIN_ABI, "demo_test_plugin was built for frame-graph ABI %u, not %u",
+                       (unsigned)FG_ABI_VERSION, (unsigned)host_abi);
+    return fg_registry_add(registry, &fill_type, err);
+}

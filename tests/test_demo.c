@@ -1,0 +1,402 @@
+/* The demo without a window: parameter stepping from the tables (apps/demo/demo_params.c),
+ * the pass/parameter selection on a real graph, the fly camera, and the command line's bad
+ * input (exit 2 before any window opens; $CONEGRAPH_DEMO_EXE). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+
+#include "../apps/demo/demo_camera.h"
+#include "../apps/demo/demo_params.h"
+#include "builtin.h"
+#include "cg/camera.h"
+#include "cg/graphfile.h"
+#include "test_support.h"
+
+static const fg_param_desc cones = { "cones", FG_PARAM_INT, 6, 1, 16, NULL, "cones" };
+static const fg_param_desc resolution = { "resolution", FG_PARAM_INT, 128, 16, 512, NULL, "voxels" };
+static const fg_param_desc light = { "light", FG_PARAM_INT, -1, -1, 65535, NULL, "light index" };
+static const fg_param_desc exposure = { "exposure", FG_PARAM_FLOAT, 0, -20, 20, NULL, "EV" };
+static const fg_param_desc step = { "step", FG_PARAM_FLOAT, 0.25, 0.05, 4, NULL, "step" };
+static const fg_param_desc distance = { "max_distance", FG_PARAM_FLOAT, 0, 0, 1e9, NULL, "metres" };
+static const fg_param_desc flag = { "specular", FG_PARAM_BOOL, 0, 0, 1, NULL, "mirror cone" };
+static const fg_param_desc tonemap = { "tonemap", FG_PARAM_ENUM, 2, 0, 0, "none|reinhard|aces", "tonemap" };
+static const fg_param_desc text = { "name", FG_PARAM_STRING, 0, 0, 0, "x", "a string" };
+
+/* One step from `value`; fails the test when there is none. */
+static double
+stepped(const fg_param_desc *desc, double value, int direction)
+{
+    double out = NAN;
+    if (!demo_param_step(desc, value, direction, &out))
+        fail_msg("%s: no step %+d from %g", desc->name, direction, value);
+    return out;
+}
+
+static void
+assert_no_step(const fg_param_desc *desc, double value, int direction)
+{
+    double out = NAN;
+    if (demo_param_step(desc, value, direction, &out))
+        fail_msg("%s: step %+d from %g gave %g; expected none", desc->name, direction, value, out);
+}
+
+static void
+test_step_int(void **state)
+{
+    (void)state;
+    assert_true(stepped(&cones, 6, 1) == 7);
+    assert_true(stepped(&cones, 6, -1) == 5);
+    assert_no_step(&cones, 16, 1);
+    assert_no_step(&cones, 1, -1);
+    /* A wide range starting below 1 (an index) still steps by one. */
+    assert_true(stepped(&light, -1, 1) == 0);
+    assert_no_step(&light, -1, -1);
+    /* Resolutions double and halve; the bounds stop them. */
+    assert_true(stepped(&resolution, 128, 1) == 256);
+    assert_true(stepped(&resolution, 128, -1) == 64);
+    assert_true(stepped(&resolution, 300, 1) == 512);
+    assert_true(stepped(&resolution, 17, -1) == 16);
+    assert_true(stepped(&resolution, 25, -1) == 16);
+    assert_no_step(&resolution, 512, 1);
+    assert_no_step(&resolution, 16, -1);
+    assert_true(demo_param_step_size(&cones, 6) == 1);
+    assert_true(demo_param_step_size(&resolution, 128) == 0);
+}
+
+static void
+test_step_float(void **state)
+{
+    (void)state;
+    /* 1/50 of [-20, 20] is 0.8: the step is 0.5. */
+    assert_true(demo_param_step_size(&exposure, 0) == 0.5);
+    assert_true(stepped(&exposure, 0, 1) == 0.5);
+    assert_true(stepped(&exposure, 0, -1) == -0.5);
+    /* Off the grid, the step lands on it. */
+    assert_true(stepped(&exposure, 0.3, 1) == 0.5);
+    assert_true(stepped(&exposure, 0.3, -1) == 0.0);
+    assert_no_step(&exposure, 20, 1);
+    assert_true(stepped(&exposure, 19.8, 1) == 20);
+    /* Values come back from the graph as floats: 0.3f is a hair above 0.3 and must still
+     * step to 0.35 and 0.25, not skip or stall. */
+    assert_true(demo_param_step_size(&step, 0.25) == 0.05);
+    assert_true(fabs(stepped(&step, (float)0.25, 1) - 0.3) < 1e-12);
+    assert_true(fabs(stepped(&step, (float)0.3, 1) - 0.35) < 1e-12);
+    assert_true(fabs(stepped(&step, (float)0.3, -1) - 0.25) < 1e-12);
+    assert_true(fabs(stepped(&step, (float)0.05, 1) - 0.1) < 1e-12);
+    assert_no_step(&step, (float)0.05, -1);
+    assert_no_step(&step, 4, 1);
+    /* A range wider than 1000: about a quarter of the value, at least 0.2. */
+    assert_true(demo_param_step_size(&distance, 0) == 0.2);
+    assert_true(fabs(stepped(&distance, 0, 1) - 0.2) < 1e-12);
+    assert_true(stepped(&distance, 10, 1) == 12);
+    assert_true(stepped(&distance, 10, -1) == 8);
+    assert_true(stepped(&distance, 100, 1) == 120);
+    assert_no_step(&distance, 0, -1);
+}
+
+static void
+test_step_bool_enum_string(void **state)
+{
+    (void)state;
+    assert_true(stepped(&flag, 0, 1) == 1);
+    assert_true(stepped(&flag, 1, 1) == 0);
+    assert_true(stepped(&flag, 0, -1) == 1);
+    assert_true(stepped(&tonemap, 0, 1) == 1);
+    assert_true(stepped(&tonemap, 2, 1) == 0);      /* wraps round */
+    assert_true(stepped(&tonemap, 0, -1) == 2);
+    assert_no_step(&text, 0, 1);
+    assert_no_step(&text, 0, -1);
+    assert_no_step(&cones, 6, 0);
+}
+
+static void
+test_format(void **state)
+{
+    (void)state;
+    char out[64];
+    demo_param_format(&cones, 7, out, sizeof out);
+    assert_string_equal(out, "7");
+    demo_param_format(&step, 0.35000000000000003, out, sizeof out);
+    assert_string_equal(out, "0.35");
+    demo_param_format(&exposure, -0.5, out, sizeof out);
+    assert_string_equal(out, "-0.5");
+    demo_param_format(&flag, 1, out, sizeof out);
+    assert_string_equal(out, "true");
+    demo_param_format(&flag, 0, out, sizeof out);
+    assert_string_equal(out, "false");
+    demo_param_format(&tonemap, 1, out, sizeof out);
+    assert_string_equal(out, "reinhard");
+}
+
+static fg_graph *
+load_graph(const char *name, fg_registry **registry)
+{
+    cg_error err = { 0 };
+    *registry = fg_registry_create();
+    assert_non_null(*registry);
+    assert_cg_ok(cg_builtin_passes_register(*registry, &err), &err);
+    fg_graph *graph = fg_graph_create(*registry);
+    assert_non_null(graph);
+    char path[4096];
+    snprintf(path, sizeof path, "%s/%s", getenv("CONEGRAPH_GRAPH_DIR"), name);
+    assert_cg_ok(fg_graph_load_file(graph, path, &err), &err);
+    return graph;
+}
+
+static int
+params_of(const fg_graph *graph, int pass)
+{
+    return fg_pass_type_of(fg_graph_pass_at(graph, pass))->param_count;
+}
+
+/* Tab visits every pass that has parameters once per round, skipping those without. */
+static void
+test_selection(void **state)
+{
+    (void)state;
+    fg_registry *registry;
+    fg_graph *graph = load_graph("vct.json", &registry);
+    int with_params = 0;
+    for (int p = 0; p < fg_graph_pass_count(graph); p++)
+        with_params += params_of(graph, p) > 0;
+    assert_true(with_params >= 2);
+    assert_true(with_params < fg_graph_pass_count(graph)); /* gbuffer has none */
+
+    demo_selection sel;
+    demo_select_first(graph, &sel);
+    assert_int_equal(sel.param, 0);
+    int first = sel.pass, visits = 0;
+    do {
+        assert_true(params_of(graph, sel.pass) > 0);
+        demo_select_pass(graph, &sel, 1);
+        visits++;
+    } while (sel.pass != first && visits <= fg_graph_pass_count(graph));
+    assert_int_equal(visits, with_params);
+    demo_select_pass(graph, &sel, -1);
+    demo_select_pass(graph, &sel, 1);
+    assert_int_equal(sel.pass, first);
+
+    /* Up from the first parameter wraps to the last. */
+    demo_select_param(graph, &sel, -1);
+    assert_int_equal(sel.param, params_of(graph, sel.pass) - 1);
+    demo_select_param(graph, &sel, 1);
+    assert_int_equal(sel.param, 0);
+    fg_graph_destroy(graph);
+    fg_registry_destroy(registry);
+}
+
+static void
+select_param(const fg_graph *graph, demo_selection *sel, const char *pass, const char *param)
+{
+    demo_select_first(graph, sel);
+    for (int k = 0; k < fg_graph_pass_count(graph); k++) {
+        fg_pass *p;
+        const fg_param_desc *d;
+        assert_true(demo_selected(graph, sel, &p, &d));
+        if (!strcmp(fg_pass_name(p), pass))
+            for (int i = 0; i < fg_pass_type_of(p)->param_count; i++) {
+                if (!strcmp(d->name, param))
+                    return;
+                demo_select_param(graph, sel, 1);
+                assert_true(demo_selected(graph, sel, &p, &d));
+            }
+        demo_select_pass(graph, sel, 1);
+    }
+    fail_msg("%s.%s not reached with Tab and Down", pass, param);
+}
+
+/* Left/Right go through fg_graph_set_param: the graph holds the new value, the old text
+ * comes back for undoing, and the ends of the range stop the keys. */
+static void
+test_adjust(void **state)
+{
+    (void)state;
+    fg_registry *registry;
+    fg_graph *graph = load_graph("vct.json", &registry);
+    cg_error err = { 0 };
+    demo_selection sel;
+    char previous[64];
+    bool changed;
+    select_param(graph, &sel, "gather", "cones");
+    assert_cg_ok(demo_adjust(graph, &sel, 1, &changed, previous, sizeof previous, &err), &err);
+    assert_true(changed);
+    assert_string_equal(previous, "6");
+    assert_int_equal(fg_param_int(fg_graph_find_pass(graph, "gather"), "cones"), 7);
+    assert_cg_ok(fg_graph_set_param(graph, "gather", "cones", "16", NULL, &err), &err);
+    assert_cg_ok(demo_adjust(graph, &sel, 1, &changed, previous, sizeof previous, &err), &err);
+    assert_false(changed);
+    assert_int_equal(fg_param_int(fg_graph_find_pass(graph, "gather"), "cones"), 16);
+
+    select_param(graph, &sel, "final", "tonemap");
+    assert_cg_ok(demo_adjust(graph, &sel, 1, &changed, previous, sizeof previous, &err), &err);
+    assert_true(changed);
+    assert_string_equal(previous, "aces");
+    assert_int_equal(fg_param_enum(fg_graph_find_pass(graph, "final"), "tonemap"), 0);
+
+    select_param(graph, &sel, "gather", "step");
+    for (int i = 0; i < 3; i++)
+        assert_cg_ok(demo_adjust(graph, &sel, 1, &changed, previous, sizeof previous, &err), &err);
+    assert_float_equal(fg_param_float(fg_graph_find_pass(graph, "gather"), "step"), 0.4f, 1e-6);
+    assert_string_equal(previous, "0.349999994");
+    fg_graph_destroy(graph);
+    fg_registry_destroy(registry);
+}
+
+/* Every parameter of every built-in pass type, stepped both ways from its default and from
+ * each end of its range, gives text that the graph's validation accepts. */
+static void
+test_every_table_steps_validly(void **state)
+{
+    (void)state;
+    cg_error err = { 0 };
+    fg_registry *registry = fg_registry_create();
+    assert_cg_ok(cg_builtin_passes_register(registry, &err), &err);
+    fg_graph *graph = fg_graph_create(registry);
+    int checked = 0;
+    for (int t = 0; t < fg_registry_count(registry); t++) {
+        const fg_pass_type *type = fg_registry_at(registry, t);
+        char name[64];
+        snprintf(name, sizeof name, "p%d", t);
+        assert_cg_ok(fg_graph_add_pass(graph, name, type->name, NULL, &err), &err);
+        for (int i = 0; i < type->param_count; i++) {
+            const fg_param_desc *desc = &type->params[i];
+            if (desc->type == FG_PARAM_STRING)
+                continue;
+            double starts[3] = { desc->default_value, desc->min, desc->max };
+            for (int s = 0; s < (desc->type == FG_PARAM_INT || desc->type == FG_PARAM_FLOAT ? 3 : 1); s++)
+                for (int dir = -1; dir <= 1; dir += 2) {
+                    double next;
+                    if (!demo_param_step(desc, starts[s], dir, &next))
+                        continue;
+                    char value[256];
+                    demo_param_format(desc, next, value, sizeof value);
+                    cg_error_clear(&err);
+                    if (!fg_graph_set_param(graph, name, desc->name, value, NULL, &err))
+                        fail_msg("%s.%s: step %+d from %g gave '%s': %s", type->name, desc->name, dir,
+                                 starts[s], value, err.message);
+                    checked++;
+                }
+        }
+    }
+    assert_true(checked > 40);
+    fg_graph_destroy(graph);
+    fg_registry_destroy(registry);
+}
+
+/* The fly camera starts where the scene's view is and moves along its own axes. */
+static void
+test_camera(void **state)
+{
+    (void)state;
+    cg_error err = { 0 };
+    cg_scene scene = { 0 };
+    assert_cg_ok(cg_scene_load("builtin:cornell", &scene, &err), &err);
+    int index;
+    assert_cg_ok(cg_camera_select(&scene, NULL, &index, &err), &err);
+    cg_view base, flown;
+    cg_view_from_scene(&scene, index, 64, 48, &base);
+    demo_camera cam;
+    demo_camera_from_view(&base, &cam);
+    demo_camera_view(&cam, &scene, &base, &flown);
+    /* The cornell camera has no roll: the same view, the same projection. */
+    for (int k = 0; k < 16; k++) {
+        assert_float_equal(flown.view[k], base.view[k], 1e-4);
+        assert_float_equal(flown.view_proj[k], base.view_proj[k], 1e-4);
+    }
+    float f[3];
+    demo_camera_forward(&cam, f);
+    assert_float_equal(f[0], -base.inv_view[8], 1e-5);
+    assert_float_equal(f[2], -base.inv_view[10], 1e-5);
+    float p0[3] = { cam.position[0], cam.position[1], cam.position[2] };
+    demo_camera_move(&cam, 2, 0, 0);
+    for (int k = 0; k < 3; k++)
+        assert_float_equal(cam.position[k], p0[k] + 2 * f[k], 1e-5);
+    demo_camera_move(&cam, 0, 0, 1);
+    assert_float_equal(cam.position[1], p0[1] + 2 * f[1] + 1, 1e-5);
+    /* Right is perpendicular to forward and horizontal. */
+    float before[3] = { cam.position[0], cam.position[1], cam.position[2] };
+    demo_camera_move(&cam, 0, 1, 0);
+    float r[3] = { cam.position[0] - before[0], cam.position[1] - before[1], cam.position[2] - before[2] };
+    assert_float_equal(r[1], 0, 1e-6);
+    assert_float_equal(r[0] * f[0] + r[2] * f[2], 0, 1e-5);
+    /* Looking up stops short of straight up. */
+    demo_camera_look(&cam, 0.5f, 10.0f);
+    assert_true(cam.pitch < 1.5708f && cam.pitch > 1.55f);
+    /* Far from the scene, the far plane moves out to keep it in view. */
+    cam.position[2] += 1000;
+    demo_camera_view(&cam, &scene, &base, &flown);
+    assert_true(flown.zfar > 1000);
+    for (int k = 0; k < 16; k++)
+        assert_true(isfinite(flown.inv_view_proj[k]));
+    cg_scene_free(&scene);
+}
+
+static int
+run_demo(const char *args)
+{
+    const char *exe = getenv("CONEGRAPH_DEMO_EXE");
+    if (!exe)
+        fail_msg("CONEGRAPH_DEMO_EXE is not set");
+    char cmd[8192];
+    snprintf(cmd, sizeof cmd, "'%s' %s >/dev/null 2>&1", exe, args);
+    int status = system(cmd);
+    if (status == -1 || !WIFEXITED(status))
+        fail_msg("could not run: %s", cmd);
+    return WEXITSTATUS(status);
+}
+
+/* Bad input exits 2 before a window is asked for, so these need no display: run them with
+ * DISPLAY unset, where anything that got as far as the window would exit 1 instead. */
+static void
+test_bad_input(void **state)
+{
+    (void)state;
+    unsetenv("DISPLAY");
+    unsetenv("WAYLAND_DISPLAY");
+    assert_int_equal(run_demo("--help"), 0);
+    const char *cases[] = {
+        "builtin:nosuchscene",
+        "builtin:cornell builtin:furnace",
+        "builtin:cornell --size 64",
+        "builtin:cornell --size 0x64",
+        "builtin:cornell --frames 0",
+        "builtin:cornell --frames",
+        "builtin:cornell --screenshot shot.jpg",
+        "builtin:cornell --timing fast",
+        "builtin:cornell --bogus 1",
+        "builtin:cornell --graph no_such_graph.json",
+        "builtin:cornell --set final.tonemap=filmic",
+        "builtin:cornell --set gather.cones=99",
+        "builtin:cornell --set nosuchpass.x=1",
+        "builtin:cornell --plugin /nonexistent/plugin.so",
+        "builtin:cornell --keys tab,bogus",
+        "builtin:cornell --keys tab,",
+        "builtin:cornell --keys ''",
+        "builtin:cornell --keys shift+",
+        "builtin:cornell --keys shift+x",
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++)
+        if (run_demo(cases[i]) != 2)
+            fail_msg("conegraph-demo %s: expected exit 2", cases[i]);
+    /* Good input without a display fails while running: 1, not 2. */
+    assert_int_equal(run_demo("builtin:cornell --graph direct.json --size 32x32 --frames 1"), 1);
+}
+
+int
+main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_step_int),
+        cmocka_unit_test(test_step_float),
+        cmocka_unit_test(test_step_bool_enum_string),
+        cmocka_unit_test(test_format),
+        cmocka_unit_test(test_selection),
+        cmocka_unit_test(test_adjust),
+        cmocka_unit_test(test_every_table_steps_validly),
+        cmocka_unit_test(test_camera),
+        cmocka_unit_test(test_bad_input),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,287 @@
+/* conegraph-demo in a window, as a user runs it with --frames: exit 0 (the demo exits 1
+ * on any GL error the context counts), a screenshot of what the window shows that is
+ * finite, not black, and the same image `conegraph render` writes for the same scene,
+ * graph and size (so the blit is the right way up and nothing is lost on the way).
+ * Needs an X display: .ci/test runs the suite under xvfb-run; without one the program
+ * reports SKIP. $CONEGRAPH_DEMO_EXE and $CONEGRAPH_EXE name the executables; the argument
+ * is tests/plugin/demo_test_plugin.so. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+
+#include "cg/image.h"
+#include "test_support.h"
+
+static int
+run(const char *exe_var, const char *args, const char *stdout_path)
+{
+    const char *exe = getenv(exe_var);
+    if (!exe)
+        fail_msg("%s is not set", exe_var);
+    char cmd[8192];
+    snprintf(cmd, sizeof cmd, "'%s' %s >'%s' 2>&1", exe, args, stdout_path ? stdout_path : "/dev/null");
+    int status = system(cmd);
+    if (status == -1 || !WIFEXITED(status))
+        fail_msg("could not run: %s", cmd);
+    if (WEXITSTATUS(status) && stdout_path) {
+        /* Show what the program said, for the log. */
+        char show[4200];
+        snprintf(show, sizeof show, "cat '%s' >&2", stdout_path);
+        if (system(show) == -1)
+            fail_msg("could not show %s", stdout_path);
+    }
+    return WEXITSTATUS(status);
+}
+
+static const char *
+tmp(const char *name)
+{
+    static char paths[8][4096];
+    static int next;
+    char *p = paths[next++ % 8];
+    snprintf(p, 4096, "%s/%s", cg_test_tmpdir(), name);
+    return p;
+}
+
+/* Mean of RGB; fails on a non-finite or negative pixel or a wrong size. */
+static double
+check_image(const cg_image *img, int w, int h)
+{
+    assert_int_equal(img->width, w);
+    assert_int_equal(img->height, h);
+    double sum = 0;
+    for (size_t i = 0; i < (size_t)w * (size_t)h; i++)
+        for (int c = 0; c < 3; c++) {
+            float v = img->rgba[4 * i + c];
+            if (!isfinite(v) || v < 0)
+                fail_msg("pixel %zu channel %d is %g", i, c, (double)v);
+            sum += v;
+        }
+    return sum / (3.0 * w * h);
+}
+
+static char *
+read_text(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    assert_non_null(f);
+    static char buf[1 << 16];
+    size_t n = fread(buf, 1, sizeof buf - 1, f);
+    buf[n] = '\0';
+    fclose(f);
+    return buf;
+}
+
+/* Largest difference between two images of the same size, in 8-bit sRGB levels. */
+static int
+max_level_difference(const char *path_a, const char *path_b)
+{
+    cg_error err = { 0 };
+    cg_image a = { 0 }, b = { 0 };
+    assert_cg_ok(cg_image_read(path_a, &a, &err), &err);
+    assert_cg_ok(cg_image_read(path_b, &b, &err), &err);
+    assert_int_equal(a.width, b.width);
+    assert_int_equal(a.height, b.height);
+    int worst = 0;
+    for (size_t i = 0; i < (size_t)a.width * (size_t)a.height * 4; i++) {
+        if (i % 4 == 3)
+            continue;
+        int d = abs((int)lroundf(cg_srgb_encode(a.rgba[i]) * 255.0f) -
+                    (int)lroundf(cg_srgb_encode(b.rgba[i]) * 255.0f));
+        worst = d > worst ? d : worst;
+    }
+    cg_image_free(&a);
+    cg_image_free(&b);
+    return worst;
+}
+
+static void
+test_direct_matches_render(void **state)
+{
+    (void)state;
+    cg_error err = { 0 };
+    const char *shot = tmp("demo.png"), *ref = tmp("render.png"), *log = tmp("demo.txt");
+    char args[8192];
+    snprintf(args, sizeof args,
+             "builtin:cornell --graph direct.json --size 64x64 --frames 3 --screenshot '%s'", shot);
+    assert_int_equal(run("CONEGRAPH_DEMO_EXE", args, log), 0);
+    snprintf(args, sizeof args, "render builtin:cornell --graph direct.json --size 64x64 -o '%s'", ref);
+    assert_int_equal(run("CONEGRAPH_EXE", args, NULL), 0);
+
+    cg_image a = { 0 }, b = { 0 };
+    assert_cg_ok(cg_image_read(shot, &a, &err), &err);
+    assert_cg_ok(cg_image_read(ref, &b, &err), &err);
+    double mean = check_image(&a, 64, 64);
+    check_image(&b, 64, 64);
+    assert_true(mean > 0.01);
+    cg_image_free(&a);
+    cg_image_free(&b);
+    /* Both are 8-bit sRGB: compare the stored levels. */
+    int worst = max_level_difference(shot, ref);
+    if (worst > 1)
+        fail_msg("the demo's screenshot differs from `conegraph render` by %d levels", worst);
+
+    /* stdout: the selected parameter, per-pass times, the report and the median. */
+    const char *out = read_text(log);
+    assert_non_null(strstr(out, "param: shadow.light = -1"));
+    assert_non_null(strstr(out, "| direct "));
+    assert_non_null(strstr(out, "| final "));
+    assert_non_null(strstr(out, "median frame"));
+}
+
+/* The VCT graph with a --set, at a size that is not square: runs clean, shows light,
+ * reports the GI memory of its volume, and steps the cone count over the values the pass
+ * refuses. */
+static void
+test_vct_runs(void **state)
+{
+    (void)state;
+    cg_error err = { 0 };
+    const char *shot = tmp("vct.png"), *log = tmp("vct.txt");
+    char args[8192];
+    snprintf(args, sizeof args,
+             "builtin:cornell --graph vct.json --set vox.resolution=32 --size 48x32 --frames 3 "
+             "--timing sync --keys shift+tab,shift+tab,right --screenshot '%s'", shot);
+    assert_int_equal(run("CONEGRAPH_DEMO_EXE", args, log), 0);
+    cg_image a = { 0 };
+    assert_cg_ok(cg_image_read(shot, &a, &err), &err);
+    assert_true(check_image(&a, 48, 32) > 0.01);
+    cg_image_free(&a);
+    const char *out = read_text(log);
+    assert_non_null(strstr(out, "| gather "));
+    /* Shift+Tab twice from the first pass: gather (final, then gather). Right from 6 cones
+     * steps past 7 and 8, which the pass refuses, to 9. */
+    assert_non_null(strstr(out, "param: gather.cones = 9 "));
+    assert_null(strstr(out, "gather.cones = 7"));
+    const char *gi = strstr(out, "| GI ");
+    assert_non_null(gi);
+    /* 32^3 RGBA16F with mips is about 0.3 MiB. */
+    assert_true(atof(gi + 5) > 0.1);
+}
+
+static double
+mean_of(const char *path)
+{
+    cg_error err = { 0 };
+    cg_image img = { 0 };
+    assert_cg_ok(cg_image_read(path, &img, &err), &err);
+    double mean = check_image(&img, img.width, img.height);
+    cg_image_free(&img);
+    return mean;
+}
+
+/* Keys typed through --keys take the same path as the window's: Shift+Tab from the first
+ * pass wraps to the last (final, composite), whose first parameter is exposure; two steps
+ * of Right raise it by 1 EV, recompile, and the image brightens. Key 2 shows another resource. */
+static void
+test_keys(void **state)
+{
+    (void)state;
+    const char *plain = tmp("plain.png"), *bright = tmp("bright.png"), *other = tmp("other.png");
+    const char *log = tmp("keys.txt");
+    char args[8192];
+    snprintf(args, sizeof args, "builtin:cornell --graph direct.json --size 48x32 --frames 1 --screenshot '%s'",
+             plain);
+    assert_int_equal(run("CONEGRAPH_DEMO_EXE", args, NULL), 0);
+    snprintf(args, sizeof args, "builtin:cornell --graph direct.json --size 48x32 --frames 4 "
+             "--keys shift+tab,right,right --screenshot '%s'", bright);
+    assert_int_equal(run("CONEGRAPH_DEMO_EXE", args, log), 0);
+    const char *out = read_text(log);
+    assert_non_null(strstr(out, "param: final.exposure = 0.5 (float -20..20, step 0.5)"));
+    assert_non_null(strstr(out, "param: final.exposure = 1 (float -20..20, step 0.5)"));
+    assert_non_null(strstr(out, "graph: compiled and prepared for 48x32"));
+    double m0 = mean_of(plain), m1 = mean_of(bright);
+    if (!(m1 > m0 * 1.3))
+        fail_msg("+1 EV: mean %g, before %g", m1, m0);
+
+    /* Scripted flight: held for a fixed 0.25 s each, so the same distance on any machine.
+     * Forward twice and right at 4x speed changes the view; R brings back the scene's. */
+    const char *flown = tmp("flown.png"), *back = tmp("back.png");
+    snprintf(args, sizeof args, "builtin:cornell --graph direct.json --size 48x32 --frames 3 "
+             "--keys shift+w,shift+w,shift+d --screenshot '%s'", flown);
+    assert_int_equal(run("CONEGRAPH_DEMO_EXE", args, NULL), 0);
+    int moved = max_level_difference(plain, flown);
+    if (moved < 40)
+        fail_msg("flying forward and right changed the image by %d levels at most", moved);
+    snprintf(args, sizeof args, "builtin:cornell --graph direct.json --size 48x32 --frames 4 "
+             "--keys shift+w,shift+w,shift+d,r --screenshot '%s'", back);
+    assert_int_equal(run("CONEGRAPH_DEMO_EXE", args, log), 0);
+    assert_non_null(strstr(read_text(log), "camera: reset to the scene's view"));
+    assert_true(max_level_difference(plain, back) <= 1);
+
+    snprintf(args, sizeof args, "builtin:cornell --graph direct.json --size 48x32 --frames 2 "
+             "--keys 2 --screenshot '%s'", other);
+    assert_int_equal(run("CONEGRAPH_DEMO_EXE", args, log), 0);
+    assert_non_null(strstr(read_text(log), "show: 2 "));
+    assert_true(fabs(mean_of(other) - m0) > 0.01);
+}
+
+static const char *plugin_path;
+
+static const char *
+write_fill_graph(const char *name, int error_frame)
+{
+    char json[512];
+    snprintf(json, sizeof json,
+             "{ \"version\": 1, \"passes\": { \"fill\": { \"type\": \"demo_test_fill\", "
+             "\"params\": { \"error_frame\": %d } } }, \"outputs\": [ \"fill.ldr\" ] }", error_frame);
+    return cg_test_write_file(name, json, 0);
+}
+
+/* A pass plugin fills the ldr output with known 8-bit levels: the window shows exactly those
+ * (the blit copies bytes: no sRGB conversion, no filtering), and a GL error the pass provokes
+ * on frame 2 stops the demo there with exit 1. */
+static void
+test_plugin_levels_and_gl_error(void **state)
+{
+    (void)state;
+    cg_error err = { 0 };
+    const char *shot = tmp("fill.png"), *log = tmp("fill.txt");
+    char args[8192];
+    snprintf(args, sizeof args, "builtin:cornell --plugin '%s' --graph '%s' --size 40x24 --frames 3 "
+             "--screenshot '%s'", plugin_path, write_fill_graph("fill.json", -1), shot);
+    assert_int_equal(run("CONEGRAPH_DEMO_EXE", args, log), 0);
+    cg_image img = { 0 };
+    assert_cg_ok(cg_image_read(shot, &img, &err), &err);
+    check_image(&img, 40, 24);
+    const int want[3] = { 200, 100, 50 };
+    for (size_t i = 0; i < 40 * 24; i++)
+        for (int c = 0; c < 3; c++) {
+            int level = (int)lroundf(cg_srgb_encode(img.rgba[4 * i + c]) * 255.0f);
+            if (abs(level - want[c]) > 1)
+                fail_msg("pixel %zu channel %d: level %d, the pass stored %d", i, c, level, want[c]);
+        }
+    cg_image_free(&img);
+
+    const char *broken = tmp("broken.png");
+    snprintf(args, sizeof args, "builtin:cornell --plugin '%s' --graph '%s' --size 40x24 --frames 5 "
+             "--screenshot '%s'", plugin_path, write_fill_graph("error.json", 2), broken);
+    assert_int_equal(run("CONEGRAPH_DEMO_EXE", args, log), 1);
+    assert_non_null(strstr(read_text(log), "GL error(s) in frame 3"));
+    FILE *f = fopen(broken, "rb");
+    if (f)
+        fclose(f);
+    assert_null(f); /* stopped before the last frame's screenshot */
+}
+
+int
+main(int argc, char **argv)
+{
+    if (argc != 2) {
+        fprintf(stderr, "usage: %s DEMO_TEST_PLUGIN.so\n", argv[0]);
+        return 2;
+    }
+    plugin_path = argv[1];
+    const char *display = getenv("DISPLAY");
+    if (!display || !*display)
+        return cg_test_skip_program("no DISPLAY for the demo window (.ci/test runs it under xvfb-run)");
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_direct_matches_render),
+        cmocka_unit_test(test_vct_runs),
+        cmocka_unit_test(test_keys),
+        cmocka_unit_test(test_plugin_levels_and_gl_error),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
