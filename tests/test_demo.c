@@ -238,8 +238,9 @@ test_adjust(void **state)
     select_param(graph, &sel, "gather", "step");
     for (int i = 0; i < 3; i++)
         assert_cg_ok(demo_adjust(graph, &sel, 1, &changed, previous, sizeof previous, &err), &err);
-    assert_float_equal(fg_param_float(fg_graph_find_pass(graph, "gather"), "step"), 0.4f, 1e-6);
-    assert_string_equal(previous, "0.349999994");
+    /* vct.json's step is 0.5: three steps of 0.05 up. */
+    assert_float_equal(fg_param_float(fg_graph_find_pass(graph, "gather"), "step"), 0.65f, 1e-6);
+    assert_string_equal(previous, "0.600000024");
     fg_graph_destroy(graph);
     fg_registry_destroy(registry);
 }
