@@ -10,12 +10,8 @@
 #include "cg/gpu_scene.h"
 #include "cg/shader.h"
 
-#define SHADOW_BLOCK_BYTES 192
-
 typedef struct direct_state {
     GLuint program;
-    GLuint no_shadow_block;     /* light index -1: every light unshadowed */
-    GLuint no_shadow_map;       /* 1x1 depth texture bound when the input is absent */
 } direct_state;
 
 static bool
@@ -38,10 +34,10 @@ direct_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
         return cg_fail(err, CG_ERR_GRAPH_INCOMPATIBLE,
                        "pass '%s': input 'shadow' must be a GL_DEPTH_COMPONENT32F shadow map",
                        fg_pass_name(pass));
-    if (matrix && matrix->buffer_bytes < SHADOW_BLOCK_BYTES)
+    if (matrix && matrix->buffer_bytes < CG_SHADOW_BLOCK_BYTES)
         return cg_fail(err, CG_ERR_GRAPH_INCOMPATIBLE,
                        "pass '%s': input 'shadow_matrix' holds %zu bytes; a shadow_map 'matrix' "
-                       "holds %d", fg_pass_name(pass), matrix->buffer_bytes, SHADOW_BLOCK_BYTES);
+                       "holds %d", fg_pass_name(pass), matrix->buffer_bytes, CG_SHADOW_BLOCK_BYTES);
     fg_resource_desc out = {
         .kind = FG_TEXTURE_2D, .format = GL_RGBA16F,
         .width = position ? position->width : frame->width,
@@ -63,15 +59,6 @@ direct_prepare(fg_pass *pass, void **state, cg_error *err)
         free(st);
         return false;
     }
-    float block[SHADOW_BLOCK_BYTES / 4];
-    memset(block, 0, sizeof block);
-    block[36] = -1.0f; /* frustum.x (after two mat4 and params): light index -1 */
-    glCreateBuffers(1, &st->no_shadow_block);
-    glNamedBufferStorage(st->no_shadow_block, sizeof block, block, 0);
-    glCreateTextures(GL_TEXTURE_2D, 1, &st->no_shadow_map);
-    glTextureStorage2D(st->no_shadow_map, 1, GL_DEPTH_COMPONENT32F, 1, 1);
-    const float far_depth = 1.0f;
-    glClearTexImage(st->no_shadow_map, 0, GL_DEPTH_COMPONENT, GL_FLOAT, &far_depth);
     *state = st;
     return true;
 }
@@ -83,16 +70,13 @@ direct_execute(fg_pass *pass, void *state, cg_error *err)
     direct_state *st = state;
     const fg_frame *frame = fg_pass_frame(pass);
     const fg_resource_desc *out = fg_resource(pass, "radiance");
-    bool shadowed = fg_input_present(pass, "shadow");
 
     glUseProgram(st->program);
     cg_gpu_scene_bind_lights(frame->gpu_scene);
-    glBindBufferBase(GL_UNIFORM_BUFFER, CG_BINDING_SHADOW,
-                     shadowed ? fg_buffer(pass, "shadow_matrix") : st->no_shadow_block);
+    cg_gpu_scene_bind_shadow(frame->gpu_scene, fg_texture(pass, "shadow"), fg_buffer(pass, "shadow_matrix"), 5);
     glBindTextureUnit(2, fg_texture(pass, "position"));
     glBindTextureUnit(3, fg_texture(pass, "normal"));
     glBindTextureUnit(4, fg_texture(pass, "albedo"));
-    glBindTextureUnit(5, shadowed ? fg_texture(pass, "shadow") : st->no_shadow_map);
     glBindImageTexture(0, fg_texture(pass, "radiance"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glDispatchCompute((GLuint)(out->width + 7) / 8, (GLuint)(out->height + 7) / 8, 1);
     glUseProgram(0);
@@ -106,8 +90,6 @@ direct_destroy(void *state)
     if (!st)
         return;
     glDeleteProgram(st->program);
-    glDeleteBuffers(1, &st->no_shadow_block);
-    glDeleteTextures(1, &st->no_shadow_map);
     free(st);
 }
 

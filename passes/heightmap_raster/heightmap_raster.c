@@ -26,7 +26,6 @@
 #include "cg/gpu_scene.h"
 #include "cg/shader.h"
 
-#define SHADOW_BLOCK_BYTES 192
 #define REGION_BYTES 48
 
 enum { FORMAT_RGBA16F, FORMAT_RGBA32F };
@@ -41,8 +40,6 @@ static const fg_param_desc heightmap_params[] = {
 typedef struct heightmap_state {
     GLuint program;
     GLuint fbo;
-    GLuint no_shadow_block;
-    GLuint no_shadow_map;
 } heightmap_state;
 
 typedef struct heightmap_region {
@@ -112,10 +109,10 @@ heightmap_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
     if (shadow && shadow->format != GL_DEPTH_COMPONENT32F)
         return cg_fail(err, CG_ERR_GRAPH_INCOMPATIBLE,
                        "pass '%s': input 'shadow' must be a GL_DEPTH_COMPONENT32F shadow map", fg_pass_name(pass));
-    if (matrix && matrix->buffer_bytes < SHADOW_BLOCK_BYTES)
+    if (matrix && matrix->buffer_bytes < CG_SHADOW_BLOCK_BYTES)
         return cg_fail(err, CG_ERR_GRAPH_INCOMPATIBLE,
                        "pass '%s': input 'shadow_matrix' holds %zu bytes, a shadow_map 'matrix' %d",
-                       fg_pass_name(pass), matrix->buffer_bytes, SHADOW_BLOCK_BYTES);
+                       fg_pass_name(pass), matrix->buffer_bytes, CG_SHADOW_BLOCK_BYTES);
     heightmap_region region;
     if (!heightfield_bounds(frame->scene, &region)) {
         fg_declare_nothing_to_do(decl, "the scene has no height-field mesh (with area seen from above)");
@@ -151,15 +148,6 @@ heightmap_prepare(fg_pass *pass, void **state, cg_error *err)
         return false;
     }
     glCreateFramebuffers(1, &s->fbo);
-    float block[SHADOW_BLOCK_BYTES / 4];
-    memset(block, 0, sizeof block);
-    block[36] = -1.0f; /* CgShadow.cg_shadow_frustum.x: light index -1, no light is shadowed */
-    glCreateBuffers(1, &s->no_shadow_block);
-    glNamedBufferStorage(s->no_shadow_block, sizeof block, block, 0);
-    glCreateTextures(GL_TEXTURE_2D, 1, &s->no_shadow_map);
-    glTextureStorage2D(s->no_shadow_map, 1, GL_DEPTH_COMPONENT32F, 1, 1);
-    const float far_depth = 1.0f;
-    glClearTexImage(s->no_shadow_map, 0, GL_DEPTH_COMPONENT, GL_FLOAT, &far_depth);
     *state = s;
     return true;
 }
@@ -205,15 +193,12 @@ heightmap_execute(fg_pass *pass, void *state, cg_error *err)
     glDisable(GL_CULL_FACE);
     glDisable(GL_BLEND);
 
-    bool shadowed = fg_input_present(pass, "shadow");
     glUseProgram(s->program);
     glUniform4f(8, (float)region.lo[0], (float)region.lo[2], (float)(1.0 / (region.hi[0] - region.lo[0])),
                 (float)(1.0 / (region.hi[2] - region.lo[2])));
     glUniform2f(9, (float)top, (float)(1.0 / range));
     cg_gpu_scene_bind_lights(frame->gpu_scene);
-    glBindBufferBase(GL_UNIFORM_BUFFER, CG_BINDING_SHADOW,
-                     shadowed ? fg_buffer(pass, "shadow_matrix") : s->no_shadow_block);
-    glBindTextureUnit(2, shadowed ? fg_texture(pass, "shadow") : s->no_shadow_map);
+    cg_gpu_scene_bind_shadow(frame->gpu_scene, fg_texture(pass, "shadow"), fg_buffer(pass, "shadow_matrix"), 2);
     cg_gpu_scene_draw(frame->gpu_scene, CG_MESHES_HEIGHTFIELD);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
@@ -238,8 +223,6 @@ heightmap_destroy(void *state)
         return;
     glDeleteProgram(s->program);
     glDeleteFramebuffers(1, &s->fbo);
-    glDeleteBuffers(1, &s->no_shadow_block);
-    glDeleteTextures(1, &s->no_shadow_map);
     free(s);
 }
 

@@ -45,7 +45,7 @@ typedef struct shadow_block {
     float texel[4];     /* xy: texel world size along light x and y, or per metre of distance */
 } shadow_block;
 
-_Static_assert(sizeof(shadow_block) == 192, "CgShadow is 192 bytes in std140");
+_Static_assert(sizeof(shadow_block) == CG_SHADOW_BLOCK_BYTES, "CgShadow is 192 bytes in std140");
 
 typedef struct shadow_state {
     GLuint program;

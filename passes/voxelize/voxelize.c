@@ -23,7 +23,6 @@
 #include "cg/gpu_scene.h"
 #include "cg/shader.h"
 
-#define SHADOW_BLOCK_BYTES 192
 #define REGION_BYTES 32
 /* Fragments of the brightest radiance that one voxel can sum without overflowing 32 bits. */
 #define FRAGMENT_HEADROOM 1024.0
@@ -59,8 +58,6 @@ typedef struct voxelize_state {
     GLuint find_max;        /* RGBA8 only: the largest radiance, for the stored scale */
     GLuint max_buffer;
     GLuint fbo;
-    GLuint no_shadow_block;
-    GLuint no_shadow_map;
     GLenum format;
     /* Nearest-surface distance per point/spot light, recomputed when a light moves. */
     float *light_positions;
@@ -186,10 +183,10 @@ voxelize_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
     if (shadow && shadow->format != GL_DEPTH_COMPONENT32F)
         return cg_fail(err, CG_ERR_GRAPH_INCOMPATIBLE,
                        "pass '%s': input 'shadow' must be a GL_DEPTH_COMPONENT32F shadow map", fg_pass_name(pass));
-    if (matrix && matrix->buffer_bytes < SHADOW_BLOCK_BYTES)
+    if (matrix && matrix->buffer_bytes < CG_SHADOW_BLOCK_BYTES)
         return cg_fail(err, CG_ERR_GRAPH_INCOMPATIBLE,
                        "pass '%s': input 'shadow_matrix' holds %zu bytes, a shadow_map 'matrix' %d",
-                       fg_pass_name(pass), matrix->buffer_bytes, SHADOW_BLOCK_BYTES);
+                       fg_pass_name(pass), matrix->buffer_bytes, CG_SHADOW_BLOCK_BYTES);
 
     voxel_region region;
     bool has = false;
@@ -240,15 +237,6 @@ voxelize_prepare(fg_pass *pass, void **state, cg_error *err)
     glCreateBuffers(1, &s->max_buffer);
     glNamedBufferStorage(s->max_buffer, sizeof(GLuint), NULL, GL_DYNAMIC_STORAGE_BIT);
     glCreateFramebuffers(1, &s->fbo);
-    float block[SHADOW_BLOCK_BYTES / 4];
-    memset(block, 0, sizeof block);
-    block[36] = -1.0f; /* CgShadow.cg_shadow_frustum.x: light index -1, no light is shadowed */
-    glCreateBuffers(1, &s->no_shadow_block);
-    glNamedBufferStorage(s->no_shadow_block, sizeof block, block, 0);
-    glCreateTextures(GL_TEXTURE_2D, 1, &s->no_shadow_map);
-    glTextureStorage2D(s->no_shadow_map, 1, GL_DEPTH_COMPONENT32F, 1, 1);
-    const float far_depth = 1.0f;
-    glClearTexImage(s->no_shadow_map, 0, GL_DEPTH_COMPONENT, GL_FLOAT, &far_depth);
     *state = s;
     return true;
 }
@@ -402,7 +390,6 @@ voxelize_execute(fg_pass *pass, void *state, cg_error *err)
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_CULL_FACE);
 
-    bool shadowed = fg_input_present(pass, "shadow");
     glUseProgram(s->program);
     glUniform4f(8, (float)region.origin[0], (float)region.origin[1], (float)region.origin[2],
                 (float)region.voxel);
@@ -410,9 +397,7 @@ voxelize_execute(fg_pass *pass, void *state, cg_error *err)
     glUniform1f(10, (float)fixed_scale);
     glUniform1i(12, fg_param_bool(pass, "conservative") ? 1 : 0);
     cg_gpu_scene_bind_lights(frame->gpu_scene);
-    glBindBufferBase(GL_UNIFORM_BUFFER, CG_BINDING_SHADOW,
-                     shadowed ? fg_buffer(pass, "shadow_matrix") : s->no_shadow_block);
-    glBindTextureUnit(2, shadowed ? fg_texture(pass, "shadow") : s->no_shadow_map);
+    cg_gpu_scene_bind_shadow(frame->gpu_scene, fg_texture(pass, "shadow"), fg_buffer(pass, "shadow_matrix"), 2);
     glBindImageTexture(0, accum, 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
     cg_gpu_scene_draw(frame->gpu_scene, filter);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
@@ -465,8 +450,6 @@ voxelize_destroy(void *state)
     glDeleteProgram(s->find_max);
     glDeleteBuffers(1, &s->max_buffer);
     glDeleteFramebuffers(1, &s->fbo);
-    glDeleteBuffers(1, &s->no_shadow_block);
-    glDeleteTextures(1, &s->no_shadow_map);
     free(s->light_positions);
     free(s->light_nearest);
     free(s);

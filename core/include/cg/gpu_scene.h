@@ -2,7 +2,8 @@
  *
  * Declares: cg_gpu_scene, cg_gpu_scene_upload, cg_gpu_scene_destroy, cg_gpu_scene_draw,
  *           cg_mesh_filter, CG_BINDING_MATERIALS, CG_BINDING_LIGHTS, CG_BINDING_SHADOW,
- *           cg_gpu_scene_bind_lights, cg_gpu_scene_update_lights.
+ *           cg_gpu_scene_bind_lights, cg_gpu_scene_update_lights, CG_SHADOW_BLOCK_BYTES,
+ *           cg_gpu_scene_bind_shadow.
  *
  * Shader interface (shaders/common/scene.glsl): vertex attributes 0 = position,
  * 1 = normal, 2 = texcoord; uniform location 0 = mat4 model, 1 = mat3 normal matrix,
@@ -30,6 +31,9 @@
 #define CG_BINDING_LIGHTS 1     /* SSBO */
 #define CG_BINDING_SHADOW 2     /* UBO */
 
+/* The std140 block CgShadow of shaders/common/shadow.glsl (written by the shadow_map pass). */
+#define CG_SHADOW_BLOCK_BYTES 192
+
 typedef enum cg_mesh_filter {
     CG_MESHES_ALL,
     CG_MESHES_COMPLEX,      /* everything but height fields */
@@ -51,6 +55,8 @@ typedef struct cg_gpu_scene {
     GLuint *textures;       /* one per cg_scene texture */
     GLuint white_texture;
     GLuint light_buffer;    /* SSBO, header + std430 array of struct CgLight in lights.glsl */
+    GLuint no_shadow_block; /* CgShadow with light index -1: no light is shadowed */
+    GLuint no_shadow_map;   /* 1x1 depth texture at the far plane */
     size_t bytes;           /* GPU memory held by the buffers and textures */
 } cg_gpu_scene;
 
@@ -67,6 +73,12 @@ void cg_gpu_scene_bind_lights(const cg_gpu_scene *gpu);
 /* Re-uploads the lights from gpu->scene (same light count as at upload), e.g. after the
  * demo moved the sun. Fails with CG_ERR_USAGE when the count changed. */
 bool cg_gpu_scene_update_lights(cg_gpu_scene *gpu, cg_error *err);
+
+/* Binds a shadow map at `texture_unit` and its CgShadow block at CG_BINDING_SHADOW for
+ * shaders/common/shadow.glsl; with shadow_map 0 (an absent optional input) binds a block
+ * that shadows no light, so one shader serves both cases. */
+void cg_gpu_scene_bind_shadow(const cg_gpu_scene *gpu, GLuint shadow_map, GLuint shadow_block,
+                              GLuint texture_unit);
 
 /* True when some mesh passes the filter ("model only what a scene requires"). */
 bool cg_gpu_scene_has(const cg_gpu_scene *gpu, cg_mesh_filter filter);
