@@ -386,6 +386,74 @@ test_no_self_illumination(void **state)
     }
 }
 
+/* The shadow cone (VCT paper 3.2.3): a sunlit ground half under an opaque plate. Ground
+ * pixels well under the plate see the plate towards the sun (visibility near 0), ground in the
+ * open and the plate's own top see nothing (visibility near 1: the plate's top must not be
+ * shadowed by its own voxels, which the samples are kept off as for the diffuse cones). */
+static const char shadow_graph[] =
+    "{ \"version\": 1, \"passes\": {"
+    " \"gbuf\": { \"type\": \"gbuffer\" },"
+    " \"vox\": { \"type\": \"voxelize\", \"params\": { \"resolution\": 64 } },"
+    " \"mip\": { \"type\": \"mip3d\", \"inputs\": { \"volume\": \"vox.radiance\" } },"
+    " \"gather\": { \"type\": \"cone_gather\", \"params\": { \"shadow_cone\": true, \"shadow_light\": 0 },"
+    "   \"inputs\": { \"position\": \"gbuf\", \"normal\": \"gbuf\", \"volume\": \"mip.volume\", \"region\": \"vox.region\" } } },"
+    " \"outputs\": [ \"gather.visibility\", \"gbuf.position\" ] }";
+
+static void
+test_shadow_cone(void **state)
+{
+    cg_context *ctx = cg_test_gl_context(state);
+    hf_scene s;
+    hf_init(&s);
+    hf_material(&s, 1, 0.5f, 0.0f);
+    hf_material(&s, 2, 0.5f, 0.0f);
+    hf_grid(&s, 8, -50.0, -50.0, 100.0, flat, NULL);
+    /* The plate over x in [-40, 0], 10 m up, facing up. */
+    const double corner[3] = {-40, 10, 40}, e1[3] = {40, 0, 0}, e2[3] = {0, 0, -80};
+    hf_quad(&s, corner, e1, e2);
+    const double down[3] = {0.05, -1, 0.02};
+    hf_sun(&s, down, 3.0f);
+    /* Low, from the open side: under the plate's edge to the shadowed ground, and over its top. */
+    const double eye[3] = {60, 15, 0}, forward[3] = {-1, -0.18, 0}, north[3] = {0, 1, 0};
+    hf_camera_looking(&s, eye, forward, north, 0.9f);
+    hf_finish(&s);
+    vf_runner r;
+    vf_start(&r, &s.scene, 48, 48, shadow_graph, NULL);
+    vf_frame(&r);
+    int w = 0, h = 0;
+    float *vis = read_2d(&r, "gather.visibility", &w, &h);
+    float *pos = read_2d(&r, "gbuf.position", &w, &h);
+    double sum[3] = {0, 0, 0}, worst[3] = {0, 1, 1};
+    int count[3] = {0, 0, 0};
+    for (int i = 0; i < w * h; i++) {
+        const float *p = &pos[4 * i];
+        if (p[3] <= 0.0f || fabsf(p[2]) > 30.0f)
+            continue;
+        double v = vis[4 * i];
+        assert_true(isfinite(v));
+        /* 0: ground under the plate, 1: ground in the open, 2: the plate's top. */
+        int k = p[1] > 5.0f ? 2 : p[0] < -10.0f && p[0] > -30.0f ? 0 : p[0] > 10.0f ? 1 : -1;
+        if (k < 0)
+            continue;
+        sum[k] += v;
+        count[k]++;
+        worst[k] = k == 0 ? fmax(worst[k], v) : fmin(worst[k], v);
+    }
+    fprintf(stderr, "# shadow cone: under the plate mean %.3f (largest %.3f), open ground mean %.3f (smallest %.3f), "
+            "plate top mean %.3f (smallest %.3f); %d, %d, %d pixels\n", sum[0] / count[0], worst[0],
+            sum[1] / count[1], worst[1], sum[2] / count[2], worst[2], count[0], count[1], count[2]);
+    assert_true(count[0] > 20 && count[1] > 20 && count[2] > 20);
+    if (worst[0] > 0.1)
+        fail_msg("a ground pixel under the plate has visibility %.3f", worst[0]);
+    if (worst[1] < 0.9 || worst[2] < 0.9)
+        fail_msg("an unshadowed pixel has visibility %.3f (ground) / %.3f (plate)", worst[1], worst[2]);
+    free(vis);
+    free(pos);
+    assert_no_gl_errors(ctx);
+    vf_stop(&r);
+    hf_free(&s);
+}
+
 /* The furnace's walls have normals along all six axes; a 150-degree aperture sends the
  * outer cones below the surface (grazing); an explicit region far from the geometry gives
  * an empty volume; a single triangle gives a nearly empty one. All must stay finite. */
@@ -451,6 +519,7 @@ main(void)
         cmocka_unit_test(test_white_furnace),
         cmocka_unit_test(test_step_independence),
         cmocka_unit_test(test_no_self_illumination),
+        cmocka_unit_test(test_shadow_cone),
         cmocka_unit_test(test_finite_everywhere),
     };
     return cmocka_run_group_tests(tests, cg_test_gl_setup, cg_test_gl_teardown);
