@@ -10,20 +10,11 @@
 #include "cg/image.h"
 #include "test_support.h"
 
+/* Runs conegraph with `args`; returns the exit code. */
 static int
 run(const char *args, char *out, size_t size)
 {
-    const char *exe = getenv("CONEGRAPH_EXE");
-    assert_non_null(exe);
-    char cmd[8192];
-    snprintf(cmd, sizeof cmd, "'%s' %s 2>&1", exe, args);
-    FILE *p = popen(cmd, "r");
-    assert_non_null(p);
-    size_t n = fread(out, 1, size - 1, p);
-    out[n] = '\0';
-    int status = pclose(p);
-    assert_true(WIFEXITED(status));
-    return WEXITSTATUS(status);
+    return cg_test_run_conegraph(args, true, out, size);
 }
 
 static int

@@ -13,21 +13,11 @@
 
 static const char *plugin_path, *direct_graph;
 
-/* Runs conegraph with `args`, stdout and stderr together in out; returns the exit code. */
+/* Runs conegraph with `args`; returns the exit code. */
 static int
 run(const char *args, char *out, size_t size)
 {
-    const char *exe = getenv("CONEGRAPH_EXE");
-    assert_non_null(exe);
-    char cmd[8192];
-    snprintf(cmd, sizeof cmd, "'%s' %s 2>&1", exe, args);
-    FILE *p = popen(cmd, "r");
-    assert_non_null(p);
-    size_t n = fread(out, 1, size - 1, p);
-    out[n] = '\0';
-    int status = pclose(p);
-    assert_true(WIFEXITED(status));
-    return WEXITSTATUS(status);
+    return cg_test_run_conegraph(args, true, out, size);
 }
 
 static char out[1 << 16];

@@ -3,6 +3,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 static char tmpdir[4096];
@@ -143,4 +144,20 @@ cg_test_skip_program(const char *reason)
     printf("1..0 # SKIP %s\n", reason);
     fflush(stdout);
     return 0;
+}
+
+int
+cg_test_run_conegraph(const char *args, bool with_stderr, char *out, size_t size)
+{
+    const char *exe = getenv("CONEGRAPH_EXE");
+    assert_non_null(exe);
+    char cmd[8192];
+    snprintf(cmd, sizeof cmd, "'%s' %s %s", exe, args, with_stderr ? "2>&1" : "2>/dev/null");
+    FILE *p = popen(cmd, "r");
+    assert_non_null(p);
+    size_t n = fread(out, 1, size - 1, p);
+    out[n] = '\0';
+    int status = pclose(p);
+    assert_true(WIFEXITED(status));
+    return WEXITSTATUS(status);
 }

@@ -28,6 +28,8 @@
 #include <stdint.h>
 #include <cmocka.h>
 
+#include <stdbool.h>
+
 #include "cg/error.h"
 #include "cg/gl.h"
 
@@ -35,6 +37,10 @@
 const char *cg_test_tmpdir(void);
 /* Writes `size` bytes (strlen when size is 0) to DIR/name and returns the full path (static storage per call slot). */
 const char *cg_test_write_file(const char *name, const void *data, size_t size);
+
+/* Runs $CONEGRAPH_EXE with `args` (shell words) and returns its exit code; its stdout, and
+ * its stderr too when with_stderr, goes to out (NUL-terminated, cut at size - 1). */
+int cg_test_run_conegraph(const char *args, bool with_stderr, char *out, size_t size);
 
 /* Fails the test with the error's message when a call did not succeed. */
 #define assert_cg_ok(call, errp)                                                          \
