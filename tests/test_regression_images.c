@@ -1,0 +1,124 @@
+/* Image regression: every graph in graphs/ on every built-in scene, rendered by the built
+ * `conegraph render` at 64x36, equals the image kept in tests/data/regression/.
+ *
+ * The kept images were rendered before a refactoring, so a change that must not alter any
+ * image (moving code into the pass SDK, say) proves it here: the comparison is bit for bit
+ * (llvmpipe is deterministic for one build; the voxelizer's atomic sums are fixed point, so
+ * the order of fragments does not matter). A change that alters images on purpose renders
+ * the new ones with CONEGRAPH_REGRESSION_UPDATE=1 (the test then writes instead of
+ * comparing) and says in its commit what changed and by how much.
+ *
+ * A graph or scene without a kept image fails: a new one is added to the set on purpose.
+ */
+#include <dirent.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cg/image.h"
+#include "cg/metrics.h"
+#include "cg/scene.h"
+#include "test_support.h"
+
+#define MAX_GRAPHS 64
+
+static int
+list_graphs(char names[MAX_GRAPHS][256])
+{
+    const char *dir = getenv("CONEGRAPH_GRAPH_DIR");
+    if (!dir)
+        fail_msg("CONEGRAPH_GRAPH_DIR is not set");
+    DIR *d = opendir(dir);
+    if (!d)
+        fail_msg("cannot open %s", dir);
+    int n = 0;
+    for (struct dirent *e; (e = readdir(d));) {
+        size_t len = strlen(e->d_name);
+        if (len > 5 && !strcmp(e->d_name + len - 5, ".json") && n < MAX_GRAPHS && len < 256)
+            snprintf(names[n++], 256, "%.*s", (int)(len - 5), e->d_name);
+    }
+    closedir(d);
+    qsort(names, (size_t)n, sizeof names[0], (int (*)(const void *, const void *))strcmp);
+    return n;
+}
+
+/* Largest |a - b| over all channels; -1 when the sizes differ. */
+static double
+max_difference(const cg_image *a, const cg_image *b)
+{
+    if (a->width != b->width || a->height != b->height)
+        return -1.0;
+    double worst = 0.0;
+    for (size_t i = 0; i < (size_t)a->width * (size_t)a->height * 4; i++) {
+        double d = fabs((double)a->rgba[i] - (double)b->rgba[i]);
+        if (isnan(d))
+            d = INFINITY;
+        worst = fmax(worst, d);
+    }
+    return worst;
+}
+
+static void
+test_every_graph_on_every_builtin_scene(void **state)
+{
+    (void)state;
+    const char *data = getenv("CONEGRAPH_TEST_DATA");
+    if (!data)
+        fail_msg("CONEGRAPH_TEST_DATA is not set");
+    const char *update = getenv("CONEGRAPH_REGRESSION_UPDATE");
+    bool updating = update && *update && strcmp(update, "0");
+    static char graphs[MAX_GRAPHS][256];
+    int graph_count = list_graphs(graphs);
+    assert_true(graph_count > 0);
+    int failures = 0;
+    for (const char *const *scene = cg_scene_builtin_names(); *scene; scene++)
+        for (int g = 0; g < graph_count; g++) {
+            static char out[1 << 16];
+            static char kept[1 << 15], fresh[1 << 15], args[1 << 17];
+            snprintf(kept, sizeof kept, "%s/regression/%s-%s.exr", data, *scene, graphs[g]);
+            snprintf(fresh, sizeof fresh, "%s/%s-%s.exr", cg_test_tmpdir(), *scene, graphs[g]);
+            snprintf(args, sizeof args, "render builtin:%s --graph %s.json --size 64x36 -o '%s'", *scene,
+                     graphs[g], updating ? kept : fresh);
+            int code = cg_test_run_conegraph(args, true, out, sizeof out);
+            if (code != 0) {
+                print_error("%s exited %d:\n%s\n", args, code, out);
+                failures++;
+                continue;
+            }
+            if (updating) {
+                print_message("# wrote %s\n", kept);
+                continue;
+            }
+            cg_image a = {0}, b = {0};
+            cg_error err = {0};
+            if (!cg_image_read(kept, &a, &err)) {
+                print_error("builtin:%s with %s.json: no kept image (%s); render it with "
+                            "CONEGRAPH_REGRESSION_UPDATE=1\n", *scene, graphs[g], err.message);
+                failures++;
+                continue;
+            }
+            assert_cg_ok(cg_image_read(fresh, &b, &err), &err);
+            double diff = max_difference(&a, &b);
+            if (diff != 0.0) {
+                cg_metrics m;
+                bool sized = cg_metrics_compute(&b, &a, &m, &err);
+                print_error("builtin:%s with %s.json differs from %s: max |difference| %g, relMSE %g, "
+                            "mean luminance ratio %.6f\n", *scene, graphs[g], kept, diff,
+                            sized ? m.rel_mse : -1.0, sized ? m.mean_luminance_ratio : -1.0);
+                failures++;
+            }
+            cg_image_free(&a);
+            cg_image_free(&b);
+        }
+    assert_int_equal(failures, 0);
+}
+
+int
+main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_every_graph_on_every_builtin_scene),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
