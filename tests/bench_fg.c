@@ -12,7 +12,7 @@
 #include <string.h>
 #include <time.h>
 
-#include "builtin.h"
+#include "sdk/builtin.h"
 #include "cg/camera.h"
 #include "cg/fg.h"
 #include "cg/gl.h"

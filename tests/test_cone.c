@@ -1,9 +1,9 @@
-/* Cone sets (cg/cone.h): weights integrate the cosine lobe to 1, each weight is its cell's
+/* Cone sets (sdk/cone.h): weights integrate the cosine lobe to 1, each weight is its cell's
  * share of the lobe (checked by an independent quadrature), directions are unit and in the
  * hemisphere, and the tangent frame is orthonormal and finite for every normal. */
 #include <math.h>
 
-#include "cg/cone.h"
+#include "sdk/cone.h"
 #include "test_support.h"
 
 static void
@@ -11,17 +11,17 @@ test_sizes(void **state)
 {
     (void)state;
     int n = 0;
-    const int *sizes = cg_cone_set_sizes(&n);
+    const int *sizes = cgp_cone_set_sizes(&n);
     assert_int_equal(n, 4);
     assert_int_equal(sizes[0], 1);
     assert_int_equal(sizes[1], 6);
     assert_int_equal(sizes[2], 9);
     assert_int_equal(sizes[3], 16);
-    cg_cone_set set;
-    assert_false(cg_cone_set_make(0, &set));
-    assert_false(cg_cone_set_make(7, &set));
-    assert_false(cg_cone_set_make(17, &set));
-    assert_false(cg_cone_set_valid_size(5));
+    cgp_cone_set set;
+    assert_false(cgp_cone_set_make(0, &set));
+    assert_false(cgp_cone_set_make(7, &set));
+    assert_false(cgp_cone_set_make(17, &set));
+    assert_false(cgp_cone_set_valid_size(5));
 }
 
 static void
@@ -29,14 +29,14 @@ test_weights_sum_to_one(void **state)
 {
     (void)state;
     int n = 0;
-    const int *sizes = cg_cone_set_sizes(&n);
+    const int *sizes = cgp_cone_set_sizes(&n);
     for (int i = 0; i < n; i++) {
-        cg_cone_set set;
-        assert_true(cg_cone_set_make(sizes[i], &set));
+        cgp_cone_set set;
+        assert_true(cgp_cone_set_make(sizes[i], &set));
         assert_int_equal(set.count, sizes[i]);
         double sum = 0.0;
         for (int k = 0; k < set.count; k++) {
-            const cg_cone *c = &set.cones[k];
+            const cgp_cone *c = &set.cones[k];
             sum += c->weight;
             assert_true(c->weight > 0.0f);
             double len = sqrt(c->direction[0] * c->direction[0] + c->direction[1] * c->direction[1] +
@@ -55,17 +55,17 @@ static void
 test_six_cone_weights(void **state)
 {
     (void)state;
-    cg_cone_set set;
-    assert_true(cg_cone_set_make(6, &set));
+    cgp_cone_set set;
+    assert_true(cgp_cone_set_make(6, &set));
     assert_float_equal(set.cones[0].weight, 0.25, 1e-6);
     for (int k = 1; k < 6; k++) {
         assert_float_equal(set.cones[k].weight, 0.15, 1e-6);
         assert_float_equal(acos(set.cones[k].direction[2]) * 180.0 / M_PI, 60.0, 1e-4);
     }
-    assert_true(cg_cone_set_make(9, &set));
+    assert_true(cgp_cone_set_make(9, &set));
     for (int k = 1; k < 9; k++)
         assert_float_equal(acos(set.cones[k].direction[2]) * 180.0 / M_PI, 45.0, 1e-4);
-    assert_true(cg_cone_set_make(16, &set));
+    assert_true(cgp_cone_set_make(16, &set));
     for (int k = 0; k < 16; k++)
         assert_float_equal(set.cones[k].weight, 1.0 / 16.0, 1e-6);
 }
@@ -78,12 +78,12 @@ test_weights_match_quadrature(void **state)
 {
     (void)state;
     int n = 0;
-    const int *sizes = cg_cone_set_sizes(&n);
+    const int *sizes = cgp_cone_set_sizes(&n);
     for (int i = 0; i < n; i++) {
-        cg_cone_set set;
-        assert_true(cg_cone_set_make(sizes[i], &set));
+        cgp_cone_set set;
+        assert_true(cgp_cone_set_make(sizes[i], &set));
         for (int k = 0; k < set.count; k++) {
-            const cg_cone *c = &set.cones[k];
+            const cgp_cone *c = &set.cones[k];
             int ring = 0;
             for (int j = 0; j < set.count; j++)
                 if (set.cones[j].cell_lo == c->cell_lo)
@@ -106,7 +106,7 @@ static void
 check_frame(const float n[3])
 {
     float t[3], b[3];
-    cg_cone_frame(n, t, b);
+    cgp_cone_frame(n, t, b);
     for (int i = 0; i < 3; i++)
         assert_true(isfinite(t[i]) && isfinite(b[i]));
     float tt = t[0] * t[0] + t[1] * t[1] + t[2] * t[2];

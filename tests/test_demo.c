@@ -9,7 +9,7 @@
 
 #include "../apps/demo/demo_camera.h"
 #include "../apps/demo/demo_params.h"
-#include "builtin.h"
+#include "sdk/builtin.h"
 #include "cg/camera.h"
 #include "cg/graphfile.h"
 #include "test_support.h"

@@ -3,7 +3,7 @@
 
 #include <stdlib.h>
 
-#include "builtin.h"
+#include "sdk/builtin.h"
 
 fg_registry *
 app_registry_create(const char *const *plugins, int plugin_count, cg_error *err)

@@ -27,7 +27,7 @@
 #include "cg/metrics.h"
 #include "cg/scene.h"
 #include "commands.h"
-#include "path_trace/pt_render.h"
+#include "cg/pt_render.h"
 #include "plot.h"
 
 #define BENCH_MAX_SCENES 16

@@ -13,7 +13,7 @@
 #include <string.h>
 
 #include "../conegraph/app_common.h"
-#include "builtin.h"
+#include "sdk/builtin.h"
 #include "cg/camera.h"
 #include "cg/error.h"
 #include "cg/gl.h"

@@ -13,7 +13,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "cg/cone.h"
+#include "sdk/cone.h"
 #include "cg/fg.h"
 #include "cg/gpu_scene.h"
 #include "cg/shader.h"
@@ -46,7 +46,7 @@ static const fg_param_desc cone_gather_params[] = {
 typedef struct cone_gather_state {
     GLuint program;
     GLuint sampler;
-    cg_cone_set set;
+    cgp_cone_set set;
     bool specular, shadow_cone, anisotropic;
 } cone_gather_state;
 
@@ -57,7 +57,7 @@ static bool
 cone_gather_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
 {
     int cones = fg_param_int(pass, "cones");
-    if (!cg_cone_set_valid_size(cones))
+    if (!cgp_cone_set_valid_size(cones))
         return cg_fail(err, CG_ERR_GRAPH_PARAM_RANGE,
                        "pass '%s': cones = %d; expected 1, 6, 9 or 16", fg_pass_name(pass), cones);
     const fg_resource_desc *position =
@@ -106,7 +106,7 @@ cone_gather_prepare(fg_pass *pass, void **state, cg_error *err)
     cone_gather_state *s = calloc(1, sizeof *s);
     if (!s)
         return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "pass '%s': out of memory", fg_pass_name(pass));
-    if (!cg_cone_set_make(fg_param_int(pass, "cones"), &s->set)) {
+    if (!cgp_cone_set_make(fg_param_int(pass, "cones"), &s->set)) {
         free(s);
         return cg_fail(err, CG_ERR_GRAPH_PARAM_RANGE, "pass '%s': no cone set of %d cones",
                        fg_pass_name(pass), fg_param_int(pass, "cones"));
@@ -151,9 +151,9 @@ cone_gather_execute(fg_pass *pass, void *state, cg_error *err)
     double aperture = fg_param_float(pass, "aperture");
 
     glUseProgram(s->program);
-    float cones[CG_CONE_MAX][4], tan_half[CG_CONE_MAX];
+    float cones[CGP_CONE_MAX][4], tan_half[CGP_CONE_MAX];
     for (int k = 0; k < s->set.count; k++) {
-        const cg_cone *c = &s->set.cones[k];
+        const cgp_cone *c = &s->set.cones[k];
         cones[k][0] = c->direction[0];
         cones[k][1] = c->direction[1];
         cones[k][2] = c->direction[2];

@@ -3,7 +3,7 @@
  *
  * A separate pass rather than a mode of cone_gather: the VCT gather stays as it is (its
  * author was still changing it), both share shaders/common/cone_trace.glsl and the cone
- * sets of core/src/cone.c, and each shader reads as one method. Without the 2D branch
+ * sets of passes/sdk/cone.c, and each shader reads as one method. Without the 2D branch
  * (a scene with no height field, where the graph culls heightmap_raster, mip2d and hsat)
  * the shader compiles without HAS_2D and runs the very VCT march of cone_gather.
  *
@@ -19,7 +19,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "cg/cone.h"
+#include "sdk/cone.h"
 #include "cg/fg.h"
 #include "cg/gpu_scene.h"
 #include "cg/shader.h"
@@ -54,7 +54,7 @@ typedef struct hybrid_gather_state {
     GLuint program;
     GLuint volume_sampler, map_sampler, table_sampler;
     GLuint empty_block;     /* bound where a map is absent, so no block is left unbound */
-    cg_cone_set set;
+    cgp_cone_set set;
     bool has_2d, has_3d;
 } hybrid_gather_state;
 
@@ -72,7 +72,7 @@ static bool
 hybrid_gather_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
 {
     int cones = fg_param_int(pass, "cones");
-    if (!cg_cone_set_valid_size(cones))
+    if (!cgp_cone_set_valid_size(cones))
         return cg_fail(err, CG_ERR_GRAPH_PARAM_RANGE,
                        "pass '%s': cones = %d; expected 1, 6, 9 or 16", fg_pass_name(pass), cones);
     const fg_resource_desc *position = fg_declare_input(decl, "position", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, true);
@@ -134,7 +134,7 @@ hybrid_gather_prepare(fg_pass *pass, void **state, cg_error *err)
     hybrid_gather_state *s = calloc(1, sizeof *s);
     if (!s)
         return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "pass '%s': out of memory", fg_pass_name(pass));
-    if (!cg_cone_set_make(fg_param_int(pass, "cones"), &s->set)) {
+    if (!cgp_cone_set_make(fg_param_int(pass, "cones"), &s->set)) {
         free(s);
         return cg_fail(err, CG_ERR_GRAPH_PARAM_RANGE, "pass '%s': no cone set of %d cones",
                        fg_pass_name(pass), fg_param_int(pass, "cones"));
@@ -183,9 +183,9 @@ hybrid_gather_execute(fg_pass *pass, void *state, cg_error *err)
     double aperture = fg_param_float(pass, "aperture");
 
     glUseProgram(s->program);
-    float cones[CG_CONE_MAX][4], tan_half[CG_CONE_MAX];
+    float cones[CGP_CONE_MAX][4], tan_half[CGP_CONE_MAX];
     for (int k = 0; k < s->set.count; k++) {
-        const cg_cone *c = &s->set.cones[k];
+        const cgp_cone *c = &s->set.cones[k];
         memcpy(cones[k], c->direction, sizeof c->direction);
         cones[k][3] = c->weight;
         tan_half[k] = (float)(aperture > 0.0 ? tan(0.5 * aperture * M_PI / 180.0) : tan(c->half_angle));

@@ -11,7 +11,7 @@
 
 #include "cg/fg.h"
 #include "cg/log.h"
-#include "pt_render.h"
+#include "cg/pt_render.h"
 
 static const fg_param_desc path_trace_params[] = {
     { "spp", FG_PARAM_INT, 64, 1, 65536, NULL, "samples per pixel" },

@@ -221,7 +221,7 @@ cg_cone_gather_diffuse(sampler3D volume, CgVolume v, vec3 origin, mat3 frame, ve
 }
 
 // Orthonormal tangent frame for a unit normal, NaN-free for every normal including the
-// axes (Duff et al. 2017); the same construction as cg_cone_frame() in core/src/cone.c.
+// axes (Duff et al. 2017); the same construction as cgp_cone_frame() in passes/sdk/cone.c.
 mat3
 cg_tangent_frame(vec3 n)
 {

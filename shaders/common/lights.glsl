@@ -14,7 +14,7 @@
 #define CG_LIGHT_POINT 1
 #define CG_LIGHT_SPOT 2
 
-// Mirrors gpu_light in core/src/gpu_scene.c (std430, 64 bytes).
+// Mirrors gpu_light in core/gl/gpu_scene.c (std430, 64 bytes).
 struct CgLight {
     vec4 position_type;     // xyz world position, w = type
     vec4 direction_range;   // xyz unit direction the light travels, w = range (0 = infinite)

@@ -8,7 +8,7 @@
 #ifndef CG_SCENE_GLSL
 #define CG_SCENE_GLSL
 
-// Mirrors gpu_material in core/src/gpu_scene.c (std430, 64 bytes).
+// Mirrors gpu_material in core/gl/gpu_scene.c (std430, 64 bytes).
 struct CgMaterial {
     vec4 base_color;    // linear RGBA factor
     vec4 emissive;      // rgb = emissive factor x KHR_materials_emissive_strength

@@ -4,7 +4,7 @@
 // gathers front to back through the mipped lightmap, and the output is
 //     sum_k W_k L_k  with  W_k = (1/pi) * integral over cone k's cell of cos  (hybrid eq. 3-4),
 // the incident radiance integral E_i / pi, which composite multiplies by the albedo. The
-// weights sum to 1 (core/src/cone.c), so a uniform incident radiance L gathers to L.
+// weights sum to 1 (passes/sdk/cone.c), so a uniform incident radiance L gathers to L.
 // Alpha holds the ambient visibility sum_k W_k (1 - a_k) (VCT paper 3.2.3: rough AO).
 // Specular (3.2.2, with SPECULAR): one cone along the mirror direction, its aperture from
 // the roughness. Shadow (3.2.3, with SHADOW_CONE): one narrow cone towards a light; its

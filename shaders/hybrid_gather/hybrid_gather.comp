@@ -3,7 +3,7 @@
 // the height-field meshes with its min/max height tables (HSAT).
 //
 // Diffuse cones and weights as cone_gather (hybrid eq. 3-4: the weights integrate the
-// cosine lobe to 1, core/src/cone.c); the output is sum_k W_k L_k (rgb) and the ambient
+// cosine lobe to 1, passes/sdk/cone.c); the output is sum_k W_k L_k (rgb) and the ambient
 // visibility (a), which composite multiplies by the albedo.
 //
 // Without a 2D lightmap (HAS_2D undefined) every cone is cg_cone_trace(), the VCT march,

@@ -6,7 +6,7 @@
 
 #include <cglm/cglm.h>
 
-#include "builtin.h"
+#include "sdk/builtin.h"
 #include "cg/graphfile.h"
 #include "test_support.h"
 

@@ -14,7 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "builtin.h"
+#include "sdk/builtin.h"
 #include "cg/fs.h"
 #include "cg/gl.h"
 #include "cg/graphfile.h"

@@ -6,14 +6,14 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "builtin.h"
+#include "sdk/builtin.h"
 #include "cg/camera.h"
 #include "cg/fg.h"
 #include "cg/fs.h"
 #include "cg/gpu_scene.h"
 #include "cg/graphfile.h"
 #include "cg/scene.h"
-#include "path_trace/pt_render.h"
+#include "cg/pt_render.h"
 #include "test_support.h"
 
 enum { W = 40, H = 24 };

@@ -6,7 +6,7 @@
 #include <string.h>
 
 #include "cg/metrics.h"
-#include "path_trace/pt_render.h"
+#include "cg/pt_render.h"
 #include "test_support.h"
 
 #define PI 3.14159265358979323846

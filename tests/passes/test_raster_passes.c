@@ -4,7 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "builtin.h"
+#include "sdk/builtin.h"
 #include "cg/error.h"
 #include "cg/graphfile.h"
 #include "cg/image.h"

@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "builtin.h"
+#include "sdk/builtin.h"
 #include "cg/camera.h"
 #include "cg/fg.h"
 #include "cg/gpu_scene.h"

@@ -5,7 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "builtin.h"
+#include "sdk/builtin.h"
 #include "cg/fs.h"
 #include "cg/graphfile.h"
 #include "test_support.h"

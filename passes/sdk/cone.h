@@ -1,10 +1,10 @@
-/* cg/cone.h: diffuse cone sets for cone tracing: directions, apertures and cosine weights.
+/* sdk/cone.h (pass SDK): diffuse cone sets for cone tracing: directions, apertures and weights.
  *
- * Declares: CG_CONE_MAX, cg_cone, cg_cone_set, cg_cone_set_make, cg_cone_set_sizes,
- *           cg_cone_set_valid_size, cg_cone_frame.
+ * Declares: CGP_CONE_MAX, cgp_cone, cgp_cone_set, cgp_cone_set_make, cgp_cone_set_sizes,
+ *           cgp_cone_set_valid_size, cgp_cone_frame.
  *
- * Shared by every cone tracer (the VCT gather and the hybrid tracer), so it lives in core
- * beside the other math helpers rather than in one pass.
+ * Shared by every cone tracer (the VCT gather and the hybrid tracer), so it lives in the
+ * pass SDK; core knows nothing of cones.
  *
  * A set covers the hemisphere around the normal with a central cone and rings of cones.
  * Each cone owns a cell: a polar band [b_lo, b_hi] split into equal azimuth sectors. Its
@@ -14,38 +14,38 @@
  * so the weights telescope to sin^2(pi/2) - sin^2(0) = 1 exactly: a constant incident
  * radiance L gathers to exactly L (the white furnace). docs/vct.md has the derivation.
  */
-#ifndef CG_CONE_H
-#define CG_CONE_H
+#ifndef CGP_CONE_H
+#define CGP_CONE_H
 
 #include <stdbool.h>
 
-#define CG_CONE_MAX 16
+#define CGP_CONE_MAX 16
 
-typedef struct cg_cone {
+typedef struct cgp_cone {
     float direction[3];     /* tangent space, z = normal; unit length */
     float weight;           /* share of the cosine lobe; a set's weights sum to 1 */
     float half_angle;       /* radians: the cone whose solid angle equals its cell's */
     float cell_lo, cell_hi; /* polar band of the cone's cell, radians */
-} cg_cone;
+} cgp_cone;
 
-typedef struct cg_cone_set {
+typedef struct cgp_cone_set {
     int count;
-    cg_cone cones[CG_CONE_MAX];
-} cg_cone_set;
+    cgp_cone cones[CGP_CONE_MAX];
+} cgp_cone_set;
 
 /* The sizes offered: 1, 6, 9, 16. */
-const int *cg_cone_set_sizes(int *count);
-bool cg_cone_set_valid_size(int count);
+const int *cgp_cone_set_sizes(int *count);
+bool cgp_cone_set_valid_size(int count);
 
-/* Fills *out for `count` cones (one of cg_cone_set_sizes); false for any other count.
+/* Fills *out for `count` cones (one of cgp_cone_set_sizes); false for any other count.
  *   1: the normal, cell = the hemisphere.
  *   6: the normal + 5 at 60 deg (Crassin et al. 2011); weights 1/4 and 3/20.
  *   9: the normal + 8 at 45 deg, 45 deg apart in azimuth (VCT paper 3.2.1).
  *  16: the normal + 5 + 10, rings placed so that every cone weighs 1/16. */
-bool cg_cone_set_make(int count, cg_cone_set *out);
+bool cgp_cone_set_make(int count, cgp_cone_set *out);
 
 /* Orthonormal tangent frame (t, b, n) for a unit normal n, continuous and free of NaN
  * for every n, the axes included (Duff et al. 2017, "Building an orthonormal basis, revisited"). */
-void cg_cone_frame(const float n[3], float t[3], float b[3]);
+void cgp_cone_frame(const float n[3], float t[3], float b[3]);
 
 #endif

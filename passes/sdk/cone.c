@@ -1,5 +1,5 @@
-/* Diffuse cone sets; see cg/cone.h and docs/vct.md for the weight derivation. */
-#include "cg/cone.h"
+/* Diffuse cone sets; see sdk/cone.h and docs/vct.md for the weight derivation. */
+#include "sdk/cone.h"
 
 #include <math.h>
 #include <stddef.h>
@@ -18,14 +18,14 @@ typedef struct cone_ring {
 } cone_ring;
 
 const int *
-cg_cone_set_sizes(int *count)
+cgp_cone_set_sizes(int *count)
 {
     *count = (int)(sizeof cone_set_sizes / sizeof cone_set_sizes[0]);
     return cone_set_sizes;
 }
 
 bool
-cg_cone_set_valid_size(int count)
+cgp_cone_set_valid_size(int count)
 {
     for (size_t i = 0; i < sizeof cone_set_sizes / sizeof cone_set_sizes[0]; i++)
         if (cone_set_sizes[i] == count)
@@ -80,7 +80,7 @@ rings_for(int count, cone_ring rings[3])
 }
 
 bool
-cg_cone_set_make(int count, cg_cone_set *out)
+cgp_cone_set_make(int count, cgp_cone_set *out)
 {
     cone_ring rings[3];
     int ring_count = rings_for(count, rings);
@@ -100,7 +100,7 @@ cg_cone_set_make(int count, cg_cone_set *out)
             half = CONE_MAX_AUTO_HALF_ANGLE;
         for (int i = 0; i < ring->count; i++) {
             double phi = ring->azimuth_offset + 2.0 * M_PI * i / ring->count;
-            cg_cone *c = &out->cones[out->count++];
+            cgp_cone *c = &out->cones[out->count++];
             c->direction[0] = (float)(sin(ring->theta) * cos(phi));
             c->direction[1] = (float)(sin(ring->theta) * sin(phi));
             c->direction[2] = (float)cos(ring->theta);
@@ -114,7 +114,7 @@ cg_cone_set_make(int count, cg_cone_set *out)
 }
 
 void
-cg_cone_frame(const float n[3], float t[3], float b[3])
+cgp_cone_frame(const float n[3], float t[3], float b[3])
 {
     /* Duff et al. 2017, listing 3 (sign chosen as in shaders/common/cone_trace.glsl). */
     float sign = n[2] >= 0.0f ? 1.0f : -1.0f;

@@ -1,4 +1,4 @@
-/* passes/path_trace/pt_render.h: the CPU path tracer behind the path_trace pass (Embree 3).
+/* cg/pt_render.h: the CPU path tracer (Embree 3): the reference behind the path_trace pass and bench.
  *
  * Declares: PT_RENDER_VERSION, pt_settings, pt_settings_default, pt_scene, pt_scene_create, pt_scene_destroy,
  *           pt_scene_triangle_count, pt_render, pt_rays_traced.

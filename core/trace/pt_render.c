@@ -1,5 +1,5 @@
 /* The CPU path tracer on Embree 3: see pt_render.h for the physics and the conventions. */
-#include "pt_render.h"
+#include "cg/pt_render.h"
 
 #include <embree3/rtcore.h>
 #include <math.h>

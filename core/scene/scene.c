@@ -1,4 +1,4 @@
-/* core/src/scene.c: scene loading dispatch (file or built-in), freeing, bounds, validation,
+/* core/scene/scene.c: scene loading dispatch (file or built-in), freeing, bounds, validation,
  * and the height-field classification of meshes.
  *
  * Height-field rule (hybrid paper 3.1 sorts meshes into height fields and complex meshes):

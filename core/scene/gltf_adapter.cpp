@@ -1,4 +1,4 @@
-// core/src/gltf_adapter.cpp: glTF 2.0 (.gltf, .glb) to and from cg_scene through tinygltf.
+// core/scene/gltf_adapter.cpp: glTF 2.0 (.gltf, .glb) to and from cg_scene through tinygltf.
 //
 // The only C++ in core: tinygltf parses the JSON and fetches buffers and images; everything
 // it hands back is re-checked here (indices of every reference, every accessor against its

@@ -1,4 +1,4 @@
-/* core/src/camera.c: view and projection matrices (cglm, OpenGL conventions).
+/* core/scene/camera.c: view and projection matrices (cglm, OpenGL conventions).
  *
  * Conventions, shared by the raster passes and the path tracer:
  * - World: metres, y up. The camera looks down its local -z, +x right, +y up (glTF 3.10).

@@ -1,4 +1,4 @@
-/* core/src/fg_internal.h: the frame graph's private data, shared by the fg_*.c files.
+/* core/fg/fg_internal.h: the frame graph's private data, shared by the fg_*.c files.
  *
  * Declares: fg_format_info, fg_format_find, fg_format_name, fg_kind_name, fg_access_names,
  *           fg_barrier_bits_for, fg_loc_prefix, fg_strdup, fg_grow, fg_param_value,
