@@ -86,6 +86,7 @@ typedef struct pt_texture {
 /* What shading needs of one Embree geometry (one scene instance). */
 typedef struct pt_geometry {
     const cg_mesh *mesh;
+    const float *vertices;    /* world space, x y z per vertex: Embree's own vertex buffer */
     float normal_matrix[9];   /* cofactor of the upper 3x3 of the instance matrix, column-major */
 } pt_geometry;
 
@@ -241,6 +242,7 @@ pt_scene_create(const cg_scene *scene, pt_scene **out, cg_error *err)
         rtcAttachGeometryByID(pts->rtc, geom, id);
         rtcReleaseGeometry(geom);
         pts->geometries[id].mesh = mesh;
+        pts->geometries[id].vertices = vtx;
         cofactor3(inst->world, pts->geometries[id].normal_matrix);
         pts->triangles += tris;
     }
@@ -341,11 +343,48 @@ texture_sample(const pt_texture *tex, float s, float t, float out[4])
 
 typedef struct pt_hit {
     v3 position;
+    float magnitude;      /* largest |coordinate| of the hit triangle's vertices */
+    v3 origin;            /* where rays leave the surface (spawn_point) */
+    float offset;         /* and their tnear */
     v3 geometric_normal;  /* unit, facing the incoming ray */
     v3 shading_normal;    /* unit, same hemisphere as geometric_normal */
     v3 albedo;
     v3 emission;
 } pt_hit;
+
+/* Relative size of the offset that lifts a spawned ray's origin off its surface: 2^-19, 16
+ * times float's unit roundoff 2^-23 (FLT_EPSILON). */
+#define PT_OFFSET_RELATIVE 1.9073486328125e-6f
+
+/* Where rays leave the hit's surface on the side of n (the unit geometric normal): the point
+ * pushed along n by d = 2^-19 times the largest coordinate of the triangle's vertices, and
+ * the rays start at tnear = d from there. No absolute term, so the offset scales with the
+ * scene (the same image at 1e-6 m and at 1e6 m). The bound covers the error of the
+ * barycentric hit point (a few ulps of the vertices' magnitude) and that of Embree's test of
+ * the same triangle from the new origin (its edge and plane functions are formed from
+ * vertex - origin differences, so their errors are ulps of that same magnitude): the ray
+ * cannot find its own triangle again, the self-intersection that Wächter and Binder, "A Fast
+ * and Robust Method for Avoiding Self-Intersection" (Ray Tracing Gems, ch. 6), avoid with an
+ * integer-ulp offset. Their method keeps an absolute offset of 2^-16 near the origin, which
+ * would still be larger than a 1e-6 m scene; a bound proportional to the vertices' magnitude
+ * has no such floor. tnear is for the neighbour across a concave crease: a hit on the crease
+ * itself rounds to either side of the other surface's plane, and a shadow ray from the wrong
+ * side would cross that plane within a few ulps of its origin and leave a black line along
+ * the crease. */
+static inline void
+spawn_point(pt_hit *hit)
+{
+    const v3 p = hit->position;
+    float m = fmaxf(hit->magnitude, fmaxf(fabsf(p.x), fmaxf(fabsf(p.y), fabsf(p.z))));
+    hit->offset = PT_OFFSET_RELATIVE * m;
+    hit->origin = add(p, scale(hit->geometric_normal, hit->offset));
+}
+
+static inline float
+max_abs3(const float *p)
+{
+    return fmaxf(fabsf(p[0]), fmaxf(fabsf(p[1]), fabsf(p[2])));
+}
 
 static void
 shade_hit(const pt_scene *pts, const RTCRayHit *rh, pt_hit *hit)
@@ -356,7 +395,14 @@ shade_hit(const pt_scene *pts, const RTCRayHit *rh, pt_hit *hit)
     float u = rh->hit.u, v = rh->hit.v, w = 1.0f - u - v;
     v3 dir = mk(rh->ray.dir_x, rh->ray.dir_y, rh->ray.dir_z);
 
-    hit->position = add(mk(rh->ray.org_x, rh->ray.org_y, rh->ray.org_z), scale(dir, rh->ray.tfar));
+    /* The hit point from the barycentrics on the triangle's own world-space vertices, not
+     * org + t dir: its error is then a few ulps of the vertices' coordinates whatever the
+     * ray's length, which is what offset_origin's bound assumes. */
+    const float *p0 = &g->vertices[3 * tri[0]], *p1 = &g->vertices[3 * tri[1]],
+                *p2 = &g->vertices[3 * tri[2]];
+    hit->position = mk(w * p0[0] + u * p1[0] + v * p2[0], w * p0[1] + u * p1[1] + v * p2[1],
+                       w * p0[2] + u * p1[2] + v * p2[2]);
+    hit->magnitude = fmaxf(max_abs3(p0), fmaxf(max_abs3(p1), max_abs3(p2)));
     v3 ng = normalize(mk(rh->hit.Ng_x, rh->hit.Ng_y, rh->hit.Ng_z));
     if (dot(ng, dir) > 0.0f)
         ng = neg(ng);
@@ -403,15 +449,7 @@ shade_hit(const pt_scene *pts, const RTCRayHit *rh, pt_hit *hit)
         emission = mul(emission, mk(texel[0], texel[1], texel[2]));
     }
     hit->emission = emission;
-}
-
-/* Offset along the geometric normal, growing with the coordinates' magnitude so that the
- * spawned ray clears the surface in float precision from millimetre to kilometre scenes. */
-static inline v3
-offset_origin(v3 p, v3 n)
-{
-    float m = fmaxf(fabsf(p.x), fmaxf(fabsf(p.y), fabsf(p.z)));
-    return add(p, scale(n, 1e-4f + 4e-6f * m));
+    spawn_point(hit);
 }
 
 typedef struct pt_worker_ctx {
@@ -421,12 +459,12 @@ typedef struct pt_worker_ctx {
 } pt_worker_ctx;
 
 static bool
-occluded(pt_worker_ctx *wc, v3 org, v3 dir, float tfar)
+occluded(pt_worker_ctx *wc, v3 org, v3 dir, float tnear, float tfar)
 {
     RTCRay ray = { 0 };
     ray.org_x = org.x; ray.org_y = org.y; ray.org_z = org.z;
     ray.dir_x = dir.x; ray.dir_y = dir.y; ray.dir_z = dir.z;
-    ray.tnear = 0.0f;
+    ray.tnear = tnear;
     ray.tfar = tfar;
     ray.mask = 0xFFFFFFFFu;
     ray.flags = 0;
@@ -441,7 +479,6 @@ punctual_irradiance(pt_worker_ctx *wc, const pt_hit *hit)
 {
     const cg_scene *scene = wc->pts->scene;
     v3 total = mk(0, 0, 0);
-    v3 org = offset_origin(hit->position, hit->geometric_normal);
     for (int i = 0; i < scene->light_count; i++) {
         const cg_light *l = &scene->lights[i];
         v3 color = scale(mk(l->color[0], l->color[1], l->color[2]), l->intensity);
@@ -480,7 +517,7 @@ punctual_irradiance(pt_worker_ctx *wc, const pt_hit *hit)
             continue;
         /* Shorten the shadow ray so that it does not hit a surface at the light itself. */
         float tfar = isinf(dist) ? INFINITY : dist * (1.0f - 1e-5f);
-        if (occluded(wc, org, wi, tfar))
+        if (occluded(wc, hit->origin, wi, hit->offset, tfar))
             continue;
         total = add(total, scale(color, factor * cos_theta));
     }
@@ -519,11 +556,11 @@ ray_init(RTCRayHit *rh, v3 org, v3 dir, float tnear)
  * cosine-sampled continuations. The Lambertian BRDF albedo/pi times cos over the cosine
  * pdf cos/pi leaves the albedo as the throughput factor. */
 static v3
-radiance(pt_worker_ctx *wc, v3 org, v3 dir, int bounces, pt_rng *rng)
+radiance(pt_worker_ctx *wc, v3 org, v3 dir, float tnear, int bounces, pt_rng *rng)
 {
     v3 sum = mk(0, 0, 0), throughput = mk(1, 1, 1);
     RTCRayHit rh;
-    ray_init(&rh, org, dir, 0.0f);
+    ray_init(&rh, org, dir, tnear);
     for (int depth = 0;; depth++) {
         wc->rays++;
         rtcIntersect1(wc->pts->rtc, &wc->ictx, &rh);
@@ -543,21 +580,47 @@ radiance(pt_worker_ctx *wc, v3 org, v3 dir, int bounces, pt_rng *rng)
         v3 next = sample_cosine(hit.shading_normal, u1, u2);
         if (dot(next, hit.geometric_normal) <= 0.0f)
             break; /* below the true surface (shading normal tilted away): no light */
-        ray_init(&rh, offset_origin(hit.position, hit.geometric_normal), next, 0.0f);
+        ray_init(&rh, hit.origin, next, hit.offset);
     }
     return sum;
 }
 
 /* ---------------------------------------------------------------- camera and tiles */
 
-static v3
-unproject(const float m[16], float x, float y, float z)
+/* The camera ray through NDC (x, y). Built in camera space and in double precision, then
+ * turned into the world by the camera-to-world matrix: a perspective ray starts at the eye
+ * with tnear = its distance to the near plane (what the rasteriser clips), an orthographic
+ * one on the near plane. Never the difference of two world-space points: at 1.6 km from the
+ * origin two points 5 cm apart (a near plane) differ by a few float ulps only, which tilted
+ * each ray by up to 1e-3 rad and stair-stepped the edges. */
+static void
+camera_ray(const cg_view *view, double ndc_x, double ndc_y, v3 *org, v3 *dir, float *tnear)
 {
-    float X = m[0] * x + m[4] * y + m[8] * z + m[12];
-    float Y = m[1] * x + m[5] * y + m[9] * z + m[13];
-    float Z = m[2] * x + m[6] * y + m[10] * z + m[14];
-    float W = m[3] * x + m[7] * y + m[11] * z + m[15];
-    return mk(X / W, Y / W, Z / W);
+    const float *ip = view->inv_proj, *iv = view->inv_view;
+    double c[4];
+    for (int r = 0; r < 4; r++)
+        c[r] = ip[r] * ndc_x + ip[4 + r] * ndc_y - ip[8 + r] + ip[12 + r];
+    double p[3] = { c[0] / c[3], c[1] / c[3], c[2] / c[3] }; /* the near-plane point, camera space */
+    double o[3], d[3], t0;
+    if (view->orthographic) {
+        o[0] = p[0], o[1] = p[1], o[2] = p[2];
+        d[0] = 0.0, d[1] = 0.0, d[2] = -1.0;
+        t0 = 0.0;
+    } else {
+        double len = sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+        o[0] = o[1] = o[2] = 0.0;
+        d[0] = p[0] / len, d[1] = p[1] / len, d[2] = p[2] / len;
+        t0 = len;
+    }
+    double wo[3], wd[3];
+    for (int r = 0; r < 3; r++) {
+        wo[r] = iv[r] * o[0] + iv[4 + r] * o[1] + iv[8 + r] * o[2] + iv[12 + r];
+        wd[r] = iv[r] * d[0] + iv[4 + r] * d[1] + iv[8 + r] * d[2];
+    }
+    double n = sqrt(wd[0] * wd[0] + wd[1] * wd[1] + wd[2] * wd[2]);
+    *org = mk((float)wo[0], (float)wo[1], (float)wo[2]);
+    *dir = mk((float)(wd[0] / n), (float)(wd[1] / n), (float)(wd[2] / n));
+    *tnear = (float)(t0 * n); /* inv_view is orthonormal (camera.c), so n = 1 up to rounding */
 }
 
 typedef struct pt_job {
@@ -592,13 +655,12 @@ render_tile(pt_job *job, pt_worker_ctx *wc, int tile)
                 }
                 /* Rows top to bottom: row y's centre is at NDC y = 1 - 2 (y + 0.5) / height, the
                  * same point as GL's gl_FragCoord.y = height - y - 0.5 of the flipped read-back. */
-                float ndc_x = 2.0f * ((float)x + jx) / (float)view->width - 1.0f;
-                float ndc_y = 1.0f - 2.0f * ((float)y + jy) / (float)view->height;
-                /* From the near plane (what the rasteriser clips) towards the NDC z = 0 point,
-                 * which stays finite for an infinite far plane. */
-                v3 near = unproject(view->inv_view_proj, ndc_x, ndc_y, -1.0f);
-                v3 mid = unproject(view->inv_view_proj, ndc_x, ndc_y, 0.0f);
-                v3 l = radiance(wc, near, normalize(sub(mid, near)), s->bounces, &rng);
+                double ndc_x = 2.0 * ((double)x + jx) / (double)view->width - 1.0;
+                double ndc_y = 1.0 - 2.0 * ((double)y + jy) / (double)view->height;
+                v3 org, dir;
+                float tnear;
+                camera_ray(view, ndc_x, ndc_y, &org, &dir, &tnear);
+                v3 l = radiance(wc, org, dir, tnear, s->bounces, &rng);
                 acc[0] += l.x;
                 acc[1] += l.y;
                 acc[2] += l.z;

@@ -239,7 +239,7 @@ check_punctual(const cg_light *l, float albedo, const float *img, int w, int h)
             double dx = l->position[0] - px, dy = l->position[1] - py, dz = l->position[2];
             double d = sqrt(dx * dx + dy * dy + dz * dz);
             double cos_theta = dz / d;
-            double want = albedo * l->intensity * cos_theta / (PI * d * d);
+            double want = albedo * l->intensity * cos_theta / (PI * d * d), unattenuated = want;
             if (l->type == CG_LIGHT_SPOT) {
                 /* KHR_lights_punctual: saturate((cd - cos_outer) / (cos_inner - cos_outer))^2. */
                 double cd = -(l->direction[0] * dx + l->direction[1] * dy + l->direction[2] * dz) / d;
@@ -248,10 +248,16 @@ check_punctual(const cg_light *l, float albedo, const float *img, int w, int h)
                 att = att < 0 ? 0 : (att > 1 ? 1 : att);
                 want *= att * att;
             }
-            /* Float rounding of the cone cosine is amplified by the falloff's slope
-             * 1 / (cos_inner - cos_outer) ~ 8 here: hence 1e-4 rather than 1e-5. */
-            for (int c = 0; c < 3; c++)
-                assert_rel(img[4 * (y * w + x) + c], want, 1e-4, "I cos / (pi d^2)", x, y);
+            /* Float rounding of the hit point (ulps of the quad's 10 m vertices, about 1e-6 m)
+             * moves the cone cosine by about 1e-6, which the falloff's slope
+             * 1 / (cos_inner - cos_outer) ~ 8 amplifies: near the outer cone, where the falloff
+             * is nearly 0, that is a large fraction of a small value. Hence 1e-4 of the light's
+             * unattenuated radiance rather than 1e-5 of the value. */
+            for (int c = 0; c < 3; c++) {
+                double got = img[4 * (y * w + x) + c];
+                if (!(fabs(got - want) <= 1e-4 * unattenuated))
+                    fail_msg("I cos / (pi d^2) at pixel (%d,%d): got %.7g, expected %.7g", x, y, got, want);
+            }
         }
 }
 
@@ -362,6 +368,58 @@ camera_rays_go_through_pixel_centres_top_row_first(void **state)
         }
     free(img);
     scene_release(&s);
+}
+
+/* A plane lit at 85 degrees from its normal, at sizes from 1e-6 m to 1e6 m and far from the
+ * origin (1000 times its size away): every pixel is exactly a E cos / pi. A shadow ray that
+ * finds its own plane again (ray offsets too small for the coordinates' float precision)
+ * would leave black pixels; an offset with an absolute floor would lift the rays of the
+ * 1e-6 m plane off into nothing, which this test cannot see, but the furnace and Cornell
+ * scale sweeps (test_path_trace_scale.c) do. */
+static void
+grazing_light_far_from_the_origin_casts_no_self_shadow(void **state)
+{
+    (void)state;
+    enum { W = 32, H = 32 };
+    const double sizes[] = { 1e-6, 1e-2, 1.0, 1e3, 1e6 };
+    for (size_t k = 0; k < sizeof sizes / sizeof sizes[0]; k++) {
+        double size = sizes[k];
+        float x0 = (float)(1000.0 * size), y0 = (float)(-700.0 * size);
+        cg_scene s;
+        scene_init(&s);
+        /* The plane through (x0, y0, 0), tilted 30 degrees about y: its normal has two
+         * non-zero components, so no coordinate of the offset is exact. */
+        mat4 m;
+        glm_mat4_identity(m);
+        glm_translate(m, (vec3){ x0, y0, 0.0f });
+        glm_rotate(m, glm_rad(30.0f), (vec3){ 0, 1, 0 });
+        glm_scale(m, (vec3){ (float)(10 * size), (float)(10 * size), 1.0f });
+        int grey = add_material(&s, 0.8f, 0.8f, 0.8f, 0.0f);
+        add_instance(&s, add_quad_mesh(&s, grey), m);
+        /* The light 85 degrees off the normal n = (sin 30, 0, cos 30), tilted towards +x. */
+        double t = glm_rad(30.0f) + glm_rad(85.0f);
+        cg_light *l = add_light(&s, CG_LIGHT_DIRECTIONAL, 2.0f);
+        l->direction[0] = (float)-sin(t), l->direction[1] = 0.0f, l->direction[2] = (float)-cos(t);
+        double n[3] = { sin(glm_rad(30.0f)), 0.0, cos(glm_rad(30.0f)) };
+        double cos_theta = -(n[0] * l->direction[0] + n[2] * l->direction[2]);
+        double want = 0.8 * 2.0 * cos_theta / PI;
+        cg_view v = { .width = W, .height = H, .orthographic = true };
+        mat4 view, proj;
+        glm_lookat((vec3){ x0, y0, (float)(5 * size) }, (vec3){ x0, y0, 0 }, (vec3){ 0, 1, 0 }, view);
+        glm_ortho((float)-size, (float)size, (float)-size, (float)size, (float)(0.1 * size), (float)(20 * size), proj);
+        view_finish(&v, view, proj);
+        pt_settings st = pt_settings_default();
+        st.spp = 1;
+        st.bounces = 0;
+        float *img = render(&s, &v, st);
+        for (int i = 0; i < W * H; i++)
+            for (int c = 0; c < 3; c++)
+                if (!(fabs(img[4 * i + c] - want) <= 1e-4 * want))
+                    fail_msg("plane of %g m at %g m from the origin, pixel (%d,%d): %.7g, expected a E cos / pi = %.7g",
+                             size, 1000.0 * size, i % W, i / W, img[4 * i + c], want);
+        free(img);
+        scene_release(&s);
+    }
 }
 
 static void
@@ -562,6 +620,7 @@ main(void)
         cmocka_unit_test(furnace_gives_the_closed_form),
         cmocka_unit_test(camera_rays_go_through_pixel_centres_top_row_first),
         cmocka_unit_test(hard_shadows_block_punctual_light),
+        cmocka_unit_test(grazing_light_far_from_the_origin_casts_no_self_shadow),
         cmocka_unit_test(base_colour_texture_is_srgb_decoded),
         cmocka_unit_test(error_falls_with_sample_count),
         cmocka_unit_test(bit_identical_across_runs_and_thread_counts),

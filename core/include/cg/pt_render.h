@@ -14,6 +14,12 @@
  *     E = intensity x color, point E = I/d^2, spot as point times the
  *     KHR_lights_punctual cone falloff; `range` > 0 applies the extension's
  *     recommended smooth window;
+ *   - camera rays through pixel centres (or spread over the pixel), built in camera space
+ *     in double precision from the eye (perspective) or the near plane (orthographic), so
+ *     that they are exact at any distance from the origin;
+ *   - hit points from the barycentrics on the world-space vertices; rays leave a surface
+ *     from a point pushed along its normal by 2^-19 times the magnitude of the triangle's
+ *     coordinates, with no absolute term: the image does not depend on the scene's scale;
  *   - `bounces` n: a path x1..x(n+1) from the camera; emission is added at every vertex
  *     and punctual light at every vertex, so emission reaches the camera after at most n
  *     diffuse reflections and punctual light after at most n+1. n = 0 is "direct light
@@ -38,7 +44,7 @@
 
 /* Bumped whenever a change makes pt_render give other images for the same input, so that
  * images cached by `conegraph bench` are not reused across it. */
-#define PT_RENDER_VERSION 1
+#define PT_RENDER_VERSION 2
 
 typedef struct pt_settings {
     int spp;            /* samples per pixel, >= 1 */
