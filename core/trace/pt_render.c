@@ -86,9 +86,20 @@ typedef struct pt_texture {
 /* What shading needs of one Embree geometry (one scene instance). */
 typedef struct pt_geometry {
     const cg_mesh *mesh;
+    const cg_material *material;
     const float *vertices;    /* world space, x y z per vertex: Embree's own vertex buffer */
     float normal_matrix[9];   /* cofactor of the upper 3x3 of the instance matrix, column-major */
+    int64_t emitter_base;     /* emitter index of triangle 0 (triangle k is base + k); -1: emits nothing */
 } pt_geometry;
+
+/* Every triangle of an emissive material, for next-event estimation: one is chosen with
+ * probability proportional to its power (area x mean emitted radiance), then a point
+ * uniformly on it. */
+typedef struct pt_emitters {
+    int64_t count;
+    uint32_t *geometry, *triangle; /* by emitter index */
+    double *cdf;              /* count + 1 running sums of the power, cdf[0] = 0 */
+} pt_emitters;
 
 struct pt_scene {
     const cg_scene *scene;
@@ -98,6 +109,7 @@ struct pt_scene {
     unsigned geometry_count;
     pt_texture *textures;     /* by cg_scene texture index */
     size_t triangles;
+    pt_emitters emitters;
 };
 
 pt_settings
@@ -162,6 +174,114 @@ textures_create(pt_scene *pts, cg_error *err)
             float v = (float)src->rgba[k] / 255.0f;
             dst->rgba[k] = (src->srgb && (k & 3) != 3) ? srgb_decode(v) : v;
         }
+    }
+    return true;
+}
+
+static const cg_material *
+material_of(const cg_scene *scene, const cg_mesh *mesh)
+{
+    int mi = mesh->material;
+    return (mi >= 0 && mi < scene->material_count) ? &scene->materials[mi] : &scene->materials[0];
+}
+
+static inline v3
+emissive_factor(const cg_material *mat)
+{
+    return mk(mat->emissive[0] * mat->emissive_strength, mat->emissive[1] * mat->emissive_strength,
+              mat->emissive[2] * mat->emissive_strength);
+}
+
+/* A triangle's world-space vertices, unit normal (of its winding) and area. */
+static void
+triangle_frame(const pt_geometry *g, uint32_t prim, v3 p[3], v3 *normal, float *area)
+{
+    const uint32_t *tri = &g->mesh->indices[3 * (size_t)prim];
+    for (int k = 0; k < 3; k++) {
+        const float *q = &g->vertices[3 * (size_t)tri[k]];
+        p[k] = mk(q[0], q[1], q[2]);
+    }
+    v3 e1 = sub(p[1], p[0]), e2 = sub(p[2], p[0]);
+    v3 c = mk(e1.y * e2.z - e1.z * e2.y, e1.z * e2.x - e1.x * e2.z, e1.x * e2.y - e1.y * e2.x);
+    float len = sqrtf(dot(c, c));
+    *area = 0.5f * len;
+    *normal = len > 0.0f ? scale(c, 1.0f / len) : mk(0, 0, 0);
+}
+
+/* The mean of a texture's linear RGB: what an emissive texture does to a triangle's power. */
+static float
+texture_mean(const pt_texture *tex)
+{
+    double sum = 0.0;
+    size_t n = (size_t)tex->width * (size_t)tex->height;
+    for (size_t k = 0; k < n; k++)
+        sum += (double)tex->rgba[4 * k] + tex->rgba[4 * k + 1] + tex->rgba[4 * k + 2];
+    return (float)(sum / (3.0 * (double)n));
+}
+
+/* The emitter table: every triangle of every geometry whose material emits, with its power
+ * area x mean emitted radiance (the factor's channel mean times the emissive texture's mean). */
+static bool
+emitters_create(pt_scene *pts, cg_error *err)
+{
+    const cg_scene *scene = pts->scene;
+    pt_emitters *e = &pts->emitters;
+    int64_t count = 0;
+    for (unsigned g = 0; g < pts->geometry_count; g++) {
+        pt_geometry *geo = &pts->geometries[g];
+        v3 f = emissive_factor(geo->material);
+        geo->emitter_base = -1;
+        if (f.x > 0.0f || f.y > 0.0f || f.z > 0.0f) {
+            geo->emitter_base = count;
+            count += geo->mesh->index_count / 3;
+        }
+    }
+    if (count == 0)
+        return true;
+    e->geometry = malloc(sizeof *e->geometry * (size_t)count);
+    e->triangle = malloc(sizeof *e->triangle * (size_t)count);
+    e->cdf = malloc(sizeof *e->cdf * (size_t)(count + 1));
+    float *means = calloc((size_t)(scene->texture_count > 0 ? scene->texture_count : 1), sizeof *means);
+    if (!e->geometry || !e->triangle || !e->cdf || !means) {
+        free(means);
+        return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "path_trace: %lld emissive triangles", (long long)count);
+    }
+    for (int t = 0; t < scene->texture_count; t++)
+        means[t] = -1.0f; /* computed when first needed */
+    e->count = count;
+    e->cdf[0] = 0.0;
+    for (unsigned g = 0; g < pts->geometry_count; g++) {
+        const pt_geometry *geo = &pts->geometries[g];
+        if (geo->emitter_base < 0)
+            continue;
+        v3 f = emissive_factor(geo->material);
+        double power = ((double)f.x + f.y + f.z) / 3.0;
+        int t = geo->material->emissive_texture;
+        if (t >= 0 && t < scene->texture_count) {
+            if (means[t] < 0.0f)
+                means[t] = texture_mean(&pts->textures[t]);
+            power *= means[t];
+        }
+        uint32_t tris = geo->mesh->index_count / 3;
+        for (uint32_t k = 0; k < tris; k++) {
+            int64_t i = geo->emitter_base + k;
+            v3 p[3], n;
+            float area;
+            triangle_frame(geo, k, p, &n, &area);
+            e->geometry[i] = g;
+            e->triangle[i] = k;
+            e->cdf[i + 1] = e->cdf[i] + power * area;
+        }
+    }
+    free(means);
+    if (!(e->cdf[count] > 0.0)) {
+        /* Emissive materials on triangles of zero area only: nothing to sample. */
+        free(e->geometry);
+        free(e->triangle);
+        free(e->cdf);
+        memset(e, 0, sizeof *e);
+        for (unsigned g = 0; g < pts->geometry_count; g++)
+            pts->geometries[g].emitter_base = -1;
     }
     return true;
 }
@@ -242,6 +362,7 @@ pt_scene_create(const cg_scene *scene, pt_scene **out, cg_error *err)
         rtcAttachGeometryByID(pts->rtc, geom, id);
         rtcReleaseGeometry(geom);
         pts->geometries[id].mesh = mesh;
+        pts->geometries[id].material = material_of(scene, mesh);
         pts->geometries[id].vertices = vtx;
         cofactor3(inst->world, pts->geometries[id].normal_matrix);
         pts->triangles += tris;
@@ -252,6 +373,8 @@ pt_scene_create(const cg_scene *scene, pt_scene **out, cg_error *err)
         cg_fail(err, CG_ERR_PASS, "path_trace: building the BVH failed (embree error %d)", (int)code);
         goto fail;
     }
+    if (!emitters_create(pts, err))
+        goto fail;
     *out = pts;
     return true;
 fail:
@@ -273,6 +396,9 @@ pt_scene_destroy(pt_scene *pts)
             free(pts->textures[t].rgba);
     free(pts->textures);
     free(pts->geometries);
+    free(pts->emitters.geometry);
+    free(pts->emitters.triangle);
+    free(pts->emitters.cdf);
     free(pts);
 }
 
@@ -342,6 +468,7 @@ texture_sample(const pt_texture *tex, float s, float t, float out[4])
 }
 
 typedef struct pt_hit {
+    unsigned geometry, triangle; /* Embree geomID and primID */
     v3 position;
     float magnitude;      /* largest |coordinate| of the hit triangle's vertices */
     v3 origin;            /* where rays leave the surface (spawn_point) */
@@ -380,6 +507,33 @@ spawn_point(pt_hit *hit)
     hit->origin = add(p, scale(hit->geometric_normal, hit->offset));
 }
 
+static inline void
+triangle_texcoords(const cg_mesh *mesh, const uint32_t *tri, float u, float v, float st[2])
+{
+    st[0] = st[1] = 0.0f;
+    if (!mesh->texcoords)
+        return;
+    float w = 1.0f - u - v;
+    const float *t0 = &mesh->texcoords[2 * tri[0]], *t1 = &mesh->texcoords[2 * tri[1]],
+                *t2 = &mesh->texcoords[2 * tri[2]];
+    st[0] = w * t0[0] + u * t1[0] + v * t2[0];
+    st[1] = w * t0[1] + u * t1[1] + v * t2[1];
+}
+
+/* Emitted radiance = emissive x emissive texture x emissive_strength (the same from both sides). */
+static v3
+emission_at(const pt_scene *pts, const cg_material *mat, const float st[2])
+{
+    v3 emission = emissive_factor(mat);
+    if (mat->emissive_texture >= 0 && mat->emissive_texture < pts->scene->texture_count &&
+        (emission.x > 0.0f || emission.y > 0.0f || emission.z > 0.0f)) {
+        float texel[4];
+        texture_sample(&pts->textures[mat->emissive_texture], st[0], st[1], texel);
+        emission = mul(emission, mk(texel[0], texel[1], texel[2]));
+    }
+    return emission;
+}
+
 static inline float
 max_abs3(const float *p)
 {
@@ -392,6 +546,8 @@ shade_hit(const pt_scene *pts, const RTCRayHit *rh, pt_hit *hit)
     const pt_geometry *g = &pts->geometries[rh->hit.geomID];
     const cg_mesh *mesh = g->mesh;
     const uint32_t *tri = &mesh->indices[3 * rh->hit.primID];
+    hit->geometry = rh->hit.geomID;
+    hit->triangle = rh->hit.primID;
     float u = rh->hit.u, v = rh->hit.v, w = 1.0f - u - v;
     v3 dir = mk(rh->ray.dir_x, rh->ray.dir_y, rh->ray.dir_z);
 
@@ -424,16 +580,9 @@ shade_hit(const pt_scene *pts, const RTCRayHit *rh, pt_hit *hit)
     hit->shading_normal = ns;
 
     const cg_scene *scene = pts->scene;
-    int mi = mesh->material;
-    const cg_material *mat = (mi >= 0 && mi < scene->material_count) ? &scene->materials[mi]
-                                                                       : &scene->materials[0];
-    float st[2] = { 0.0f, 0.0f };
-    if (mesh->texcoords) {
-        const float *t0 = &mesh->texcoords[2 * tri[0]], *t1 = &mesh->texcoords[2 * tri[1]],
-                    *t2 = &mesh->texcoords[2 * tri[2]];
-        st[0] = w * t0[0] + u * t1[0] + v * t2[0];
-        st[1] = w * t0[1] + u * t1[1] + v * t2[1];
-    }
+    const cg_material *mat = g->material;
+    float st[2];
+    triangle_texcoords(mesh, tri, u, v, st);
     v3 albedo = mk(mat->base_color[0], mat->base_color[1], mat->base_color[2]);
     if (mat->base_color_texture >= 0 && mat->base_color_texture < scene->texture_count) {
         float texel[4];
@@ -441,14 +590,7 @@ shade_hit(const pt_scene *pts, const RTCRayHit *rh, pt_hit *hit)
         albedo = mul(albedo, mk(texel[0], texel[1], texel[2]));
     }
     hit->albedo = albedo;
-    v3 emission = scale(mk(mat->emissive[0], mat->emissive[1], mat->emissive[2]), mat->emissive_strength);
-    if (mat->emissive_texture >= 0 && mat->emissive_texture < scene->texture_count &&
-        (emission.x > 0.0f || emission.y > 0.0f || emission.z > 0.0f)) {
-        float texel[4];
-        texture_sample(&pts->textures[mat->emissive_texture], st[0], st[1], texel);
-        emission = mul(emission, mk(texel[0], texel[1], texel[2]));
-    }
-    hit->emission = emission;
+    hit->emission = emission_at(pts, mat, st);
     spawn_point(hit);
 }
 
@@ -552,26 +694,164 @@ ray_init(RTCRayHit *rh, v3 org, v3 dir, float tnear)
     rh->hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
 }
 
-/* Radiance along one camera ray: emission and punctual light at every vertex, `bounces`
- * cosine-sampled continuations. The Lambertian BRDF albedo/pi times cos over the cosine
- * pdf cos/pi leaves the albedo as the throughput factor. */
+/* ---------------------------------------------------------------- emitters and MIS */
+
+/* The power heuristic with beta = 2 (Veach and Guibas, "Optimally Combining Sampling
+ * Techniques for Monte Carlo Rendering", SIGGRAPH 1995, section 4.1): the weight of the
+ * strategy that drew the sample with density `pa` against the other one's `pb`, both
+ * solid-angle densities of the same direction. In double: a small emitter far away has a
+ * density beyond float's range once squared. */
+static inline float
+power_heuristic(double pa, double pb)
+{
+    if (!(pa > 0.0))
+        return 0.0f;
+    double r = pb / pa;
+    return (float)(1.0 / (1.0 + r * r));
+}
+
+/* Index of the emitter whose power interval holds u x total (u in [0, 1)): binary search of
+ * the first cdf[i + 1] > u total, so that triangles of zero power are never chosen. */
+static int64_t
+emitter_pick(const pt_emitters *e, double u)
+{
+    double target = u * e->cdf[e->count];
+    int64_t lo = 0, hi = e->count - 1;
+    while (lo < hi) {
+        int64_t mid = lo + (hi - lo) / 2;
+        if (e->cdf[mid + 1] > target)
+            hi = mid;
+        else
+            lo = mid + 1;
+    }
+    return lo;
+}
+
+/* Solid-angle density with which emitter sampling from `from` picks the point `at` of
+ * triangle (geometry, triangle) seen along the unit direction `dir`: the triangle's share of
+ * the power over its area, times distance^2 / |cos| at the emitter (both sides emit). */
+static double
+emitter_pdf(const pt_scene *pts, unsigned geometry, unsigned triangle, v3 from, v3 at, v3 dir)
+{
+    const pt_emitters *e = &pts->emitters;
+    const pt_geometry *g = &pts->geometries[geometry];
+    if (g->emitter_base < 0 || e->count == 0)
+        return 0.0;
+    int64_t i = g->emitter_base + triangle;
+    double share = (e->cdf[i + 1] - e->cdf[i]) / e->cdf[e->count];
+    v3 p[3], n;
+    float area;
+    triangle_frame(g, triangle, p, &n, &area);
+    double cos_l = fabs((double)dot(n, dir));
+    if (!(share > 0.0) || !(area > 0.0f) || !(cos_l > 0.0))
+        return 0.0;
+    v3 d = sub(at, from);
+    return share * (double)dot(d, d) / ((double)area * cos_l);
+}
+
+/* Light from the emissive triangles at the hit, by one emitter sample (next-event
+ * estimation) weighted against cosine sampling of the BRDF: returns albedo/pi x Le x cos x w /
+ * pdf for a point chosen by power, then uniformly on its triangle (Shirley's square-root
+ * map of the unit square onto a triangle), with a shadow ray between the two offset ends. */
+static v3
+emitter_direct(pt_worker_ctx *wc, const pt_hit *hit, pt_rng *rng)
+{
+    const pt_scene *pts = wc->pts;
+    const pt_emitters *e = &pts->emitters;
+    /* 48 random bits for the choice: 24 would not tell apart millions of triangles. */
+    double u = ((double)rng_next(rng) + (double)rng_next(rng) * (1.0 / 16777216.0));
+    float r1 = rng_next(rng), r2 = rng_next(rng);
+    int64_t i = emitter_pick(e, u);
+    unsigned geometry = e->geometry[i], triangle = e->triangle[i];
+    if (geometry == hit->geometry && triangle == hit->triangle)
+        return mk(0, 0, 0); /* a flat triangle does not light itself */
+    const pt_geometry *g = &pts->geometries[geometry];
+    v3 p[3], n;
+    float area;
+    triangle_frame(g, triangle, p, &n, &area);
+    float su = sqrtf(r1), bu = 1.0f - su, bv = r2 * su, bw = 1.0f - bu - bv;
+    v3 y = mk(bw * p[0].x + bu * p[1].x + bv * p[2].x, bw * p[0].y + bu * p[1].y + bv * p[2].y,
+              bw * p[0].z + bu * p[1].z + bv * p[2].z);
+    v3 to = sub(y, hit->position);
+    float d2 = dot(to, to);
+    if (!(d2 > 0.0f) || !(area > 0.0f))
+        return mk(0, 0, 0);
+    v3 wi = scale(to, 1.0f / sqrtf(d2));
+    float cos_x = dot(hit->shading_normal, wi), cos_l = fabsf(dot(n, wi));
+    if (cos_x <= 0.0f || dot(hit->geometric_normal, wi) <= 0.0f || !(cos_l > 0.0f))
+        return mk(0, 0, 0);
+    const uint32_t *tri = &g->mesh->indices[3 * (size_t)triangle];
+    float st[2];
+    triangle_texcoords(g->mesh, tri, bu, bv, st);
+    v3 le = emission_at(pts, g->material, st);
+    if (le.x <= 0.0f && le.y <= 0.0f && le.z <= 0.0f)
+        return mk(0, 0, 0);
+    double share = (e->cdf[i + 1] - e->cdf[i]) / e->cdf[e->count];
+    double pdf = share * (double)d2 / ((double)area * cos_l);
+    /* The light's end of the shadow ray is lifted off the emitter towards the hit, as the
+     * hit's end is (spawn_point), so that neither end finds its own surface. */
+    float m = fmaxf(fmaxf(fabsf(p[0].x), fmaxf(fabsf(p[0].y), fabsf(p[0].z))),
+                    fmaxf(fmaxf(fabsf(p[1].x), fmaxf(fabsf(p[1].y), fabsf(p[1].z))),
+                          fmaxf(fabsf(p[2].x), fmaxf(fabsf(p[2].y), fabsf(p[2].z)))));
+    v3 n_towards = dot(n, wi) < 0.0f ? n : neg(n);
+    v3 target = add(y, scale(n_towards, PT_OFFSET_RELATIVE * m));
+    /* An unnormalised direction: the segment is t in [tnear, 1); stopping 1e-5 of its length
+     * short of the lifted end leaves what rounding does to org + 1 x dir out of it. */
+    v3 seg = sub(target, hit->origin);
+    float seg_len = sqrtf(dot(seg, seg));
+    if (!(seg_len > 0.0f))
+        return mk(0, 0, 0);
+    if (occluded(wc, hit->origin, seg, hit->offset / seg_len, 1.0f - 1e-5f))
+        return mk(0, 0, 0);
+    float w = power_heuristic(pdf, cos_x / PT_PI);
+    float k = (float)((double)cos_x * w / (PT_PI * pdf));
+    return scale(mul(hit->albedo, le), k);
+}
+
+/* ---------------------------------------------------------------- paths */
+
+/* Radiance along one camera ray, with bounces counted as Cycles and pbrt count them: at
+ * every vertex x1 ... x(n+1) of the path (n = `bounces`), light arrives directly from every
+ * source: punctual lights (next-event estimation), emissive triangles (one emitter sample
+ * and the cosine-sampled continuation, combined by the power heuristic); emission is seen
+ * where the camera ray lands. So n = 0 is the direct light of every source plus what the
+ * camera sees, and each bounce adds one diffuse reflection. The continuation from x(n+1)
+ * only looks for emitters (its MIS half of their direct light); it is not traced when the
+ * scene has none. The Lambertian BRDF albedo/pi times cos over the cosine pdf cos/pi leaves
+ * the albedo as the throughput factor. */
 static v3
 radiance(pt_worker_ctx *wc, v3 org, v3 dir, float tnear, int bounces, pt_rng *rng)
 {
+    const pt_scene *pts = wc->pts;
+    const bool emitters = pts->emitters.count > 0;
     v3 sum = mk(0, 0, 0), throughput = mk(1, 1, 1);
+    v3 prev_position = mk(0, 0, 0);
+    float prev_pdf = 0.0f; /* solid-angle density of the cosine sample that made this ray */
     RTCRayHit rh;
     ray_init(&rh, org, dir, tnear);
     for (int depth = 0;; depth++) {
         wc->rays++;
-        rtcIntersect1(wc->pts->rtc, &wc->ictx, &rh);
+        rtcIntersect1(pts->rtc, &wc->ictx, &rh);
         if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID)
             break; /* no sky: black background */
         pt_hit hit;
-        shade_hit(wc->pts, &rh, &hit);
-        sum = add(sum, mul(throughput, hit.emission));
+        shade_hit(pts, &rh, &hit);
+        if (hit.emission.x > 0.0f || hit.emission.y > 0.0f || hit.emission.z > 0.0f) {
+            float w = 1.0f; /* the camera ray: no other strategy finds this light */
+            if (depth > 0) {
+                v3 d = mk(rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z);
+                w = power_heuristic(prev_pdf, emitter_pdf(pts, hit.geometry, hit.triangle, prev_position,
+                                                           hit.position, d));
+            }
+            sum = add(sum, mul(throughput, scale(hit.emission, w)));
+        }
+        if (depth > bounces)
+            break; /* the continuation of the last vertex: emitters only */
         v3 e = punctual_irradiance(wc, &hit);
         sum = add(sum, mul(throughput, scale(mul(hit.albedo, e), 1.0f / PT_PI)));
-        if (depth >= bounces)
+        if (emitters)
+            sum = add(sum, mul(throughput, emitter_direct(wc, &hit, rng)));
+        if (depth == bounces && !emitters)
             break;
         throughput = mul(throughput, hit.albedo);
         if (throughput.x <= 0.0f && throughput.y <= 0.0f && throughput.z <= 0.0f)
@@ -580,6 +860,8 @@ radiance(pt_worker_ctx *wc, v3 org, v3 dir, float tnear, int bounces, pt_rng *rn
         v3 next = sample_cosine(hit.shading_normal, u1, u2);
         if (dot(next, hit.geometric_normal) <= 0.0f)
             break; /* below the true surface (shading normal tilted away): no light */
+        prev_pdf = dot(hit.shading_normal, next) / PT_PI;
+        prev_position = hit.position;
         ray_init(&rh, hit.origin, next, hit.offset);
     }
     return sum;

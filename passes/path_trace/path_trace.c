@@ -16,8 +16,8 @@
 static const fg_param_desc path_trace_params[] = {
     { "spp", FG_PARAM_INT, 64, 1, 65536, NULL, "samples per pixel" },
     { "bounces", FG_PARAM_INT, 1, 0, 16, NULL,
-      "diffuse bounces after the first hit: 0 = direct light and visible emission, 1 = the GI "
-      "graphs' direct + one bounce" },
+      "diffuse bounces, counted as Cycles counts them: 0 = direct light of every source (punctual "
+      "lights, emissive surfaces) and what the camera sees; each bounce adds a diffuse reflection" },
     { "seed", FG_PARAM_INT, 1, 0, 2147483647.0, NULL,
       "random seed; the image is a function of the seed alone, whatever the thread count" },
     { "threads", FG_PARAM_INT, 0, 0, 256, NULL, "render threads (0 = one per core)" },
