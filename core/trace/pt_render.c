@@ -1,6 +1,8 @@
 /* The CPU path tracer on Embree 3: see pt_render.h for the physics and the conventions. */
 #include "cg/pt_render.h"
 
+#include "pt_sky.h"
+
 #include <embree3/rtcore.h>
 #include <math.h>
 #include <pthread.h>
@@ -110,6 +112,7 @@ struct pt_scene {
     pt_texture *textures;     /* by cg_scene texture index */
     size_t triangles;
     pt_emitters emitters;
+    pt_sky sky;
 };
 
 pt_settings
@@ -373,7 +376,7 @@ pt_scene_create(const cg_scene *scene, pt_scene **out, cg_error *err)
         cg_fail(err, CG_ERR_PASS, "path_trace: building the BVH failed (embree error %d)", (int)code);
         goto fail;
     }
-    if (!emitters_create(pts, err))
+    if (!emitters_create(pts, err) || !pt_sky_create(scene, &pts->sky, err))
         goto fail;
     *out = pts;
     return true;
@@ -399,6 +402,7 @@ pt_scene_destroy(pt_scene *pts)
     free(pts->emitters.geometry);
     free(pts->emitters.triangle);
     free(pts->emitters.cdf);
+    pt_sky_destroy(&pts->sky);
     free(pts);
 }
 
@@ -808,32 +812,93 @@ emitter_direct(pt_worker_ctx *wc, const pt_hit *hit, pt_rng *rng)
     return scale(mul(hit->albedo, le), k);
 }
 
+/* ---------------------------------------------------------------- sky */
+
+static inline v3
+sky_radiance(const pt_scene *pts, v3 dir)
+{
+    float d[3] = { dir.x, dir.y, dir.z }, rgb[3];
+    cg_sky_model_radiance(&pts->sky.model, d, rgb);
+    return mk(rgb[0], rgb[1], rgb[2]);
+}
+
+/* Solid-angle density with which sky sampling at a point of shading normal n draws dir: the
+ * cosine about n for a uniform sky, the table's for an analytic one. */
+static double
+sky_pdf(const pt_scene *pts, v3 n, v3 dir)
+{
+    if (pts->sky.model.type == CG_SKY_UNIFORM)
+        return fmax(0.0, (double)dot(n, dir)) / PT_PI;
+    float d[3] = { dir.x, dir.y, dir.z };
+    return pt_sky_pdf(&pts->sky, d);
+}
+
+/* Light from the sky at the hit by one sky sample weighted against cosine sampling of the
+ * BRDF (power heuristic): a uniform sky is sampled by the cosine about the shading normal
+ * (the BRDF's own density, so both weights are 1/2 and an unoccluded surface gets exactly
+ * albedo x L), an analytic one from its table. */
+static v3
+sky_direct(pt_worker_ctx *wc, const pt_hit *hit, pt_rng *rng)
+{
+    const pt_scene *pts = wc->pts;
+    float u1 = rng_next(rng), u2 = rng_next(rng);
+    v3 wi;
+    double pdf;
+    if (pts->sky.model.type == CG_SKY_UNIFORM) {
+        wi = sample_cosine(hit->shading_normal, u1, u2);
+        pdf = fmax(0.0, (double)dot(hit->shading_normal, wi)) / PT_PI;
+    } else {
+        float d[3];
+        if (!pt_sky_sample(&pts->sky, u1, u2, d, &pdf))
+            return mk(0, 0, 0);
+        wi = mk(d[0], d[1], d[2]);
+    }
+    float cos_x = dot(hit->shading_normal, wi);
+    if (!(pdf > 0.0) || cos_x <= 0.0f || dot(hit->geometric_normal, wi) <= 0.0f)
+        return mk(0, 0, 0);
+    v3 l = sky_radiance(pts, wi);
+    if (l.x <= 0.0f && l.y <= 0.0f && l.z <= 0.0f)
+        return mk(0, 0, 0);
+    if (occluded(wc, hit->origin, wi, hit->offset, INFINITY))
+        return mk(0, 0, 0);
+    float w = power_heuristic(pdf, cos_x / PT_PI);
+    float k = (float)((double)cos_x * w / (PT_PI * pdf));
+    return scale(mul(hit->albedo, l), k);
+}
+
 /* ---------------------------------------------------------------- paths */
 
 /* Radiance along one camera ray, with bounces counted as Cycles and pbrt count them: at
  * every vertex x1 ... x(n+1) of the path (n = `bounces`), light arrives directly from every
- * source: punctual lights (next-event estimation), emissive triangles (one emitter sample
- * and the cosine-sampled continuation, combined by the power heuristic); emission is seen
- * where the camera ray lands. So n = 0 is the direct light of every source plus what the
- * camera sees, and each bounce adds one diffuse reflection. The continuation from x(n+1)
- * only looks for emitters (its MIS half of their direct light); it is not traced when the
- * scene has none. The Lambertian BRDF albedo/pi times cos over the cosine pdf cos/pi leaves
+ * source: punctual lights (next-event estimation), emissive triangles and the sky (one
+ * sample of each, combined with the cosine-sampled continuation by the power heuristic);
+ * emission and sky are seen where the camera ray lands or escapes. So n = 0 is the direct
+ * light of every source plus what the camera sees, and each bounce adds one diffuse
+ * reflection. The continuation from x(n+1) only looks for emitters and the sky (its MIS
+ * half of their direct light); it is not traced when the scene has neither. The Lambertian BRDF albedo/pi times cos over the cosine pdf cos/pi leaves
  * the albedo as the throughput factor. */
 static v3
 radiance(pt_worker_ctx *wc, v3 org, v3 dir, float tnear, int bounces, pt_rng *rng)
 {
     const pt_scene *pts = wc->pts;
     const bool emitters = pts->emitters.count > 0;
+    const bool sky = pts->sky.model.type != CG_SKY_NONE;
     v3 sum = mk(0, 0, 0), throughput = mk(1, 1, 1);
-    v3 prev_position = mk(0, 0, 0);
+    v3 prev_position = mk(0, 0, 0), prev_normal = mk(0, 0, 0);
     float prev_pdf = 0.0f; /* solid-angle density of the cosine sample that made this ray */
     RTCRayHit rh;
     ray_init(&rh, org, dir, tnear);
     for (int depth = 0;; depth++) {
         wc->rays++;
         rtcIntersect1(pts->rtc, &wc->ictx, &rh);
-        if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID)
-            break; /* no sky: black background */
+        if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
+            if (sky) {
+                v3 d = mk(rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z);
+                float w = depth == 0 ? 1.0f : power_heuristic(prev_pdf, sky_pdf(pts, prev_normal, d));
+                sum = add(sum, mul(throughput, scale(sky_radiance(pts, d), w)));
+            }
+            break;
+        }
         pt_hit hit;
         shade_hit(pts, &rh, &hit);
         if (hit.emission.x > 0.0f || hit.emission.y > 0.0f || hit.emission.z > 0.0f) {
@@ -846,12 +911,14 @@ radiance(pt_worker_ctx *wc, v3 org, v3 dir, float tnear, int bounces, pt_rng *rn
             sum = add(sum, mul(throughput, scale(hit.emission, w)));
         }
         if (depth > bounces)
-            break; /* the continuation of the last vertex: emitters only */
+            break; /* the continuation of the last vertex: emitters and sky only */
         v3 e = punctual_irradiance(wc, &hit);
         sum = add(sum, mul(throughput, scale(mul(hit.albedo, e), 1.0f / PT_PI)));
         if (emitters)
             sum = add(sum, mul(throughput, emitter_direct(wc, &hit, rng)));
-        if (depth == bounces && !emitters)
+        if (sky)
+            sum = add(sum, mul(throughput, sky_direct(wc, &hit, rng)));
+        if (depth == bounces && !emitters && !sky)
             break;
         throughput = mul(throughput, hit.albedo);
         if (throughput.x <= 0.0f && throughput.y <= 0.0f && throughput.z <= 0.0f)
@@ -862,6 +929,7 @@ radiance(pt_worker_ctx *wc, v3 org, v3 dir, float tnear, int bounces, pt_rng *rn
             break; /* below the true surface (shading normal tilted away): no light */
         prev_pdf = dot(hit.shading_normal, next) / PT_PI;
         prev_position = hit.position;
+        prev_normal = hit.shading_normal;
         ray_init(&rh, hit.origin, next, hit.offset);
     }
     return sum;
