@@ -877,8 +877,23 @@ sky_direct(pt_worker_ctx *wc, const pt_hit *hit, pt_rng *rng)
  * reflection. The continuation from x(n+1) only looks for emitters and the sky (its MIS
  * half of their direct light); it is not traced when the scene has neither. The Lambertian BRDF albedo/pi times cos over the cosine pdf cos/pi leaves
  * the albedo as the throughput factor. */
+/* Which part of the image a contribution belongs to: light that arrives at vertex `depth`
+ * (0 = where the camera ray lands) reaches the camera after `depth` reflections, and light
+ * that a vertex receives directly after depth + 1. */
+static inline pt_part
+part_seen(int depth, pt_part direct)
+{
+    return depth == 0 ? PT_PART_EMITTED : (depth == 1 ? direct : PT_PART_INDIRECT);
+}
+
+static inline pt_part
+part_received(int depth, pt_part direct)
+{
+    return depth == 0 ? direct : PT_PART_INDIRECT;
+}
+
 static v3
-radiance(pt_worker_ctx *wc, v3 org, v3 dir, float tnear, int bounces, pt_rng *rng)
+radiance(pt_worker_ctx *wc, v3 org, v3 dir, float tnear, int bounces, pt_rng *rng, v3 parts[PT_PART_COUNT])
 {
     const pt_scene *pts = wc->pts;
     const bool emitters = pts->emitters.count > 0;
@@ -895,7 +910,9 @@ radiance(pt_worker_ctx *wc, v3 org, v3 dir, float tnear, int bounces, pt_rng *rn
             if (sky) {
                 v3 d = mk(rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z);
                 float w = depth == 0 ? 1.0f : power_heuristic(prev_pdf, sky_pdf(pts, prev_normal, d));
-                sum = add(sum, mul(throughput, scale(sky_radiance(pts, d), w)));
+                v3 c = mul(throughput, scale(sky_radiance(pts, d), w));
+                sum = add(sum, c);
+                parts[part_seen(depth, PT_PART_DIRECT_SKY)] = add(parts[part_seen(depth, PT_PART_DIRECT_SKY)], c);
             }
             break;
         }
@@ -908,16 +925,31 @@ radiance(pt_worker_ctx *wc, v3 org, v3 dir, float tnear, int bounces, pt_rng *rn
                 w = power_heuristic(prev_pdf, emitter_pdf(pts, hit.geometry, hit.triangle, prev_position,
                                                            hit.position, d));
             }
-            sum = add(sum, mul(throughput, scale(hit.emission, w)));
+            v3 c = mul(throughput, scale(hit.emission, w));
+            sum = add(sum, c);
+            pt_part part = part_seen(depth, PT_PART_DIRECT_EMITTERS);
+            parts[part] = add(parts[part], c);
         }
         if (depth > bounces)
             break; /* the continuation of the last vertex: emitters and sky only */
-        v3 e = punctual_irradiance(wc, &hit);
-        sum = add(sum, mul(throughput, scale(mul(hit.albedo, e), 1.0f / PT_PI)));
-        if (emitters)
-            sum = add(sum, mul(throughput, emitter_direct(wc, &hit, rng)));
-        if (sky)
-            sum = add(sum, mul(throughput, sky_direct(wc, &hit, rng)));
+        /* `sum` adds the terms in the order it always did, so that the image does not depend
+         * on whether the parts are asked for; the parts are summed beside it. */
+        v3 c = mul(throughput, scale(mul(hit.albedo, punctual_irradiance(wc, &hit)), 1.0f / PT_PI));
+        sum = add(sum, c);
+        pt_part part = part_received(depth, PT_PART_DIRECT_PUNCTUAL);
+        parts[part] = add(parts[part], c);
+        if (emitters) {
+            c = mul(throughput, emitter_direct(wc, &hit, rng));
+            sum = add(sum, c);
+            part = part_received(depth, PT_PART_DIRECT_EMITTERS);
+            parts[part] = add(parts[part], c);
+        }
+        if (sky) {
+            c = mul(throughput, sky_direct(wc, &hit, rng));
+            sum = add(sum, c);
+            part = part_received(depth, PT_PART_DIRECT_SKY);
+            parts[part] = add(parts[part], c);
+        }
         if (depth == bounces && !emitters && !sky)
             break;
         throughput = mul(throughput, hit.albedo);
@@ -978,6 +1010,7 @@ typedef struct pt_job {
     const cg_view *view;
     const pt_settings *settings;
     float *rgba;
+    float *const *parts;      /* PT_PART_COUNT images or NULLs, or NULL */
     int tiles_x, tiles_y, tile_count;
     atomic_int next_tile;
     atomic_int tiles_done;
@@ -995,7 +1028,8 @@ render_tile(pt_job *job, pt_worker_ctx *wc, int tile)
     for (int y = y0; y < y1; y++) {
         for (int x = x0; x < x1; x++) {
             uint64_t pixel = (uint64_t)y * (uint64_t)view->width + (uint64_t)x;
-            double acc[3] = { 0, 0, 0 };
+            double acc[3] = { 0, 0, 0 }, acc_parts[PT_PART_COUNT][3];
+            memset(acc_parts, 0, sizeof acc_parts);
             for (int k = 0; k < s->spp; k++) {
                 pt_rng rng = rng_for_sample(s->seed, pixel, (uint32_t)k);
                 float jx = 0.5f, jy = 0.5f;
@@ -1010,15 +1044,31 @@ render_tile(pt_job *job, pt_worker_ctx *wc, int tile)
                 v3 org, dir;
                 float tnear;
                 camera_ray(view, ndc_x, ndc_y, &org, &dir, &tnear);
-                v3 l = radiance(wc, org, dir, tnear, s->bounces, &rng);
+                v3 parts[PT_PART_COUNT];
+                for (int p = 0; p < PT_PART_COUNT; p++)
+                    parts[p] = mk(0, 0, 0);
+                v3 l = radiance(wc, org, dir, tnear, s->bounces, &rng, parts);
                 acc[0] += l.x;
                 acc[1] += l.y;
                 acc[2] += l.z;
+                for (int p = 0; p < PT_PART_COUNT; p++) {
+                    acc_parts[p][0] += parts[p].x;
+                    acc_parts[p][1] += parts[p].y;
+                    acc_parts[p][2] += parts[p].z;
+                }
             }
             float *out = &job->rgba[4 * pixel];
             for (int c = 0; c < 3; c++)
                 out[c] = (float)(acc[c] / s->spp);
             out[3] = 1.0f;
+            for (int p = 0; job->parts && p < PT_PART_COUNT; p++) {
+                if (!job->parts[p])
+                    continue;
+                float *po = &job->parts[p][4 * pixel];
+                for (int c = 0; c < 3; c++)
+                    po[c] = (float)(acc_parts[p][c] / s->spp);
+                po[3] = 1.0f;
+            }
         }
     }
 }
@@ -1070,9 +1120,24 @@ worker(void *arg)
     return NULL;
 }
 
+const char *
+pt_part_name(pt_part part)
+{
+    static const char *const names[PT_PART_COUNT] = { "emitted", "direct_punctual", "direct_emitters",
+                                                       "direct_sky", "indirect" };
+    return part >= 0 && part < PT_PART_COUNT ? names[part] : "?";
+}
+
 bool
 pt_render(const pt_scene *pts, const cg_view *view, const pt_settings *settings, float *rgba,
           uint64_t *rays_traced, cg_error *err)
+{
+    return pt_render_parts(pts, view, settings, rgba, NULL, rays_traced, err);
+}
+
+bool
+pt_render_parts(const pt_scene *pts, const cg_view *view, const pt_settings *settings, float *rgba,
+                float *const parts[PT_PART_COUNT], uint64_t *rays_traced, cg_error *err)
 {
     if (view->width <= 0 || view->height <= 0)
         return cg_fail(err, CG_ERR_USAGE, "path_trace: image size %dx%d, expected positive",
@@ -1090,7 +1155,7 @@ pt_render(const pt_scene *pts, const cg_view *view, const pt_settings *settings,
         long n = sysconf(_SC_NPROCESSORS_ONLN);
         threads = n > 0 ? (n > PT_MAX_THREADS ? PT_MAX_THREADS : (int)n) : 1;
     }
-    pt_job job = { .pts = pts, .view = view, .settings = settings, .rgba = rgba };
+    pt_job job = { .pts = pts, .view = view, .settings = settings, .rgba = rgba, .parts = parts };
     job.tiles_x = (view->width + PT_TILE - 1) / PT_TILE;
     job.tiles_y = (view->height + PT_TILE - 1) / PT_TILE;
     job.tile_count = job.tiles_x * job.tiles_y;

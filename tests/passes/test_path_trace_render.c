@@ -479,6 +479,70 @@ bit_identical_across_runs_and_thread_counts(void **state)
     ptf_scene_release(&s);
 }
 
+/* The parts of the image (pt_render_parts) on the open box with a point light, an emitter
+ * and a uniform sky outside: they add up to the image (which is bit-identical with and
+ * without parts), the indirect part is 0 at 0 bounces, and what does not depend on bounces
+ * (what the camera sees, light reflected once) is bit-identical at 0 and 2 bounces. */
+static void
+parts_add_up_to_the_image(void **state)
+{
+    (void)state;
+    enum { W = 24, H = 16, N = W * H };
+    cg_scene s;
+    noisy_scene(&s);
+    cg_sky sky = { .type = CG_SKY_UNIFORM, .radiance = { 0.2f, 0.3f, 0.5f } };
+    cg_error err = { 0 };
+    assert_cg_ok(cg_scene_set_sky(&s, &sky, &err), &err);
+    cg_view v = ptf_view_perspective(W, H, (vec3){ 0.3f, 0.2f, 2.5f }, (vec3){ 0, 0, 0 });
+    pt_scene *pts;
+    assert_cg_ok(pt_scene_create(&s, &pts, &err), &err);
+    float *img[2], *parts[2][PT_PART_COUNT];
+    for (int b = 0; b < 2; b++) {
+        pt_settings st = pt_settings_default();
+        st.spp = 4;
+        st.bounces = 2 * b;
+        img[b] = malloc(sizeof(float) * 4 * N);
+        assert_non_null(img[b]);
+        for (int p = 0; p < PT_PART_COUNT; p++) {
+            parts[b][p] = malloc(sizeof(float) * 4 * N);
+            assert_non_null(parts[b][p]);
+        }
+        assert_cg_ok(pt_render_parts(pts, &v, &st, img[b], parts[b], NULL, &err), &err);
+        float *plain = malloc(sizeof(float) * 4 * N);
+        assert_non_null(plain);
+        assert_cg_ok(pt_render(pts, &v, &st, plain, NULL, &err), &err);
+        assert_memory_equal(plain, img[b], sizeof(float) * 4 * N);
+        free(plain);
+        double part_mean[PT_PART_COUNT] = { 0 };
+        for (int i = 0; i < N; i++)
+            for (int c = 0; c < 3; c++) {
+                double sum = 0.0;
+                for (int p = 0; p < PT_PART_COUNT; p++) {
+                    sum += parts[b][p][4 * i + c];
+                    part_mean[p] += parts[b][p][4 * i + c] / (3.0 * N);
+                }
+                if (!(fabs(sum - img[b][4 * i + c]) <= 1e-5 * fabs(img[b][4 * i + c]) + 1e-7))
+                    fail_msg("%d bounces, pixel (%d,%d).%d: parts add up to %.7g, the image is %.7g", st.bounces,
+                             i % W, i / W, c, sum, img[b][4 * i + c]);
+            }
+        print_message("# %d bounces: mean emitted %.4f, direct punctual %.4f, emitters %.4f, sky %.4f, indirect %.4f\n",
+                      st.bounces, part_mean[0], part_mean[1], part_mean[2], part_mean[3], part_mean[4]);
+        for (int p = 0; p < PT_PART_INDIRECT; p++)
+            assert_true(part_mean[p] > 0.0); /* every source is in view or lights something */
+        assert_true(b == 0 ? part_mean[PT_PART_INDIRECT] == 0.0 : part_mean[PT_PART_INDIRECT] > 0.0);
+    }
+    for (int p = 0; p < PT_PART_INDIRECT; p++)
+        if (memcmp(parts[0][p], parts[1][p], sizeof(float) * 4 * N))
+            fail_msg("part %s differs between 0 and 2 bounces", pt_part_name((pt_part)p));
+    for (int b = 0; b < 2; b++) {
+        free(img[b]);
+        for (int p = 0; p < PT_PART_COUNT; p++)
+            free(parts[b][p]);
+    }
+    pt_scene_destroy(pts);
+    ptf_scene_release(&s);
+}
+
 static void
 bad_settings_are_usage_errors(void **state)
 {
@@ -522,6 +586,7 @@ main(void)
         cmocka_unit_test(base_colour_texture_is_srgb_decoded),
         cmocka_unit_test(error_falls_with_sample_count),
         cmocka_unit_test(bit_identical_across_runs_and_thread_counts),
+        cmocka_unit_test(parts_add_up_to_the_image),
         cmocka_unit_test(bad_settings_are_usage_errors),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

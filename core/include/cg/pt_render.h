@@ -1,7 +1,7 @@
 /* cg/pt_render.h: the CPU path tracer (Embree 3): the reference behind the path_trace pass and bench.
  *
  * Declares: PT_RENDER_VERSION, pt_settings, pt_settings_default, pt_scene, pt_scene_create, pt_scene_destroy,
- *           pt_scene_triangle_count, pt_render.
+ *           pt_scene_triangle_count, pt_render, pt_part, pt_part_name, pt_render_parts.
  *
  * Pure C, no GL: it renders a cg_scene seen through a cg_view into linear float RGBA
  * (rows top to bottom, as cg_image stores them), so tests and `conegraph bench` can use
@@ -73,5 +73,25 @@ size_t pt_scene_triangle_count(const pt_scene *pts);
  * NULL it receives the number of rays cast (camera, bounce and shadow rays). */
 bool pt_render(const pt_scene *pts, const cg_view *view, const pt_settings *settings,
                float *rgba, uint64_t *rays_traced, cg_error *err);
+
+/* The parts of the image by where the light comes from and how often it was reflected,
+ * counted in the same trace: they add up to pt_render's image (to float rounding; the image
+ * itself does not depend on whether parts are asked for). */
+typedef enum pt_part {
+    PT_PART_EMITTED,         /* emission and sky the camera sees (no reflection) */
+    PT_PART_DIRECT_PUNCTUAL, /* light of punctual lights reflected once */
+    PT_PART_DIRECT_EMITTERS, /* light of emissive surfaces reflected once */
+    PT_PART_DIRECT_SKY,      /* sky light reflected once */
+    PT_PART_INDIRECT,        /* light of any source reflected twice or more (the bounces) */
+    PT_PART_COUNT
+} pt_part;
+
+/* "emitted", "direct_punctual", "direct_emitters", "direct_sky", "indirect". */
+const char *pt_part_name(pt_part part);
+
+/* pt_render, and each parts[k] that is not NULL (parts itself may be NULL) receives part k
+ * as an image like rgba. */
+bool pt_render_parts(const pt_scene *pts, const cg_view *view, const pt_settings *settings,
+                     float *rgba, float *const parts[PT_PART_COUNT], uint64_t *rays_traced, cg_error *err);
 
 #endif
