@@ -557,7 +557,7 @@ shade_hit(const pt_scene *pts, const RTCRayHit *rh, pt_hit *hit)
 
     /* The hit point from the barycentrics on the triangle's own world-space vertices, not
      * org + t dir: its error is then a few ulps of the vertices' coordinates whatever the
-     * ray's length, which is what offset_origin's bound assumes. */
+     * ray's length, which is what spawn_point's bound assumes. */
     const float *p0 = &g->vertices[3 * tri[0]], *p1 = &g->vertices[3 * tri[1]],
                 *p2 = &g->vertices[3 * tri[2]];
     hit->position = mk(w * p0[0] + u * p1[0] + v * p2[0], w * p0[1] + u * p1[1] + v * p2[1],
