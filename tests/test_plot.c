@@ -1,10 +1,10 @@
-/* The bench plots (apps/conegraph/plot.c): markers land in the right order on linear and
+/* The bench plots (apps/conegraph/bench/plot.c): markers land in the right order on linear and
  * log axes, unusable points are skipped, rings and lines are drawn. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "../apps/conegraph/plot.h"
+#include "../apps/conegraph/bench/plot.h"
 #include "test_support.h"
 
 static float

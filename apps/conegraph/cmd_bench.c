@@ -14,7 +14,7 @@
 #include <time.h>
 
 #include "app_common.h"
-#include "app_registry.h"
+#include "app_session.h"
 #include "cg/camera.h"
 #include "cg/error.h"
 #include "cg/fg.h"
@@ -28,7 +28,7 @@
 #include "cg/scene.h"
 #include "commands.h"
 #include "cg/pt_render.h"
-#include "plot.h"
+#include "bench/plot.h"
 
 #define BENCH_MAX_SCENES 16
 #define BENCH_MAX_SETTINGS 64
@@ -610,21 +610,9 @@ scene_hash(const cg_scene *s)
 
 /* ------------------------------------------------------------ references */
 
-/* CPU time of the whole process (all threads): rays per CPU second do not depend on how
- * busy the machine is, rays per wall second do. */
-static double
-cpu_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
-}
-
 typedef struct bench_scene {
     const char *source;
-    cg_scene scene;
-    int camera;
-    cg_view view;
+    app_session session;    /* scene, camera and view at the bench size, registry, graph, context */
     pt_scene *pts;
     double bvh_ms;
     cg_image ref, ref_direct, ref_indirect;
@@ -638,10 +626,10 @@ reference_image(const bench_config *c, bench_scene *bs, int spp, int bounces, cg
     char key[2048];
     struct stat st;
     /* The view's matrices stand for the camera; the scene by the hash of its contents. */
-    uint64_t view_hash = fnv1a_bytes(0xcbf29ce484222325ull, bs->view.inv_view_proj, sizeof bs->view.inv_view_proj);
+    uint64_t view_hash = fnv1a_bytes(0xcbf29ce484222325ull, bs->session.frame.view.inv_view_proj, sizeof bs->session.frame.view.inv_view_proj);
     snprintf(key, sizeof key,
              "conegraph-reference-v2|pt %d|%s|scene %016llx|view %016llx|%dx%d|spp %d|bounces %d|seed %d",
-             PT_RENDER_VERSION, bs->source, (unsigned long long)scene_hash(&bs->scene),
+             PT_RENDER_VERSION, bs->source, (unsigned long long)scene_hash(&bs->session.scene),
              (unsigned long long)view_hash, c->width, c->height, spp, bounces, c->ref_seed);
     char path[4096];
     snprintf(path, sizeof path, "%s/ref-%016llx.exr", c->cache_dir, (unsigned long long)fnv1a(key));
@@ -664,11 +652,11 @@ reference_image(const bench_config *c, bench_scene *bs, int spp, int bounces, cg
     s.bounces = bounces;
     s.seed = (uint32_t)c->ref_seed;
     s.progress = true;
-    double t0 = app_now_ms(), cpu0 = cpu_ms();
+    double t0 = app_now_ms(), cpu0 = app_cpu_ms();
     uint64_t rays = 0;
-    if (!pt_render(bs->pts, &bs->view, &s, out->rgba, &rays, err))
+    if (!pt_render(bs->pts, &bs->session.frame.view, &s, out->rgba, &rays, err))
         return false;
-    double ms = app_now_ms() - t0, cpu = cpu_ms() - cpu0;
+    double ms = app_now_ms() - t0, cpu = app_cpu_ms() - cpu0;
     fprintf(stderr, "bench: reference took %.1f s, %.2f M rays/s (%.2f M per CPU second)\n", ms / 1e3,
             (double)rays / ms / 1e3, (double)rays / cpu / 1e3);
     if (!make_dirs(c->cache_dir, err) || !cg_image_write(path, out, CG_EXR_FLOAT, err))
@@ -728,13 +716,13 @@ bench_path_tracer(const bench_config *c, bench_scene *bs, int scene_index, bench
         s.spp = c->pt_spp[k];
         s.bounces = c->ref_bounces;
         s.seed = (uint32_t)c->ref_seed + 1000003u;
-        double t0 = app_now_ms(), cpu0 = cpu_ms();
+        double t0 = app_now_ms(), cpu0 = app_cpu_ms();
         uint64_t rays = 0;
-        if (!pt_render(bs->pts, &bs->view, &s, img.rgba, &rays, err)) {
+        if (!pt_render(bs->pts, &bs->session.frame.view, &s, img.rgba, &rays, err)) {
             cg_image_free(&img);
             return false;
         }
-        double ms = app_now_ms() - t0, cpu = cpu_ms() - cpu0;
+        double ms = app_now_ms() - t0, cpu = app_cpu_ms() - cpu0;
         bench_row *row = row_add(rows, err);
         if (!row || !measure_errors(bs, &img, row, err)) {
             cg_image_free(&img);
@@ -804,12 +792,9 @@ pt_time_for_error(const bench_rows *rows, int scene, double e)
 /* ------------------------------------------------------------ graph settings */
 
 static bool
-run_setting(const bench_config *c, fg_registry *registry, bench_scene *bs, cg_gpu_scene *gpu, cg_context *ctx,
-            int scene_index, const bench_setting *s, const int *choice, bench_rows *rows, int *exit_code,
-            cg_error *err)
+run_setting(const bench_config *c, bench_scene *bs, int scene_index, const bench_setting *s, const int *choice,
+            bench_rows *rows, cg_error *err)
 {
-    char graph_path[4096];
-    app_resolve_graph(s->graph, graph_path, sizeof graph_path);
     bench_row *row = row_add(rows, err);
     if (!row)
         return false;
@@ -821,104 +806,53 @@ run_setting(const bench_config *c, fg_registry *registry, bench_scene *bs, cg_gp
     for (int v = 0; v < s->vary_count && len < sizeof row->params; v++)
         len += (size_t)snprintf(row->params + len, sizeof row->params - len, "%s%s=%s", len ? " " : "",
                                 s->vary[v].param, s->vary[v].values[choice[v]]);
-
-    fg_graph *graph = fg_graph_create(registry);
-    double *frame_ms = calloc((size_t)c->frames, sizeof *frame_ms);
-    double *pass_ms = NULL;
-    cg_image img = { 0 };
-    bool ok = false;
-    *exit_code = 2; /* bad graph, parameters or sizes are bad input */
-    if (!graph || !frame_ms) {
-        cg_fail(err, CG_ERR_OUT_OF_MEMORY, "bench: graph");
-        goto done;
-    }
-    if (!fg_graph_load_file(graph, graph_path, err))
-        goto done;
-    char assignment[2 * BENCH_TEXT];
+    char assignments[BENCH_MAX_SETS + BENCH_MAX_VARY][2 * BENCH_TEXT];
+    const char *sets[BENCH_MAX_SETS + BENCH_MAX_VARY];
+    int set_count = 0;
     for (int i = 0; i < s->set_count; i++)
-        if (!fg_graph_apply_override(graph, s->sets[i], err))
-            goto done;
+        sets[set_count++] = s->sets[i];
     for (int v = 0; v < s->vary_count; v++) {
-        snprintf(assignment, sizeof assignment, "%s=%s", s->vary[v].param, s->vary[v].values[choice[v]]);
-        if (!fg_graph_apply_override(graph, assignment, err))
-            goto done;
+        snprintf(assignments[v], sizeof assignments[v], "%s=%s", s->vary[v].param, s->vary[v].values[choice[v]]);
+        sets[set_count++] = assignments[v];
     }
-    const char *hdr = app_find_output(graph, "hdr");
-    if (!hdr) {
-        cg_fail(err, CG_ERR_GRAPH_NO_OUTPUT, "%s: the graph marks no output named *.hdr", graph_path);
+    app_graph_desc graph = { .graph = s->graph, .sets = sets, .set_count = set_count, .image = "hdr" };
+    app_run_desc run = { .warmup = c->warmup, .frames = c->frames, .timing = FG_TIMING_SYNC };
+    app_frame_stats stats = { 0 };
+    cg_image img = { 0 };
+    bool ok = app_session_load_graph(&bs->session, &graph, err) && app_session_check(&bs->session, err) &&
+              app_session_compile(&bs->session, err) && app_session_run(&bs->session, &run, &stats, err);
+    if (!ok)
         goto done;
-    }
-    fg_frame frame = { .scene = &bs->scene, .gpu_scene = gpu, .view = bs->view, .width = c->width,
-                       .height = c->height };
-    fg_compile_options copts = { 0 };
-    if (!fg_graph_compile(graph, &frame, &copts, err))
-        goto done;
-    *exit_code = 1;
-    if (!fg_graph_prepare(graph, err))
-        goto done;
-    int order_count;
+    fg_graph *g = bs->session.graph;
+    row->ms = stats.median_pass_sum_ms;
     const int *order;
-    order_count = fg_graph_order(graph, &order);
-    pass_ms = calloc((size_t)c->frames * (size_t)(order_count > 0 ? order_count : 1), sizeof *pass_ms);
-    if (!pass_ms) {
-        cg_fail(err, CG_ERR_OUT_OF_MEMORY, "bench: timings");
-        goto done;
-    }
-    for (int f = 0; f < c->warmup + c->frames; f++) {
-        frame.index = (uint64_t)f;
-        if (!fg_graph_execute(graph, &frame, FG_TIMING_SYNC, err))
-            goto done;
-        if (f < c->warmup)
-            continue;
-        int t = f - c->warmup;
-        for (int k = 0; k < order_count; k++) {
-            double ms = fg_pass_milliseconds(fg_graph_pass_at(graph, order[k]));
-            pass_ms[(size_t)k * c->frames + t] = ms;
-            frame_ms[t] += ms > 0.0 ? ms : 0.0;
-        }
-    }
-    if (cg_context_gl_error_count(ctx) > 0) {
-        cg_fail(err, CG_ERR_GL, "%s: %d GL error(s) while running (logged above)", graph_path,
-                cg_context_gl_error_count(ctx));
-        goto done;
-    }
-    qsort(frame_ms, (size_t)c->frames, sizeof *frame_ms, app_compare_double);
-    row->ms = frame_ms[c->frames / 2];
+    int order_count = fg_graph_order(g, &order);
     len = 0;
-    for (int k = 0; k < order_count && len < sizeof row->pass_ms; k++) {
-        double *p = &pass_ms[(size_t)k * c->frames];
-        qsort(p, (size_t)c->frames, sizeof *p, app_compare_double);
+    for (int k = 0; k < order_count && len < sizeof row->pass_ms; k++)
         len += (size_t)snprintf(row->pass_ms + len, sizeof row->pass_ms - len, "%s%s %.2f", len ? ", " : "",
-                                fg_pass_name(fg_graph_pass_at(graph, order[k])), p[c->frames / 2]);
-    }
+                                fg_pass_name(fg_graph_pass_at(g, order[k])),
+                                app_frame_stats_pass_median(&stats, order[k]));
     fg_memory_report mem;
-    fg_graph_memory_report(graph, &mem);
+    fg_graph_memory_report(g, &mem);
     row->gi_bytes = mem.gi_bytes;
     row->peak_bytes = mem.peak_bytes;
-    if (!app_read_resource(graph, hdr, false, &img, err) || !measure_errors(bs, &img, row, err))
-        goto done;
-    if (c->images) {
+    ok = app_session_read_image(&bs->session, bs->session.image_source, false, &img, err) &&
+         measure_errors(bs, &img, row, err);
+    if (ok && c->images) {
         char name[2048], path[4096], scene_slug[BENCH_TEXT], params_slug[512];
         slug(bs->source, scene_slug, sizeof scene_slug);
         snprintf(name, sizeof name, "%s%s%s", s->graph, row->params[0] ? " " : "", row->params);
         slug(name, params_slug, sizeof params_slug);
         snprintf(path, sizeof path, "%s/%s-%s.png", c->out_dir, scene_slug, params_slug);
         cg_image heat = { 0 };
-        bool written = cg_image_write(path, &img, CG_EXR_HALF, err);
+        ok = cg_image_write(path, &img, CG_EXR_HALF, err);
         snprintf(path, sizeof path, "%s/%s-%s-error.png", c->out_dir, scene_slug, params_slug);
-        written = written && cg_metrics_heatmap(&img, &bs->ref, 1.0, &heat, err) &&
-                  cg_image_write(path, &heat, CG_EXR_HALF, err);
+        ok = ok && cg_metrics_heatmap(&img, &bs->ref, 1.0, &heat, err) && cg_image_write(path, &heat, CG_EXR_HALF, err);
         cg_image_free(&heat);
-        if (!written)
-            goto done;
     }
-    ok = true;
 done:
     cg_image_free(&img);
-    free(pass_ms);
-    free(frame_ms);
-    if (graph)
-        fg_graph_destroy(graph);
+    app_frame_stats_free(&stats);
     if (!ok)
         rows->count--;
     return ok;
@@ -1121,12 +1055,12 @@ write_plots(const bench_config *c, const bench_rows *rows, const bench_scene *sc
 
 /* ------------------------------------------------------------ main loop */
 
+#define TOOL "conegraph bench"
+
 static int
 fail_with(const char *what, const cg_error *err)
 {
-    fprintf(stderr, "conegraph bench: %s: %s\n", what, err->message);
-    int code = cg_status_exit_code(err->status);
-    return code ? code : 1;
+    return app_fail(TOOL, what, err);
 }
 
 static int
@@ -1146,16 +1080,10 @@ bench(const bench_config *c)
     double t_start = app_now_ms();
     bench_scene *scenes = calloc((size_t)c->scene_count, sizeof *scenes);
     bench_rows rows = { 0 };
-    fg_registry *registry = NULL;
-    cg_context *ctx = NULL;
     int loaded = 0;
+    char renderer[256] = "";
     if (!scenes) {
         fprintf(stderr, "conegraph bench: out of memory\n");
-        goto done;
-    }
-    registry = app_registry_create(NULL, 0, &err);
-    if (!registry) {
-        code = fail_with("passes", &err);
         goto done;
     }
     if (!make_dirs(c->out_dir, &err)) {
@@ -1166,22 +1094,15 @@ bench(const bench_config *c)
     for (int s = 0; s < c->scene_count; s++) {
         bench_scene *bs = &scenes[s];
         bs->source = c->scenes[s];
-        if (!cg_scene_load(bs->source, &bs->scene, &err)) {
+        app_session_desc desc = { .scene = bs->source, .camera = c->camera[0] ? c->camera : NULL,
+                                  .width = c->width, .height = c->height };
+        if (!app_session_open(&bs->session, &desc, &err)) {
             code = fail_with(bs->source, &err);
             goto done;
         }
         loaded++;
-        if (!cg_camera_select(&bs->scene, c->camera[0] ? c->camera : NULL, &bs->camera, &err)) {
-            code = fail_with(bs->source, &err);
-            goto done;
-        }
-        cg_view_from_scene(&bs->scene, bs->camera, c->width, c->height, &bs->view);
     }
     cg_context_desc cdesc = { .backend = c->backend, .width = c->width, .height = c->height, .debug = true };
-    if (!cg_context_create(&cdesc, &ctx, &err)) {
-        code = fail_with("GL context", &err);
-        goto done;
-    }
     int total_runs = 0, run = 0;
     for (int k = 0; k < c->setting_count; k++)
         total_runs += settings_run_count(&c->settings[k]);
@@ -1190,7 +1111,7 @@ bench(const bench_config *c)
     for (int s = 0; s < c->scene_count; s++) {
         bench_scene *bs = &scenes[s];
         double t0 = app_now_ms();
-        if (!pt_scene_create(&bs->scene, &bs->pts, &err)) {
+        if (!pt_scene_create(&bs->session.scene, &bs->pts, &err)) {
             code = fail_with(bs->source, &err);
             goto done;
         }
@@ -1215,12 +1136,11 @@ bench(const bench_config *c)
             code = fail_with(bs->source, &err);
             goto done;
         }
-        cg_gpu_scene gpu;
-        memset(&gpu, 0, sizeof gpu);
-        if (!cg_gpu_scene_upload(&bs->scene, &gpu, &err)) {
-            code = fail_with("scene upload", &err);
+        if (!app_session_start_gl(&bs->session, &cdesc, &err)) {
+            code = fail_with(bs->source, &err);
             goto done;
         }
+        snprintf(renderer, sizeof renderer, "%s", cg_context_renderer(bs->session.ctx));
         for (int k = 0; k < c->setting_count; k++) {
             const bench_setting *set = &c->settings[k];
             int combos = settings_run_count(set);
@@ -1231,13 +1151,9 @@ bench(const bench_config *c)
                     rest /= set->vary[v].count;
                 }
                 run++;
-                int run_code = 1;
                 cg_error_clear(&err);
-                if (!run_setting(c, registry, bs, &gpu, ctx, s, set, choice, &rows, &run_code, &err)) {
-                    cg_gpu_scene_destroy(&gpu);
+                if (!run_setting(c, bs, s, set, choice, &rows, &err)) {
                     code = fail_with(set->graph, &err);
-                    if (run_code == 2)
-                        code = 2;
                     goto done;
                 }
                 const bench_row *r = &rows.rows[rows.count - 1];
@@ -1246,7 +1162,7 @@ bench(const bench_config *c)
                         r->full.rel_mse, r->full.mean_luminance_ratio);
             }
         }
-        cg_gpu_scene_destroy(&gpu);
+        app_session_stop_gl(&bs->session);
         for (int i = 0; i < rows.count; i++) {
             bench_row *r = &rows.rows[i];
             if (r->scene != s || r->is_pt)
@@ -1265,7 +1181,7 @@ bench(const bench_config *c)
         goto done;
     }
     fprintf(stderr, "bench: %d setting(s) on %d scene(s) in %.1f s on %s; wrote %s/bench.csv, bench.md and plots\n",
-            total_runs, c->scene_count, (app_now_ms() - t_start) / 1e3, cg_context_renderer(ctx), c->out_dir);
+            total_runs, c->scene_count, (app_now_ms() - t_start) / 1e3, renderer, c->out_dir);
     code = 0;
 done:
     for (int s = 0; s < loaded; s++) {
@@ -1273,14 +1189,10 @@ done:
         cg_image_free(&scenes[s].ref);
         cg_image_free(&scenes[s].ref_direct);
         cg_image_free(&scenes[s].ref_indirect);
-        cg_scene_free(&scenes[s].scene);
+        app_session_close(&scenes[s].session);
     }
     free(scenes);
     free(rows.rows);
-    if (ctx)
-        cg_context_destroy(ctx);
-    if (registry)
-        fg_registry_destroy(registry);
     return code;
 }
 
