@@ -110,6 +110,45 @@ bad_input_exits_with_2(void **state)
     assert_non_null(strstr(out, "usage: conegraph bench"));
 }
 
+static bool
+exists(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0;
+}
+
+/* A sweep whose last setting or last scene is bad exits 2 before it renders anything (no
+ * reference, no setting) and before it makes the output or cache directory: every setting is
+ * compiled on every scene first. The output names what it would have rendered first. */
+static void
+one_bad_setting_renders_and_writes_nothing(void **state)
+{
+    (void)state;
+    static char out[1 << 16];
+    char args[16384], out_dir[4200], cache_dir[4200];
+    const char *dir = cg_test_tmpdir();
+    snprintf(out_dir, sizeof out_dir, "%s/first/out", dir);
+    snprintf(cache_dir, sizeof cache_dir, "%s/first/cache", dir);
+    const char *cases[] = {
+        /* A value the parameter table takes but the pass refuses when it declares (compile). */
+        "--scene builtin:cornell --graph direct.json --graph vct.json --vary gather.cones=6,7",
+        /* An unknown parameter in the last of several settings. */
+        "--scene builtin:cornell --graph direct.json --graph vct.json --set gather.nosuchparam=1",
+        /* A bad second scene. */
+        "--scene builtin:cornell --scene builtin:nosuchscene --graph direct.json",
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        snprintf(args, sizeof args, "bench %s --out '%s' --cache '%s'", cases[i], out_dir, cache_dir);
+        int code = run(args, out, sizeof out);
+        if (code != 2)
+            fail_msg("'%s' exited with %d, expected 2:\n%s", cases[i], code, out);
+        assert_null(strstr(out, "rendering the reference"));
+        assert_null(strstr(out, "path_trace"));
+        assert_false(exists(out_dir));
+        assert_false(exists(cache_dir));
+    }
+}
+
 int
 main(void)
 {
@@ -117,6 +156,7 @@ main(void)
         cmocka_unit_test(sweep_runs_and_caches_the_reference),
         cmocka_unit_test(sweep_file),
         cmocka_unit_test(bad_input_exits_with_2),
+        cmocka_unit_test(one_bad_setting_renders_and_writes_nothing),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -9,6 +9,7 @@
 #include <string.h>
 #include <strings.h>
 #include <sys/stat.h>
+#include <sys/types.h>
 #include <time.h>
 
 static bool
@@ -157,6 +158,27 @@ app_error_prefix(cg_error *err, const char *what)
         memcpy(err->message + n, message, sizeof err->message - (size_t)n - 1);
     err->message[sizeof err->message - 1] = '\0';
 }
+
+bool
+app_make_dirs(const char *path, cg_error *err)
+{
+    char buf[4096];
+    if (snprintf(buf, sizeof buf, "%s", path) >= (int)sizeof buf)
+        return cg_fail(err, CG_ERR_USAGE, "%s: path too long", path);
+    for (char *p = buf + 1;; p++) {
+        if (*p == '/' || *p == '\0') {
+            char saved = *p;
+            *p = '\0';
+            if (mkdir(buf, 0777) != 0 && errno != EEXIST)
+                return cg_fail(err, CG_ERR_IO, "%s: cannot create directory: %s", buf, strerror(errno));
+            *p = saved;
+            if (!saved)
+                break;
+        }
+    }
+    return true;
+}
+
 
 double
 app_now_ms(void)

@@ -4,7 +4,7 @@
  *
  * Declares: app_graph_dir, app_resolve_graph, app_parse_int, app_parse_size, app_parse_timing,
  *           app_parse_bytes, app_has_extension, app_usage_error, app_fail, app_error_prefix,
- *           app_now_ms, app_cpu_ms, app_median, app_compare_double.
+ *           app_make_dirs, app_now_ms, app_cpu_ms, app_median, app_compare_double.
  *
  * Exit codes, as everywhere in conegraph: 0 done, 1 failed while running, 2 bad input or usage.
  */
@@ -41,6 +41,9 @@ int app_usage_error(const char *tool, const char *fmt, const char *arg);
 int app_fail(const char *tool, const char *what, const cg_error *err);
 /* Puts "WHAT: " in front of err's message (where the session failed: "scene", "graph", ...). */
 void app_error_prefix(cg_error *err, const char *what);
+
+/* mkdir -p: creates `path` and the directories above it that do not exist yet. */
+bool app_make_dirs(const char *path, cg_error *err);
 
 /* Wall clock (monotonic) and the CPU time of the whole process (all threads), in ms. */
 double app_now_ms(void);
