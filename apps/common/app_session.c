@@ -83,8 +83,9 @@ app_session_load_graph(app_session *s, const app_graph_desc *desc, cg_error *err
     for (int i = 0; i < desc->set_count; i++)
         if (!fg_graph_apply_override(s->graph, desc->sets[i], err))
             return failed(err, "graph");
+    bool added;
     for (int i = 0; i < desc->read_count; i++)
-        if (!is_output(s->graph, desc->reads[i]) && !fg_graph_mark_output(s->graph, desc->reads[i], NULL, err))
+        if (!app_session_mark_output(s, desc->reads[i], &added, err))
             return failed(err, "graph");
     if (desc->image) {
         s->image_source = find_output(s->graph, desc->image);
@@ -149,6 +150,13 @@ app_session_compile(app_session *s, cg_error *err)
     if (!fg_graph_prepare(s->graph, err))
         return failed(err, "prepare");
     return true;
+}
+
+bool
+app_session_mark_output(app_session *s, const char *source, bool *added, cg_error *err)
+{
+    *added = !is_output(s->graph, source);
+    return !*added || fg_graph_mark_output(s->graph, source, NULL, err);
 }
 
 void

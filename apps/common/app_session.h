@@ -8,7 +8,7 @@
  *
  * Declares: app_session_desc, app_graph_desc, app_session, app_run_desc, app_frame_stats,
  *           app_session_open, app_session_load_graph, app_session_check, app_session_start_gl,
- *           app_session_compile, app_session_run, app_session_check_gl, app_session_read_image,
+ *           app_session_compile, app_session_mark_output, app_session_run, app_session_check_gl, app_session_read_image,
  *           app_session_write_image, app_session_stop_gl, app_session_close,
  *           app_frame_stats_pass_median, app_frame_stats_free.
  *
@@ -91,6 +91,10 @@ bool app_session_start_gl(app_session *s, const cg_context_desc *context, cg_err
 /* Compiles with GL for the current frame (view, size) and prepares; the read-backs checked
  * again. Again after a parameter change, a new view or a new size. */
 bool app_session_compile(app_session *s, cg_error *err);
+
+/* Marks `source` as a graph output, so that it is kept and not pooled away before a read-back
+ * or a blit; *added: it was not one before (the graph must then be compiled again). */
+bool app_session_mark_output(app_session *s, const char *source, bool *added, cg_error *err);
 
 typedef struct app_run_desc {
     int warmup;                     /* untimed frames first (shader JIT, caches) */

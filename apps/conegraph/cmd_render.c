@@ -5,13 +5,12 @@
 #include <string.h>
 
 #include "app_common.h"
+#include "app_options.h"
 #include "app_session.h"
 #include "cg/error.h"
 #include "cg/fg.h"
 #include "cg/gl.h"
 #include "commands.h"
-
-#define MAX_LIST 64
 
 typedef struct dump_request {
     char source[256];       /* pass.output */
@@ -19,26 +18,15 @@ typedef struct dump_request {
 } dump_request;
 
 typedef struct render_options {
-    const char *scene;
-    const char *graph;
+    app_options common;     /* scene, graph, size, camera, frames, sets, plugins, context, budget, timing */
     const char *output;
-    int width, height;
-    const char *camera;
-    int frames;
     const char *report;
-    dump_request dumps[MAX_LIST];
+    dump_request dumps[APP_MAX_LIST];
     int dump_count;
-    const char *sets[MAX_LIST];
-    int set_count;
-    const char *plugins[MAX_LIST];
-    int plugin_count;
-    cg_context_backend backend;
-    size_t max_gpu_memory;
-    fg_timing_mode timing;
 } render_options;
 
-static void
-render_usage(FILE *out)
+void
+cmd_render_usage(FILE *out)
 {
     fprintf(out,
         "usage: conegraph render [SCENE] -o OUT.exr|OUT.png [options]\n"
@@ -83,81 +71,50 @@ usage_error(const char *fmt, const char *arg)
     return app_usage_error(TOOL, fmt, arg);
 }
 
+/* -o, --report, --dump: the options of render's own. */
+static int
+own_option(void *user, const char *a, const char *v)
+{
+    render_options *o = user;
+    if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
+        o->output = v;
+    } else if (!strcmp(a, "--report")) {
+        o->report = v;
+    } else if (!strcmp(a, "--dump")) {
+        const char *eq = strchr(v, '=');
+        if (!eq || eq == v || !eq[1] || (size_t)(eq - v) >= sizeof o->dumps[0].source)
+            return usage_error("--dump wants PASS.OUTPUT=FILE.exr, not '%s'", v);
+        if (!app_has_extension(eq + 1, ".exr"))
+            return usage_error("--dump writes .exr files only, not '%s'", eq + 1);
+        if (o->dump_count == APP_MAX_LIST)
+            return usage_error("%s: too many --dump options", v);
+        dump_request *d = &o->dumps[o->dump_count++];
+        memcpy(d->source, v, (size_t)(eq - v));
+        d->source[eq - v] = '\0';
+        d->path = eq + 1;
+    } else {
+        return -1;
+    }
+    return 0;
+}
+
 static int
 parse_args(int argc, char **argv, render_options *o)
 {
     memset(o, 0, sizeof *o);
-    o->width = 1280;
-    o->height = 720;
-    o->frames = 1;
-    o->timing = FG_TIMING_SYNC;
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        const char *v = i + 1 < argc ? argv[i + 1] : NULL;
-        bool takes_value = a[0] == '-' && a[1] != '\0';
-        if (takes_value && !v && strcmp(a, "--help") && strcmp(a, "-h"))
-            return usage_error("%s needs a value", a);
-        if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
-            o->output = v;
-        } else if (!strcmp(a, "--graph")) {
-            o->graph = v;
-        } else if (!strcmp(a, "--size")) {
-            if (!app_parse_size(v, &o->width, &o->height))
-                return usage_error("--size wants WxH with 1..65536 pixels each, not '%s'", v);
-        } else if (!strcmp(a, "--camera")) {
-            o->camera = v;
-        } else if (!strcmp(a, "--frames")) {
-            long n;
-            if (!app_parse_int(v, 1, 1000000, &n))
-                return usage_error("--frames wants a count from 1 to 1000000, not '%s'", v);
-            o->frames = (int)n;
-        } else if (!strcmp(a, "--report")) {
-            o->report = v;
-        } else if (!strcmp(a, "--dump")) {
-            const char *eq = strchr(v, '=');
-            if (!eq || eq == v || !eq[1] || (size_t)(eq - v) >= sizeof o->dumps[0].source)
-                return usage_error("--dump wants PASS.OUTPUT=FILE.exr, not '%s'", v);
-            if (!app_has_extension(eq + 1, ".exr"))
-                return usage_error("--dump writes .exr files only, not '%s'", eq + 1);
-            if (o->dump_count == MAX_LIST)
-                return usage_error("%s: too many --dump options", v);
-            dump_request *d = &o->dumps[o->dump_count++];
-            memcpy(d->source, v, (size_t)(eq - v));
-            d->source[eq - v] = '\0';
-            d->path = eq + 1;
-        } else if (!strcmp(a, "--set")) {
-            if (o->set_count == MAX_LIST)
-                return usage_error("%s: too many --set options", v);
-            o->sets[o->set_count++] = v;
-        } else if (!strcmp(a, "--plugin")) {
-            if (o->plugin_count == MAX_LIST)
-                return usage_error("%s: too many --plugin options", v);
-            o->plugins[o->plugin_count++] = v;
-        } else if (!strcmp(a, "--context")) {
-            if (!cg_context_backend_parse(v, &o->backend))
-                return usage_error("--context wants egl, osmesa, glfw or auto, not '%s'", v);
-        } else if (!strcmp(a, "--max-gpu-memory")) {
-            if (!app_parse_bytes(v, &o->max_gpu_memory))
-                return usage_error("--max-gpu-memory wants a positive byte count (suffix K, M or G), not '%s'", v);
-        } else if (!strcmp(a, "--timing")) {
-            if (!app_parse_timing(v, &o->timing))
-                return usage_error("--timing wants sync, queries or none, not '%s'", v);
-        } else if (a[0] == '-' && a[1] != '\0') {
-            return usage_error("unknown option '%s'", a);
-        } else {
-            if (o->scene)
-                return usage_error("one scene only; '%s' is a second one", a);
-            o->scene = a;
-            continue;
-        }
-        i++;
-    }
+    o->common.width = 1280;
+    o->common.height = 720;
+    o->common.frames = 1;
+    o->common.timing = FG_TIMING_SYNC;
+    int code = app_parse_options(TOOL, argc, argv, ~0u, &o->common, own_option, o);
+    if (code)
+        return code;
     if (!o->output)
         return usage_error("%s", "-o OUT.exr|OUT.png is required");
     if (!app_has_extension(o->output, ".exr") && !app_has_extension(o->output, ".png"))
         return usage_error("-o wants a .exr or .png file, not '%s'", o->output);
-    if (!o->scene)
-        o->scene = "builtin:openworld";
+    if (!o->common.scene)
+        o->common.scene = "builtin:openworld";
     return 0;
 }
 
@@ -178,16 +135,17 @@ render(const render_options *o)
     app_session s;
     app_frame_stats stats = { 0 };
     bool png = app_has_extension(o->output, ".png");
-    const char *reads[MAX_LIST];
+    const app_options *c = &o->common;
+    const char *reads[APP_MAX_LIST];
     for (int i = 0; i < o->dump_count; i++)
         reads[i] = o->dumps[i].source;
-    app_session_desc desc = { .scene = o->scene, .camera = o->camera, .plugins = o->plugins,
-                              .plugin_count = o->plugin_count, .width = o->width, .height = o->height,
-                              .compile = { .max_gpu_memory = o->max_gpu_memory } };
-    app_graph_desc graph = { .graph = o->graph, .sets = o->sets, .set_count = o->set_count,
-                             .image = png ? "ldr" : "hdr", .reads = reads, .read_count = o->dump_count };
-    cg_context_desc context = { .backend = o->backend, .width = o->width, .height = o->height, .debug = true };
-    app_run_desc run = { .frames = o->frames, .timing = o->timing, .on_frame = print_progress };
+    app_session_desc desc = app_options_session(c);
+    app_graph_desc graph = app_options_graph(c);
+    graph.image = png ? "ldr" : "hdr";
+    graph.reads = reads;
+    graph.read_count = o->dump_count;
+    cg_context_desc context = { .backend = c->backend, .width = c->width, .height = c->height, .debug = true };
+    app_run_desc run = { .frames = c->frames, .timing = c->timing, .on_frame = print_progress };
     bool ok = app_session_open(&s, &desc, &err) && app_session_load_graph(&s, &graph, &err) &&
               app_session_check(&s, &err) && app_session_start_gl(&s, &context, &err) &&
               app_session_compile(&s, &err) && app_session_run(&s, &run, &stats, &err) &&
@@ -200,9 +158,9 @@ render(const render_options *o)
     if (ok) {
         fg_graph_print_report(s.graph, stdout);
         fprintf(stderr, "render: %s %dx%d, graph %s, %s on %s: median frame %.1f ms over %d frame(s); wrote %s\n",
-                s.scene.name, o->width, o->height, s.graph_path,
+                s.scene.name, c->width, c->height, s.graph_path,
                 cg_context_backend_name(cg_context_get_backend(s.ctx)), cg_context_renderer(s.ctx),
-                stats.median_frame_ms, o->frames, o->output);
+                stats.median_frame_ms, c->frames, o->output);
     }
     app_frame_stats_free(&stats);
     app_session_close(&s);
@@ -212,14 +170,7 @@ render(const render_options *o)
 int
 cmd_render(int argc, char **argv)
 {
-    for (int i = 1; i < argc; i++)
-        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
-            render_usage(stdout);
-            return 0;
-        }
     render_options o;
     int code = parse_args(argc, argv, &o);
-    if (code)
-        return code;
-    return render(&o);
+    return code ? code : render(&o);
 }

@@ -11,6 +11,7 @@
 #include <GLFW/glfw3.h>
 
 #include "app_common.h"
+#include "app_options.h"
 #include "app_session.h"
 #include "cg/camera.h"
 #include "cg/error.h"
@@ -34,17 +35,9 @@ typedef struct scripted_key {
 } scripted_key;
 
 typedef struct demo_options {
-    const char *scene;
-    const char *graph;
-    int width, height;
-    const char *sets[MAX_LIST];
-    int set_count;
-    const char *plugins[MAX_LIST];
-    int plugin_count;
-    int frames;                 /* 0: until the window closes */
+    app_options common;         /* scene, graph, size, sets, plugins, timing; frames 0: until the
+                                 * window closes */
     const char *screenshot;
-    fg_timing_mode timing;
-    bool timing_given;
     scripted_key keys[MAX_LIST];  /* --keys: pressed one per frame from the first */
     int key_count;
 } demo_options;
@@ -200,62 +193,38 @@ parse_keys(const char *list, demo_options *o)
     return o->key_count > 0;
 }
 
+/* --screenshot, --keys: the demo's own options. */
+static int
+own_option(void *user, const char *a, const char *v)
+{
+    demo_options *o = user;
+    if (!strcmp(a, "--screenshot")) {
+        if (!app_has_extension(v, ".png"))
+            return usage_error("--screenshot writes .png files only, not '%s'", v);
+        o->screenshot = v;
+    } else if (!strcmp(a, "--keys")) {
+        if (!parse_keys(v, o))
+            return usage_error("--keys wants a comma-separated list of tab, shift+tab, up, down, "
+                               "left, right, 1..9, r, l, p, f12, esc, w, a, s, d, q, e "
+                               "(at most 64), not '%s'", v);
+    } else {
+        return -1;
+    }
+    return 0;
+}
+
 static int
 parse_args(int argc, char **argv, demo_options *o)
 {
     memset(o, 0, sizeof *o);
-    o->width = 1280;
-    o->height = 720;
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        const char *v = i + 1 < argc ? argv[i + 1] : NULL;
-        bool option = a[0] == '-' && a[1] != '\0';
-        if (option && !v)
-            return usage_error("%s needs a value", a);
-        if (!strcmp(a, "--graph")) {
-            o->graph = v;
-        } else if (!strcmp(a, "--size")) {
-            if (!app_parse_size(v, &o->width, &o->height))
-                return usage_error("--size wants WxH with 1..65536 pixels each, not '%s'", v);
-        } else if (!strcmp(a, "--set")) {
-            if (o->set_count == MAX_LIST)
-                return usage_error("%s: too many --set options", v);
-            o->sets[o->set_count++] = v;
-        } else if (!strcmp(a, "--plugin")) {
-            if (o->plugin_count == MAX_LIST)
-                return usage_error("%s: too many --plugin options", v);
-            o->plugins[o->plugin_count++] = v;
-        } else if (!strcmp(a, "--frames")) {
-            long n;
-            if (!app_parse_int(v, 1, 1000000, &n))
-                return usage_error("--frames wants a count from 1 to 1000000, not '%s'", v);
-            o->frames = (int)n;
-        } else if (!strcmp(a, "--screenshot")) {
-            if (!app_has_extension(v, ".png"))
-                return usage_error("--screenshot writes .png files only, not '%s'", v);
-            o->screenshot = v;
-        } else if (!strcmp(a, "--timing")) {
-            if (!app_parse_timing(v, &o->timing))
-                return usage_error("--timing wants sync, queries or none, not '%s'", v);
-            o->timing_given = true;
-        } else if (!strcmp(a, "--keys")) {
-            if (!parse_keys(v, o))
-                return usage_error("--keys wants a comma-separated list of tab, shift+tab, up, down, "
-                                   "left, right, 1..9, r, l, p, f12, esc, w, a, s, d, q, e "
-                                   "(at most 64), not '%s'", v);
-        } else if (option) {
-            return usage_error("unknown option '%s'", a);
-        } else {
-            if (o->scene)
-                return usage_error("one scene only; '%s' is a second one", a);
-            o->scene = a;
-            continue;
-        }
-        i++;
-    }
-    if (!o->scene)
-        o->scene = "builtin:openworld";
-    return 0;
+    o->common.width = 1280;
+    o->common.height = 720;
+    int code = app_parse_options(TOOL, argc, argv,
+                                 APP_OPT_GRAPH | APP_OPT_SIZE | APP_OPT_SET | APP_OPT_PLUGIN | APP_OPT_FRAMES |
+                                 APP_OPT_TIMING, &o->common, own_option, o);
+    if (!code && !o->common.scene)
+        o->common.scene = "builtin:openworld";
+    return code;
 }
 
 /* ------------------------------------------------------------ view and graph */
@@ -309,15 +278,6 @@ list_shown(demo *d, const char *ldr)
     for (int i = 0; i < d->shown_count; i++)
         if (!strcmp(d->shown[i], current))
             d->shown_index = i;
-}
-
-static bool
-is_output(const fg_graph *graph, const char *source)
-{
-    for (int i = 0; i < fg_graph_output_count(graph); i++)
-        if (!strcmp(fg_graph_output_at(graph, i), source))
-            return true;
-    return false;
 }
 
 /* Compiles for the current size and camera, then prepares (GL storage, programs); the
@@ -464,16 +424,15 @@ show(demo *d, int index)
         return;
     }
     d->shown_index = index;
-    if (!is_output(d->graph, d->shown[index])) {
-        /* Marked as an output so that it is kept and not pooled away before the blit. */
-        cg_error err = { 0 };
-        if (!fg_graph_mark_output(d->graph, d->shown[index], NULL, &err)) {
-            fprintf(stderr, "conegraph-demo: %s\n", err.message);
-            d->shown_index = 0;
-            return;
-        }
-        d->recompile = true;
+    /* Marked as an output so that it is kept and not pooled away before the blit. */
+    cg_error err = { 0 };
+    bool added = false;
+    if (!app_session_mark_output(&d->s, d->shown[index], &added, &err)) {
+        fprintf(stderr, "conegraph-demo: %s\n", err.message);
+        d->shown_index = 0;
+        return;
     }
+    d->recompile |= added;
     printf("show: %d %s%s\n", index + 1, d->shown[index],
            index ? " (raw values, clamped to [0,1] by the blit)" : "");
     fflush(stdout);
@@ -767,7 +726,7 @@ run(demo *d)
     cg_error err = { 0 };
     int frames_run = 0;
     double last = app_now_ms();
-    while (!glfwWindowShouldClose(d->window) && (!d->o.frames || frames_run < d->o.frames)) {
+    while (!glfwWindowShouldClose(d->window) && (!d->o.common.frames || frames_run < d->o.common.frames)) {
         glfwPollEvents();
         int w, h;
         glfwGetFramebufferSize(d->window, &w, &h);
@@ -812,7 +771,7 @@ run(demo *d)
         if (!fg_graph_execute(d->graph, &d->s.frame, d->timing, &err))
             return app_fail(TOOL, "frame", &err);
         blit(d);
-        bool last_frame = d->o.frames && frames_run + 1 == d->o.frames;
+        bool last_frame = d->o.common.frames && frames_run + 1 == d->o.common.frames;
         if (d->screenshot_requested || (last_frame && d->o.screenshot)) {
             char buf[64];
             const char *path = screenshot_path(d, buf, sizeof buf);
@@ -867,10 +826,10 @@ demo_main(demo *d)
 {
     cg_error err = { 0 };
     int code = 1;
-    app_session_desc desc = { .scene = d->o.scene, .plugins = d->o.plugins, .plugin_count = d->o.plugin_count,
-                              .width = d->o.width, .height = d->o.height };
-    app_graph_desc graph = { .graph = d->o.graph, .sets = d->o.sets, .set_count = d->o.set_count, .image = "ldr" };
-    cg_context_desc context = { .backend = CG_CONTEXT_GLFW, .width = d->o.width, .height = d->o.height,
+    app_session_desc desc = app_options_session(&d->o.common);
+    app_graph_desc graph = app_options_graph(&d->o.common);
+    graph.image = "ldr";
+    cg_context_desc context = { .backend = CG_CONTEXT_GLFW, .width = d->o.common.width, .height = d->o.common.height,
                                 .title = "conegraph-demo", .debug = true };
     if (!app_session_open(&d->s, &desc, &err) || !app_session_load_graph(&d->s, &graph, &err) ||
         !app_session_check(&d->s, &err)) {
@@ -878,8 +837,8 @@ demo_main(demo *d)
         goto done;
     }
     d->graph = d->s.graph;
-    if (d->o.frames) {
-        d->all_frame_ms = calloc((size_t)d->o.frames, sizeof *d->all_frame_ms);
+    if (d->o.common.frames) {
+        d->all_frame_ms = calloc((size_t)d->o.common.frames, sizeof *d->all_frame_ms);
         if (!d->all_frame_ms) {
             fprintf(stderr, "conegraph-demo: out of memory\n");
             goto done;
@@ -898,7 +857,7 @@ demo_main(demo *d)
     glfwSetScrollCallback(d->window, on_scroll);
     /* Frame times measure the frames, not the display's refresh. */
     glfwSwapInterval(0);
-    d->timing = d->o.timing_given ? d->o.timing
+    d->timing = d->o.common.timing_given ? d->o.common.timing
                                   : is_software(cg_context_renderer(d->s.ctx)) ? FG_TIMING_SYNC : FG_TIMING_QUERIES;
     glCreateFramebuffers(1, &d->read_fbo);
     glfwGetFramebufferSize(d->window, &d->s.frame.width, &d->s.frame.height);
@@ -933,11 +892,10 @@ done:
 int
 main(int argc, char **argv)
 {
-    for (int i = 1; i < argc; i++)
-        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
-            usage(stdout);
-            return 0;
-        }
+    if (app_wants_help(argc, argv)) {
+        usage(stdout);
+        return 0;
+    }
     demo *d = calloc(1, sizeof *d);
     if (!d) {
         fprintf(stderr, "conegraph-demo: out of memory\n");

@@ -249,6 +249,22 @@ load_sweep(const char *path, bench_config *c)
     return code;
 }
 
+/* The integer flags, with their ranges (those of the sweep file's fields). */
+typedef struct int_flag {
+    const char *name;
+    long min, max;
+    int *field;
+} int_flag;
+
+static const int_flag *
+find_int_flag(const int_flag *flags, int count, const char *name)
+{
+    for (int i = 0; i < count; i++)
+        if (!strcmp(name, flags[i].name))
+            return &flags[i];
+    return NULL;
+}
+
 int
 bench_parse_args(int argc, char **argv, bench_config *c)
 {
@@ -270,6 +286,8 @@ bench_parse_args(int argc, char **argv, bench_config *c)
             if (code)
                 return code;
         }
+    const int_flag int_flags[] = { { "--frames", 1, 10000, &c->frames }, { "--warmup", 0, 10000, &c->warmup },
+                                   { "--ref-spp", 1, 65536, &c->ref_spp }, { "--ref-bounces", 0, 16, &c->ref_bounces } };
     bool scenes_from_flags = false;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
@@ -282,7 +300,7 @@ bench_parse_args(int argc, char **argv, bench_config *c)
         const char *v = i + 1 < argc ? argv[++i] : NULL;
         if (!v)
             return usage_error("%s needs a value", a);
-        long n;
+        const int_flag *option;
         if (!strcmp(a, "--sweep")) {
             continue;
         } else if (!strcmp(a, "--scene")) {
@@ -314,22 +332,14 @@ bench_parse_args(int argc, char **argv, bench_config *c)
         } else if (!strcmp(a, "--camera")) {
             if (!copy_text(c->camera, v))
                 return usage_error("--camera '%s' is too long", v);
-        } else if (!strcmp(a, "--frames")) {
-            if (!app_parse_int(v, 1, 10000, &n))
-                return usage_error("--frames wants 1 to 10000, not '%s'", v);
-            c->frames = (int)n;
-        } else if (!strcmp(a, "--warmup")) {
-            if (!app_parse_int(v, 0, 10000, &n))
-                return usage_error("--warmup wants 0 to 10000, not '%s'", v);
-            c->warmup = (int)n;
-        } else if (!strcmp(a, "--ref-spp")) {
-            if (!app_parse_int(v, 1, 65536, &n))
-                return usage_error("--ref-spp wants 1 to 65536, not '%s'", v);
-            c->ref_spp = (int)n;
-        } else if (!strcmp(a, "--ref-bounces")) {
-            if (!app_parse_int(v, 0, 16, &n))
-                return usage_error("--ref-bounces wants 0 to 16, not '%s'", v);
-            c->ref_bounces = (int)n;
+        } else if ((option = find_int_flag(int_flags, 4, a))) {
+            long n;
+            if (!app_parse_int(v, option->min, option->max, &n)) {
+                char fmt[128];
+                snprintf(fmt, sizeof fmt, "%s wants %ld to %ld, not '%%s'", a, option->min, option->max);
+                return usage_error(fmt, v);
+            }
+            *option->field = (int)n;
         } else if (!strcmp(a, "--pt-spp")) {
             if (!parse_spp_list(v, c))
                 return usage_error("--pt-spp wants up to 16 counts from 1 to 65536 like 1,4,16, not '%s'", v);
