@@ -347,14 +347,10 @@ apply_changes(demo *d, cg_error *err)
 
 /* ------------------------------------------------------------ input */
 
-/* Most that one key press steps past values the graph refuses. */
-#define MAX_REFUSED_STEPS 64
-
-/* Left/Right. A table range can be wider than what a pass accepts (cone_gather's cones is
- * 1..16 but only 1, 6, 9 or 16 make a cone set; its declare says so), and a value can pass
- * the table yet not compile (a resolution past the GL limits): the key then goes on stepping
- * the same way until the graph compiles, and if it never does within the range, nothing
- * changes and the first refusal is printed. */
+/* Left/Right. The step lands on a value the table allows (demo_params.h), so nothing is
+ * compiled to find it; a value whose dependencies fail is refused at once. The graph is
+ * compiled before the next frame, and a value that still fails there (a resolution past the
+ * GL limits) is undone by apply_changes. */
 static void
 adjust(demo *d, int direction)
 {
@@ -368,47 +364,22 @@ adjust(demo *d, int direction)
     const fg_param_desc *desc;
     if (!demo_selected(d->graph, &d->sel, &pass, &desc))
         return;
-    cg_error refused = { 0 };
-    bool stepped = false, compiled = false;
-    for (int tries = 0; tries < MAX_REFUSED_STEPS && !compiled; tries++) {
-        cg_error err = { 0 };
-        bool changed = false;
-        char previous[sizeof c->previous];
-        if (!demo_adjust(d->graph, &d->sel, direction, &changed, previous, sizeof previous, &err)) {
-            fprintf(stderr, "conegraph-demo: %s\n", err.message);
-            break;
-        }
-        if (!changed)
-            break;
-        if (!stepped)
-            memcpy(c->previous, previous, sizeof previous);
-        stepped = true;
-        /* Compiling needs no new GL objects; it does release the graph's, so a prepare
-         * follows before the next frame in any case. */
-        update_view(d);
-        fg_compile_options copts = { 0 };
-        compiled = fg_graph_compile(d->graph, &d->s.frame, &copts, &err);
-        if (!compiled && refused.status == CG_OK)
-            refused = err;
+    cg_error err = { 0 };
+    bool changed = false;
+    if (!demo_adjust(d->graph, &d->sel, direction, &changed, c->previous, sizeof c->previous, &err)) {
+        fprintf(stderr, "conegraph-demo: %s; not changed\n", err.message);
+        return;
     }
-    if (!stepped) {
+    if (!changed) {
         printf("param: %s.%s: no step %s from here\n", fg_pass_name(pass), desc->name,
                desc->type == FG_PARAM_STRING ? "(a string)" : direction > 0 ? "up" : "down");
         fflush(stdout);
         return;
     }
-    d->recompile = true;
-    if (!compiled) {
-        cg_error err = { 0 };
-        fprintf(stderr, "conegraph-demo: %s; no value that way compiles, change undone\n", refused.message);
-        if (!fg_graph_set_param(d->graph, fg_pass_name(pass), desc->name, c->previous, NULL, &err))
-            fprintf(stderr, "conegraph-demo: undoing %s.%s: %s\n", fg_pass_name(pass), desc->name, err.message);
-        print_selection(d);
-        return;
-    }
     snprintf(c->pass, sizeof c->pass, "%s", fg_pass_name(pass));
     snprintf(c->param, sizeof c->param, "%s", desc->name);
     d->change_count++;
+    d->recompile = true;
     print_selection(d);
 }
 
