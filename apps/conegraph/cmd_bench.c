@@ -23,11 +23,16 @@ cmd_bench_usage(FILE *out)
     fprintf(out,
         "usage: conegraph bench [--sweep FILE.json] [--scene SCENE]... [--graph FILE\n"
         "                       [--set PASS.PARAM=V]... [--vary PASS.PARAM=V1,V2,...]...]...\n"
-        "                       [options]\n"
+        "                       [--shard K/N | --merge DIR...] [options]\n"
         "\n"
         "Measures every setting of a sweep against the path-traced reference and writes\n"
-        "OUT/bench.csv, OUT/bench.md and, per scene, OUT/SCENE-time.png and OUT/SCENE-memory.png\n"
-        "(relMSE against time per frame and against GI memory, Pareto front ringed in red).\n"
+        "OUT/bench.csv, OUT/bench.md, OUT/bench.json (every row at full precision) and, per\n"
+        "scene, OUT/SCENE-time.png and OUT/SCENE-memory.png (relMSE against time per frame and\n"
+        "against GI memory: a colour per setting, a marker per combination of its varied values,\n"
+        "each point labelled with them, the Pareto front ringed in red).\n"
+        "\n"
+        "Every setting is first compiled (without GL) on every scene: one bad scene, graph,\n"
+        "parameter or value exits 2 before anything renders and before OUT is made.\n"
         "\n"
         "Per scene: the reference (path_trace at --ref-spp, --ref-bounces; pixel centres like the\n"
         "raster camera) and its direct part (0 bounces) are rendered once and cached in the cache\n"
@@ -59,6 +64,14 @@ cmd_bench_usage(FILE *out)
         "  --images              also write each setting's image, error heat map and the\n"
         "                        reference as PNG (linear radiance, clamped, sRGB-encoded)\n"
         "  --context egl|osmesa|glfw  GL context (default: $CONEGRAPH_CONTEXT, else EGL, then OSMesa)\n"
+        "  --shard K/N           measure only the K-th of N shares (a job array's task K, e.g.\n"
+        "                        $SLURM_ARRAY_TASK_ID); writes OUT/bench.json (and --images) only.\n"
+        "                        A share: per scene, the path tracer's timings and each run, taken\n"
+        "                        in turn. Give the shards a shared --cache to render each\n"
+        "                        reference once, and one kind of machine (times are compared)\n"
+        "  --merge DIR...        read DIR/bench.json of shards 1/N..N/N of the same sweep (the\n"
+        "                        same flags and sweep file, --shard left out) and write the\n"
+        "                        tables, plots and bench.json of the whole sweep to OUT\n"
         "Pass plugins in the directories of $CONEGRAPH_PLUGIN_PATH are loaded.\n"
         "\n"
         "Sweep file:\n"
@@ -69,34 +82,49 @@ cmd_bench_usage(FILE *out)
         "                  { \"graph\": \"vct.json\", \"set\": { \"gather.cones\": 6 },\n"
         "                    \"vary\": { \"vox.resolution\": [64, 128] } } ] }\n"
         "\n"
-        "Exit codes: 0 done, 1 failed while running, 2 bad usage, sweep file, scene or graph.\n"
-        "Progress goes to stderr; the Markdown table also to stdout.\n");
+        "Exit codes: 0 done, 1 failed while running, 2 bad usage, sweep file, scene, graph or\n"
+        "shard files. Progress, with an estimate of the time left (the mean of the runs so far\n"
+        "times the runs to go, references left out), goes to stderr; the Markdown table also to\n"
+        "stdout.\n");
 }
 
-/* "about 1 min 20 s left": the mean time of the runs so far times the runs still to do. */
+/* Runs measured so far and the time they took: the time left is their mean times the rest. */
+typedef struct bench_progress {
+    int done, total;
+    double ms;
+} bench_progress;
+
 static void
-format_time_left(double elapsed_ms, int done, int total, char *out, size_t size)
+format_time_left(const bench_progress *p, char *out, size_t size)
 {
-    double left = done > 0 ? elapsed_ms / done * (total - done) / 1e3 : 0.0;
+    double left = p->done > 0 ? p->ms / p->done * (p->total - p->done) / 1e3 : 0.0;
     if (left >= 60.0)
         snprintf(out, size, "about %d min %02d s left", (int)(left / 60.0), (int)fmod(left, 60.0));
     else
         snprintf(out, size, "about %.0f s left", left);
 }
 
-/* Everything of one scene: reference, path tracer, every run, the analysis and the plots. */
+/* What this shard measures of one scene: its reference, the path tracer's timings and its runs;
+ * without shards also the analysis and the plots. */
 static bool
-bench_scene_all(const bench_config *c, const bench_run *runs, int run_count, bench_scene *scenes, int s,
-                bench_rows *rows, int *done, int total, double *settings_ms, char *renderer, size_t renderer_size,
-                cg_error *err)
+measure_scene(const bench_config *c, const bench_run *runs, int run_count, bench_scene *scenes, int s,
+              bench_rows *rows, bench_progress *progress, char *renderer, size_t renderer_size, cg_error *err)
 {
     bench_scene *bs = &scenes[s];
-    cg_context_desc context = { .backend = c->backend, .width = c->width, .height = c->height, .debug = true };
+    if (!bench_scene_in_shard(c, run_count, s))
+        return true;
     if (!bench_reference(c, bs, err) || (c->images && !bench_write_reference_image(c, bs, err)) ||
-        !bench_path_tracer(c, bs, s, rows, err) || !app_session_start_gl(&bs->session, &context, err))
+        (bench_in_shard(c, run_count, s, -1) && !bench_path_tracer(c, bs, s, rows, err)))
         return false;
-    snprintf(renderer, renderer_size, "%s", cg_context_renderer(bs->session.ctx));
+    cg_context_desc context = { .backend = c->backend, .width = c->width, .height = c->height, .debug = true };
     for (int i = 0; i < run_count; i++) {
+        if (!bench_in_shard(c, run_count, s, i))
+            continue;
+        if (!bs->session.ctx) {
+            if (!app_session_start_gl(&bs->session, &context, err))
+                return false;
+            snprintf(renderer, renderer_size, "%s", cg_context_renderer(bs->session.ctx));
+        }
         double t0 = app_now_ms();
         if (!bench_measure_run(c, bs, s, &runs[i], rows, err)) {
             char what[2048];
@@ -105,20 +133,36 @@ bench_scene_all(const bench_config *c, const bench_run *runs, int run_count, ben
             app_error_prefix(err, what);
             return false;
         }
-        *settings_ms += app_now_ms() - t0;
-        ++*done;
+        progress->ms += app_now_ms() - t0;
+        progress->done++;
         char left[64];
-        format_time_left(*settings_ms, *done, total, left, sizeof left);
+        format_time_left(progress, left, sizeof left);
         const bench_row *r = &rows->rows[rows->count - 1];
-        fprintf(stderr, "bench: [%d/%d] %s %s %s: %.1f ms, GI %.1f MiB, relMSE %.5f, lum ratio %.3f; %s\n", *done,
-                total, bs->source, r->graph, r->params, r->ms, (double)r->gi_bytes / 1048576.0, r->full.rel_mse,
-                r->full.mean_luminance_ratio, left);
+        fprintf(stderr, "bench: [%d/%d] %s %s %s: %.1f ms, GI %.1f MiB, relMSE %.5f, lum ratio %.3f; %s\n",
+                progress->done, progress->total, bs->source, r->graph, r->params, r->ms,
+                (double)r->gi_bytes / 1048576.0, r->full.rel_mse, r->full.mean_luminance_ratio, left);
     }
     app_session_stop_gl(&bs->session);
+    if (c->shard_count > 1)
+        return true;
     bench_analyse(rows, s);
     return bench_write_plots(c, rows, scenes, s, err);
 }
 
+static void
+free_scenes(bench_scene *scenes, int count)
+{
+    for (int s = 0; scenes && s < count; s++) {
+        pt_scene_destroy(scenes[s].pts);
+        cg_image_free(&scenes[s].ref);
+        cg_image_free(&scenes[s].ref_direct);
+        cg_image_free(&scenes[s].ref_indirect);
+        app_session_close(&scenes[s].session);
+    }
+    free(scenes);
+}
+
+/* A sweep, or this shard's share of it. */
 static int
 bench(const bench_config *c)
 {
@@ -129,36 +173,72 @@ bench(const bench_config *c)
     bench_rows rows = { 0 };
     bench_scene *scenes = calloc((size_t)c->scene_count, sizeof *scenes);
     int code = scenes ? bench_expand_runs(c, &runs, &run_count) : 1;
-    /* Every setting on every scene checked before anything renders or any file is made. */
+    if (!scenes)
+        fprintf(stderr, "%s: out of memory\n", TOOL);
+    for (int s = 0; !code && s < c->scene_count; s++)
+        scenes[s].bvh_ms = NAN;
+    /* Every setting on every scene checked before anything renders or any file is made (all of
+     * the sweep in every shard, so that a bad setting stops them all). */
     if (!code)
         code = bench_validate(c, runs, run_count, scenes);
     if (!code) {
         fprintf(stderr, "bench: %d setting(s) on %d scene(s) checked in %.1f s\n", run_count, c->scene_count,
                 (app_now_ms() - t_start) / 1e3);
+        if (c->shard_count > 1)
+            fprintf(stderr, "bench: shard %d/%d: %d of the %d runs\n", c->shard, c->shard_count,
+                    bench_shard_run_count(c, run_count), run_count * c->scene_count);
         code = app_make_dirs(c->out_dir, &err) ? 0 : app_fail(TOOL, c->out_dir, &err);
     }
-    int total = run_count * c->scene_count, done = 0;
-    double settings_ms = 0.0;
+    bench_progress progress = { .total = bench_shard_run_count(c, run_count) };
     char renderer[256] = "";
     for (int s = 0; !code && s < c->scene_count; s++)
-        if (!bench_scene_all(c, runs, run_count, scenes, s, &rows, &done, total, &settings_ms, renderer,
-                             sizeof renderer, &err))
+        if (!measure_scene(c, runs, run_count, scenes, s, &rows, &progress, renderer, sizeof renderer, &err))
             code = app_fail(TOOL, NULL, &err);
-    if (!code && !bench_write_tables(c, &rows, scenes, c->scene_count, &err))
+    /* A shard's rows lack the others' (the path tracer's among them): its tables wait for --merge. */
+    if (!code && ((c->shard_count == 1 && !bench_write_tables(c, &rows, scenes, c->scene_count, &err)) ||
+                  !bench_write_json(c, &rows, scenes, renderer, &err)))
         code = app_fail(TOOL, c->out_dir, &err);
     if (!code)
-        fprintf(stderr, "bench: %d setting(s) on %d scene(s) in %.1f s on %s; wrote %s/bench.csv, bench.md and plots\n",
-                run_count * c->scene_count, c->scene_count, (app_now_ms() - t_start) / 1e3, renderer, c->out_dir);
+        fprintf(stderr, "bench: %d run(s) in %.1f s on %s; wrote %s/%s\n", progress.total,
+                (app_now_ms() - t_start) / 1e3, renderer, c->out_dir,
+                c->shard_count == 1 ? "bench.csv, bench.md, bench.json and plots" : "bench.json");
+    free_scenes(scenes, c->scene_count);
+    free(runs);
+    free(rows.rows);
+    return code;
+}
+
+/* --merge: the shards' bench.json into one set of tables, plots and bench.json. */
+static int
+merge(const bench_config *c)
+{
+    cg_error err = { 0 };
+    bench_run *runs = NULL;
+    int run_count = 0;
+    bench_rows rows = { 0 };
+    char renderer[256];
+    bench_scene *scenes = calloc((size_t)c->scene_count, sizeof *scenes);
+    int code = scenes ? bench_expand_runs(c, &runs, &run_count) : 1;
     if (!scenes)
         fprintf(stderr, "%s: out of memory\n", TOOL);
-    for (int s = 0; scenes && s < c->scene_count; s++) {
-        pt_scene_destroy(scenes[s].pts);
-        cg_image_free(&scenes[s].ref);
-        cg_image_free(&scenes[s].ref_direct);
-        cg_image_free(&scenes[s].ref_indirect);
-        app_session_close(&scenes[s].session);
+    for (int s = 0; !code && s < c->scene_count; s++)
+        scenes[s].source = c->scenes[s];
+    if (!code)
+        code = bench_merge(c, run_count, &rows, scenes, renderer, sizeof renderer);
+    if (!code && !app_make_dirs(c->out_dir, &err))
+        code = app_fail(TOOL, c->out_dir, &err);
+    for (int s = 0; !code && s < c->scene_count; s++) {
+        bench_analyse(&rows, s);
+        if (!bench_write_plots(c, &rows, scenes, s, &err))
+            code = app_fail(TOOL, "plots", &err);
     }
-    free(scenes);
+    if (!code && (!bench_write_tables(c, &rows, scenes, c->scene_count, &err) ||
+                  !bench_write_json(c, &rows, scenes, renderer, &err)))
+        code = app_fail(TOOL, c->out_dir, &err);
+    if (!code)
+        fprintf(stderr, "bench: merged %d shard(s), %d row(s); wrote %s/bench.csv, bench.md, bench.json and plots\n",
+                c->merge_count, rows.count, c->out_dir);
+    free_scenes(scenes, c->scene_count);
     free(runs);
     free(rows.rows);
     return code;
@@ -170,5 +250,7 @@ cmd_bench(int argc, char **argv)
     /* Static, not on the stack: the config holds every setting (0.6 MB); one bench a process. */
     static bench_config config;
     int code = bench_parse_args(argc, argv, &config);
-    return code ? code : bench(&config);
+    if (code)
+        return code;
+    return config.merge_count ? merge(&config) : bench(&config);
 }

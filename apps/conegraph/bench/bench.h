@@ -6,19 +6,28 @@
  *   sweep.c      bench_parse_args, bench_expand_runs, bench_run_assignments, bench_validate:
  *                flags and sweep file into a config, its runs, and every run compiled (without
  *                GL) on every scene before anything renders or any file is made;
- *   reference.c  bench_reference, bench_path_tracer: the path-traced reference (cached), its
- *                direct part, and the path tracer timed at each sample count (cg/pt_render.h);
+ *   reference.c  bench_reference, bench_path_tracer, bench_hash_text: the path-traced reference
+ *                (cached), its direct part, and the path tracer timed at each sample count
+ *                (cg/pt_render.h);
  *   measure.c    bench_measure_run: one run on one scene through the app session: timings,
  *                GI memory, errors against the reference;
  *   analysis.c   bench_analyse: the equal-error speed-up over the path tracer and the Pareto fronts;
  *   write.c      bench_write_tables, bench_write_plots, bench_write_run_images,
- *                bench_write_reference_image, bench_slug: CSV, Markdown, PNG plots and images.
+ *                bench_write_reference_image, bench_slug: CSV, Markdown, PNG plots and images;
+ *   shard.c      bench_in_shard, bench_scene_in_shard, bench_shard_run_count, bench_fingerprint,
+ *                bench_write_json, bench_merge: --shard K/N (a job array's share of the work),
+ *                bench.json (every row at full precision) and --merge of shards' bench.json.
+ *
+ * Units of work, for sharding: per scene, the path tracer's timings, then each run, numbered
+ * scene by scene; shard K of N takes the units whose number is K-1 modulo N (so consecutive
+ * runs, which tend to cost alike, spread over the shards).
  */
 #ifndef CONEGRAPH_BENCH_H
 #define CONEGRAPH_BENCH_H
 
 #include <stdbool.h>
 #include <stddef.h>
+#include <stdint.h>
 
 #include "app_session.h"
 #include "cg/error.h"
@@ -34,6 +43,7 @@
 #define BENCH_MAX_VALUES 16
 #define BENCH_MAX_SPP 16
 #define BENCH_MAX_RUNS 4096     /* runs per scene, over all settings and their combinations */
+#define BENCH_MAX_SHARDS 4096
 #define BENCH_TEXT 256
 
 typedef struct bench_vary {
@@ -65,10 +75,14 @@ typedef struct bench_config {
     char cache_dir[BENCH_TEXT];
     cg_context_backend backend;
     bool images;
+    int shard, shard_count;                 /* --shard K/N, K from 1; 1/1 without */
+    const char *merge[BENCH_MAX_SHARDS];    /* --merge DIR...: shards' output directories */
+    int merge_count;
 } bench_config;
 
 /* One combination of one setting's varied values: a line of the table per scene. */
 typedef struct bench_run {
+    int index;                              /* in the list of runs, from 0 */
     int setting;                            /* index into bench_config.settings */
     int choice[BENCH_MAX_VARY];             /* the value of each vary */
     int combo;                              /* which combination of its setting, from 0: its plot marker */
@@ -81,7 +95,7 @@ typedef struct bench_scene {
     app_session session;                    /* scene, camera and view at the bench size, registry,
                                              * graph, context */
     pt_scene *pts;
-    double bvh_ms;
+    double bvh_ms;                          /* NAN until measured (a shard may skip the scene) */
     cg_image ref, ref_direct, ref_indirect;
 } bench_scene;
 
@@ -89,7 +103,10 @@ typedef struct bench_row {
     int scene;
     bool is_pt;
     int spp;                                /* path tracer rows */
-    int setting, combo;                     /* graph rows: which setting, which combination */
+    int run;                                /* graph rows: which run (-1: a path tracer row) */
+    int setting;                            /* graph rows: which setting */
+    int combo;                              /* graph rows: which combination of the setting;
+                                             * path tracer rows: which --pt-spp */
     char graph[BENCH_TEXT];
     char params[1024];
     char label[256];
@@ -130,6 +147,9 @@ bool bench_reference(const bench_config *c, bench_scene *bs, cg_error *err);
 /* The path tracer at each --pt-spp, timed, compared with the reference: one row each. */
 bool bench_path_tracer(const bench_config *c, bench_scene *bs, int scene_index, bench_rows *rows, cg_error *err);
 
+/* FNV-1a of a text: cache keys, the sweep's fingerprint. */
+uint64_t bench_hash_text(const char *text);
+
 /* measure.c ---------------------------------------------------------------------------------- */
 
 /* A new row at the end of rows (zeroed; speed-up fields NAN), or NULL when out of memory. */
@@ -164,5 +184,26 @@ bool bench_write_reference_image(const bench_config *c, const bench_scene *bs, c
 /* OUT/SCENE-GRAPH-PARAMS.png and its error heat map OUT/SCENE-GRAPH-PARAMS-error.png. */
 bool bench_write_run_images(const bench_config *c, const bench_scene *bs, const bench_row *row,
                             const cg_image *image, cg_error *err);
+
+/* shard.c ------------------------------------------------------------------------------------ */
+
+/* Whether this shard measures run `run` (-1: the path tracer's timings) of scene `scene`. */
+bool bench_in_shard(const bench_config *c, int run_count, int scene, int run);
+/* Whether it measures anything of the scene (then it needs the scene's reference). */
+bool bench_scene_in_shard(const bench_config *c, int run_count, int scene);
+/* How many runs (path tracer timings left out) this shard measures over all scenes. */
+int bench_shard_run_count(const bench_config *c, int run_count);
+/* 16 hex digits naming what a sweep measures (scenes, size, camera, frames, reference, path
+ * tracer counts, settings), not where it writes: shards of one sweep share it. */
+void bench_fingerprint(const bench_config *c, char out[17]);
+/* OUT/bench.json: the sweep's fingerprint, the shard, the scenes, the renderer and every row at
+ * full precision (non-finite figures as null), written atomically. */
+bool bench_write_json(const bench_config *c, const bench_rows *rows, const bench_scene *scenes,
+                      const char *renderer, cg_error *err);
+/* Reads DIR/bench.json of each --merge directory: they must be shards 1..N of this sweep, each
+ * once, together holding every unit. Fills rows (in the order one unsharded run gives), each
+ * scene's bvh_ms and the renderer. Returns 0, or 2 after printing what is wrong. */
+int bench_merge(const bench_config *c, int run_count, bench_rows *rows, bench_scene *scenes, char *renderer,
+                size_t renderer_size);
 
 #endif

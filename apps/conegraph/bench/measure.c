@@ -79,6 +79,7 @@ bench_measure_run(const bench_config *c, bench_scene *bs, int scene_index, const
     bool ok = row != NULL;
     if (ok) {
         row->scene = scene_index;
+        row->run = run->index;
         row->setting = run->setting;
         row->combo = run->combo;
         snprintf(row->graph, sizeof row->graph, "%s", setting->graph);

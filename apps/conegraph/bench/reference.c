@@ -20,8 +20,8 @@ fnv1a_bytes(uint64_t h, const void *data, size_t size)
     return h;
 }
 
-static uint64_t
-fnv1a(const char *text)
+uint64_t
+bench_hash_text(const char *text)
 {
     return fnv1a_bytes(0xcbf29ce484222325ull, text, strlen(text));
 }
@@ -90,7 +90,7 @@ reference_image(const bench_config *c, bench_scene *bs, int spp, int bounces, cg
              PT_RENDER_VERSION, bs->source, (unsigned long long)scene_hash(&bs->session.scene),
              (unsigned long long)view_hash, c->width, c->height, spp, bounces, c->ref_seed);
     char path[4096];
-    snprintf(path, sizeof path, "%s/ref-%016llx.exr", c->cache_dir, (unsigned long long)fnv1a(key));
+    snprintf(path, sizeof path, "%s/ref-%016llx.exr", c->cache_dir, (unsigned long long)bench_hash_text(key));
     if (stat(path, &st) == 0) {
         if (!cg_image_read(path, out, err))
             return false;
@@ -168,6 +168,8 @@ bench_path_tracer(const bench_config *c, bench_scene *bs, int scene_index, bench
         }
         row->scene = scene_index;
         row->is_pt = true;
+        row->run = -1;
+        row->combo = k;
         row->spp = s.spp;
         row->ms = ms;
         snprintf(row->graph, sizeof row->graph, "path_trace");

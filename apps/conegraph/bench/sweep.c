@@ -59,6 +59,24 @@ parse_spp_list(const char *text, bench_config *c)
     return c->pt_count > 0;
 }
 
+/* "K/N" into the shard fields. */
+static bool
+parse_shard(const char *text, bench_config *c)
+{
+    char buf[64];
+    long k, n;
+    const char *slash = strchr(text, '/');
+    if (!slash || (size_t)(slash - text) >= sizeof buf)
+        return false;
+    memcpy(buf, text, (size_t)(slash - text));
+    buf[slash - text] = '\0';
+    if (!app_parse_int(buf, 1, BENCH_MAX_SHARDS, &k) || !app_parse_int(slash + 1, 1, BENCH_MAX_SHARDS, &n) || k > n)
+        return false;
+    c->shard = (int)k;
+    c->shard_count = (int)n;
+    return true;
+}
+
 /* "pass.param=v1,v2,..." into a vary entry. */
 static bool
 parse_vary(const char *text, bench_vary *v)
@@ -278,6 +296,7 @@ bench_parse_args(int argc, char **argv, bench_config *c)
     c->ref_seed = 1;
     c->pt_spp[0] = 1, c->pt_spp[1] = 4, c->pt_spp[2] = 16, c->pt_spp[3] = 64;
     c->pt_count = 4;
+    c->shard = c->shard_count = 1;
     strcpy(c->out_dir, "bench-out");
     /* The sweep file first, so that flags override it wherever they appear. */
     for (int i = 1; i + 1 < argc; i++)
@@ -293,6 +312,18 @@ bench_parse_args(int argc, char **argv, bench_config *c)
         const char *a = argv[i];
         if (!strcmp(a, "--images")) {
             c->images = true;
+            continue;
+        }
+        if (!strcmp(a, "--merge")) {
+            /* The directories up to the next option. */
+            int before = c->merge_count;
+            while (i + 1 < argc && argv[i + 1][0] != '-') {
+                if (c->merge_count == BENCH_MAX_SHARDS)
+                    return usage_error("--merge: more than %s directories", "4096");
+                c->merge[c->merge_count++] = argv[++i];
+            }
+            if (c->merge_count == before)
+                return usage_error("%s wants one or more directories (the shards' --out)", a);
             continue;
         }
         if (a[0] != '-')
@@ -340,6 +371,9 @@ bench_parse_args(int argc, char **argv, bench_config *c)
                 return usage_error(fmt, v);
             }
             *option->field = (int)n;
+        } else if (!strcmp(a, "--shard")) {
+            if (!parse_shard(v, c))
+                return usage_error("--shard wants K/N with 1 <= K <= N <= 4096, not '%s'", v);
         } else if (!strcmp(a, "--pt-spp")) {
             if (!parse_spp_list(v, c))
                 return usage_error("--pt-spp wants up to 16 counts from 1 to 65536 like 1,4,16, not '%s'", v);
@@ -368,6 +402,8 @@ bench_parse_args(int argc, char **argv, bench_config *c)
         if (stat(path, &st) == 0)
             strcpy(c->settings[c->setting_count++].graph, "vct.json");
     }
+    if (c->merge_count && c->shard_count > 1)
+        return usage_error("%s", "--merge joins shards; it is not one itself (no --shard with it)");
     if (!c->cache_dir[0] && snprintf(c->cache_dir, BENCH_TEXT, "%s/cache", c->out_dir) >= BENCH_TEXT)
         return usage_error("--out '%s' is too long", c->out_dir);
     return 0;
@@ -414,7 +450,8 @@ bench_expand_runs(const bench_config *c, bench_run **runs, int *run_count)
         const bench_setting *s = &c->settings[k];
         long combos = combinations(s);
         for (long combo = 0; combo < combos; combo++) {
-            bench_run *r = &(*runs)[(*run_count)++];
+            bench_run *r = &(*runs)[*run_count];
+            r->index = (*run_count)++;
             r->setting = k;
             r->combo = (int)combo;
             long rest = combo;
