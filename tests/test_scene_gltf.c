@@ -1,7 +1,7 @@
 /* glTF loading: good scenes written here (a triangle with and without 8/16/32-bit indices,
  * strips and fans, a node hierarchy, lights and cameras, materials and textures, a .glb,
- * height-field classification) and a malformed corpus written here, where each defect
- * gives its named error, a message naming the file, and no crash. */
+ * height-field classification) and the malformed corpus of tests/data/gltf/malformed,
+ * where each defect gives its named error, a message naming the file, and no crash. */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -587,33 +587,7 @@ sparse_accessors(void **state)
         assert_memory_equal(s.meshes[m].positions, triangle, sizeof triangle);
     cg_scene_free(&s);
 
-    const struct {
-        const char *name, *from, *to;
-        cg_status expected;
-    } bad[] = {
-        { "sparse_range.gltf", "\"byteOffset\":52,\"byteLength\":4}", "\"byteOffset\":36,\"byteLength\":4}",
-          CG_ERR_GLTF_INDEX_RANGE }, /* indices 2, 0: the second is not above the first */
-        { "sparse_values.gltf", "\"byteOffset\":40,\"byteLength\":12}", "\"byteOffset\":40,\"byteLength\":8}",
-          CG_ERR_GLTF_BUFFER },
-        { "sparse_count.gltf", "\"sparse\":{\"count\":2", "\"sparse\":{\"count\":4", CG_ERR_GLTF_SCHEMA },
-        { "sparse_float_indices.gltf", "\"componentType\":5121}", "\"componentType\":5126}", CG_ERR_GLTF_SCHEMA },
-    };
-    cg_error err = { 0 };
-    for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
-        const char *at = strstr(sparse_json, bad[i].from);
-        assert_non_null(at);
-        char json[4096];
-        snprintf(json, sizeof json, "%.*s%s%s", (int)(at - sparse_json), sparse_json, bad[i].to,
-                 at + strlen(bad[i].from));
-        cg_error_clear(&err);
-        if (cg_scene_load(write_text(bad[i].name, json), &s, &err))
-            fail_msg("%s loaded", bad[i].name);
-        if (err.status != bad[i].expected)
-            fail_msg("%s: %s (%s); expected %s", bad[i].name, cg_status_name(err.status), err.message,
-                     cg_status_name(bad[i].expected));
-        assert_non_null(strstr(err.message, "sparse"));
-        printf("# %s: %s\n", cg_status_name(err.status), strrchr(err.message, '/') + 1);
-    }
+    /* Broken sparse accessors are in the malformed corpus (tests/data/gltf/malformed). */
 }
 
 /* ------------------------------------------------------------------ the malformed corpus */
@@ -643,13 +617,6 @@ write_base_bin(const char *name, float poison, uint16_t last_index, size_t size)
     cg_test_write_file(name, bin, size);
 }
 
-typedef struct bad_case {
-    const char *name;   /* file name; its .bin is base.bin unless the case rewrites it */
-    const char *from, *to;
-    cg_status expected;
-    const char *message_part; /* besides the file name, the message must name this */
-} bad_case;
-
 static void
 good_base_loads(void **state)
 {
@@ -661,148 +628,46 @@ good_base_loads(void **state)
     cg_scene_free(&s);
 }
 
+/* The malformed corpus: files in tests/data/gltf/malformed, listed in its expected.txt with
+ * the status each must give and a part of the message (test gltf_validator runs the Khronos
+ * glTF-Validator over the same files). Every file must be refused with that status, a message
+ * naming the file and that part, and an empty scene; all mismatches are listed before the
+ * test fails. */
 static void
 malformed_corpus(void **state)
 {
     (void)state;
-    write_base_bin("base.bin", 0, 2, 44);
-    write_base_bin("short.bin", 0, 2, 20);
-    write_base_bin("nan.bin", NAN, 2, 44);
-    write_base_bin("inf.bin", INFINITY, 2, 44);
-    write_base_bin("range.bin", 0, 812, 44);
-    const bad_case cases[] = {
-        { "missing_buffer.gltf", "base.bin", "nothere.bin", CG_ERR_GLTF_BUFFER, "nothere.bin" },
-        { "short_buffer.gltf", "base.bin", "short.bin", CG_ERR_GLTF_BUFFER, "short.bin" },
-        { "view_past_buffer.gltf", "\"byteOffset\":36,\"byteLength\":6", "\"byteOffset\":40,\"byteLength\":6",
-          CG_ERR_GLTF_BUFFER, "bufferViews[1]: bytes 40..46 do not fit buffers[0] (byteLength 44)" },
-        { "view_no_buffer.gltf", "{\"buffer\":0,\"byteOffset\":0", "{\"buffer\":3,\"byteOffset\":0",
-          CG_ERR_GLTF_INDEX_RANGE, "bufferViews[0].buffer: refers to buffers[3], but buffers has 1 entry" },
-        { "accessor_past_view.gltf", "\"count\":3,\"type\":\"VEC3\"", "\"count\":30,\"type\":\"VEC3\"",
-          CG_ERR_GLTF_BUFFER, "accessors[0]: 30 elements" },
-        { "position_vec2.gltf", "\"type\":\"VEC3\",\"min\":[0,0,0],\"max\":[1,1,0]", "\"type\":\"VEC2\"",
-          CG_ERR_GLTF_ACCESSOR, "attributes.POSITION: accessors[0] is VEC2 of FLOAT" },
-        { "position_bytes.gltf", "\"componentType\":5126", "\"componentType\":5121", CG_ERR_GLTF_ACCESSOR,
-          "attributes.POSITION: accessors[0] is VEC3 of UNSIGNED_BYTE" },
-        { "index_float.gltf", "\"componentType\":5123", "\"componentType\":5126", CG_ERR_GLTF_BUFFER,
-          "accessors[1]: 3 elements from byte 0 need more than the 6 bytes of bufferView 1" },
-        { "index_signed.gltf", "\"componentType\":5123", "\"componentType\":5122", CG_ERR_GLTF_ACCESSOR,
-          "indices: accessors[1] is SCALAR of SHORT" },
-        { "index_vec2.gltf", "\"type\":\"SCALAR\"", "\"type\":\"VEC2\"", CG_ERR_GLTF_BUFFER, "accessors[1]" },
-        { "index_count.gltf", "\"count\":3,\"type\":\"SCALAR\"", "\"count\":2,\"type\":\"SCALAR\"",
-          CG_ERR_GLTF_ACCESSOR, "multiple of 3" },
-        { "no_such_accessor.gltf", "\"POSITION\":0", "\"POSITION\":7", CG_ERR_GLTF_INDEX_RANGE,
-          "attributes.POSITION: refers to accessors[7]" },
-        { "stride_short.gltf", "\"byteOffset\":0,\"byteLength\":36}", "\"byteOffset\":0,\"byteLength\":36,\"byteStride\":4}",
-          CG_ERR_GLTF_ACCESSOR, "byteStride 4" },
-        { "stride_odd.gltf", "\"byteOffset\":0,\"byteLength\":36}", "\"byteOffset\":0,\"byteLength\":36,\"byteStride\":14}",
-          CG_ERR_GLTF_SCHEMA, "bufferViews[0].byteStride: 14 is not a multiple of 4" },
-        { "no_position.gltf", "\"POSITION\":0", "\"NORMAL\":0", CG_ERR_GLTF_ACCESSOR, "POSITION" },
-        { "index_range.gltf", "base.bin", "range.bin", CG_ERR_GLTF_INDEX_RANGE,
-          "mesh 'roof' primitive 0: index 812 out of range (accessor 0 has 3 vertices)" },
-        { "nan.gltf", "base.bin", "nan.bin", CG_ERR_GLTF_NONFINITE, "vertex 1" },
-        { "inf.gltf", "base.bin", "inf.bin", CG_ERR_GLTF_NONFINITE, "mesh 'roof'" },
-        { "wrong_max.gltf", "\"max\":[1,1,0]", "\"max\":[1,1.5,0]", CG_ERR_GLTF_ACCESSOR,
-          "accessors[0].max[1] is 1.5, but the largest element's is 1" },
-        { "cycle.gltf", "\"nodes\":[{\"mesh\":0}]", "\"nodes\":[{\"mesh\":0,\"children\":[1]},{\"children\":[2]},{\"children\":[1]}]",
-          CG_ERR_GLTF_NODE_CYCLE, "node 2" },
-        { "self_cycle.gltf", "\"nodes\":[{\"mesh\":0}]", "\"nodes\":[{\"mesh\":0,\"name\":\"loop\",\"children\":[0]}]",
-          CG_ERR_GLTF_NODE_CYCLE, "'loop'" },
-        { "two_parents.gltf", "\"nodes\":[{\"mesh\":0}]", "\"nodes\":[{\"mesh\":0},{\"children\":[0]},{\"children\":[0]}]",
-          CG_ERR_GLTF_SCHEMA, "node 0 is a child of both nodes[1] and nodes[2]" },
-        { "scene_child.gltf", "\"nodes\":[{\"mesh\":0}]", "\"nodes\":[{\"mesh\":0},{\"children\":[0]}]",
-          CG_ERR_GLTF_SCHEMA, "scenes[0].nodes lists node 0, which is a child of nodes[1]" },
-        { "bad_child.gltf", "\"nodes\":[{\"mesh\":0}]", "\"nodes\":[{\"mesh\":0,\"children\":[5]}]",
-          CG_ERR_GLTF_INDEX_RANGE, "nodes[0].children[0]: refers to nodes[5]" },
-        { "bad_mesh.gltf", "\"nodes\":[{\"mesh\":0}]", "\"nodes\":[{\"mesh\":4}]", CG_ERR_GLTF_INDEX_RANGE,
-          "nodes[0].mesh: refers to meshes[4], but meshes has 1 entry" },
-        { "bad_scene_node.gltf", "\"scenes\":[{\"nodes\":[0]}]", "\"scenes\":[{\"nodes\":[9]}]",
-          CG_ERR_GLTF_INDEX_RANGE, "scenes[0].nodes[0]: refers to nodes[9]" },
-        { "bad_material.gltf", "\"indices\":1}", "\"indices\":1,\"material\":3}", CG_ERR_GLTF_INDEX_RANGE,
-          "meshes[0].primitives[0].material: refers to materials[3], but there are no materials" },
-        { "negative_material.gltf", "\"indices\":1}", "\"indices\":1,\"material\":-1}", CG_ERR_GLTF_SCHEMA,
-          "meshes[0].primitives[0].material: expected an index (a non-negative integer), found -1" },
-        { "points_only.gltf", "\"indices\":1}", "\"indices\":1,\"mode\":0}", CG_ERR_GLTF_NO_TRIANGLES, "no triangles" },
-        { "lines_only.gltf", "\"indices\":1}", "\"indices\":1,\"mode\":1}", CG_ERR_GLTF_NO_TRIANGLES, "no triangles" },
-        { "empty_scene.gltf", "\"scenes\":[{\"nodes\":[0]}]", "\"scenes\":[{}]", CG_ERR_GLTF_NO_TRIANGLES,
-          "no triangles" },
-        { "empty_node_list.gltf", "\"scenes\":[{\"nodes\":[0]}]", "\"scenes\":[{\"nodes\":[]}]",
-          CG_ERR_GLTF_SCHEMA, "scenes[0].nodes: expected a non-empty array of indices, found an empty one" },
-        { "draco.gltf", "\"asset\":{\"version\":\"2.0\"},",
-          "\"asset\":{\"version\":\"2.0\"},\"extensionsUsed\":[\"KHR_draco_mesh_compression\"],"
-          "\"extensionsRequired\":[\"KHR_draco_mesh_compression\"],",
-          CG_ERR_GLTF_EXTENSION, "KHR_draco_mesh_compression" },
-        { "no_asset.gltf", "\"asset\":{\"version\":\"2.0\"},", "", CG_ERR_GLTF_SCHEMA, "asset: required object is missing" },
-        { "version_1.gltf", "\"version\":\"2.0\"", "\"version\":\"1.0\"", CG_ERR_GLTF_VERSION,
-          "glTF 1.0 is not supported" },
-        { "version_abc.gltf", "\"version\":\"2.0\"", "\"version\":\"abc\"", CG_ERR_GLTF_VERSION,
-          "asset.version: \"abc\" is not a version" },
-        { "version_3.gltf", "\"version\":\"2.0\"", "\"version\":\"3.0\"", CG_ERR_GLTF_VERSION,
-          "glTF 3.0 is not supported" },
-        { "scene_without_scenes.gltf", "\"scenes\":[{\"nodes\":[0]}],\"scene\":0", "\"scene\":0",
-          CG_ERR_GLTF_INDEX_RANGE, "scene: refers to scenes[0], but there are no scenes" },
-        { "mesh_minus_one.gltf", "\"nodes\":[{\"mesh\":0}]", "\"nodes\":[{\"mesh\":-1}]", CG_ERR_GLTF_SCHEMA,
-          "nodes[0].mesh: expected an index (a non-negative integer), found -1" },
-        { "mesh_as_string.gltf", "\"nodes\":[{\"mesh\":0}]", "\"nodes\":[{\"mesh\":\"0\"}]", CG_ERR_GLTF_SCHEMA,
-          "nodes[0].mesh: expected an index (a non-negative integer), found the string \"0\"" },
-        { "mesh_as_real.gltf", "\"nodes\":[{\"mesh\":0}]", "\"nodes\":[{\"mesh\":0.0}]", CG_ERR_GLTF_SCHEMA,
-          "nodes[0].mesh: expected an index (a non-negative integer), found 0.0" },
-        { "name_as_number.gltf", "\"name\":\"roof\"", "\"name\":7", CG_ERR_GLTF_SCHEMA,
-          "meshes[0].name: expected a string, found 7" },
-        { "primitives_as_object.gltf", "\"primitives\":[{\"attributes\":{\"POSITION\":0},\"indices\":1}]",
-          "\"primitives\":{\"attributes\":{\"POSITION\":0},\"indices\":1}", CG_ERR_GLTF_SCHEMA,
-          "meshes[0].primitives: expected an array, found an object" },
-        { "metallic_string.gltf", "\"meshes\"",
-          "\"materials\":[{\"pbrMetallicRoughness\":{\"metallicFactor\":\"0\"}}],\"meshes\"", CG_ERR_GLTF_SCHEMA,
-          "materials[0].pbrMetallicRoughness.metallicFactor: expected a number, found the string \"0\"" },
-        { "metallic_range.gltf", "\"meshes\"",
-          "\"materials\":[{\"pbrMetallicRoughness\":{\"metallicFactor\":2}}],\"meshes\"", CG_ERR_GLTF_SCHEMA,
-          "materials[0].pbrMetallicRoughness.metallicFactor: 2 is out of range" },
-        { "pbr_as_array.gltf", "\"meshes\"", "\"materials\":[{\"pbrMetallicRoughness\":[]}],\"meshes\"",
-          CG_ERR_GLTF_SCHEMA, "materials[0].pbrMetallicRoughness: expected an object, found an array" },
-        { "texture_minus_one.gltf", "\"meshes\"",
-          "\"materials\":[{\"emissiveTexture\":{\"index\":-1}}],\"meshes\"", CG_ERR_GLTF_SCHEMA,
-          "materials[0].emissiveTexture.index: expected an index (a non-negative integer), found -1" },
-        { "undeclared_extension.gltf", "\"nodes\":[{\"mesh\":0}]",
-          "\"nodes\":[{\"mesh\":0,\"extensions\":{\"KHR_lights_punctual\":{\"light\":0}}}]", CG_ERR_GLTF_SCHEMA,
-          "nodes[0].extensions.KHR_lights_punctual: extension not declared in extensionsUsed" },
-        { "required_not_used.gltf", "\"asset\":{\"version\":\"2.0\"},",
-          "\"asset\":{\"version\":\"2.0\"},\"extensionsUsed\":[\"KHR_lights_punctual\"],"
-          "\"extensionsRequired\":[\"KHR_materials_emissive_strength\"],",
-          CG_ERR_GLTF_SCHEMA, "extensionsRequired[0]: \"KHR_materials_emissive_strength\" is required but not listed" },
-        { "camera_zfar.gltf", "\"nodes\":[{\"mesh\":0}]",
-          "\"cameras\":[{\"type\":\"perspective\",\"perspective\":{\"yfov\":1,\"znear\":1,\"zfar\":0.5}}],"
-          "\"nodes\":[{\"mesh\":0,\"camera\":0}]", CG_ERR_GLTF_SCHEMA,
-          "cameras[0].perspective.zfar: 0.5 is not greater than znear 1" },
-        { "matrix_and_trs.gltf", "\"nodes\":[{\"mesh\":0}]",
-          "\"nodes\":[{\"mesh\":0,\"scale\":[2,2,2],\"matrix\":[1,0,0,0,0,1,0,0,0,0,1,0,0,0,0,1]}]",
-          CG_ERR_GLTF_SCHEMA, "nodes[0].matrix: a node has either a matrix or translation/rotation/scale" },
-        { "rotation_not_unit.gltf", "\"nodes\":[{\"mesh\":0}]", "\"nodes\":[{\"mesh\":0,\"rotation\":[0,0,0,0.5]}]",
-          CG_ERR_GLTF_SCHEMA, "nodes[0].rotation: not a unit quaternion" },
-        { "duplicate_key.gltf", "\"nodes\":[{\"mesh\":0}]", "\"nodes\":[{\"mesh\":0,\"mesh\":0}]",
-          CG_ERR_GLTF_PARSE, "duplicate object key" },
-        { "truncated.gltf", "\"nodes\":[{\"mesh\":0}]", "\"nodes\":[{\"mesh\":0}", CG_ERR_GLTF_PARSE,
-          "invalid JSON at line 1" },
-    };
-    cg_error err = { 0 };
-    cg_scene s;
-    int wrong = 0;
-    for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
-        const bad_case *c = &cases[i];
-        const char *at = strstr(base_json, c->from);
-        assert_non_null(at);
-        char json[8192];
-        snprintf(json, sizeof json, "%.*s%s%s", (int)(at - base_json), base_json, c->to, at + strlen(c->from));
-        const char *path = write_text(c->name, json);
-        cg_error_clear(&err);
+    const char *data = getenv("CONEGRAPH_TEST_DATA");
+    assert_non_null(data);
+    char dir[4096], manifest[4200];
+    snprintf(dir, sizeof dir, "%s/gltf/malformed", data);
+    snprintf(manifest, sizeof manifest, "%s/expected.txt", dir);
+    FILE *fp = fopen(manifest, "r");
+    assert_non_null(fp);
+    char line[1024];
+    int count = 0, wrong = 0;
+    while (fgets(line, sizeof line, fp)) {
+        line[strcspn(line, "\n")] = '\0';
+        if (line[0] == '#' || line[0] == '\0')
+            continue;
+        char name[256], status[64];
+        int used = 0;
+        assert_int_equal(sscanf(line, "%255s %63s %n", name, status, &used), 2);
+        const char *part = line + used;
+        char path[4500];
+        snprintf(path, sizeof path, "%s/%s", dir, name);
+        cg_scene s;
+        cg_error err = { 0 };
+        count++;
         if (cg_scene_load(path, &s, &err)) {
-            printf("# %s loaded; expected %s\n", c->name, cg_status_name(c->expected));
+            printf("# %s loaded; expected %s\n", name, status);
             cg_scene_free(&s);
             wrong++;
             continue;
         }
-        if (err.status != c->expected || !strstr(err.message, c->name) || !strstr(err.message, c->message_part)) {
-            printf("# %s: %s (%s); expected %s naming the file and '%s'\n", c->name, cg_status_name(err.status),
-                   err.message, cg_status_name(c->expected), c->message_part);
+        if (strcmp(cg_status_name(err.status), status) || !strstr(err.message, name) || !strstr(err.message, part)) {
+            printf("# %s: %s (%s); expected %s naming the file and '%s'\n", name, cg_status_name(err.status),
+                   err.message, status, part);
             wrong++;
             continue;
         }
@@ -810,46 +675,18 @@ malformed_corpus(void **state)
         assert_int_equal(s.mesh_count, 0);
         assert_null(s.meshes);
     }
+    fclose(fp);
+    printf("# %d malformed files refused as expected, %d not\n", count - wrong, wrong);
+    assert_true(count >= 70);
     assert_int_equal(wrong, 0);
 }
 
 static void
-not_gltf_at_all(void **state)
+missing_file(void **state)
 {
     (void)state;
-    const struct {
-        const char *name;
-        const char *data;
-        size_t size;
-        cg_status expected;
-    } files[] = {
-        { "hello.gltf", "hello world\n", 0, CG_ERR_GLTF_PARSE },
-        { "empty.gltf", "", 0, CG_ERR_GLTF_PARSE },
-        { "array.gltf", "[1, 2, 3]", 0, CG_ERR_GLTF_PARSE },
-        { "object.gltf", "{}", 0, CG_ERR_GLTF_SCHEMA },
-        { "broken.gltf", "{\"asset\": {\"version\": ", 0, CG_ERR_GLTF_PARSE },
-        { "bom.gltf", "\xEF\xBB\xBF{\"asset\":{\"version\":\"2.0\"}}", 0, CG_ERR_GLTF_PARSE },
-        { "gltf1.gltf", "{\"meshes\":{\"box\":{}},\"scene\":\"main\"}", 0, CG_ERR_GLTF_VERSION },
-        { "image.glb", "\x89PNG\r\n\x1a\n\0\0\0\rIHDR", 16, CG_ERR_GLTF_PARSE },
-        { "header_only.glb", "glTF\x02\0\0\0\x0c\0\0\0", 12, CG_ERR_GLTF_PARSE },
-        { "liar.glb", "glTF\x02\0\0\0\xff\xff\0\0{\"asset\":1}", 23, CG_ERR_GLTF_PARSE },
-        { "glb_v1.glb", "glTF\x01\0\0\0\x14\0\0\0\0\0\0\0\0\0\0\0", 20, CG_ERR_GLTF_VERSION },
-        { "unaligned.glb", "glTF\x02\0\0\0\x15\0\0\0\x01\0\0\0JSON{", 21, CG_ERR_GLTF_PARSE },
-    };
     cg_error err = { 0 };
     cg_scene s;
-    for (size_t i = 0; i < sizeof files / sizeof *files; i++) {
-        /* size 0: the text's strlen (0 for the empty file). */
-        const char *path = cg_test_write_file(files[i].name, files[i].data, files[i].size);
-        cg_error_clear(&err);
-        if (cg_scene_load(path, &s, &err))
-            fail_msg("%s loaded", files[i].name);
-        if (err.status != files[i].expected)
-            fail_msg("%s: %s (%s); expected %s", files[i].name, cg_status_name(err.status), err.message,
-                     cg_status_name(files[i].expected));
-        assert_non_null(strstr(err.message, files[i].name));
-        printf("# %s: %s\n", cg_status_name(err.status), strrchr(err.message, '/') + 1);
-    }
     char missing[4200];
     snprintf(missing, sizeof missing, "%s/nothing_here.gltf", cg_test_tmpdir());
     assert_cg_status(cg_scene_load(missing, &s, &err), &err, CG_ERR_FILE_NOT_FOUND);
@@ -871,7 +708,7 @@ main(void)
         cmocka_unit_test(sparse_accessors),
         cmocka_unit_test(good_base_loads),
         cmocka_unit_test(malformed_corpus),
-        cmocka_unit_test(not_gltf_at_all),
+        cmocka_unit_test(missing_file),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

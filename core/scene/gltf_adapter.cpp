@@ -5,6 +5,7 @@
 // bufferView and buffer, every vertex index against the vertex count) because malformed
 // files must give a named error, never a crash. tinygltf is a shared library (Debian's
 // libtinygltf): TINYGLTF_IMPLEMENTATION is not defined here.
+#include <jansson.h>
 #include <tiny_gltf.h>
 
 #include <cctype>
@@ -1586,6 +1587,62 @@ ends_with(const std::string &s, const char *suffix)
     return true;
 }
 
+// tinygltf writes "zfar": 0 for a perspective camera without a far plane, where glTF asks
+// for the member to be left out (and validators reject 0): the JSON tinygltf wrote is
+// edited here, through jansson, before it goes to the file.
+bool
+drop_infinite_zfar(std::string *json_text, bool pretty)
+{
+    json_error_t jerr;
+    json_t *root = json_loadb(json_text->data(), json_text->size(), 0, &jerr);
+    if (!root)
+        return false;
+    json_t *cameras = json_object_get(root, "cameras");
+    for (size_t i = 0; i < json_array_size(cameras); i++) {
+        json_t *p = json_object_get(json_array_get(cameras, i), "perspective");
+        json_t *zfar = json_object_get(p, "zfar");
+        if (zfar && json_number_value(zfar) == 0)
+            json_object_del(p, "zfar");
+    }
+    char *text = json_dumps(root, (pretty ? JSON_INDENT(2) : JSON_COMPACT) | JSON_REAL_PRECISION(17));
+    json_decref(root);
+    if (!text)
+        return false;
+    *json_text = text;
+    std::free(text);
+    return true;
+}
+
+// The same for a .glb from tinygltf: its JSON chunk edited, the container rebuilt.
+bool
+drop_infinite_zfar_glb(std::string *glb)
+{
+    const unsigned char *p = (const unsigned char *)glb->data();
+    if (glb->size() < 20)
+        return false;
+    uint32_t json_length = le32(p + 12);
+    if (json_length > glb->size() - 20)
+        return false;
+    std::string json(glb->data() + 20, json_length), rest(glb->data() + 20 + json_length, glb->size() - 20 - json_length);
+    if (!drop_infinite_zfar(&json, false))
+        return false;
+    while (json.size() % 4)
+        json += ' ';
+    auto put32 = [](std::string &s, uint32_t v) {
+        for (int i = 0; i < 4; i++)
+            s += (char)(v >> (8 * i) & 0xFF);
+    };
+    std::string out = "glTF";
+    put32(out, 2);
+    put32(out, (uint32_t)(12 + 8 + json.size() + rest.size()));
+    put32(out, (uint32_t)json.size());
+    put32(out, 0x4E4F534Au);
+    out += json;
+    out += rest;
+    *glb = std::move(out);
+    return true;
+}
+
 } // namespace
 
 extern "C" bool
@@ -1595,10 +1652,7 @@ cg_scene_export_gltf(const cg_scene *scene, const char *path, cg_error *err)
     bool binary = ends_with(out, ".glb");
     if (!binary && !ends_with(out, ".gltf"))
         return cg_fail(err, CG_ERR_USAGE, "%s: the output must end in .gltf or .glb", path);
-    char temp[4096];
-    if (!cg_temp_path_for(path, temp, sizeof temp))
-        return cg_fail(err, CG_ERR_IO, "%s: path too long", path);
-    bool ok = false;
+    std::string bytes;
     try {
         tinygltf::Model M;
         M.asset.version = "2.0";
@@ -1614,19 +1668,27 @@ cg_scene_export_gltf(const cg_scene *scene, const char *path, cg_error *err)
         if (uses_strength)
             M.extensionsUsed.push_back("KHR_materials_emissive_strength");
         tinygltf::TinyGLTF gltf;
-        ok = gltf.WriteGltfSceneToFile(&M, temp, true, true, !binary, binary);
-        if (!ok)
-            cg_fail(err, CG_ERR_IO, "%s: writing the glTF failed", path);
+        std::ostringstream stream;
+        if (!gltf.WriteGltfSceneToStream(&M, stream, !binary, binary))
+            return cg_fail(err, CG_ERR_IO, "%s: writing the glTF failed", path);
+        bytes = stream.str();
+        if (!(binary ? drop_infinite_zfar_glb(&bytes) : drop_infinite_zfar(&bytes, true)))
+            return cg_fail(err, CG_ERR_IO, "%s: tinygltf wrote a glTF that cannot be read back", path);
     } catch (const std::bad_alloc &) {
-        ok = cg_fail(err, CG_ERR_OUT_OF_MEMORY, "%s: out of memory writing the glTF", path);
+        return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "%s: out of memory writing the glTF", path);
     } catch (const std::exception &e) {
-        ok = cg_fail(err, CG_ERR_IO, "%s: %s", path, e.what());
+        return cg_fail(err, CG_ERR_IO, "%s: %s", path, e.what());
     }
-    if (ok && std::rename(temp, path) != 0)
-        ok = cg_fail(err, CG_ERR_IO, "%s: cannot rename %s into place: %s", path, temp, std::strerror(errno));
-    if (!ok)
-        std::remove(temp);
-    return ok;
+    // Written to a temporary file beside the target and renamed into place (cg/fs.h).
+    cg_atomic_file f;
+    if (!cg_atomic_open(&f, path, err))
+        return false;
+    if (std::fwrite(bytes.data(), 1, bytes.size(), f.fp) != bytes.size()) {
+        int e = errno;
+        cg_atomic_abort(&f);
+        return cg_fail(err, CG_ERR_IO, "%s: write failed: %s", path, std::strerror(e));
+    }
+    return cg_atomic_commit(&f, err);
 }
 
 extern "C" bool
