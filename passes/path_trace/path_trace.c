@@ -14,17 +14,20 @@
 #include "cg/pt_render.h"
 
 static const fg_param_desc path_trace_params[] = {
-    { "spp", FG_PARAM_INT, 64, 1, 65536, NULL, "samples per pixel" },
-    { "bounces", FG_PARAM_INT, 1, 0, 16, NULL,
-      "diffuse bounces after the first hit: 0 = direct light and visible emission, 1 = the GI "
-      "graphs' direct + one bounce" },
-    { "seed", FG_PARAM_INT, 1, 0, 2147483647.0, NULL,
-      "random seed; the image is a function of the seed alone, whatever the thread count" },
-    { "threads", FG_PARAM_INT, 0, 0, 256, NULL, "render threads (0 = one per core)" },
-    { "jitter", FG_PARAM_BOOL, 0, 0, 1, NULL,
-      "spread samples over the pixel (antialiased edges) instead of the pixel centre the raster "
-      "passes sample" },
-    { "progress", FG_PARAM_BOOL, 1, 0, 1, NULL, "progress bar on stderr" },
+    { .name = "spp", .type = FG_PARAM_INT, .default_value = 64, .min = 1, .max = 65536,
+      .step_doubles = true,
+      .doc = "samples per pixel" },
+    { .name = "bounces", .type = FG_PARAM_INT, .default_value = 1, .min = 0, .max = 16,
+      .doc = "diffuse bounces after the first hit: 0 = direct light and visible emission, 1 = the GI "
+             "graphs' direct + one bounce" },
+    { .name = "seed", .type = FG_PARAM_INT, .default_value = 1, .min = 0, .max = 2147483647.0,
+      .doc = "random seed; the image is a function of the seed alone, whatever the thread count" },
+    { .name = "threads", .type = FG_PARAM_INT, .min = 0, .max = 256,
+      .doc = "render threads (0 = one per core)" },
+    { .name = "jitter", .type = FG_PARAM_BOOL,
+      .doc = "spread samples over the pixel (antialiased edges) instead of the pixel centre the raster "
+             "passes sample" },
+    { .name = "progress", .type = FG_PARAM_BOOL, .default_value = 1, .doc = "progress bar on stderr" },
 };
 
 typedef struct path_trace_state {

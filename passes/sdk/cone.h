@@ -1,6 +1,6 @@
 /* sdk/cone.h (pass SDK): diffuse cone sets for cone tracing: directions, apertures and weights.
  *
- * Declares: CGP_CONE_MAX, cgp_cone, cgp_cone_set, cgp_cone_set_make, cgp_cone_set_sizes,
+ * Declares: CGP_CONE_MAX, CGP_CONE_SET_SIZES, cgp_cone, cgp_cone_set, cgp_cone_set_make, cgp_cone_set_sizes,
  *           cgp_cone_set_valid_size, cgp_cone_frame.
  *
  * Shared by every cone tracer (the VCT gather and the hybrid tracer), so it lives in the
@@ -20,6 +20,9 @@
 #include <stdbool.h>
 
 #define CGP_CONE_MAX 16
+/* The sizes of the sets cgp_cone_set_make makes, as a list for parameter tables:
+ * `.allowed = FG_PARAM_VALUES(CGP_CONE_SET_SIZES)`. */
+#define CGP_CONE_SET_SIZES 1, 6, 9, 16
 
 typedef struct cgp_cone {
     float direction[3];     /* tangent space, z = normal; unit length */
