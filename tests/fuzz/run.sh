@@ -28,7 +28,9 @@ fuzz)
   shift 2
   mkdir -p "$work/new" "$work/artifacts"
   # Seeds from the tree are read, never written: new inputs go to $work/new (listed first).
-  exec "$exe" "${common[@]}" -max_total_time="$seconds" -print_final_stats=1 \
+  # -close_fd_mask=2: the targets' own messages (every refused input explains itself on
+  # stderr) are dropped; libFuzzer keeps its own output and the sanitizers' reports.
+  exec "$exe" "${common[@]}" -max_total_time="$seconds" -print_final_stats=1 -close_fd_mask=2 \
     -artifact_prefix="$work/artifacts/" "$work/new" "$@"
   ;;
 *)
