@@ -681,6 +681,20 @@ malformed_corpus(void **state)
     assert_int_equal(wrong, 0);
 }
 
+/* A URI naming a device is refused before it is read (/dev/zero would never end). Not in the
+ * malformed corpus: the validator would read it for ever. */
+static void
+buffer_from_a_device_is_refused(void **state)
+{
+    (void)state;
+    const char *path = write_text("device.gltf", "{\"asset\":{\"version\":\"2.0\"},"
+                                                 "\"buffers\":[{\"uri\":\"/dev/zero\",\"byteLength\":4}]}");
+    cg_error err = { 0 };
+    cg_scene s;
+    assert_cg_status(cg_scene_load(path, &s, &err), &err, CG_ERR_GLTF_BUFFER);
+    assert_non_null(strstr(err.message, "/dev/zero"));
+}
+
 static void
 missing_file(void **state)
 {
@@ -708,6 +722,7 @@ main(void)
         cmocka_unit_test(sparse_accessors),
         cmocka_unit_test(good_base_loads),
         cmocka_unit_test(malformed_corpus),
+        cmocka_unit_test(buffer_from_a_device_is_refused),
         cmocka_unit_test(missing_file),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

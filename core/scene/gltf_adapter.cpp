@@ -8,6 +8,7 @@
 #include <jansson.h>
 #include <tiny_gltf.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <cmath>
@@ -15,11 +16,12 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <algorithm>
 #include <map>
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include <sys/stat.h>
 
 extern "C" {
 #include "cg/error.h"
@@ -121,6 +123,21 @@ deferred_image_loader(tinygltf::Image *image, const int index, std::string *err,
         image->image.clear();
     }
     return true;
+}
+
+// Buffers and images a file names by URI are read only from regular files of at most 4 GiB
+// (the loader's limit for the file itself): a URI naming a device, a FIFO or /proc would
+// otherwise block the loader or have it allocate whatever size the kernel reports.
+bool
+read_regular_file(std::vector<unsigned char> *out, std::string *err, const std::string &path, void *user)
+{
+    struct stat st;
+    if (stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode) || st.st_size > (off_t)0xFFFFFFFFu) {
+        if (err)
+            *err += "File not found or not a regular file of at most 4 GiB: " + path + "\n";
+        return false;
+    }
+    return tinygltf::ReadWholeFile(out, err, path, user);
 }
 
 size_t
@@ -1348,6 +1365,9 @@ load(loader &L)
         base_dir = slash == 0 ? "/" : L.path.substr(0, slash);
     tinygltf::TinyGLTF gltf;
     gltf.SetImageLoader(deferred_image_loader, &L);
+    tinygltf::FsCallbacks fs = { &tinygltf::FileExists, &tinygltf::ExpandFilePath, &read_regular_file,
+                                 &tinygltf::WriteWholeFile, nullptr };
+    gltf.SetFsCallbacks(fs);
     std::string terr, twarn;
     bool ok;
     try {
