@@ -688,6 +688,12 @@ test_bad_input(void **state)
         "builtin:cornell --keys ''",
         "builtin:cornell --keys shift+",
         "builtin:cornell --keys shift+x",
+        "builtin:cornell --keys f2",
+        "builtin:cornell --ui maybe",
+        "builtin:cornell --image-screenshot shot.exr",
+        "builtin:cornell --graph vct.json --view gather",
+        "builtin:cornell --graph vct.json --view nosuch.output",
+        "builtin:cornell --graph vct.json --view shadow.matrix",
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++)
         if (run_demo(cases[i]) != 2)

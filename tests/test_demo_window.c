@@ -105,7 +105,7 @@ test_direct_matches_render(void **state)
     const char *shot = tmp("demo.png"), *ref = tmp("render.png"), *log = tmp("demo.txt");
     char args[8192];
     snprintf(args, sizeof args,
-             "builtin:cornell --graph direct.json --size 64x64 --frames 3 --screenshot '%s'", shot);
+             "builtin:cornell --graph direct.json --size 64x64 --frames 3 --ui off --screenshot '%s'", shot);
     assert_int_equal(run("CONEGRAPH_DEMO_EXE", args, log), 0);
     snprintf(args, sizeof args, "render builtin:cornell --graph direct.json --size 64x64 -o '%s'", ref);
     assert_int_equal(run("CONEGRAPH_EXE", args, NULL), 0);
@@ -143,7 +143,7 @@ test_vct_runs(void **state)
     char args[8192];
     snprintf(args, sizeof args,
              "builtin:cornell --graph vct.json --set vox.resolution=32 --size 48x32 --frames 3 "
-             "--timing sync --keys shift+tab,shift+tab,right --screenshot '%s'", shot);
+             "--timing sync --ui off --keys shift+tab,shift+tab,right --screenshot '%s'", shot);
     assert_int_equal(run("CONEGRAPH_DEMO_EXE", args, log), 0);
     cg_image a = { 0 };
     assert_cg_ok(cg_image_read(shot, &a, &err), &err);
@@ -182,10 +182,10 @@ test_keys(void **state)
     const char *plain = tmp("plain.png"), *bright = tmp("bright.png"), *other = tmp("other.png");
     const char *log = tmp("keys.txt");
     char args[8192];
-    snprintf(args, sizeof args, "builtin:cornell --graph direct.json --size 48x32 --frames 1 --screenshot '%s'",
-             plain);
+    snprintf(args, sizeof args, "builtin:cornell --graph direct.json --size 48x32 --frames 1 --ui off "
+             "--screenshot '%s'", plain);
     assert_int_equal(run("CONEGRAPH_DEMO_EXE", args, NULL), 0);
-    snprintf(args, sizeof args, "builtin:cornell --graph direct.json --size 48x32 --frames 4 "
+    snprintf(args, sizeof args, "builtin:cornell --graph direct.json --size 48x32 --frames 4 --ui off "
              "--keys shift+tab,right,right --screenshot '%s'", bright);
     assert_int_equal(run("CONEGRAPH_DEMO_EXE", args, log), 0);
     const char *out = read_text(log);
@@ -199,19 +199,19 @@ test_keys(void **state)
     /* Scripted flight: held for a fixed 0.25 s each, so the same distance on any machine.
      * Forward twice and right at 4x speed changes the view; R brings back the scene's. */
     const char *flown = tmp("flown.png"), *back = tmp("back.png");
-    snprintf(args, sizeof args, "builtin:cornell --graph direct.json --size 48x32 --frames 3 "
+    snprintf(args, sizeof args, "builtin:cornell --graph direct.json --size 48x32 --frames 3 --ui off "
              "--keys shift+w,shift+w,shift+d --screenshot '%s'", flown);
     assert_int_equal(run("CONEGRAPH_DEMO_EXE", args, NULL), 0);
     int moved = max_level_difference(plain, flown);
     if (moved < 40)
         fail_msg("flying forward and right changed the image by %d levels at most", moved);
-    snprintf(args, sizeof args, "builtin:cornell --graph direct.json --size 48x32 --frames 4 "
+    snprintf(args, sizeof args, "builtin:cornell --graph direct.json --size 48x32 --frames 4 --ui off "
              "--keys shift+w,shift+w,shift+d,r --screenshot '%s'", back);
     assert_int_equal(run("CONEGRAPH_DEMO_EXE", args, log), 0);
     assert_non_null(strstr(read_text(log), "camera: reset to the scene's view"));
     assert_true(max_level_difference(plain, back) <= 1);
 
-    snprintf(args, sizeof args, "builtin:cornell --graph direct.json --size 48x32 --frames 2 "
+    snprintf(args, sizeof args, "builtin:cornell --graph direct.json --size 48x32 --frames 2 --ui off "
              "--keys 2 --screenshot '%s'", other);
     assert_int_equal(run("CONEGRAPH_DEMO_EXE", args, log), 0);
     assert_non_null(strstr(read_text(log), "show: 2 "));
@@ -240,7 +240,7 @@ test_plugin_levels_and_gl_error(void **state)
     cg_error err = { 0 };
     const char *shot = tmp("fill.png"), *log = tmp("fill.txt");
     char args[8192];
-    snprintf(args, sizeof args, "builtin:cornell --plugin '%s' --graph '%s' --size 40x24 --frames 3 "
+    snprintf(args, sizeof args, "builtin:cornell --plugin '%s' --graph '%s' --size 40x24 --frames 3 --ui off "
              "--screenshot '%s'", plugin_path, write_fill_graph("fill.json", -1), shot);
     assert_int_equal(run("CONEGRAPH_DEMO_EXE", args, log), 0);
     cg_image img = { 0 };
