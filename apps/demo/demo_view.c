@@ -272,8 +272,11 @@ demo_view_draw(demo_view *view, GLuint texture, const fg_resource_desc *desc, de
     glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
 
     glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
-    for (size_t i = 0; i < sizeof enables / sizeof enables[0]; i++)
+    for (size_t i = 0; i < sizeof enables / sizeof enables[0]; i++) {
         if (was[i])
             glEnable(enables[i]);
+        else
+            glDisable(enables[i]);
+    }
     return true;
 }
