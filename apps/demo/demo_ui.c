@@ -13,7 +13,7 @@
 #define MARGIN 8.0f
 #define PANEL_WIDTH 360.0f
 /* The left column: the frame panel above this fraction of the height, the viewer below. */
-#define SPLIT 0.58f
+#define SPLIT 0.5f
 #define MAX_VIEWABLE 128
 
 static const double MIB = 1024.0 * 1024.0;
@@ -33,8 +33,6 @@ frame_times(demo *d)
     ui_plot("##frames", history, d->frame_ms_count, 0, highest * 1.1f, 40, overlay);
     ui_tooltip("Each frame from the start of the graph's execution to the end of the buffer swap, "
                "the UI included; the last 64 frames.");
-    ui_text("UI %.1f ms of it", d->ui_ms);
-
     fg_memory_report mem;
     fg_graph_memory_report(d->graph, &mem);
     ui_text("GI memory %.1f MiB", (double)mem.gi_bytes / MIB);
@@ -43,6 +41,8 @@ frame_times(demo *d)
              "The graph allocates %.1f MiB in all, at most %.1f MiB live at once.",
              (double)mem.allocated_bytes / MIB, (double)mem.peak_bytes / MIB);
     ui_tooltip(why);
+    ui_same_line();
+    ui_text_disabled("  UI %.1f ms of the frame", d->ui_ms);
 }
 
 /* Live passes in execution order with their times as bars of the frame time, then the
@@ -327,8 +327,8 @@ class_text(demo_view_class cls)
     switch (cls) {
     case DEMO_VIEW_COLOUR: return "colour";
     case DEMO_VIEW_DEPTH: return "depth";
-    case DEMO_VIEW_UINT: return "unsigned integer";
-    case DEMO_VIEW_INT: return "integer";
+    case DEMO_VIEW_UINT: return "uint";
+    case DEMO_VIEW_INT: return "int";
     case DEMO_VIEW_CLASS_COUNT: break;
     }
     return "?";
@@ -367,14 +367,19 @@ view_resource(demo *d, cg_error *err)
         if (cls != DEMO_VIEW_COLOUR && !demo_view_fit(texture, desc, cls, s, err))
             return false;
     }
-    float width = ui_available_width() * 0.6f;
+    /* Two controls a line, so that the picture keeps most of the window. */
+    float width = ui_available_width() * 0.3f;
+    bool first = true;
     if (desc->levels > 1) {
         ui_set_next_item_width(width);
         int_slider("level", &s->level, desc->levels - 1);
+        first = false;
     }
     int w, h, slices;
     demo_view_level_size(desc, s->level < desc->levels ? s->level : desc->levels - 1, &w, &h, &slices);
     if (desc->kind != FG_TEXTURE_2D) {
+        if (!first)
+            ui_same_line();
         ui_set_next_item_width(width);
         int_slider(desc->kind == FG_TEXTURE_3D ? "slice" : "layer", &s->layer, slices - 1);
     }
@@ -382,33 +387,43 @@ view_resource(demo *d, cg_error *err)
         static const char *const channels[] = { "RGB", "R", "G", "B", "A" };
         ui_set_next_item_width(width);
         ui_combo("channels", &s->channel, channels, 5);
+        ui_same_line();
     }
     if (cls == DEMO_VIEW_COLOUR) {
         ui_set_next_item_width(width);
-        ui_slider_double("exposure (EV)", &s->exposure, -16, 16, "%.1f", false);
-        ui_checkbox("sRGB-encode (linear values)", &s->srgb);
+        ui_slider_double("EV", &s->exposure, -16, 16, "%.1f", false);
+        ui_tooltip("exposure: values x 2^EV");
+        ui_checkbox("sRGB", &s->srgb);
+        ui_tooltip("sRGB-encode, for linear values; off shows them as stored (8-bit display values)");
     } else {
         /* A 24-bit depth or a 32-bit count spans more than a drag's pixels: a step of a
          * hundredth of the range shown. */
         double speed = fabs(s->hi - s->lo) / 100;
         double top = cls == DEMO_VIEW_DEPTH ? 1 : 4294967295.0, bottom = cls == DEMO_VIEW_INT ? -2147483648.0 : 0;
         ui_set_next_item_width(width);
-        ui_drag_double("black at", &s->lo, speed > 0 ? speed : 0.01, bottom, top, "%.6g");
+        ui_drag_double("black", &s->lo, speed > 0 ? speed : 0.01, bottom, top, "%.6g");
+        ui_tooltip("the value shown black");
+        if (cls == DEMO_VIEW_DEPTH)
+            ui_same_line();
         ui_set_next_item_width(width);
-        ui_drag_double("white at", &s->hi, speed > 0 ? speed : 0.01, bottom, top, "%.6g");
+        ui_drag_double("white", &s->hi, speed > 0 ? speed : 0.01, bottom, top, "%.6g");
+        ui_tooltip("the value shown white");
     }
-    if (ui_button("Fit"))
+    if (cls != DEMO_VIEW_DEPTH)
+        ui_same_line();
+    if (ui_small_button("Fit"))
         if (!demo_view_fit(texture, desc, cls, s, err))
             return false;
     ui_tooltip(cls == DEMO_VIEW_COLOUR ? "The exposure that makes the largest value shown white."
                                        : "Black and white at the smallest and largest value shown.");
     if (!demo_view_draw(&d->view, texture, desc, cls, s, err))
         return false;
+    ui_same_line();
     if (desc->kind == FG_TEXTURE_2D)
-        ui_text_disabled("2D %s, %dx%d texels at level %d of %d", class_text(cls), w, h, s->level, desc->levels);
+        ui_text_disabled("2D %s %dx%d, level %d/%d", class_text(cls), w, h, s->level, desc->levels);
     else
-        ui_text_disabled("%s %s, %dx%d texels x %d %s at level %d of %d", kind_text(desc->kind), class_text(cls), w,
-                         h, slices, desc->kind == FG_TEXTURE_3D ? "slices" : "layers", s->level, desc->levels);
+        ui_text_disabled("%s %s %dx%dx%d, level %d/%d", kind_text(desc->kind), class_text(cls), w, h, slices,
+                         s->level, desc->levels);
     /* As large as the window leaves room for, at least 64 pixels high (the window scrolls). */
     float aspect = (float)d->view.height / (float)d->view.width;
     float shown_w = ui_available_width(), room = ui_available_height();
