@@ -76,8 +76,12 @@ passes(demo *d)
     for (int p = 0; p < fg_graph_pass_count(d->graph); p++) {
         const fg_pass *pass = fg_graph_pass_at(d->graph, p);
         const char *why = fg_pass_cull_reason(pass);
-        if (why)
-            ui_text_disabled("%s  culled: %s", fg_pass_name(pass), why);
+        if (why) {
+            /* Greyed, and wrapped: a reason names the chain of absent inputs that led to it. */
+            ui_push_dim(true);
+            ui_text_wrapped("%s  culled: %s", fg_pass_name(pass), why);
+            ui_pop_dim();
+        }
     }
 }
 
