@@ -1,4 +1,4 @@
-/* core/scene/scene_internal.h: helpers shared by the scene loaders (scene.c, builtin/*.c,
+/* core/scene/scene_internal.h: helpers shared by the scene loaders (scene.c, builtin/ (one file per scene),
  * gltf_adapter.cpp). Not a public header: passes and apps use cg/scene.h only.
  *
  * Declares: cg_scene_add_material, cg_scene_add_mesh, cg_scene_add_instance,
