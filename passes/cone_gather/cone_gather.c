@@ -13,6 +13,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "sdk/pass.h"
 #include "sdk/cone.h"
 #include "cg/fg.h"
 #include "cg/gpu_scene.h"
@@ -86,10 +87,7 @@ cone_gather_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
                        fg_pass_name(pass), region->buffer_bytes, REGION_BYTES);
     if (!position)
         return true;
-    fg_resource_desc out = {
-        .kind = FG_TEXTURE_2D, .format = GL_RGBA16F,
-        .width = position->width, .height = position->height, .depth = 1, .levels = 1,
-    };
+    fg_resource_desc out = cgp_image_like(pass, position, GL_RGBA16F);
     fg_declare_output(decl, "radiance", &out, FG_ACCESS_IMAGE_STORE);
     if (fg_param_bool(pass, "specular"))
         fg_declare_output(decl, "specular", &out, FG_ACCESS_IMAGE_STORE);
@@ -103,9 +101,9 @@ cone_gather_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
 static bool
 cone_gather_prepare(fg_pass *pass, void **state, cg_error *err)
 {
-    cone_gather_state *s = calloc(1, sizeof *s);
+    cone_gather_state *s = cgp_state_new(pass, sizeof *s, err);
     if (!s)
-        return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "pass '%s': out of memory", fg_pass_name(pass));
+        return false;
     if (!cgp_cone_set_make(fg_param_int(pass, "cones"), &s->set)) {
         free(s);
         return cg_fail(err, CG_ERR_GRAPH_PARAM_RANGE, "pass '%s': no cone set of %d cones",
@@ -191,7 +189,7 @@ cone_gather_execute(fg_pass *pass, void *state, cg_error *err)
         glBindImageTexture(1, fg_texture(pass, "specular"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     if (s->shadow_cone)
         glBindImageTexture(2, fg_texture(pass, "visibility"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
-    glDispatchCompute((GLuint)(out->width + 7) / 8, (GLuint)(out->height + 7) / 8, 1);
+    cgp_dispatch_2d(out->width, out->height);
     glBindSampler(0, 0);
     if (s->anisotropic)
         for (int d = 0; d < 6; d++)
@@ -219,19 +217,11 @@ static const fg_pass_type cone_gather_type = {
            "accumulated front to back through the mip level of its diameter (hybrid eq. 8). "
            "Output: the incident radiance integral E/pi (composite multiplies by the albedo) and "
            "ambient visibility; optional specular cone (3.2.2) and shadow cone (3.2.3).",
-    .params = cone_gather_params,
-    .param_count = (int)(sizeof cone_gather_params / sizeof cone_gather_params[0]),
+    CGP_PARAMS(cone_gather_params),
     .declare = cone_gather_declare,
     .prepare = cone_gather_prepare,
     .execute = cone_gather_execute,
     .destroy = cone_gather_destroy,
 };
 
-bool
-cg_pass_register_cone_gather(fg_registry *registry, uint32_t host_abi, cg_error *err)
-{
-    if (host_abi != FG_ABI_VERSION)
-        return cg_fail(err, CG_ERR_PLUGIN_ABI, "pass cone_gather: built for frame-graph ABI %u, host has %u",
-                       FG_ABI_VERSION, host_abi);
-    return fg_registry_add(registry, &cone_gather_type, err);
-}
+CGP_REGISTER_PASS(cone_gather, cone_gather_type)

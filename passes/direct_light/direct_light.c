@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "sdk/pass.h"
 #include "cg/fg.h"
 #include "cg/gpu_scene.h"
 #include "cg/shader.h"
@@ -17,7 +18,6 @@ typedef struct direct_state {
 static bool
 direct_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
 {
-    const fg_frame *frame = fg_pass_frame(pass);
     const fg_resource_desc *position =
         fg_declare_input(decl, "position", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, true);
     fg_declare_input(decl, "normal", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, true);
@@ -38,12 +38,7 @@ direct_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
         return cg_fail(err, CG_ERR_GRAPH_INCOMPATIBLE,
                        "pass '%s': input 'shadow_matrix' holds %zu bytes; a shadow_map 'matrix' "
                        "holds %d", fg_pass_name(pass), matrix->buffer_bytes, CG_SHADOW_BLOCK_BYTES);
-    fg_resource_desc out = {
-        .kind = FG_TEXTURE_2D, .format = GL_RGBA16F,
-        .width = position ? position->width : frame->width,
-        .height = position ? position->height : frame->height,
-        .depth = 1, .levels = 1,
-    };
+    fg_resource_desc out = cgp_image_like(pass, position, GL_RGBA16F);
     fg_declare_output(decl, "radiance", &out, FG_ACCESS_IMAGE_STORE);
     return true;
 }
@@ -51,10 +46,9 @@ direct_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
 static bool
 direct_prepare(fg_pass *pass, void **state, cg_error *err)
 {
-    (void)pass;
-    direct_state *st = calloc(1, sizeof *st);
+    direct_state *st = cgp_state_new(pass, sizeof *st, err);
     if (!st)
-        return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "direct_light: state");
+        return false;
     if (!cg_program_compute("direct_light/direct.comp", NULL, &st->program, err)) {
         free(st);
         return false;
@@ -78,7 +72,7 @@ direct_execute(fg_pass *pass, void *state, cg_error *err)
     glBindTextureUnit(3, fg_texture(pass, "normal"));
     glBindTextureUnit(4, fg_texture(pass, "albedo"));
     glBindImageTexture(0, fg_texture(pass, "radiance"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    glDispatchCompute((GLuint)(out->width + 7) / 8, (GLuint)(out->height + 7) / 8, 1);
+    cgp_dispatch_2d(out->width, out->height);
     glUseProgram(0);
     return true;
 }
@@ -101,19 +95,11 @@ static const fg_pass_type direct_light_type = {
            "intensity x color; point: I/d^2; spot: I/d^2 with the smooth cone falloff). The light "
            "served by the optional shadow map (inputs shadow and shadow_matrix) is shadowed; "
            "the others, point lights included, are not.",
-    .params = NULL,
-    .param_count = 0,
+    CGP_NO_PARAMS,
     .declare = direct_declare,
     .prepare = direct_prepare,
     .execute = direct_execute,
     .destroy = direct_destroy,
 };
 
-bool
-cg_pass_register_direct_light(fg_registry *registry, uint32_t host_abi, cg_error *err)
-{
-    if (host_abi != FG_ABI_VERSION)
-        return cg_fail(err, CG_ERR_PLUGIN_ABI, "pass direct_light: built for frame-graph ABI %u, host has %u",
-                       FG_ABI_VERSION, host_abi);
-    return fg_registry_add(registry, &direct_light_type, err);
-}
+CGP_REGISTER_PASS(direct_light, direct_light_type)

@@ -22,6 +22,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "sdk/pass.h"
 #include "cg/fg.h"
 #include "cg/gpu_scene.h"
 #include "cg/shader.h"
@@ -126,12 +127,10 @@ heightmap_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
         .gi = true,
     };
     fg_declare_output(decl, "lightmap", &lightmap, FG_ACCESS_ATTACHMENT | FG_ACCESS_TRANSFER);
-    fg_resource_desc block = {.kind = FG_BUFFER, .depth = 1, .levels = 1, .buffer_bytes = REGION_BYTES};
+    fg_resource_desc block = cgp_buffer_desc(REGION_BYTES);
     fg_declare_output(decl, "region", &block, FG_ACCESS_TRANSFER);
-    fg_resource_desc depth = {
-        .kind = FG_TEXTURE_2D, .format = GL_DEPTH_COMPONENT32F,
-        .width = resolution, .height = resolution, .depth = 1, .levels = 1, .gi = true,
-    };
+    fg_resource_desc depth = cgp_image_2d(GL_DEPTH_COMPONENT32F, resolution, resolution);
+    depth.gi = true;
     fg_declare_output(decl, "depth", &depth, FG_ACCESS_ATTACHMENT);
     return true;
 }
@@ -139,9 +138,9 @@ heightmap_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
 static bool
 heightmap_prepare(fg_pass *pass, void **state, cg_error *err)
 {
-    heightmap_state *s = calloc(1, sizeof *s);
+    heightmap_state *s = cgp_state_new(pass, sizeof *s, err);
     if (!s)
-        return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "pass '%s': out of memory", fg_pass_name(pass));
+        return false;
     if (!cg_program_graphics("heightmap_raster/raster.vert", NULL, "heightmap_raster/raster.frag", NULL,
                              &s->program, err)) {
         free(s);
@@ -233,19 +232,11 @@ static const fg_pass_type heightmap_type = {
            "into a 2D lightmap over their xz bounds (hybrid paper V.B): rgb = outgoing diffuse "
            "radiance of the direct light, shadowed through the optional shadow map, plus emission; "
            "alpha = height (world y). Nothing to do for a scene without height-field meshes.",
-    .params = heightmap_params,
-    .param_count = (int)(sizeof heightmap_params / sizeof heightmap_params[0]),
+    CGP_PARAMS(heightmap_params),
     .declare = heightmap_declare,
     .prepare = heightmap_prepare,
     .execute = heightmap_execute,
     .destroy = heightmap_destroy,
 };
 
-bool
-cg_pass_register_heightmap_raster(fg_registry *registry, uint32_t host_abi, cg_error *err)
-{
-    if (host_abi != FG_ABI_VERSION)
-        return cg_fail(err, CG_ERR_PLUGIN_ABI, "pass heightmap_raster: built for frame-graph ABI %u, host has %u",
-                       FG_ABI_VERSION, host_abi);
-    return fg_registry_add(registry, &heightmap_type, err);
-}
+CGP_REGISTER_PASS(heightmap_raster, heightmap_type)

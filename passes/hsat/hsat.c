@@ -21,6 +21,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "sdk/pass.h"
 #include "cg/fg.h"
 #include "cg/shader.h"
 
@@ -71,7 +72,8 @@ hsat_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
         .levels = lightmap->levels, .gi = true,
     };
     fg_declare_output(decl, "table", &table, FG_ACCESS_IMAGE_STORE | FG_ACCESS_IMAGE_LOAD);
-    fg_resource_desc info = {.kind = FG_BUFFER, .depth = 1, .levels = 1, .buffer_bytes = INFO_BYTES, .gi = true};
+    fg_resource_desc info = cgp_buffer_desc(INFO_BYTES);
+    info.gi = true;
     fg_declare_output(decl, "info", &info, FG_ACCESS_TRANSFER | FG_ACCESS_STORAGE);
     return true;
 }
@@ -95,9 +97,9 @@ hsat_destroy(void *state)
 static bool
 hsat_prepare(fg_pass *pass, void **state, cg_error *err)
 {
-    hsat_state *s = calloc(1, sizeof *s);
+    hsat_state *s = cgp_state_new(pass, sizeof *s, err);
     if (!s)
-        return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "pass '%s': out of memory", fg_pass_name(pass));
+        return false;
     s->mode = fg_param_enum(pass, "mode");
     s->lightmap_format = fg_resource(pass, "lightmap")->format;
     const char *format = s->lightmap_format == GL_RGBA16F ? "rgba16f" : "rgba32f";
@@ -199,19 +201,11 @@ static const fg_pass_type hsat_type = {
            "Default: an exact min/max pyramid (conservative); or summed-area tables of x^p read "
            "as the un-normalised p-norm (an upper bound) or as eq. 14's power mean (the paper's, "
            "which under-estimates). SAT entries are stored minus the level mean (Hensley 2005).",
-    .params = hsat_params,
-    .param_count = (int)(sizeof hsat_params / sizeof hsat_params[0]),
+    CGP_PARAMS(hsat_params),
     .declare = hsat_declare,
     .prepare = hsat_prepare,
     .execute = hsat_execute,
     .destroy = hsat_destroy,
 };
 
-bool
-cg_pass_register_hsat(fg_registry *registry, uint32_t host_abi, cg_error *err)
-{
-    if (host_abi != FG_ABI_VERSION)
-        return cg_fail(err, CG_ERR_PLUGIN_ABI, "pass hsat: built for frame-graph ABI %u, host has %u",
-                       FG_ABI_VERSION, host_abi);
-    return fg_registry_add(registry, &hsat_type, err);
-}
+CGP_REGISTER_PASS(hsat, hsat_type)

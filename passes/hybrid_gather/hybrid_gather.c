@@ -19,6 +19,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "sdk/pass.h"
 #include "sdk/cone.h"
 #include "cg/fg.h"
 #include "cg/gpu_scene.h"
@@ -106,10 +107,7 @@ hybrid_gather_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
     }
     if (!position)
         return true;
-    fg_resource_desc out = {
-        .kind = FG_TEXTURE_2D, .format = GL_RGBA16F,
-        .width = position->width, .height = position->height, .depth = 1, .levels = 1,
-    };
+    fg_resource_desc out = cgp_image_like(pass, position, GL_RGBA16F);
     fg_declare_output(decl, "radiance", &out, FG_ACCESS_IMAGE_STORE);
     return true;
 }
@@ -131,9 +129,9 @@ hybrid_gather_destroy(void *state)
 static bool
 hybrid_gather_prepare(fg_pass *pass, void **state, cg_error *err)
 {
-    hybrid_gather_state *s = calloc(1, sizeof *s);
+    hybrid_gather_state *s = cgp_state_new(pass, sizeof *s, err);
     if (!s)
-        return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "pass '%s': out of memory", fg_pass_name(pass));
+        return false;
     if (!cgp_cone_set_make(fg_param_int(pass, "cones"), &s->set)) {
         free(s);
         return cg_fail(err, CG_ERR_GRAPH_PARAM_RANGE, "pass '%s': no cone set of %d cones",
@@ -219,7 +217,7 @@ hybrid_gather_execute(fg_pass *pass, void *state, cg_error *err)
     glBindTextureUnit(4, s->has_2d ? fg_texture(pass, "hsat") : 0);
     glBindSampler(4, s->table_sampler);
     glBindImageTexture(0, fg_texture(pass, "radiance"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    glDispatchCompute((GLuint)(out->width + 7) / 8, (GLuint)(out->height + 7) / 8, 1);
+    cgp_dispatch_2d(out->width, out->height);
     glBindSampler(0, 0);
     glBindSampler(3, 0);
     glBindSampler(4, 0);
@@ -237,19 +235,11 @@ static const fg_pass_type hybrid_gather_type = {
            "lightmap sampled at the intersection's centre (eq. 15) at the level of eq. 8, the 2D "
            "lightmap walked by a DDA, occlusion by eq. 16 or 17. Cone weights integrate the "
            "cosine lobe to 1. Without a 2D lightmap: the VCT march of cone_gather.",
-    .params = hybrid_gather_params,
-    .param_count = (int)(sizeof hybrid_gather_params / sizeof hybrid_gather_params[0]),
+    CGP_PARAMS(hybrid_gather_params),
     .declare = hybrid_gather_declare,
     .prepare = hybrid_gather_prepare,
     .execute = hybrid_gather_execute,
     .destroy = hybrid_gather_destroy,
 };
 
-bool
-cg_pass_register_hybrid_gather(fg_registry *registry, uint32_t host_abi, cg_error *err)
-{
-    if (host_abi != FG_ABI_VERSION)
-        return cg_fail(err, CG_ERR_PLUGIN_ABI, "pass hybrid_gather: built for frame-graph ABI %u, host has %u",
-                       FG_ABI_VERSION, host_abi);
-    return fg_registry_add(registry, &hybrid_gather_type, err);
-}
+CGP_REGISTER_PASS(hybrid_gather, hybrid_gather_type)

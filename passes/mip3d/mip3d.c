@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "sdk/pass.h"
 #include "cg/fg.h"
 #include "cg/shader.h"
 
@@ -65,9 +66,9 @@ static bool
 mip3d_prepare(fg_pass *pass, void **state, cg_error *err)
 {
     const fg_resource_desc *desc = fg_resource(pass, "volume");
-    mip3d_state *s = calloc(1, sizeof *s);
+    mip3d_state *s = cgp_state_new(pass, sizeof *s, err);
     if (!s)
-        return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "pass '%s': out of memory", fg_pass_name(pass));
+        return false;
     s->format = desc->format;
     char defines[128];
     snprintf(defines, sizeof defines, "#define FORMAT %s\n#define %s\n",
@@ -147,19 +148,11 @@ static const fg_pass_type mip3d_type = {
     .name = "mip3d",
     .doc = "Filtered mip chain of a 3D lightmap by a 2x2x2 box filter, one compute dispatch per "
            "level, in place (VCT paper 3.1). Opacity by the max or the average of the children.",
-    .params = mip3d_params,
-    .param_count = (int)(sizeof mip3d_params / sizeof mip3d_params[0]),
+    CGP_PARAMS(mip3d_params),
     .declare = mip3d_declare,
     .prepare = mip3d_prepare,
     .execute = mip3d_execute,
     .destroy = mip3d_destroy,
 };
 
-bool
-cg_pass_register_mip3d(fg_registry *registry, uint32_t host_abi, cg_error *err)
-{
-    if (host_abi != FG_ABI_VERSION)
-        return cg_fail(err, CG_ERR_PLUGIN_ABI, "pass mip3d: built for ABI %u, host has %u",
-                       FG_ABI_VERSION, host_abi);
-    return fg_registry_add(registry, &mip3d_type, err);
-}
+CGP_REGISTER_PASS(mip3d, mip3d_type)

@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "sdk/pass.h"
 #include "cg/fg.h"
 #include "cg/log.h"
 #include "cg/pt_render.h"
@@ -41,16 +42,8 @@ static bool
 path_trace_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
 {
     (void)err;
-    const fg_frame *frame = fg_pass_frame(pass);
-    fg_resource_desc out = {
-        .kind = FG_TEXTURE_2D,
-        .format = GL_RGBA32F,
-        .width = frame->width,
-        .height = frame->height,
-        .depth = 1,
-        .levels = 1,
-        .persistent = true, /* holds the cached trace between frames */
-    };
+    fg_resource_desc out = cgp_image_like(pass, NULL, GL_RGBA32F);
+    out.persistent = true; /* holds the cached trace between frames */
     fg_declare_output(decl, "radiance", &out, FG_ACCESS_TRANSFER);
     return true;
 }
@@ -58,10 +51,9 @@ path_trace_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
 static bool
 path_trace_prepare(fg_pass *pass, void **state, cg_error *err)
 {
-    (void)pass;
-    path_trace_state *st = calloc(1, sizeof *st);
+    path_trace_state *st = cgp_state_new(pass, sizeof *st, err);
     if (!st)
-        return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "path_trace: state");
+        return false;
     *state = st;
     return true;
 }
@@ -160,20 +152,11 @@ static const fg_pass_type path_trace_type = {
            "with hard shadows, cosine-sampled diffuse bounces; camera rays through the pixel "
            "centres of the raster passes' view. Output `radiance`: linear RGBA32F. Bit-identical "
            "for a seed whatever the thread count (counter-based random numbers per pixel and sample).",
-    .params = path_trace_params,
-    .param_count = (int)(sizeof path_trace_params / sizeof path_trace_params[0]),
-    .side_effect = false,
+    CGP_PARAMS(path_trace_params),
     .declare = path_trace_declare,
     .prepare = path_trace_prepare,
     .execute = path_trace_execute,
     .destroy = path_trace_destroy,
 };
 
-bool
-cg_pass_register_path_trace(fg_registry *registry, uint32_t host_abi, cg_error *err)
-{
-    if (host_abi != FG_ABI_VERSION)
-        return cg_fail(err, CG_ERR_PLUGIN_ABI, "pass path_trace: built for frame-graph ABI %u, host has %u",
-                       FG_ABI_VERSION, host_abi);
-    return fg_registry_add(registry, &path_trace_type, err);
-}
+CGP_REGISTER_PASS(path_trace, path_trace_type)

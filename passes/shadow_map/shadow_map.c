@@ -12,6 +12,7 @@
 
 #include <cglm/cglm.h>
 
+#include "sdk/pass.h"
 #include "cg/fg.h"
 #include "cg/gpu_scene.h"
 #include "cg/shader.h"
@@ -109,15 +110,9 @@ shadow_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
         }
     }
     int resolution = fg_param_int(pass, "resolution");
-    fg_resource_desc depth = {
-        .kind = FG_TEXTURE_2D, .format = GL_DEPTH_COMPONENT32F,
-        .width = resolution, .height = resolution, .depth = 1, .levels = 1,
-    };
+    fg_resource_desc depth = cgp_image_2d(GL_DEPTH_COMPONENT32F, resolution, resolution);
     fg_declare_output(decl, "depth", &depth, FG_ACCESS_ATTACHMENT);
-    fg_resource_desc matrix = {
-        .kind = FG_BUFFER, .format = 0, .width = 0, .height = 0, .depth = 1, .levels = 1,
-        .buffer_bytes = sizeof(shadow_block),
-    };
+    fg_resource_desc matrix = cgp_buffer_desc(sizeof(shadow_block));
     fg_declare_output(decl, "matrix", &matrix, FG_ACCESS_TRANSFER);
     return true;
 }
@@ -125,10 +120,9 @@ shadow_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
 static bool
 shadow_prepare(fg_pass *pass, void **state, cg_error *err)
 {
-    (void)pass;
-    shadow_state *st = calloc(1, sizeof *st);
+    shadow_state *st = cgp_state_new(pass, sizeof *st, err);
     if (!st)
-        return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "shadow_map: state");
+        return false;
     if (!cg_program_graphics("shadow_map/depth.vert", NULL, NULL, NULL, &st->program, err)) {
         free(st);
         return false;
@@ -305,19 +299,11 @@ static const fg_pass_type shadow_map_type = {
            "scene bounds) or spot light (perspective over the outer cone), and the matrices "
            "and bias of its lookup (shaders/common/shadow.glsl) in the buffer `matrix`. "
            "Point lights are unshadowed. Nothing to do without a directional or spot light.",
-    .params = shadow_params,
-    .param_count = (int)(sizeof shadow_params / sizeof shadow_params[0]),
+    CGP_PARAMS(shadow_params),
     .declare = shadow_declare,
     .prepare = shadow_prepare,
     .execute = shadow_execute,
     .destroy = shadow_destroy,
 };
 
-bool
-cg_pass_register_shadow_map(fg_registry *registry, uint32_t host_abi, cg_error *err)
-{
-    if (host_abi != FG_ABI_VERSION)
-        return cg_fail(err, CG_ERR_PLUGIN_ABI, "pass shadow_map: built for frame-graph ABI %u, host has %u",
-                       FG_ABI_VERSION, host_abi);
-    return fg_registry_add(registry, &shadow_map_type, err);
-}
+CGP_REGISTER_PASS(shadow_map, shadow_map_type)

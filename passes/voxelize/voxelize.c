@@ -19,6 +19,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "sdk/pass.h"
 #include "cg/fg.h"
 #include "cg/gpu_scene.h"
 #include "cg/shader.h"
@@ -204,7 +205,7 @@ voxelize_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
         .gi = true,
     };
     fg_declare_output(decl, "radiance", &radiance, FG_ACCESS_IMAGE_STORE);
-    fg_resource_desc block = {.kind = FG_BUFFER, .depth = 1, .levels = 1, .buffer_bytes = REGION_BYTES};
+    fg_resource_desc block = cgp_buffer_desc(REGION_BYTES);
     fg_declare_output(decl, "region", &block, FG_ACCESS_TRANSFER | FG_ACCESS_STORAGE);
     fg_resource_desc accumulation = {
         .kind = FG_TEXTURE_3D, .format = GL_R32UI,
@@ -218,9 +219,9 @@ voxelize_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
 static bool
 voxelize_prepare(fg_pass *pass, void **state, cg_error *err)
 {
-    voxelize_state *s = calloc(1, sizeof *s);
+    voxelize_state *s = cgp_state_new(pass, sizeof *s, err);
     if (!s)
-        return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "pass '%s': out of memory", fg_pass_name(pass));
+        return false;
     s->format = fg_resource(pass, "radiance")->format;
     char defines[64];
     snprintf(defines, sizeof defines, "#define FORMAT %s\n", s->format == GL_RGBA8 ? "rgba8" : "rgba16f");
@@ -463,19 +464,11 @@ static const fg_pass_type voxelize_type = {
            "(VCT paper 3.1): dominant-axis projection in a geometry shader, conservative coverage "
            "by triangle dilation and an exact triangle/voxel test, fragments averaged by "
            "fixed-point atomic sums. Rebuilt every frame.",
-    .params = voxelize_params,
-    .param_count = (int)(sizeof voxelize_params / sizeof voxelize_params[0]),
+    CGP_PARAMS(voxelize_params),
     .declare = voxelize_declare,
     .prepare = voxelize_prepare,
     .execute = voxelize_execute,
     .destroy = voxelize_destroy,
 };
 
-bool
-cg_pass_register_voxelize(fg_registry *registry, uint32_t host_abi, cg_error *err)
-{
-    if (host_abi != FG_ABI_VERSION)
-        return cg_fail(err, CG_ERR_PLUGIN_ABI, "pass voxelize: built for frame-graph ABI %u, host has %u",
-                       FG_ABI_VERSION, host_abi);
-    return fg_registry_add(registry, &voxelize_type, err);
-}
+CGP_REGISTER_PASS(voxelize, voxelize_type)

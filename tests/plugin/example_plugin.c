@@ -7,8 +7,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "cg/error.h"
-#include "cg/fg.h"
+#include "sdk/pass.h"
 
 #ifndef EXAMPLE_PLUGIN_ABI
 #define EXAMPLE_PLUGIN_ABI FG_ABI_VERSION
@@ -55,21 +54,11 @@ static const fg_pass_type fill_type = {
     .name = "example_fill",
     .doc = "Example plugin pass: fills a 2D RGBA16F output ('color') with a constant colour "
            "(glClearTexImage). Shows how a pass module outside the tree is built and loaded.",
-    .params = fill_params,
-    .param_count = (int)(sizeof fill_params / sizeof fill_params[0]),
+    CGP_PARAMS(fill_params),
     .declare = fill_declare,
     .execute = fill_execute,
 };
 
-bool conegraph_plugin_register(fg_registry *registry, uint32_t host_abi, cg_error *err);
-
-bool
-conegraph_plugin_register(fg_registry *registry, uint32_t host_abi, cg_error *err)
-{
-    if (host_abi != EXAMPLE_PLUGIN_ABI)
-        return cg_fail(err, CG_ERR_PLUGIN_ABI,
-                       "example_plugin was built for frame-graph ABI %u, but the host has ABI %u; "
-                       "rebuild it against the host's cg/fg.h", (unsigned)EXAMPLE_PLUGIN_ABI,
-                       (unsigned)host_abi);
-    return fg_registry_add(registry, &fill_type, err);
-}
+/* conegraph_plugin_register(): refuses a host of another ABI (the bad-ABI build above), then
+ * registers fill_type. */
+CGP_PLUGIN(&fill_type)
