@@ -13,13 +13,12 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "sdk/blocks.h"
 #include "sdk/pass.h"
 #include "sdk/cone.h"
 #include "cg/fg.h"
 #include "cg/gpu_scene.h"
 #include "cg/shader.h"
-
-#define REGION_BYTES 32
 
 static const fg_param_desc cone_gather_params[] = {
     {"cones", FG_PARAM_INT, 6, 1, 16, NULL,
@@ -81,10 +80,10 @@ cone_gather_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
         return cg_fail(err, CG_ERR_GRAPH_MISSING_INPUT,
                        "pass '%s': input 'volume' needs input 'region' (a voxelize pass's output 'region')",
                        fg_pass_name(pass));
-    if (region->buffer_bytes < REGION_BYTES)
+    if (region->buffer_bytes < sizeof(cg_volume_block))
         return cg_fail(err, CG_ERR_GRAPH_INCOMPATIBLE,
-                       "pass '%s': input 'region' holds %zu bytes; a voxelize 'region' holds %d",
-                       fg_pass_name(pass), region->buffer_bytes, REGION_BYTES);
+                       "pass '%s': input 'region' holds %zu bytes; a voxelize 'region' holds %zu",
+                       fg_pass_name(pass), region->buffer_bytes, sizeof(cg_volume_block));
     if (!position)
         return true;
     fg_resource_desc out = cgp_image_like(pass, position, GL_RGBA16F);
@@ -173,8 +172,7 @@ cone_gather_execute(fg_pass *pass, void *state, cg_error *err)
 
     if (frame->gpu_scene)
         cg_gpu_scene_bind_lights(frame->gpu_scene);
-    glBindBufferBase(GL_UNIFORM_BUFFER, 3 /* CG_BINDING_VOLUME, common/volume.glsl */,
-                     fg_buffer(pass, "region"));
+    glBindBufferBase(GL_UNIFORM_BUFFER, CG_BINDING_VOLUME, fg_buffer(pass, "region"));
     glBindTextureUnit(0, fg_texture(pass, "volume"));
     glBindSampler(0, s->sampler);
     if (s->anisotropic)

@@ -6,7 +6,8 @@
  *             fills levels 1..): rgb = outgoing diffuse radiance of the direct light
  *             (shadowed through the optional shadow map) plus emission, a = height, world y.
  *             Texels no height-field mesh covers hold black radiance at the lowest height.
- *   region    48-byte std140 block for shaders/common/heightmap.glsl: where the map lies.
+ *   region    std140 block CG_HEIGHTMAP_BLOCK (common/blocks.h) for common/heightmap.glsl:
+ *             where the map lies.
  *   depth     the depth buffer of the raster (transient working memory, counted).
  * Inputs (optional, together): shadow (depth) and shadow_matrix (buffer) of a shadow_map pass.
  *
@@ -22,12 +23,11 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "sdk/blocks.h"
 #include "sdk/pass.h"
 #include "cg/fg.h"
 #include "cg/gpu_scene.h"
 #include "cg/shader.h"
-
-#define REGION_BYTES 48
 
 enum { FORMAT_RGBA16F, FORMAT_RGBA32F };
 
@@ -127,7 +127,7 @@ heightmap_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
         .gi = true,
     };
     fg_declare_output(decl, "lightmap", &lightmap, FG_ACCESS_ATTACHMENT | FG_ACCESS_TRANSFER);
-    fg_resource_desc block = cgp_buffer_desc(REGION_BYTES);
+    fg_resource_desc block = cgp_buffer_desc(sizeof(cg_heightmap_block));
     fg_declare_output(decl, "region", &block, FG_ACCESS_TRANSFER);
     fg_resource_desc depth = cgp_image_2d(GL_DEPTH_COMPONENT32F, resolution, resolution);
     depth.gi = true;
@@ -204,13 +204,12 @@ heightmap_execute(fg_pass *pass, void *state, cg_error *err)
     glDisable(GL_DEPTH_TEST);
     glUseProgram(0);
 
-    const float block[REGION_BYTES / 4] = {
-        (float)region.lo[0], (float)region.lo[2],
-        (float)((region.hi[0] - region.lo[0]) / resolution), (float)((region.hi[2] - region.lo[2]) / resolution),
-        (float)resolution, (float)desc->levels, (float)region.lo[1], (float)region.hi[1],
-        0.0f, 0.0f, 0.0f, 0.0f,
+    const cg_heightmap_block block = {
+        .origin_texel = {(float)region.lo[0], (float)region.lo[2], (float)((region.hi[0] - region.lo[0]) / resolution),
+                         (float)((region.hi[2] - region.lo[2]) / resolution)},
+        .info = {(float)resolution, (float)desc->levels, (float)region.lo[1], (float)region.hi[1]},
     };
-    glNamedBufferSubData(fg_buffer(pass, "region"), 0, sizeof block, block);
+    glNamedBufferSubData(fg_buffer(pass, "region"), 0, sizeof block, &block);
     return true;
 }
 

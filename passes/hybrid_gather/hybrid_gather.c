@@ -19,15 +19,12 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "sdk/blocks.h"
 #include "sdk/pass.h"
 #include "sdk/cone.h"
 #include "cg/fg.h"
 #include "cg/gpu_scene.h"
 #include "cg/shader.h"
-
-#define VOLUME_BYTES 32
-#define HEIGHTMAP_BYTES 48
-#define HSAT_INFO_BYTES 272
 
 enum { CUBE_EQ11, CUBE_EQ10 };
 enum { OCCLUSION_EQ16, OCCLUSION_EQ17 };
@@ -92,10 +89,10 @@ hybrid_gather_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
         return cg_fail(err, CG_ERR_GRAPH_MISSING_INPUT,
                        "pass '%s': input 'lightmap2d' needs 'region2d' (heightmap_raster's 'region'), "
                        "'hsat' and 'hsat_info' (an hsat pass's 'table' and 'info')", fg_pass_name(pass));
-    if (region && !check_buffer(pass, region, "region", VOLUME_BYTES, "a voxelize 'region'", err))
+    if (region && !check_buffer(pass, region, "region", sizeof(cg_volume_block), "a voxelize 'region'", err))
         return false;
-    if (lightmap && (!check_buffer(pass, region2d, "region2d", HEIGHTMAP_BYTES, "a heightmap_raster 'region'", err) ||
-                     !check_buffer(pass, hsat_info, "hsat_info", HSAT_INFO_BYTES, "an hsat 'info'", err)))
+    if (lightmap && (!check_buffer(pass, region2d, "region2d", sizeof(cg_heightmap_block), "a heightmap_raster 'region'", err) ||
+                     !check_buffer(pass, hsat_info, "hsat_info", sizeof(cg_hsat_info_block), "an hsat 'info'", err)))
         return false;
     if (lightmap && hsat && hsat->levels < lightmap->levels)
         return cg_fail(err, CG_ERR_GRAPH_INCOMPATIBLE,
@@ -165,7 +162,7 @@ hybrid_gather_prepare(fg_pass *pass, void **state, cg_error *err)
     glSamplerParameteri(s->table_sampler, GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
     glSamplerParameteri(s->table_sampler, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     glCreateBuffers(1, &s->empty_block);
-    glNamedBufferStorage(s->empty_block, HSAT_INFO_BYTES, NULL, GL_DYNAMIC_STORAGE_BIT);
+    glNamedBufferStorage(s->empty_block, sizeof(cg_hsat_info_block), NULL, GL_DYNAMIC_STORAGE_BIT);
     const unsigned zero = 0;
     glClearNamedBufferData(s->empty_block, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
     *state = s;
@@ -202,11 +199,11 @@ hybrid_gather_execute(fg_pass *pass, void *state, cg_error *err)
         glUniform1i(44, fg_param_bool(pass, "dda") ? 1 : 0);
         glUniform1i(45, fg_param_bool(pass, "skip") ? 1 : 0);
     }
-    glBindBufferBase(GL_UNIFORM_BUFFER, 3 /* CG_BINDING_VOLUME */,
+    glBindBufferBase(GL_UNIFORM_BUFFER, CG_BINDING_VOLUME,
                      s->has_3d ? fg_buffer(pass, "region") : s->empty_block);
-    glBindBufferBase(GL_UNIFORM_BUFFER, 4 /* CG_BINDING_HEIGHTMAP */,
+    glBindBufferBase(GL_UNIFORM_BUFFER, CG_BINDING_HEIGHTMAP,
                      s->has_2d ? fg_buffer(pass, "region2d") : s->empty_block);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5 /* CG_BINDING_HSAT */,
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_HSAT,
                      s->has_2d ? fg_buffer(pass, "hsat_info") : s->empty_block);
     glBindTextureUnit(0, s->has_3d ? fg_texture(pass, "volume") : 0);
     glBindSampler(0, s->volume_sampler);
@@ -221,7 +218,7 @@ hybrid_gather_execute(fg_pass *pass, void *state, cg_error *err)
     glBindSampler(0, 0);
     glBindSampler(3, 0);
     glBindSampler(4, 0);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, 0);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_HSAT, 0);
     glUseProgram(0);
     return true;
 }

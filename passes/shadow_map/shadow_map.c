@@ -12,6 +12,7 @@
 
 #include <cglm/cglm.h>
 
+#include "sdk/blocks.h"
 #include "sdk/pass.h"
 #include "cg/fg.h"
 #include "cg/gpu_scene.h"
@@ -35,18 +36,6 @@ static const fg_param_desc shadow_params[] = {
     { "filter", FG_PARAM_ENUM, FILTER_PCF3, 0, 0, "none|pcf3|pcf5",
       "percentage-closer filtering of the lookup: 1, 3x3 or 5x5 depth comparisons" },
 };
-
-/* std140 block CgShadow in shaders/common/shadow.glsl. */
-typedef struct shadow_block {
-    float view[16];
-    float view_proj[16];
-    float params[4];    /* constant bias, slope bias, filter radius, resolution */
-    float frustum[4];   /* light index, orthographic, near, far */
-    float light[4];     /* towards the light (orthographic) or light position */
-    float texel[4];     /* xy: texel world size along light x and y, or per metre of distance */
-} shadow_block;
-
-_Static_assert(sizeof(shadow_block) == CG_SHADOW_BLOCK_BYTES, "CgShadow is 192 bytes in std140");
 
 typedef struct shadow_state {
     GLuint program;
@@ -112,7 +101,7 @@ shadow_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
     int resolution = fg_param_int(pass, "resolution");
     fg_resource_desc depth = cgp_image_2d(GL_DEPTH_COMPONENT32F, resolution, resolution);
     fg_declare_output(decl, "depth", &depth, FG_ACCESS_ATTACHMENT);
-    fg_resource_desc matrix = cgp_buffer_desc(sizeof(shadow_block));
+    fg_resource_desc matrix = cgp_buffer_desc(sizeof(cg_shadow_block));
     fg_declare_output(decl, "matrix", &matrix, FG_ACCESS_TRANSFER);
     return true;
 }
@@ -131,7 +120,7 @@ shadow_prepare(fg_pass *pass, void **state, cg_error *err)
     glNamedFramebufferDrawBuffer(st->fbo, GL_NONE);
     glNamedFramebufferReadBuffer(st->fbo, GL_NONE);
     glCreateBuffers(1, &st->staging);
-    glNamedBufferStorage(st->staging, sizeof(shadow_block), NULL, GL_DYNAMIC_STORAGE_BIT);
+    glNamedBufferStorage(st->staging, sizeof(cg_shadow_block), NULL, GL_DYNAMIC_STORAGE_BIT);
     *state = st;
     return true;
 }
@@ -156,7 +145,7 @@ bounds_corner(const cg_scene *scene, int i, vec3 out)
 
 /* Orthographic projection along the light that just holds the scene bounds. */
 static void
-fit_directional(const cg_scene *scene, const cg_light *light, int resolution, shadow_block *b)
+fit_directional(const cg_scene *scene, const cg_light *light, int resolution, cg_shadow_block *b)
 {
     vec3 dir, up, center, eye, extent;
     glm_vec3_normalize_to((float *)light->direction, dir);
@@ -200,7 +189,7 @@ fit_directional(const cg_scene *scene, const cg_light *light, int resolution, sh
 /* Perspective projection from the spot light covering its outer cone and reaching the
  * farthest corner of the scene bounds. */
 static void
-fit_spot(const cg_scene *scene, const cg_light *light, int resolution, shadow_block *b)
+fit_spot(const cg_scene *scene, const cg_light *light, int resolution, cg_shadow_block *b)
 {
     vec3 dir, up, eye, target;
     glm_vec3_normalize_to((float *)light->direction, dir);
@@ -245,7 +234,7 @@ shadow_execute(fg_pass *pass, void *state, cg_error *err)
     int resolution = fg_param_int(pass, "resolution");
     static const int filter_radius[] = { [FILTER_NONE] = 0, [FILTER_PCF3] = 1, [FILTER_PCF5] = 2 };
 
-    shadow_block block;
+    cg_shadow_block block;
     memset(&block, 0, sizeof block);
     if (light->type == CG_LIGHT_DIRECTIONAL)
         fit_directional(frame->scene, light, resolution, &block);

@@ -4,8 +4,8 @@
  *   radiance      3D, resolution^3, RGBA16F or RGBA8, full mip chain declared (mip3d fills
  *                 levels 1..): premultiplied outgoing diffuse radiance (direct light, shadowed
  *                 through the optional shadow map, plus emission) and opacity in alpha.
- *   region        32-byte std140 block for shaders/common/volume.glsl: where the volume lies
- *                 and how its values decode (consumers bind it at CG_BINDING_VOLUME).
+ *   region        std140 block CG_VOLUME_BLOCK (common/blocks.h) for common/volume.glsl: where
+ *                 the volume lies and how its values decode (consumers bind it at CG_BINDING_VOLUME).
  *   accumulation  3D R32UI, resolution^2 x 4 resolution: the fixed-point sums and counts of
  *                 the fragments (shaders/voxelize/voxelize.frag), transient working memory,
  *                 declared so that the memory report counts it.
@@ -19,12 +19,12 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "sdk/blocks.h"
 #include "sdk/pass.h"
 #include "cg/fg.h"
 #include "cg/gpu_scene.h"
 #include "cg/shader.h"
 
-#define REGION_BYTES 32
 /* Fragments of the brightest radiance that one voxel can sum without overflowing 32 bits. */
 #define FRAGMENT_HEADROOM 1024.0
 
@@ -205,7 +205,7 @@ voxelize_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
         .gi = true,
     };
     fg_declare_output(decl, "radiance", &radiance, FG_ACCESS_IMAGE_STORE);
-    fg_resource_desc block = cgp_buffer_desc(REGION_BYTES);
+    fg_resource_desc block = cgp_buffer_desc(sizeof(cg_volume_block));
     fg_declare_output(decl, "region", &block, FG_ACCESS_TRANSFER | FG_ACCESS_STORAGE);
     fg_resource_desc accumulation = {
         .kind = FG_TEXTURE_3D, .format = GL_R32UI,
@@ -405,18 +405,18 @@ voxelize_execute(fg_pass *pass, void *state, cg_error *err)
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
 
-    const float block[REGION_BYTES / 4] = {
-        (float)region.origin[0], (float)region.origin[1], (float)region.origin[2], (float)region.voxel,
-        (float)resolution, (float)fg_resource(pass, "radiance")->levels, (float)radiance_scale, 0.0f,
+    const cg_volume_block block = {
+        .origin_voxel = {(float)region.origin[0], (float)region.origin[1], (float)region.origin[2], (float)region.voxel},
+        .info = {(float)resolution, (float)fg_resource(pass, "radiance")->levels, (float)radiance_scale, 0.0f},
     };
     GLuint region_buffer = fg_buffer(pass, "region");
-    glNamedBufferSubData(region_buffer, 0, sizeof block, block);
+    glNamedBufferSubData(region_buffer, 0, sizeof block, &block);
 
     GLuint groups = (GLuint)((resolution + 3) / 4);
     bool from_max = s->format == GL_RGBA8;
     glBindImageTexture(0, accum, 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, s->max_buffer);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, region_buffer);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_RESOLVE_MAX, s->max_buffer);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_RESOLVE_REGION, region_buffer);
     if (from_max) {
         glClearNamedBufferData(s->max_buffer, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
         glUseProgram(s->find_max);
@@ -434,8 +434,8 @@ voxelize_execute(fg_pass *pass, void *state, cg_error *err)
     glDispatchCompute(groups, groups, groups);
     glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
     glBindImageTexture(1, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, s->format);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, 0);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, 0);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_RESOLVE_MAX, 0);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_RESOLVE_REGION, 0);
     glUseProgram(0);
     return true;
 }

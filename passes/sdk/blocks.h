@@ -1,0 +1,18 @@
+/* sdk/blocks.h (pass SDK): the bindings, texture units and block layouts that C shares with
+ * GLSL, for C. They are defined once, in shaders/common/blocks.h, which GLSL includes too.
+ *
+ * Declares: what shaders/common/blocks.h provides in C (CG_BINDING_*, CG_UNIT_*, the block
+ *           structs cg_*_block).
+ *
+ * cg/gpu_scene.h comes first: core defines CG_BINDING_MATERIALS and CG_BINDING_LIGHTS for itself
+ * (core cannot see shaders/), and a differing definition here would be a compile error.
+ */
+#ifndef CGP_BLOCKS_H
+#define CGP_BLOCKS_H
+
+#include <stdint.h>
+
+#include "cg/gpu_scene.h"
+#include "common/blocks.h"
+
+#endif
