@@ -7,12 +7,14 @@
 #include <string.h>
 
 #include "sdk/pass.h"
+#include "sdk/shadow.h"
 #include "cg/fg.h"
 #include "cg/gpu_scene.h"
 #include "cg/shader.h"
 
 typedef struct direct_state {
     GLuint program;
+    cgp_no_shadow no_shadow;
 } direct_state;
 
 static bool
@@ -22,22 +24,8 @@ direct_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
         fg_declare_input(decl, "position", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, true);
     fg_declare_input(decl, "normal", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, true);
     fg_declare_input(decl, "albedo", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, true);
-    const fg_resource_desc *shadow =
-        fg_declare_input(decl, "shadow", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, false);
-    const fg_resource_desc *matrix =
-        fg_declare_input(decl, "shadow_matrix", FG_BUFFER, FG_ACCESS_UNIFORM, false);
-    if (!shadow != !matrix)
-        return cg_fail(err, CG_ERR_GRAPH_MISSING_INPUT,
-                       "pass '%s': inputs 'shadow' and 'shadow_matrix' go together (a shadow_map "
-                       "pass's outputs 'depth' and 'matrix'); only one is present", fg_pass_name(pass));
-    if (shadow && shadow->format != GL_DEPTH_COMPONENT32F)
-        return cg_fail(err, CG_ERR_GRAPH_INCOMPATIBLE,
-                       "pass '%s': input 'shadow' must be a GL_DEPTH_COMPONENT32F shadow map",
-                       fg_pass_name(pass));
-    if (matrix && matrix->buffer_bytes < CG_SHADOW_BLOCK_BYTES)
-        return cg_fail(err, CG_ERR_GRAPH_INCOMPATIBLE,
-                       "pass '%s': input 'shadow_matrix' holds %zu bytes; a shadow_map 'matrix' "
-                       "holds %d", fg_pass_name(pass), matrix->buffer_bytes, CG_SHADOW_BLOCK_BYTES);
+    if (!cgp_declare_shadow_inputs(pass, decl, err))
+        return false;
     fg_resource_desc out = cgp_image_like(pass, position, GL_RGBA16F);
     fg_declare_output(decl, "radiance", &out, FG_ACCESS_IMAGE_STORE);
     return true;
@@ -53,6 +41,7 @@ direct_prepare(fg_pass *pass, void **state, cg_error *err)
         free(st);
         return false;
     }
+    cgp_no_shadow_create(&st->no_shadow);
     *state = st;
     return true;
 }
@@ -67,7 +56,7 @@ direct_execute(fg_pass *pass, void *state, cg_error *err)
 
     glUseProgram(st->program);
     cg_gpu_scene_bind_lights(frame->gpu_scene);
-    cg_gpu_scene_bind_shadow(frame->gpu_scene, fg_texture(pass, "shadow"), fg_buffer(pass, "shadow_matrix"), 5);
+    cgp_bind_shadow(pass, &st->no_shadow, 5);
     glBindTextureUnit(2, fg_texture(pass, "position"));
     glBindTextureUnit(3, fg_texture(pass, "normal"));
     glBindTextureUnit(4, fg_texture(pass, "albedo"));
@@ -84,6 +73,7 @@ direct_destroy(void *state)
     if (!st)
         return;
     glDeleteProgram(st->program);
+    cgp_no_shadow_destroy(&st->no_shadow);
     free(st);
 }
 

@@ -25,6 +25,7 @@
 
 #include "sdk/blocks.h"
 #include "sdk/pass.h"
+#include "sdk/shadow.h"
 #include "cg/fg.h"
 #include "cg/gpu_scene.h"
 #include "cg/shader.h"
@@ -41,6 +42,7 @@ static const fg_param_desc heightmap_params[] = {
 typedef struct heightmap_state {
     GLuint program;
     GLuint fbo;
+    cgp_no_shadow no_shadow;
 } heightmap_state;
 
 typedef struct heightmap_region {
@@ -101,19 +103,8 @@ heightmap_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
         return cg_fail(err, CG_ERR_GRAPH_PARAM_RANGE,
                        "pass '%s': resolution %d is not a power of two (16, 32, ..., 8192)",
                        fg_pass_name(pass), resolution);
-    const fg_resource_desc *shadow = fg_declare_input(decl, "shadow", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, false);
-    const fg_resource_desc *matrix = fg_declare_input(decl, "shadow_matrix", FG_BUFFER, FG_ACCESS_UNIFORM, false);
-    if (!shadow != !matrix)
-        return cg_fail(err, CG_ERR_GRAPH_MISSING_INPUT,
-                       "pass '%s': inputs 'shadow' and 'shadow_matrix' go together (a shadow_map "
-                       "pass's outputs 'depth' and 'matrix'); only one is present", fg_pass_name(pass));
-    if (shadow && shadow->format != GL_DEPTH_COMPONENT32F)
-        return cg_fail(err, CG_ERR_GRAPH_INCOMPATIBLE,
-                       "pass '%s': input 'shadow' must be a GL_DEPTH_COMPONENT32F shadow map", fg_pass_name(pass));
-    if (matrix && matrix->buffer_bytes < CG_SHADOW_BLOCK_BYTES)
-        return cg_fail(err, CG_ERR_GRAPH_INCOMPATIBLE,
-                       "pass '%s': input 'shadow_matrix' holds %zu bytes, a shadow_map 'matrix' %d",
-                       fg_pass_name(pass), matrix->buffer_bytes, CG_SHADOW_BLOCK_BYTES);
+    if (!cgp_declare_shadow_inputs(pass, decl, err))
+        return false;
     heightmap_region region;
     if (!heightfield_bounds(frame->scene, &region)) {
         fg_declare_nothing_to_do(decl, "the scene has no height-field mesh (with area seen from above)");
@@ -147,6 +138,7 @@ heightmap_prepare(fg_pass *pass, void **state, cg_error *err)
         return false;
     }
     glCreateFramebuffers(1, &s->fbo);
+    cgp_no_shadow_create(&s->no_shadow);
     *state = s;
     return true;
 }
@@ -197,7 +189,7 @@ heightmap_execute(fg_pass *pass, void *state, cg_error *err)
                 (float)(1.0 / (region.hi[2] - region.lo[2])));
     glUniform2f(9, (float)top, (float)(1.0 / range));
     cg_gpu_scene_bind_lights(frame->gpu_scene);
-    cg_gpu_scene_bind_shadow(frame->gpu_scene, fg_texture(pass, "shadow"), fg_buffer(pass, "shadow_matrix"), 2);
+    cgp_bind_shadow(pass, &s->no_shadow, 2);
     cg_gpu_scene_draw(frame->gpu_scene, CG_MESHES_HEIGHTFIELD);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
@@ -221,6 +213,7 @@ heightmap_destroy(void *state)
         return;
     glDeleteProgram(s->program);
     glDeleteFramebuffers(1, &s->fbo);
+    cgp_no_shadow_destroy(&s->no_shadow);
     free(s);
 }
 

@@ -21,6 +21,7 @@
 
 #include "sdk/blocks.h"
 #include "sdk/pass.h"
+#include "sdk/shadow.h"
 #include "cg/fg.h"
 #include "cg/gpu_scene.h"
 #include "cg/shader.h"
@@ -59,6 +60,7 @@ typedef struct voxelize_state {
     GLuint find_max;        /* RGBA8 only: the largest radiance, for the stored scale */
     GLuint max_buffer;
     GLuint fbo;
+    cgp_no_shadow no_shadow;
     GLenum format;
     /* Nearest-surface distance per point/spot light, recomputed when a light moves. */
     float *light_positions;
@@ -175,19 +177,8 @@ voxelize_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
         return cg_fail(err, CG_ERR_GRAPH_PARAM_RANGE,
                        "pass '%s': padding %g voxels leaves less than half the volume for the scene",
                        fg_pass_name(pass), fg_param_float(pass, "padding"));
-    const fg_resource_desc *shadow = fg_declare_input(decl, "shadow", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, false);
-    const fg_resource_desc *matrix = fg_declare_input(decl, "shadow_matrix", FG_BUFFER, FG_ACCESS_UNIFORM, false);
-    if (!shadow != !matrix)
-        return cg_fail(err, CG_ERR_GRAPH_MISSING_INPUT,
-                       "pass '%s': inputs 'shadow' and 'shadow_matrix' go together (a shadow_map "
-                       "pass's outputs 'depth' and 'matrix'); only one is present", fg_pass_name(pass));
-    if (shadow && shadow->format != GL_DEPTH_COMPONENT32F)
-        return cg_fail(err, CG_ERR_GRAPH_INCOMPATIBLE,
-                       "pass '%s': input 'shadow' must be a GL_DEPTH_COMPONENT32F shadow map", fg_pass_name(pass));
-    if (matrix && matrix->buffer_bytes < CG_SHADOW_BLOCK_BYTES)
-        return cg_fail(err, CG_ERR_GRAPH_INCOMPATIBLE,
-                       "pass '%s': input 'shadow_matrix' holds %zu bytes, a shadow_map 'matrix' %d",
-                       fg_pass_name(pass), matrix->buffer_bytes, CG_SHADOW_BLOCK_BYTES);
+    if (!cgp_declare_shadow_inputs(pass, decl, err))
+        return false;
 
     voxel_region region;
     bool has = false;
@@ -238,6 +229,7 @@ voxelize_prepare(fg_pass *pass, void **state, cg_error *err)
     glCreateBuffers(1, &s->max_buffer);
     glNamedBufferStorage(s->max_buffer, sizeof(GLuint), NULL, GL_DYNAMIC_STORAGE_BIT);
     glCreateFramebuffers(1, &s->fbo);
+    cgp_no_shadow_create(&s->no_shadow);
     *state = s;
     return true;
 }
@@ -398,7 +390,7 @@ voxelize_execute(fg_pass *pass, void *state, cg_error *err)
     glUniform1f(10, (float)fixed_scale);
     glUniform1i(12, fg_param_bool(pass, "conservative") ? 1 : 0);
     cg_gpu_scene_bind_lights(frame->gpu_scene);
-    cg_gpu_scene_bind_shadow(frame->gpu_scene, fg_texture(pass, "shadow"), fg_buffer(pass, "shadow_matrix"), 2);
+    cgp_bind_shadow(pass, &s->no_shadow, 2);
     glBindImageTexture(0, accum, 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
     cg_gpu_scene_draw(frame->gpu_scene, filter);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
@@ -451,6 +443,7 @@ voxelize_destroy(void *state)
     glDeleteProgram(s->find_max);
     glDeleteBuffers(1, &s->max_buffer);
     glDeleteFramebuffers(1, &s->fbo);
+    cgp_no_shadow_destroy(&s->no_shadow);
     free(s->light_positions);
     free(s->light_nearest);
     free(s);
