@@ -17,7 +17,6 @@
  * keeps 24 bits (about 2 mm at 30 km), hence the default. A scene without height-field
  * meshes declares nothing to do, and the graph culls the whole 2D branch.
  */
-#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -25,6 +24,7 @@
 
 #include "sdk/blocks.h"
 #include "sdk/pass.h"
+#include "sdk/scene.h"
 #include "sdk/shadow.h"
 #include "cg/fg.h"
 #include "cg/gpu_scene.h"
@@ -49,41 +49,12 @@ typedef struct heightmap_region {
     double lo[3], hi[3];    /* world bounds of the height-field instances */
 } heightmap_region;
 
-static void
-transform_point(const float m[16], const float p[3], double out[3])
-{
-    for (int r = 0; r < 3; r++)
-        out[r] = m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r];
-}
-
 /* World bounds of the height-field instances; false when there is none or all lie in a
  * line or a point seen from above (no area to rasterize). */
 static bool
 heightfield_bounds(const cg_scene *scene, heightmap_region *out)
 {
-    bool any = false;
-    for (int k = 0; k < 3; k++)
-        out->lo[k] = DBL_MAX, out->hi[k] = -DBL_MAX;
-    for (int i = 0; i < scene->instance_count; i++) {
-        const cg_instance *inst = &scene->instances[i];
-        const cg_mesh *mesh = &scene->meshes[inst->mesh];
-        if (mesh->kind != CG_MESH_HEIGHTFIELD || mesh->index_count == 0)
-            continue;
-        for (int c = 0; c < 8; c++) {
-            float corner[3] = {
-                (c & 1) ? mesh->bounds_max[0] : mesh->bounds_min[0],
-                (c & 2) ? mesh->bounds_max[1] : mesh->bounds_min[1],
-                (c & 4) ? mesh->bounds_max[2] : mesh->bounds_min[2],
-            };
-            double w[3];
-            transform_point(inst->world, corner, w);
-            for (int k = 0; k < 3; k++) {
-                out->lo[k] = fmin(out->lo[k], w[k]);
-                out->hi[k] = fmax(out->hi[k], w[k]);
-            }
-        }
-        any = true;
-    }
+    bool any = cgp_mesh_bounds(scene, CG_MESHES_HEIGHTFIELD, out->lo, out->hi);
     return any && out->hi[0] > out->lo[0] && out->hi[2] > out->lo[2] &&
            isfinite(out->hi[0] - out->lo[0]) && isfinite(out->hi[2] - out->lo[2]);
 }

@@ -21,6 +21,7 @@
 
 #include "sdk/blocks.h"
 #include "sdk/pass.h"
+#include "sdk/scene.h"
 #include "sdk/shadow.h"
 #include "cg/fg.h"
 #include "cg/gpu_scene.h"
@@ -74,50 +75,6 @@ typedef struct voxel_region {
     double voxel;
 } voxel_region;
 
-static bool
-mesh_passes(cg_mesh_kind kind, cg_mesh_filter filter)
-{
-    return filter == CG_MESHES_ALL || (filter == CG_MESHES_COMPLEX && kind == CG_MESH_COMPLEX) ||
-           (filter == CG_MESHES_HEIGHTFIELD && kind == CG_MESH_HEIGHTFIELD);
-}
-
-static void
-transform_point(const float m[16], const float p[3], double out[3])
-{
-    for (int r = 0; r < 3; r++)
-        out[r] = m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r];
-}
-
-/* World bounds of the instances whose mesh passes the filter; false when there is none. */
-static bool
-filtered_bounds(const cg_scene *scene, cg_mesh_filter filter, double lo[3], double hi[3])
-{
-    bool any = false;
-    for (int k = 0; k < 3; k++)
-        lo[k] = DBL_MAX, hi[k] = -DBL_MAX;
-    for (int i = 0; i < scene->instance_count; i++) {
-        const cg_instance *inst = &scene->instances[i];
-        const cg_mesh *mesh = &scene->meshes[inst->mesh];
-        if (!mesh_passes(mesh->kind, filter) || mesh->index_count == 0)
-            continue;
-        for (int c = 0; c < 8; c++) {
-            float corner[3] = {
-                (c & 1) ? mesh->bounds_max[0] : mesh->bounds_min[0],
-                (c & 2) ? mesh->bounds_max[1] : mesh->bounds_min[1],
-                (c & 4) ? mesh->bounds_max[2] : mesh->bounds_min[2],
-            };
-            double w[3];
-            transform_point(inst->world, corner, w);
-            for (int k = 0; k < 3; k++) {
-                lo[k] = fmin(lo[k], w[k]);
-                hi[k] = fmax(hi[k], w[k]);
-            }
-        }
-        any = true;
-    }
-    return any;
-}
-
 /* The cube the volume covers. Fails (bad parameters) or returns false in *has (nothing to voxelize). */
 static bool
 voxelize_region(const fg_pass *pass, const cg_scene *scene, voxel_region *out, bool *has, cg_error *err)
@@ -127,7 +84,7 @@ voxelize_region(const fg_pass *pass, const cg_scene *scene, voxel_region *out, b
     int resolution = fg_param_int(pass, "resolution");
     double padding = fg_param_float(pass, "padding");
     double lo[3], hi[3];
-    *has = filtered_bounds(scene, filter, lo, hi);
+    *has = cgp_mesh_bounds(scene, filter, lo, hi);
     if (mode == REGION_SCENE) {
         for (int k = 0; k < 3; k++)
             lo[k] = scene->bounds_min[k], hi[k] = scene->bounds_max[k];
@@ -283,12 +240,12 @@ nearest_surface(const cg_scene *scene, cg_mesh_filter filter, const float light[
     for (int i = 0; i < scene->instance_count; i++) {
         const cg_instance *inst = &scene->instances[i];
         const cg_mesh *mesh = &scene->meshes[inst->mesh];
-        if (!mesh_passes(mesh->kind, filter))
+        if (!cgp_mesh_passes(mesh->kind, filter))
             continue;
         for (uint32_t t = 0; t + 2 < mesh->index_count; t += 3) {
             double v[3][3];
             for (int j = 0; j < 3; j++)
-                transform_point(inst->world, &mesh->positions[3 * mesh->indices[t + j]], v[j]);
+                cgp_transform_point(inst->world, &mesh->positions[3 * mesh->indices[t + j]], v[j]);
             double d2 = point_triangle_dist2(p, v[0], v[1], v[2]);
             if (d2 < best)
                 best = d2;
