@@ -15,6 +15,7 @@
 
 #include "sdk/blocks.h"
 #include "sdk/pass.h"
+#include "sdk/sampler.h"
 #include "sdk/cone.h"
 #include "cg/fg.h"
 #include "cg/gpu_scene.h"
@@ -119,15 +120,7 @@ cone_gather_prepare(fg_pass *pass, void **state, cg_error *err)
         free(s);
         return false;
     }
-    /* Trilinear within and between levels; outside the volume reads as empty space. */
-    glCreateSamplers(1, &s->sampler);
-    glSamplerParameteri(s->sampler, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-    glSamplerParameteri(s->sampler, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glSamplerParameteri(s->sampler, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_BORDER);
-    glSamplerParameteri(s->sampler, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_BORDER);
-    glSamplerParameteri(s->sampler, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_BORDER);
-    const float border[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-    glSamplerParameterfv(s->sampler, GL_TEXTURE_BORDER_COLOR, border);
+    s->sampler = cgp_sampler_volume();
     *state = s;
     return true;
 }

@@ -21,6 +21,7 @@
 
 #include "sdk/blocks.h"
 #include "sdk/pass.h"
+#include "sdk/sampler.h"
 #include "sdk/cone.h"
 #include "cg/fg.h"
 #include "cg/gpu_scene.h"
@@ -141,26 +142,10 @@ hybrid_gather_prepare(fg_pass *pass, void **state, cg_error *err)
         hybrid_gather_destroy(s);
         return false;
     }
-    /* Trilinear within and between levels; outside the volume reads as empty space. */
-    glCreateSamplers(1, &s->volume_sampler);
-    glSamplerParameteri(s->volume_sampler, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-    glSamplerParameteri(s->volume_sampler, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glSamplerParameteri(s->volume_sampler, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_BORDER);
-    glSamplerParameteri(s->volume_sampler, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_BORDER);
-    glSamplerParameteri(s->volume_sampler, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_BORDER);
-    const float border[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-    glSamplerParameterfv(s->volume_sampler, GL_TEXTURE_BORDER_COLOR, border);
-    /* The 2D lightmap: trilinear, edges clamped (the terrain's border continues outward in
-     * the cube-centre sample; the DDA reads only texels inside). */
-    glCreateSamplers(1, &s->map_sampler);
-    glSamplerParameteri(s->map_sampler, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-    glSamplerParameteri(s->map_sampler, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glSamplerParameteri(s->map_sampler, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glSamplerParameteri(s->map_sampler, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    /* The HSAT tables are integer textures: complete only with nearest filtering. */
-    glCreateSamplers(1, &s->table_sampler);
-    glSamplerParameteri(s->table_sampler, GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
-    glSamplerParameteri(s->table_sampler, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    s->volume_sampler = cgp_sampler_volume();
+    /* The cube-centre sample (dda = false) reads the 2D lightmap filtered; the DDA and HSAT fetch. */
+    s->map_sampler = cgp_sampler_lightmap2d();
+    s->table_sampler = cgp_sampler_table();
     glCreateBuffers(1, &s->empty_block);
     glNamedBufferStorage(s->empty_block, sizeof(cg_hsat_info_block), NULL, GL_DYNAMIC_STORAGE_BIT);
     const unsigned zero = 0;
