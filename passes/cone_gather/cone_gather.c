@@ -47,11 +47,12 @@ static const fg_param_desc cone_gather_params[] = {
 typedef struct cone_gather_state {
     GLuint program;
     GLuint sampler;
+    GLuint cone_block, gather_block;    /* CG_CONE_SET_BLOCK, CG_CONE_GATHER_BLOCK */
     cgp_cone_set set;
     bool specular, shadow_cone, anisotropic;
 } cone_gather_state;
 
-/* mip3d's directional chains (anisotropic = true), texture units 3..8 (CG_CONE_ANISO_BINDING). */
+/* mip3d's directional chains (anisotropic = true), texture units CG_UNIT_ANISO + 0..5. */
 static const char *const direction_names[6] = {"px", "nx", "py", "ny", "pz", "nz"};
 
 static bool
@@ -104,10 +105,9 @@ cone_gather_prepare(fg_pass *pass, void **state, cg_error *err)
     cone_gather_state *s = cgp_state_new(pass, sizeof *s, err);
     if (!s)
         return false;
-    if (!cgp_cone_set_make(fg_param_int(pass, "cones"), &s->set)) {
+    if (!cgp_cone_set_of_pass(pass, &s->set, err)) {
         free(s);
-        return cg_fail(err, CG_ERR_GRAPH_PARAM_RANGE, "pass '%s': no cone set of %d cones",
-                       fg_pass_name(pass), fg_param_int(pass, "cones"));
+        return false;
     }
     s->specular = fg_param_bool(pass, "specular");
     s->shadow_cone = fg_param_bool(pass, "shadow_cone");
@@ -121,6 +121,8 @@ cone_gather_prepare(fg_pass *pass, void **state, cg_error *err)
         return false;
     }
     s->sampler = cgp_sampler_volume();
+    s->cone_block = cgp_uniform_buffer(sizeof(cg_cone_set_block));
+    s->gather_block = cgp_uniform_buffer(sizeof(cg_cone_gather_block));
     *state = s;
     return true;
 }
@@ -138,53 +140,39 @@ cone_gather_execute(fg_pass *pass, void *state, cg_error *err)
     cone_gather_state *s = state;
     const fg_frame *frame = fg_pass_frame(pass);
     const fg_resource_desc *out = fg_resource(pass, "radiance");
-    double aperture = fg_param_float(pass, "aperture");
+    double roughness = fg_param_float(pass, "roughness");
+    const cg_cone_gather_block block = {
+        .camera = {frame->view.position[0], frame->view.position[1], frame->view.position[2], 0.0f},
+        .tan_half = {(float)fmax(roughness * roughness, 0.01),
+                     (float)tan_half_degrees(fg_param_float(pass, "shadow_aperture"))},
+        .shadow = {fg_param_int(pass, "shadow_light")},
+    };
 
     glUseProgram(s->program);
-    float cones[CGP_CONE_MAX][4], tan_half[CGP_CONE_MAX];
-    for (int k = 0; k < s->set.count; k++) {
-        const cgp_cone *c = &s->set.cones[k];
-        cones[k][0] = c->direction[0];
-        cones[k][1] = c->direction[1];
-        cones[k][2] = c->direction[2];
-        cones[k][3] = c->weight;
-        tan_half[k] = (float)(aperture > 0.0 ? tan_half_degrees(aperture) : tan(c->half_angle));
-    }
-    glUniform4fv(0, s->set.count, &cones[0][0]);
-    glUniform1fv(16, s->set.count, tan_half);
-    glUniform1i(32, s->set.count);
-    glUniform1f(33, fg_param_float(pass, "step"));
-    glUniform1f(34, fg_param_float(pass, "start_offset"));
-    glUniform1f(35, fg_param_float(pass, "max_distance"));
-    glUniform3fv(36, 1, frame->view.position);
-    double roughness = fg_param_float(pass, "roughness");
-    glUniform1f(37, (float)fmax(roughness * roughness, 0.01));
-    glUniform1i(38, fg_param_int(pass, "shadow_light"));
-    glUniform1f(39, (float)tan_half_degrees(fg_param_float(pass, "shadow_aperture")));
-    glUniform1f(40, fg_param_float(pass, "lod_bias"));
-
+    cgp_cone_upload(pass, &s->set, s->cone_block);
+    cgp_uniform_upload(s->gather_block, CG_BINDING_GATHER, &block, sizeof block);
     if (frame->gpu_scene)
         cg_gpu_scene_bind_lights(frame->gpu_scene);
     glBindBufferBase(GL_UNIFORM_BUFFER, CG_BINDING_VOLUME, fg_buffer(pass, "region"));
-    glBindTextureUnit(0, fg_texture(pass, "volume"));
-    glBindSampler(0, s->sampler);
+    glBindTextureUnit(CG_UNIT_VOLUME, fg_texture(pass, "volume"));
+    glBindSampler(CG_UNIT_VOLUME, s->sampler);
     if (s->anisotropic)
         for (int d = 0; d < 6; d++) {
-            glBindTextureUnit(3 + (GLuint)d, fg_texture(pass, direction_names[d]));
-            glBindSampler(3 + (GLuint)d, s->sampler);
+            glBindTextureUnit(CG_UNIT_ANISO + (GLuint)d, fg_texture(pass, direction_names[d]));
+            glBindSampler(CG_UNIT_ANISO + (GLuint)d, s->sampler);
         }
-    glBindTextureUnit(1, fg_texture(pass, "position"));
-    glBindTextureUnit(2, fg_texture(pass, "normal"));
+    glBindTextureUnit(CG_UNIT_POSITION, fg_texture(pass, "position"));
+    glBindTextureUnit(CG_UNIT_NORMAL, fg_texture(pass, "normal"));
     glBindImageTexture(0, fg_texture(pass, "radiance"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     if (s->specular)
         glBindImageTexture(1, fg_texture(pass, "specular"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     if (s->shadow_cone)
         glBindImageTexture(2, fg_texture(pass, "visibility"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
     cgp_dispatch_2d(out->width, out->height);
-    glBindSampler(0, 0);
+    glBindSampler(CG_UNIT_VOLUME, 0);
     if (s->anisotropic)
         for (int d = 0; d < 6; d++)
-            glBindSampler(3 + (GLuint)d, 0);
+            glBindSampler(CG_UNIT_ANISO + (GLuint)d, 0);
     glUseProgram(0);
     return true;
 }
@@ -197,6 +185,8 @@ cone_gather_destroy(void *state)
         return;
     glDeleteProgram(s->program);
     glDeleteSamplers(1, &s->sampler);
+    glDeleteBuffers(1, &s->cone_block);
+    glDeleteBuffers(1, &s->gather_block);
     free(s);
 }
 

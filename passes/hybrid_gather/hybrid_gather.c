@@ -14,10 +14,8 @@
  * Output: radiance, RGBA16F: rgb = sum_k W_k L_k (E_i / pi, composite multiplies by the
  * albedo), a = ambient visibility. The same convention as cone_gather.
  */
-#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
-#include <string.h>
 
 #include "sdk/blocks.h"
 #include "sdk/pass.h"
@@ -53,6 +51,7 @@ typedef struct hybrid_gather_state {
     GLuint program;
     GLuint volume_sampler, map_sampler, table_sampler;
     GLuint empty_block;     /* bound where a map is absent, so no block is left unbound */
+    GLuint cone_block, gather_block;    /* CG_CONE_SET_BLOCK, CG_HYBRID_GATHER_BLOCK */
     cgp_cone_set set;
     bool has_2d, has_3d;
 } hybrid_gather_state;
@@ -121,6 +120,8 @@ hybrid_gather_destroy(void *state)
     glDeleteSamplers(1, &s->map_sampler);
     glDeleteSamplers(1, &s->table_sampler);
     glDeleteBuffers(1, &s->empty_block);
+    glDeleteBuffers(1, &s->cone_block);
+    glDeleteBuffers(1, &s->gather_block);
     free(s);
 }
 
@@ -130,10 +131,9 @@ hybrid_gather_prepare(fg_pass *pass, void **state, cg_error *err)
     hybrid_gather_state *s = cgp_state_new(pass, sizeof *s, err);
     if (!s)
         return false;
-    if (!cgp_cone_set_make(fg_param_int(pass, "cones"), &s->set)) {
+    if (!cgp_cone_set_of_pass(pass, &s->set, err)) {
         free(s);
-        return cg_fail(err, CG_ERR_GRAPH_PARAM_RANGE, "pass '%s': no cone set of %d cones",
-                       fg_pass_name(pass), fg_param_int(pass, "cones"));
+        return false;
     }
     s->has_3d = fg_input_present(pass, "volume");
     s->has_2d = fg_input_present(pass, "lightmap2d");
@@ -146,6 +146,8 @@ hybrid_gather_prepare(fg_pass *pass, void **state, cg_error *err)
     /* The cube-centre sample (dda = false) reads the 2D lightmap filtered; the DDA and HSAT fetch. */
     s->map_sampler = cgp_sampler_lightmap2d();
     s->table_sampler = cgp_sampler_table();
+    s->cone_block = cgp_uniform_buffer(sizeof(cg_cone_set_block));
+    s->gather_block = cgp_uniform_buffer(sizeof(cg_hybrid_gather_block));
     glCreateBuffers(1, &s->empty_block);
     glNamedBufferStorage(s->empty_block, sizeof(cg_hsat_info_block), NULL, GL_DYNAMIC_STORAGE_BIT);
     const unsigned zero = 0;
@@ -160,49 +162,31 @@ hybrid_gather_execute(fg_pass *pass, void *state, cg_error *err)
     (void)err;
     hybrid_gather_state *s = state;
     const fg_resource_desc *out = fg_resource(pass, "radiance");
-    double aperture = fg_param_float(pass, "aperture");
+    const cg_hybrid_gather_block block = {
+        .maps = {s->has_3d},
+        .switches = {fg_param_enum(pass, "cube") == CUBE_EQ11, fg_param_enum(pass, "occlusion"),
+                     fg_param_bool(pass, "dda"), fg_param_bool(pass, "skip")},
+    };
 
     glUseProgram(s->program);
-    float cones[CGP_CONE_MAX][4], tan_half[CGP_CONE_MAX];
-    for (int k = 0; k < s->set.count; k++) {
-        const cgp_cone *c = &s->set.cones[k];
-        memcpy(cones[k], c->direction, sizeof c->direction);
-        cones[k][3] = c->weight;
-        tan_half[k] = (float)(aperture > 0.0 ? tan(0.5 * aperture * M_PI / 180.0) : tan(c->half_angle));
-    }
-    glUniform4fv(0, s->set.count, &cones[0][0]);
-    glUniform1fv(16, s->set.count, tan_half);
-    glUniform1i(32, s->set.count);
-    glUniform1f(33, fg_param_float(pass, "step"));
-    glUniform1f(34, fg_param_float(pass, "start_offset"));
-    glUniform1f(35, fg_param_float(pass, "max_distance"));
-    glUniform1f(40, fg_param_float(pass, "lod_bias"));
-    if (s->has_2d) {
-        glUniform1i(41, s->has_3d ? 1 : 0);
-        glUniform1i(42, fg_param_enum(pass, "cube") == CUBE_EQ11 ? 1 : 0);
-        glUniform1i(43, fg_param_enum(pass, "occlusion"));
-        glUniform1i(44, fg_param_bool(pass, "dda") ? 1 : 0);
-        glUniform1i(45, fg_param_bool(pass, "skip") ? 1 : 0);
-    }
-    glBindBufferBase(GL_UNIFORM_BUFFER, CG_BINDING_VOLUME,
-                     s->has_3d ? fg_buffer(pass, "region") : s->empty_block);
-    glBindBufferBase(GL_UNIFORM_BUFFER, CG_BINDING_HEIGHTMAP,
-                     s->has_2d ? fg_buffer(pass, "region2d") : s->empty_block);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_HSAT,
-                     s->has_2d ? fg_buffer(pass, "hsat_info") : s->empty_block);
-    glBindTextureUnit(0, s->has_3d ? fg_texture(pass, "volume") : 0);
-    glBindSampler(0, s->volume_sampler);
-    glBindTextureUnit(1, fg_texture(pass, "position"));
-    glBindTextureUnit(2, fg_texture(pass, "normal"));
-    glBindTextureUnit(3, s->has_2d ? fg_texture(pass, "lightmap2d") : 0);
-    glBindSampler(3, s->map_sampler);
-    glBindTextureUnit(4, s->has_2d ? fg_texture(pass, "hsat") : 0);
-    glBindSampler(4, s->table_sampler);
+    cgp_cone_upload(pass, &s->set, s->cone_block);
+    cgp_uniform_upload(s->gather_block, CG_BINDING_GATHER, &block, sizeof block);
+    glBindBufferBase(GL_UNIFORM_BUFFER, CG_BINDING_VOLUME, s->has_3d ? fg_buffer(pass, "region") : s->empty_block);
+    glBindBufferBase(GL_UNIFORM_BUFFER, CG_BINDING_HEIGHTMAP, s->has_2d ? fg_buffer(pass, "region2d") : s->empty_block);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_HSAT, s->has_2d ? fg_buffer(pass, "hsat_info") : s->empty_block);
+    glBindTextureUnit(CG_UNIT_VOLUME, s->has_3d ? fg_texture(pass, "volume") : 0);
+    glBindSampler(CG_UNIT_VOLUME, s->volume_sampler);
+    glBindTextureUnit(CG_UNIT_POSITION, fg_texture(pass, "position"));
+    glBindTextureUnit(CG_UNIT_NORMAL, fg_texture(pass, "normal"));
+    glBindTextureUnit(CG_UNIT_LIGHTMAP2D, s->has_2d ? fg_texture(pass, "lightmap2d") : 0);
+    glBindSampler(CG_UNIT_LIGHTMAP2D, s->map_sampler);
+    glBindTextureUnit(CG_UNIT_HSAT, s->has_2d ? fg_texture(pass, "hsat") : 0);
+    glBindSampler(CG_UNIT_HSAT, s->table_sampler);
     glBindImageTexture(0, fg_texture(pass, "radiance"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     cgp_dispatch_2d(out->width, out->height);
-    glBindSampler(0, 0);
-    glBindSampler(3, 0);
-    glBindSampler(4, 0);
+    glBindSampler(CG_UNIT_VOLUME, 0);
+    glBindSampler(CG_UNIT_LIGHTMAP2D, 0);
+    glBindSampler(CG_UNIT_HSAT, 0);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_HSAT, 0);
     glUseProgram(0);
     return true;

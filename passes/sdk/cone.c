@@ -113,6 +113,42 @@ cgp_cone_set_make(int count, cgp_cone_set *out)
     return true;
 }
 
+bool
+cgp_cone_set_of_pass(const fg_pass *pass, cgp_cone_set *out, cg_error *err)
+{
+    int count = fg_param_int(pass, "cones");
+    if (!cgp_cone_set_make(count, out))
+        return cg_fail(err, CG_ERR_GRAPH_PARAM_RANGE, "pass '%s': no cone set of %d cones (1, 6, 9 or 16)",
+                       fg_pass_name(pass), count);
+    return true;
+}
+
+void
+cgp_cone_block_fill(const fg_pass *pass, const cgp_cone_set *set, cg_cone_set_block *out)
+{
+    double aperture = fg_param_float(pass, "aperture");
+    *out = (cg_cone_set_block){
+        .count = {set->count, 0, 0, 0},
+        .march = {fg_param_float(pass, "step"), fg_param_float(pass, "start_offset"),
+                  fg_param_float(pass, "max_distance"), fg_param_float(pass, "lod_bias")},
+    };
+    for (int k = 0; k < set->count; k++) {
+        const cgp_cone *c = &set->cones[k];
+        for (int i = 0; i < 3; i++)
+            out->cones[k][i] = c->direction[i];
+        out->cones[k][3] = c->weight;
+        out->apertures[k][0] = (float)(aperture > 0.0 ? tan(0.5 * aperture * M_PI / 180.0) : tan(c->half_angle));
+    }
+}
+
+void
+cgp_cone_upload(const fg_pass *pass, const cgp_cone_set *set, GLuint buffer)
+{
+    cg_cone_set_block block;
+    cgp_cone_block_fill(pass, set, &block);
+    cgp_uniform_upload(buffer, CG_BINDING_CONES, &block, sizeof block);
+}
+
 void
 cgp_cone_frame(const float n[3], float t[3], float b[3])
 {

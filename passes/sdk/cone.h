@@ -1,7 +1,8 @@
 /* sdk/cone.h (pass SDK): diffuse cone sets for cone tracing: directions, apertures and weights.
  *
  * Declares: CGP_CONE_MAX, cgp_cone, cgp_cone_set, cgp_cone_set_make, cgp_cone_set_sizes,
- *           cgp_cone_set_valid_size, cgp_cone_frame.
+ *           cgp_cone_set_valid_size, cgp_cone_frame, cgp_cone_set_of_pass, cgp_cone_block_fill,
+ *           cgp_cone_upload.
  *
  * Shared by every cone tracer (the VCT gather and the hybrid tracer), so it lives in the
  * pass SDK; core knows nothing of cones.
@@ -19,7 +20,11 @@
 
 #include <stdbool.h>
 
-#define CGP_CONE_MAX 16
+#include "cg/error.h"
+#include "cg/fg.h"
+#include "sdk/blocks.h"
+
+#define CGP_CONE_MAX CG_CONE_SET_MAX
 
 typedef struct cgp_cone {
     float direction[3];     /* tangent space, z = normal; unit length */
@@ -47,5 +52,17 @@ bool cgp_cone_set_make(int count, cgp_cone_set *out);
 /* Orthonormal tangent frame (t, b, n) for a unit normal n, continuous and free of NaN
  * for every n, the axes included (Duff et al. 2017, "Building an orthonormal basis, revisited"). */
 void cgp_cone_frame(const float n[3], float t[3], float b[3]);
+
+/* What every cone gather shares (cone_gather, hybrid_gather and a plugin that wants the same):
+ * the parameter `cones` (a set size) and the march parameters `aperture` (full apex angle in
+ * degrees, 0: each cone's own), `step`, `start_offset`, `max_distance` and `lod_bias`, which
+ * shaders/common/cone_trace.glsl reads from CG_CONE_SET_BLOCK. */
+
+/* The set of the pass's parameter `cones`; CG_ERR_GRAPH_PARAM_RANGE for a size not offered. */
+bool cgp_cone_set_of_pass(const fg_pass *pass, cgp_cone_set *out, cg_error *err);
+/* The block of a set and the pass's march parameters. */
+void cgp_cone_block_fill(const fg_pass *pass, const cgp_cone_set *set, cg_cone_set_block *out);
+/* Fills the block and uploads it to `buffer` (cgp_uniform_buffer of its size), bound at CG_BINDING_CONES. */
+void cgp_cone_upload(const fg_pass *pass, const cgp_cone_set *set, GLuint buffer);
 
 #endif

@@ -1,8 +1,8 @@
 // common/cone_trace.glsl: one cone marched front to back through a mipped 3D lightmap.
 //
-// Provides: CgCone, cg_cone_trace(), cg_cone_lod(), cg_cone_origin(), cg_cone_reach(),
-//           cg_cone_gather_diffuse(), cg_tangent_frame().
-// Requires: common/volume.glsl.
+// Provides: CgCone, CgMarch, cg_cone_set_block, cg_cone_march(), cg_cone_count(), cg_cone_direction(),
+//           cg_cone_tan_half(), cg_cone_accumulate(), cg_cone_trace(), cg_cone_lod(), cg_cone_origin(),
+//           cg_cone_reach(), cg_cone_gather_diffuse(), cg_tangent_frame().
 //
 // VCT paper 3.2 (after Crassin et al. 2011): the cone's footprint at distance t has the
 // diameter d = 2 t tan(half angle); the sample is read from the mip level whose voxels
@@ -15,9 +15,56 @@
 #ifndef CG_COMMON_CONE_TRACE_GLSL
 #define CG_COMMON_CONE_TRACE_GLSL
 
+#include "common/blocks.h"
 #include "common/volume.glsl"
 
 #define CG_CONE_OPAQUE 0.999
+
+// The gather's diffuse cone set and march parameters (cgp_cone_upload, passes/sdk/cone.c).
+CG_UNIFORM_BLOCK(CgConeSet, cg_cone_set_block, CG_BINDING_CONES, CG_CONE_SET_BLOCK);
+
+struct CgMarch {
+    float step;         // sample spacing as a fraction of the footprint diameter
+    float start_offset; // xels the cone origins are moved along the normal
+    float max_distance; // world; <= 0: the maps' diagonal
+    float lod_bias;     // added to the level of eq. 8
+};
+
+CgMarch
+cg_cone_march()
+{
+    vec4 m = cg_cone_set_block.march;
+    return CgMarch(m.x, m.y, m.z, m.w);
+}
+
+int
+cg_cone_count()
+{
+    return cg_cone_set_block.count.x;
+}
+
+// Cone k of the set for a point with tangent frame `frame`: its world direction and tan of its half angle.
+vec3
+cg_cone_direction(mat3 frame, int k)
+{
+    return normalize(frame * cg_cone_set_block.cones[k].xyz);
+}
+
+float
+cg_cone_tan_half(int k)
+{
+    return cg_cone_set_block.apertures[k].x;
+}
+
+// Adds what cone k gathered, `traced` = (radiance, coverage), to the diffuse sum of a point:
+// rgb += W_k L_k, a += W_k (1 - a_k) (hybrid eq. 3-4; the ambient visibility of VCT paper 3.2.3).
+void
+cg_cone_accumulate(inout vec4 diffuse, int k, vec4 traced)
+{
+    float w = cg_cone_set_block.cones[k].w;
+    diffuse.rgb += w * traced.rgb;
+    diffuse.a += w * (1.0 - traced.a);
+}
 
 struct CgCone {
     vec3 origin;        // world; already moved off the surface by the caller
@@ -60,13 +107,12 @@ cg_cone_composite(inout vec4 acc, vec4 s)
 #ifdef CG_CONE_ANISOTROPIC
 // Six directional chains of levels 1.. (mip3d with anisotropic = true): level k of cg_aniso_px
 // is level k + 1 as seen by a cone travelling along +x, and so on (Crassin et al. 2011).
-#define CG_CONE_ANISO_BINDING 3
-layout(binding = CG_CONE_ANISO_BINDING + 0) uniform sampler3D cg_aniso_px;
-layout(binding = CG_CONE_ANISO_BINDING + 1) uniform sampler3D cg_aniso_nx;
-layout(binding = CG_CONE_ANISO_BINDING + 2) uniform sampler3D cg_aniso_py;
-layout(binding = CG_CONE_ANISO_BINDING + 3) uniform sampler3D cg_aniso_ny;
-layout(binding = CG_CONE_ANISO_BINDING + 4) uniform sampler3D cg_aniso_pz;
-layout(binding = CG_CONE_ANISO_BINDING + 5) uniform sampler3D cg_aniso_nz;
+layout(binding = CG_UNIT_ANISO + 0) uniform sampler3D cg_aniso_px;
+layout(binding = CG_UNIT_ANISO + 1) uniform sampler3D cg_aniso_nx;
+layout(binding = CG_UNIT_ANISO + 2) uniform sampler3D cg_aniso_py;
+layout(binding = CG_UNIT_ANISO + 3) uniform sampler3D cg_aniso_ny;
+layout(binding = CG_UNIT_ANISO + 4) uniform sampler3D cg_aniso_pz;
+layout(binding = CG_UNIT_ANISO + 5) uniform sampler3D cg_aniso_nz;
 #endif
 
 // One filtered sample of the volume at level `lod` for a cone travelling along unit `d`.
@@ -196,26 +242,21 @@ cg_cone_reach(CgVolume v, float max_distance)
     return max_distance > 0.0 ? max_distance : cg_volume_extent(v) * sqrt(3.0);
 }
 
-#define CG_CONE_SET_MAX 16
-
-// The diffuse gather of one surface point (VCT paper 3.2.1; hybrid eq. 3-4): cones[k] = (tangent-
-// space direction, weight W_k), frame = the point's tangent frame. Returns sum_k W_k L_k (rgb)
-// and the ambient visibility sum_k W_k (1 - a_k) (a). cone_gather and hybrid_gather (without a
-// 2D lightmap) both call this, so that they agree bit for bit. `height`: the origin's height
-// above the surface (start_offset voxels), which cg_cone_trace_surface keeps every sample off.
+// The diffuse gather of one surface point (VCT paper 3.2.1; hybrid eq. 3-4) with the cone set
+// of cg_cone_set_block, frame = the point's tangent frame. Returns sum_k W_k L_k (rgb) and the
+// ambient visibility sum_k W_k (1 - a_k) (a). cone_gather and hybrid_gather (without a 2D
+// lightmap) both call this, so that they agree bit for bit. `height`: the origin's height above
+// the surface (start_offset voxels), which cg_cone_trace_surface keeps every sample off.
 vec4
-cg_cone_gather_diffuse(sampler3D volume, CgVolume v, vec3 origin, mat3 frame, vec4 cones[CG_CONE_SET_MAX],
-                       float tan_half[CG_CONE_SET_MAX], int count, float t_max, float step, float lod_bias,
-                       float height)
+cg_cone_gather_diffuse(sampler3D volume, CgVolume v, vec3 origin, mat3 frame, float t_max, float height)
 {
+    CgMarch march = cg_cone_march();
     vec4 surface = vec4(frame[2], height);
     vec4 diffuse = vec4(0.0);
-    for (int k = 0; k < count; k++) {
-        CgCone cone = CgCone(origin, normalize(frame * cones[k].xyz), tan_half[k], v.voxel_size, t_max,
-                             step, lod_bias);
-        vec4 r = cg_cone_trace_surface(volume, v, cone, surface);
-        diffuse.rgb += cones[k].w * r.rgb;
-        diffuse.a += cones[k].w * (1.0 - r.a);
+    for (int k = 0; k < cg_cone_count(); k++) {
+        CgCone cone = CgCone(origin, cg_cone_direction(frame, k), cg_cone_tan_half(k), v.voxel_size, t_max,
+                             march.step, march.lod_bias);
+        cg_cone_accumulate(diffuse, k, cg_cone_trace_surface(volume, v, cone, surface));
     }
     return diffuse;
 }

@@ -27,27 +27,22 @@
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
-layout(binding = 0) uniform sampler3D u_volume;
-layout(binding = 1) uniform sampler2D u_position;
-layout(binding = 2) uniform sampler2D u_normal;
-layout(binding = 3) uniform sampler2D u_lightmap;
-layout(binding = 4) uniform usampler2D u_hsat;
+layout(binding = CG_UNIT_VOLUME) uniform sampler3D u_volume;
+layout(binding = CG_UNIT_POSITION) uniform sampler2D u_position;
+layout(binding = CG_UNIT_NORMAL) uniform sampler2D u_normal;
+layout(binding = CG_UNIT_LIGHTMAP2D) uniform sampler2D u_lightmap;
+layout(binding = CG_UNIT_HSAT) uniform usampler2D u_hsat;
 
 layout(binding = 0, rgba16f) writeonly uniform image2D u_radiance;
 
-#define MAX_CONES 16
-layout(location = 0) uniform vec4 u_cones[MAX_CONES];       // xyz tangent-space direction, w weight
-layout(location = 16) uniform float u_tan_half[MAX_CONES];
-layout(location = 32) uniform int u_cone_count;
-layout(location = 33) uniform float u_step;                  // fraction of the cone diameter
-layout(location = 34) uniform float u_start_offset;          // xels along the normal
-layout(location = 35) uniform float u_max_distance;          // world; <= 0: the maps' diagonal
-layout(location = 40) uniform float u_lod_bias;
-layout(location = 41) uniform bool u_has_3d;
-layout(location = 42) uniform bool u_eq11;                   // eq. 11 (else eq. 10 for every cone)
-layout(location = 43) uniform int u_occlusion;               // 0: eq. 16 (coverage), 1: eq. 17
-layout(location = 44) uniform bool u_dda;                    // 2D DDA (else one sample at the cube's centre)
-layout(location = 45) uniform bool u_skip;                   // HSAT empty-space skipping
+// The cone set and march: cg_cone_set_block (common/cone_trace.glsl); the hybrid's switches:
+CG_UNIFORM_BLOCK(CgHybridGather, cg_hybrid_gather_block, CG_BINDING_GATHER, CG_HYBRID_GATHER_BLOCK);
+
+bool
+has_3d()
+{
+    return cg_hybrid_gather_block.maps.x != 0;
+}
 
 #define OCCLUSION_EQ16 0
 #define OCCLUSION_EQ17 1
@@ -82,7 +77,7 @@ vec4
 terrain_sample(CgHeightmap m, vec3 origin, vec3 dir, float t0, float t1, CgFittingCube cube, float lod)
 {
     float half_side = 0.5 * cube.side;
-    if (!u_dda) {
+    if (cg_hybrid_gather_block.switches.z == 0) {   // no DDA: one sample at the cube's centre
         vec4 s = textureLod(u_lightmap, cg_heightmap_uv(m, cube.centre.xz), lod);
         return vec4(s.rgb, coverage(s.a, cube.centre.y - half_side, cube.centre.y + half_side));
     }
@@ -126,14 +121,17 @@ hybrid_trace(vec3 origin, vec3 dir, float tan_half, float t_start, float t_max)
 {
     CgVolume v = cg_volume();
     CgHeightmap m = cg_heightmap();
+    CgMarch march = cg_cone_march();
+    bool eq11 = cg_hybrid_gather_block.switches.x != 0, skip = cg_hybrid_gather_block.switches.w != 0;
+    int occlusion = cg_hybrid_gather_block.switches.y;
     vec3 v_lo = v.origin, v_hi = v.origin + vec3(cg_volume_extent(v));
     vec3 m_lo = vec3(m.origin.x, m.y_min, m.origin.y);
     vec3 m_hi = vec3(m.origin.x + m.texel.x * m.resolution, m.y_max, m.origin.y + m.texel.y * m.resolution);
     float xel = cg_heightmap_xel(m);
-    if (u_has_3d)
+    if (has_3d())
         xel = min(xel, v.voxel_size);
     float t_leave = ray_box_exit(origin, dir, m_lo, m_hi);
-    if (u_has_3d)
+    if (has_3d())
         t_leave = max(t_leave, ray_box_exit(origin, dir, v_lo, v_hi));
     float half_angle = atan(tan_half);
     float top3 = v.levels - 1.0, top2 = m.levels - 1.0;
@@ -143,18 +141,18 @@ hybrid_trace(vec3 origin, vec3 dir, float tan_half, float t_start, float t_max)
     for (int i = 0; i < 4096 && t < t_max && acc.a < CG_CONE_OPAQUE; i++) {
         // Eq. 8's diameter, never below the finest xel: log2 of zero is -inf.
         float d = max(2.0 * tan_half * t, xel);
-        float dt = u_step * d;
-        CgFittingCube cube = cg_fitting_cube(origin, dir, half_angle, t, d, u_eq11);
+        float dt = march.step * d;
+        CgFittingCube cube = cg_fitting_cube(origin, dir, half_angle, t, d, eq11);
         vec3 c_lo = cube.centre - 0.5 * cube.side, c_hi = cube.centre + 0.5 * cube.side;
         bool alive = false;
-        if (u_has_3d) {
+        if (has_3d()) {
             // Eq. 12: the cube against the 3D lightmap's box; their intersection is a box.
             vec3 lo = max(c_lo, v_lo), hi = min(c_hi, v_hi);
             if (all(lessThan(lo, hi))) {
                 alive = true;
                 // Eq. 15: the mean of the intersection's corners, its centre.
                 vec3 centre = 0.5 * (lo + hi);
-                float lod = clamp(cg_cone_lod(v, d) + u_lod_bias, 0.0, top3);
+                float lod = clamp(cg_cone_lod(v, d) + march.lod_bias, 0.0, top3);
                 vec4 s = textureLod(u_volume, cg_volume_uvw(v, centre), lod);
                 cg_cone_composite(acc, vec4(s.rgb * v.radiance_scale, s.a));
             }
@@ -165,16 +163,16 @@ hybrid_trace(vec3 origin, vec3 dir, float tan_half, float t_start, float t_max)
             c_lo.y <= m_hi.y) {
             alive = true;
             // Eq. 8 with the 2D lightmap's xel.
-            float lod = clamp(log2(d / cg_heightmap_xel(m)) + u_lod_bias, 0.0, top2);
+            float lod = clamp(log2(d / cg_heightmap_xel(m)) + march.lod_bias, 0.0, top2);
             bool empty = false;
-            if (u_skip) {
+            if (skip) {
                 vec2 range = cg_hsat_range(u_hsat, m, c_lo.xz, c_hi.xz, int(lod));
                 empty = range.x > range.y || c_lo.y > range.y;
             }
             if (!empty) {
                 vec4 s = terrain_sample(m, origin, dir, t, t + dt, cube, lod);
                 float alpha = 0.0;
-                if (u_occlusion == OCCLUSION_EQ17) {
+                if (occlusion == OCCLUSION_EQ17) {
                     // Eq. 17: a = step_diameter / current_step_length wherever the cube meets the terrain.
                     alpha = s.a > 0.0 ? min(d / t, 1.0) : 0.0;
                 } else if (s.a > covered) {
@@ -207,31 +205,29 @@ main()
     if (position.w > 0.0 && dot(normal, normal) > 1e-12) {
         vec3 n = normalize(normal);
         mat3 frame = cg_tangent_frame(n);
+        CgMarch march = cg_cone_march();
         diffuse = vec4(0.0);
 #ifdef HAS_2D
         CgVolume v = cg_volume();
         CgHeightmap m = cg_heightmap();
         // The coarser of the two xels: off the surface's own voxels and texels (self-influence, VI.B).
-        float xel = u_has_3d ? max(v.voxel_size, cg_heightmap_xel(m)) : cg_heightmap_xel(m);
-        vec3 origin = position.xyz + n * (u_start_offset * xel);
+        float xel = has_3d() ? max(v.voxel_size, cg_heightmap_xel(m)) : cg_heightmap_xel(m);
+        vec3 origin = position.xyz + n * (march.start_offset * xel);
         vec3 lo = vec3(m.origin.x, m.y_min, m.origin.y);
         vec3 hi = vec3(m.origin.x + m.texel.x * m.resolution, m.y_max, m.origin.y + m.texel.y * m.resolution);
-        if (u_has_3d) {
+        if (has_3d()) {
             lo = min(lo, v.origin);
             hi = max(hi, v.origin + vec3(cg_volume_extent(v)));
         }
-        float t_max = u_max_distance > 0.0 ? u_max_distance : length(hi - lo);
-        for (int k = 0; k < u_cone_count; k++) {
-            vec4 r = hybrid_trace(origin, normalize(frame * u_cones[k].xyz), u_tan_half[k], xel, t_max);
-            diffuse.rgb += u_cones[k].w * r.rgb;
-            diffuse.a += u_cones[k].w * (1.0 - r.a);
-        }
+        float t_max = march.max_distance > 0.0 ? march.max_distance : length(hi - lo);
+        for (int k = 0; k < cg_cone_count(); k++)
+            cg_cone_accumulate(diffuse, k,
+                               hybrid_trace(origin, cg_cone_direction(frame, k), cg_cone_tan_half(k), xel, t_max));
 #else
         // No 2D lightmap: the VCT gather, the very function cone_gather calls.
         CgVolume v = cg_volume();
-        diffuse = cg_cone_gather_diffuse(u_volume, v, cg_cone_origin(v, position.xyz, n, u_start_offset), frame,
-                                         u_cones, u_tan_half, u_cone_count, cg_cone_reach(v, u_max_distance),
-                                         u_step, u_lod_bias, u_start_offset * v.voxel_size);
+        diffuse = cg_cone_gather_diffuse(u_volume, v, cg_cone_origin(v, position.xyz, n, march.start_offset), frame,
+                                         cg_cone_reach(v, march.max_distance), march.start_offset * v.voxel_size);
 #endif
     }
     imageStore(u_radiance, pixel, diffuse);
