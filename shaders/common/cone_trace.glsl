@@ -2,7 +2,8 @@
 //
 // Provides: CgCone, CgMarch, cg_cone_set_block, cg_cone_march(), cg_cone_count(), cg_cone_direction(),
 //           cg_cone_tan_half(), cg_cone_accumulate(), cg_cone_trace(), cg_cone_lod(), cg_cone_origin(),
-//           cg_cone_reach(), cg_cone_gather_diffuse(), cg_tangent_frame().
+//           cg_cone_reach(), CgConeSample, cg_cone_step(), cg_cone_trace_surface(),
+//           cg_cone_gather_diffuse(), cg_tangent_frame().
 //
 // VCT paper 3.2 (after Crassin et al. 2011): the cone's footprint at distance t has the
 // diameter d = 2 t tan(half angle); the sample is read from the mip level whose voxels
@@ -10,8 +11,8 @@
 //     c += (1 - a) * alpha_s * c_s,   a += (1 - a) * alpha_s,
 // where the volume stores premultiplied colour (alpha_s * c_s), so it is added as read.
 // The march stops when a reaches CG_CONE_OPAQUE, past t_max, or once the footprint has
-// left the volume (VCT paper 3.2.1). The hybrid tracer reuses cg_cone_lod() and the
-// compositing step through cg_cone_composite().
+// left the volume (VCT paper 3.2.1). hybrid_gather's 3D steps (its Case 1) are cg_cone_step(),
+// the very step of this march, and its gather is cg_cone_accumulate(), as cg_cone_gather_diffuse().
 #ifndef CG_COMMON_CONE_TRACE_GLSL
 #define CG_COMMON_CONE_TRACE_GLSL
 
@@ -175,46 +176,65 @@ cg_cone_composite_span(inout vec4 acc, vec4 s, float span, float cell)
     acc.a += w;
 }
 
-// The march from a surface: `surface` = (unit normal of the surface the cone leaves, height
-// of c.origin above that surface), or w < 0 for a cone with no surface behind it. A sample
-// reads the voxels within one voxel of its own (the trilinear support), and the surface's
-// voxels at a level with voxels s wide have centres up to s / 2 off its plane, along the
-// normal n at most 1.5 s |n|_1 away: below that height the sample would read the cone's own
-// surface (self-occlusion and self-illumination: black ceilings, bright lit floors). So the
-// level is capped at the coarsest whole level whose support stays above the plane, and the
-// step at one voxel of that level (step 0.5), which keeps cg_cone_composite_span exact.
+// Where one step of a cone samples the 3D lightmap (cg_cone_step).
+struct CgConeSample {
+    vec3 position;  // world position of the sample: on the axis at t (VCT), or the centre of
+                    // the fitting cube's intersection with the volume (hybrid eq. 15)
+    float diameter; // the footprint's diameter there, never below the finest xel
+    float height;   // the sample's height above the surface the cone leaves (see `surface`)
+};
+
+// One step of a cone through the 3D lightmap, the step both tracers take (cone_gather's march
+// below and hybrid_gather's Case 1): the matched level of the footprint plus the lod bias,
+// capped near the surface the cone leaves, the sample at `at.position` (the directional chains
+// with CG_CONE_ANISOTROPIC), composited by cg_cone_composite_span over its span. `surface` =
+// (unit normal of the surface the cone leaves, height of c.origin above it), or w < 0 for a
+// cone with no surface behind it. A sample reads the voxels within one voxel of its own (the
+// trilinear support), and the surface's voxels at a level with voxels s wide have centres up
+// to s / 2 off its plane, along the normal n at most 1.5 s |n|_1 away: below that height the
+// sample would read the cone's own surface (self-occlusion and self-illumination: black
+// ceilings, bright lit floors). So the level is capped at the coarsest whole level whose
+// support stays above the plane, and the span at one voxel of that level (step 0.5), which
+// keeps cg_cone_composite_span exact. The sample's colour is multiplied by `scale` (1 for a
+// march that scales its sum once, v.radiance_scale for one that mixes in other radiance).
+// Returns the span: the path length the step stands for, by which the march must advance.
+float
+cg_cone_step(sampler3D volume, CgVolume v, CgCone c, vec4 surface, CgConeSample at, float scale, inout vec4 acc)
+{
+    float lod = cg_cone_level(v, at.diameter) + c.lod_bias;
+    if (surface.w >= 0.0) {
+        // A fractional level blends in the next coarser level, whose support is twice as
+        // deep: that one must clear the plane, hence the 1 below the bound.
+        float support = 1.5 * (abs(surface.x) + abs(surface.y) + abs(surface.z));
+        lod = min(lod, log2(max(at.height, 1e-30) / (support * v.voxel_size)) - 1.0);
+    }
+    lod = clamp(lod, 0.0, v.levels - 1.0);
+    float cell = v.voxel_size * exp2(lod);
+    float span = c.step_factor * min(at.diameter, 2.0 * cell);
+    vec4 s = cg_cone_sample(volume, cg_volume_uvw(v, at.position), lod, c.direction);
+    cg_cone_composite_span(acc, vec4(s.rgb * scale, s.a), span, cell);
+    return span;
+}
+
+// The VCT march of one cone from a surface (`surface` as in cg_cone_step): steps along the
+// axis until the cone is opaque, past c.t_max, or its whole footprint has left the volume.
 // Returns the gathered radiance (rgb, already scaled to radiance) and the cone's coverage (a).
 vec4
 cg_cone_trace_surface(sampler3D volume, CgVolume v, CgCone c, vec4 surface)
 {
     vec4 acc = vec4(0.0);
     float extent = cg_volume_extent(v);
-    float top = v.levels - 1.0;
     float t = c.t_start;
-    float support = 1.5 * (abs(surface.x) + abs(surface.y) + abs(surface.z));
     float rise = dot(c.direction, surface.xyz);
     // The loop bound is a safety net against a zero step; steps grow with t, so real
     // marches end far earlier (about log(t_max / t_start) / log(1 + 2 step tan) steps).
     for (int i = 0; i < 4096 && t < c.t_max && acc.a < CG_CONE_OPAQUE; i++) {
-        float diameter = cg_cone_diameter(c, v, t);
-        vec3 p = c.origin + c.direction * t;
-        vec3 uvw = cg_volume_uvw(v, p);
-        float reach = 0.5 * diameter / extent;
+        CgConeSample at = CgConeSample(c.origin + c.direction * t, cg_cone_diameter(c, v, t), surface.w + t * rise);
+        vec3 uvw = cg_volume_uvw(v, at.position);
+        float reach = 0.5 * at.diameter / extent;
         if (any(lessThan(uvw, vec3(-reach))) || any(greaterThan(uvw, vec3(1.0 + reach))))
             break;  // the whole footprint is outside the volume: nothing more to gather
-        float lod = cg_cone_level(v, diameter) + c.lod_bias;
-        if (surface.w >= 0.0) {
-            // A fractional level blends in the next coarser level, whose support is twice
-            // as deep: that one must clear the plane, hence the 1 below the bound.
-            float height = surface.w + t * rise;
-            lod = min(lod, log2(max(height, 1e-30) / (support * v.voxel_size)) - 1.0);
-        }
-        lod = clamp(lod, 0.0, top);
-        float cell = v.voxel_size * exp2(lod);
-        float span = c.step_factor * min(diameter, 2.0 * cell);
-        vec4 s = cg_cone_sample(volume, uvw, lod, c.direction);
-        cg_cone_composite_span(acc, s, span, cell);
-        t += span;
+        t += cg_cone_step(volume, v, c, surface, at, 1.0, acc);
     }
     acc.rgb *= v.radiance_scale;
     return acc;
