@@ -62,12 +62,17 @@ ray_box_exit(vec3 o, vec3 d, vec3 lo, vec3 hi)
     return leave >= max(enter, 0.0) ? leave : -1.0;
 }
 
-// Fraction of the vertical extent [y0, y1] below the terrain height h: the occluded part
-// of the step's cross-section (A in eq. 16).
+// The occluded part of the step's cross-section (A in eq. 16, an area): the section is the
+// disc whose vertical diameter is [y0, y1], and the part below the terrain height h a circular
+// segment, u = the height of h across the disc in radii: (u sqrt(1 - u^2) + asin u) / pi + 1/2.
+// A disc half under the terrain is half covered, as the linear fraction of [y0, y1] would say, but
+// a disc whose centre is under it is covered faster (u = 1/2: 0.80, not 0.75); the linear reading
+// let a cone grazing a floor into a wall stay partly open (docs/hybrid.md, the furnace).
 float
 coverage(float h, float y0, float y1)
 {
-    return clamp((h - y0) / max(y1 - y0, 1e-30), 0.0, 1.0);
+    float u = clamp(2.0 * (h - y0) / max(y1 - y0, 1e-30) - 1.0, -1.0, 1.0);
+    return clamp(0.5 + (u * sqrt(1.0 - u * u) + asin(u)) / 3.14159265358979, 0.0, 1.0);
 }
 
 // The terrain in one step: rgb = radiance of the most occluding texel, a = its coverage of
@@ -99,13 +104,14 @@ terrain_sample(CgHeightmap m, vec3 origin, vec3 dir, float t0, float t1, CgFitti
     vec4 best = vec4(0.0);
     for (int i = 0; i < DDA_MAX_CELLS && s_in < 1.0; i++) {
         float s_out = min(min(next.x, next.y), 1.0);
-        if (all(greaterThanEqual(cell, ivec2(0))) && all(lessThan(cell, ivec2(n)))) {
-            vec4 texel = texelFetch(u_lightmap, cell, level);
-            float y = p0.y + dir.y * (t1 - t0) * 0.5 * (s_in + s_out);
-            float o = coverage(texel.a, y - half_side, y + half_side);
-            if (o > best.a)
-                best = vec4(texel.rgb, o);
-        }
+        // A cell outside the map reads the border texel, as the cube-centre sample's
+        // clamp-to-edge sampler does: the box test let the cube in because it overlaps the map,
+        // and skipping such cells left its section open under the terrain's edge.
+        vec4 texel = texelFetch(u_lightmap, clamp(cell, ivec2(0), ivec2(n - 1)), level);
+        float y = p0.y + dir.y * (t1 - t0) * 0.5 * (s_in + s_out);
+        float o = coverage(texel.a, y - half_side, y + half_side);
+        if (o > best.a)
+            best = vec4(texel.rgb, o);
         if (next.x < next.y) {
             cell.x += stride.x;
             next.x += inv.x;
@@ -177,16 +183,19 @@ hybrid_trace(vec3 origin, vec3 dir, float tan_half, float t_start, float t_max, 
             }
             if (!empty) {
                 vec4 s = terrain_sample(m, origin, dir, t, t + dt, cube, lod);
-                float alpha = 0.0;
                 if (occlusion == OCCLUSION_EQ17) {
-                    // Eq. 17: a = step_diameter / current_step_length wherever the cube meets the terrain.
-                    alpha = s.a > 0.0 ? min(d / t, 1.0) : 0.0;
+                    // Eq. 17: a = step_diameter / current_step_length wherever the cube meets the
+                    // terrain, an opacity composited front to back.
+                    float alpha = s.a > 0.0 ? min(d / t, 1.0) : 0.0;
+                    cg_cone_composite(acc, vec4(alpha * s.rgb, alpha));
                 } else if (s.a > covered) {
-                    // Eq. 16: the newly occluded part of the section, over what was still open.
-                    alpha = (s.a - covered) / max(1.0 - covered, 1e-6);
+                    // Eq. 16: the newly occluded part of the section is a coverage, added as the
+                    // 3D steps add theirs (cg_cone_composite_span over one cell: w = min(new, 1 - a)):
+                    // the terrain and the voxels cover disjoint parts of the section.
+                    float fresh = s.a - covered;
                     covered = s.a;
+                    cg_cone_composite_span(acc, vec4(fresh * s.rgb, fresh), 1.0, 1.0);
                 }
-                cg_cone_composite(acc, vec4(alpha * s.rgb, alpha));
             }
         }
         // Past both maps along the axis and meeting neither: nothing more to gather.
