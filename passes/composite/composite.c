@@ -61,24 +61,16 @@ composite_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
 }
 
 static bool
-composite_prepare(fg_pass *pass, void **state, cg_error *err)
+composite_prepare(fg_pass *pass, composite_state *st, cg_error *err)
 {
-    composite_state *st = cgp_state_new(pass, sizeof *st, err);
-    if (!st)
-        return false;
-    if (!cg_program_compute("composite/composite.comp", NULL, &st->program, err)) {
-        free(st);
-        return false;
-    }
-    *state = st;
-    return true;
+    (void)pass;
+    return cgp_compute_program(st, "composite/composite.comp", NULL, &st->program, err);
 }
 
 static bool
-composite_execute(fg_pass *pass, void *state, cg_error *err)
+composite_execute(fg_pass *pass, composite_state *st, cg_error *err)
 {
     (void)err;
-    composite_state *st = state;
     const fg_resource_desc *out = fg_resource(pass, "hdr");
     GLuint direct = fg_texture(pass, "direct");
     bool has_indirect = fg_input_present(pass, "indirect");
@@ -101,28 +93,8 @@ composite_execute(fg_pass *pass, void *state, cg_error *err)
     return true;
 }
 
-static void
-composite_destroy(void *state)
-{
-    composite_state *st = state;
-    if (!st)
-        return;
-    glDeleteProgram(st->program);
-    free(st);
-}
-
-static const fg_pass_type composite_type = {
-    .abi_version = FG_ABI_VERSION,
-    .name = "composite",
-    .doc = "The final image: hdr = direct + albedo x indirect + emissive, linear radiance "
-           "(RGBA32F); ldr = hdr x 2^exposure, tonemapped and sRGB-encoded (RGBA8). The optional "
-           "indirect input holds the gathered incident radiance integral over pi, so that "
-           "outgoing = albedo x indirect.",
-    CGP_PARAMS(composite_params),
-    .declare = composite_declare,
-    .prepare = composite_prepare,
-    .execute = composite_execute,
-    .destroy = composite_destroy,
-};
-
-CGP_REGISTER_PASS(composite, composite_type)
+CGP_PASS(composite, CGP_PARAMS(composite_params),
+         "The final image: hdr = direct + albedo x indirect + emissive, linear radiance "
+         "(RGBA32F); ldr = hdr x 2^exposure, tonemapped and sRGB-encoded (RGBA8). The optional "
+         "indirect input holds the gathered incident radiance integral over pi, so that "
+         "outgoing = albedo x indirect.");

@@ -45,10 +45,7 @@ static const fg_param_desc cone_gather_params[] = {
 };
 
 typedef struct cone_gather_state {
-    GLuint program;
-    GLuint sampler;
-    GLuint cone_block, gather_block;    /* CG_CONE_SET_BLOCK, CG_CONE_GATHER_BLOCK */
-    cgp_cone_set set;
+    cgp_gather gather;      /* its block: CG_CONE_GATHER_BLOCK */
     bool specular, shadow_cone, anisotropic;
 } cone_gather_state;
 
@@ -100,15 +97,8 @@ cone_gather_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
 }
 
 static bool
-cone_gather_prepare(fg_pass *pass, void **state, cg_error *err)
+cone_gather_prepare(fg_pass *pass, cone_gather_state *s, cg_error *err)
 {
-    cone_gather_state *s = cgp_state_new(pass, sizeof *s, err);
-    if (!s)
-        return false;
-    if (!cgp_cone_set_of_pass(pass, &s->set, err)) {
-        free(s);
-        return false;
-    }
     s->specular = fg_param_bool(pass, "specular");
     s->shadow_cone = fg_param_bool(pass, "shadow_cone");
     s->anisotropic = fg_resource(pass, "px") != NULL;
@@ -116,15 +106,8 @@ cone_gather_prepare(fg_pass *pass, void **state, cg_error *err)
     snprintf(defines, sizeof defines, "%s%s%s", s->specular ? "#define SPECULAR\n" : "",
              s->shadow_cone ? "#define SHADOW_CONE\n" : "",
              s->anisotropic ? "#define CG_CONE_ANISOTROPIC\n" : "");
-    if (!cg_program_compute("cone_gather/cone_gather.comp", defines, &s->program, err)) {
-        free(s);
-        return false;
-    }
-    s->sampler = cgp_sampler_volume();
-    s->cone_block = cgp_uniform_buffer(sizeof(cg_cone_set_block));
-    s->gather_block = cgp_uniform_buffer(sizeof(cg_cone_gather_block));
-    *state = s;
-    return true;
+    return cgp_gather_prepare(s, pass, &s->gather, "cone_gather/cone_gather.comp", defines,
+                                                     sizeof(cg_cone_gather_block), err);
 }
 
 static double
@@ -134,12 +117,10 @@ tan_half_degrees(double full_degrees)
 }
 
 static bool
-cone_gather_execute(fg_pass *pass, void *state, cg_error *err)
+cone_gather_execute(fg_pass *pass, cone_gather_state *s, cg_error *err)
 {
     (void)err;
-    cone_gather_state *s = state;
     const fg_frame *frame = fg_pass_frame(pass);
-    const fg_resource_desc *out = fg_resource(pass, "radiance");
     double roughness = fg_param_float(pass, "roughness");
     const cg_cone_gather_block block = {
         .camera = {frame->view.position[0], frame->view.position[1], frame->view.position[2], 0.0f},
@@ -148,61 +129,26 @@ cone_gather_execute(fg_pass *pass, void *state, cg_error *err)
         .shadow = {fg_param_int(pass, "shadow_light")},
     };
 
-    glUseProgram(s->program);
-    cgp_cone_upload(pass, &s->set, s->cone_block);
-    cgp_uniform_upload(s->gather_block, CG_BINDING_GATHER, &block, sizeof block);
+    cgp_gather_begin(pass, &s->gather, &block, sizeof block, fg_texture(pass, "volume"), fg_buffer(pass, "region"));
     if (frame->gpu_scene)
         cg_gpu_scene_bind_lights(frame->gpu_scene);
-    glBindBufferBase(GL_UNIFORM_BUFFER, CG_BINDING_VOLUME, fg_buffer(pass, "region"));
-    glBindTextureUnit(CG_UNIT_VOLUME, fg_texture(pass, "volume"));
-    glBindSampler(CG_UNIT_VOLUME, s->sampler);
-    if (s->anisotropic)
-        for (int d = 0; d < 6; d++) {
-            glBindTextureUnit(CG_UNIT_ANISO + (GLuint)d, fg_texture(pass, direction_names[d]));
-            glBindSampler(CG_UNIT_ANISO + (GLuint)d, s->sampler);
-        }
-    glBindTextureUnit(CG_UNIT_POSITION, fg_texture(pass, "position"));
-    glBindTextureUnit(CG_UNIT_NORMAL, fg_texture(pass, "normal"));
-    glBindImageTexture(0, fg_texture(pass, "radiance"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    for (int d = 0; s->anisotropic && d < 6; d++) {
+        glBindTextureUnit(CG_UNIT_ANISO + (GLuint)d, fg_texture(pass, direction_names[d]));
+        glBindSampler(CG_UNIT_ANISO + (GLuint)d, s->gather.volume_sampler);
+    }
     if (s->specular)
         glBindImageTexture(1, fg_texture(pass, "specular"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     if (s->shadow_cone)
         glBindImageTexture(2, fg_texture(pass, "visibility"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
-    cgp_dispatch_2d(out->width, out->height);
-    glBindSampler(CG_UNIT_VOLUME, 0);
-    if (s->anisotropic)
-        for (int d = 0; d < 6; d++)
-            glBindSampler(CG_UNIT_ANISO + (GLuint)d, 0);
-    glUseProgram(0);
+    cgp_gather_end(pass);
+    for (int d = 0; s->anisotropic && d < 6; d++)
+        glBindSampler(CG_UNIT_ANISO + (GLuint)d, 0);
     return true;
 }
 
-static void
-cone_gather_destroy(void *state)
-{
-    cone_gather_state *s = state;
-    if (!s)
-        return;
-    glDeleteProgram(s->program);
-    glDeleteSamplers(1, &s->sampler);
-    glDeleteBuffers(1, &s->cone_block);
-    glDeleteBuffers(1, &s->gather_block);
-    free(s);
-}
-
-static const fg_pass_type cone_gather_type = {
-    .abi_version = FG_ABI_VERSION,
-    .name = "cone_gather",
-    .doc = "Indirect diffuse light by voxel cone tracing (VCT paper 3.2.1): 1, 6, 9 or 16 cones "
-           "around the normal, weighted by their share of the cosine lobe (hybrid eq. 3-4), each "
-           "accumulated front to back through the mip level of its diameter (hybrid eq. 8). "
-           "Output: the incident radiance integral E/pi (composite multiplies by the albedo) and "
-           "ambient visibility; optional specular cone (3.2.2) and shadow cone (3.2.3).",
-    CGP_PARAMS(cone_gather_params),
-    .declare = cone_gather_declare,
-    .prepare = cone_gather_prepare,
-    .execute = cone_gather_execute,
-    .destroy = cone_gather_destroy,
-};
-
-CGP_REGISTER_PASS(cone_gather, cone_gather_type)
+CGP_PASS(cone_gather, CGP_PARAMS(cone_gather_params),
+         "Indirect diffuse light by voxel cone tracing (VCT paper 3.2.1): 1, 6, 9 or 16 cones "
+         "around the normal, weighted by their share of the cosine lobe (hybrid eq. 3-4), each "
+         "accumulated front to back through the mip level of its diameter (hybrid eq. 8). "
+         "Output: the incident radiance integral E/pi (composite multiplies by the albedo) and "
+         "ambient visibility; optional specular cone (3.2.2) and shadow cone (3.2.3).");

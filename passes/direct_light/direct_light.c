@@ -12,13 +12,13 @@
 #include "cg/gpu_scene.h"
 #include "cg/shader.h"
 
-typedef struct direct_state {
+typedef struct direct_light_state {
     GLuint program;
     cgp_no_shadow no_shadow;
-} direct_state;
+} direct_light_state;
 
 static bool
-direct_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
+direct_light_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
 {
     const fg_resource_desc *position =
         fg_declare_input(decl, "position", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, true);
@@ -32,25 +32,17 @@ direct_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
 }
 
 static bool
-direct_prepare(fg_pass *pass, void **state, cg_error *err)
+direct_light_prepare(fg_pass *pass, direct_light_state *st, cg_error *err)
 {
-    direct_state *st = cgp_state_new(pass, sizeof *st, err);
-    if (!st)
-        return false;
-    if (!cg_program_compute("direct_light/direct.comp", NULL, &st->program, err)) {
-        free(st);
-        return false;
-    }
-    cgp_no_shadow_create(&st->no_shadow);
-    *state = st;
-    return true;
+    (void)pass;
+    cgp_no_shadow_create(st, &st->no_shadow);
+    return cgp_compute_program(st, "direct_light/direct.comp", NULL, &st->program, err);
 }
 
 static bool
-direct_execute(fg_pass *pass, void *state, cg_error *err)
+direct_light_execute(fg_pass *pass, direct_light_state *st, cg_error *err)
 {
     (void)err;
-    direct_state *st = state;
     const fg_frame *frame = fg_pass_frame(pass);
     const fg_resource_desc *out = fg_resource(pass, "radiance");
 
@@ -66,30 +58,9 @@ direct_execute(fg_pass *pass, void *state, cg_error *err)
     return true;
 }
 
-static void
-direct_destroy(void *state)
-{
-    direct_state *st = state;
-    if (!st)
-        return;
-    glDeleteProgram(st->program);
-    cgp_no_shadow_destroy(&st->no_shadow);
-    free(st);
-}
-
-static const fg_pass_type direct_light_type = {
-    .abi_version = FG_ABI_VERSION,
-    .name = "direct_light",
-    .doc = "Outgoing radiance of the G-buffer's surfaces lit directly by every scene light: "
-           "Lambertian, albedo x E x cos / pi with E from KHR_lights_punctual (directional: "
-           "intensity x color; point: I/d^2; spot: I/d^2 with the smooth cone falloff). The light "
-           "served by the optional shadow map (inputs shadow and shadow_matrix) is shadowed; "
-           "the others, point lights included, are not.",
-    CGP_NO_PARAMS,
-    .declare = direct_declare,
-    .prepare = direct_prepare,
-    .execute = direct_execute,
-    .destroy = direct_destroy,
-};
-
-CGP_REGISTER_PASS(direct_light, direct_light_type)
+CGP_PASS(direct_light, CGP_NO_PARAMS,
+         "Outgoing radiance of the G-buffer's surfaces lit directly by every scene light: "
+         "Lambertian, albedo x E x cos / pi with E from KHR_lights_punctual (directional: "
+         "intensity x color; point: I/d^2; spot: I/d^2 with the smooth cone falloff). The light "
+         "served by the optional shadow map (inputs shadow and shadow_matrix) is shadowed; "
+         "the others, point lights included, are not.");

@@ -41,29 +41,21 @@ gbuffer_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
 }
 
 static bool
-gbuffer_prepare(fg_pass *pass, void **state, cg_error *err)
+gbuffer_prepare(fg_pass *pass, gbuffer_state *st, cg_error *err)
 {
-    gbuffer_state *st = cgp_state_new(pass, sizeof *st, err);
-    if (!st)
-        return false;
-    if (!cg_program_graphics("gbuffer/gbuffer.vert", NULL, "gbuffer/gbuffer.frag", NULL,
-                             &st->program, err)) {
-        free(st);
-        return false;
-    }
-    glCreateFramebuffers(1, &st->fbo);
+    (void)pass;
+    st->fbo = cgp_framebuffer(st);
     static const GLenum draw_buffers[COLOR_OUTPUTS] = {
         GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3,
     };
     glNamedFramebufferDrawBuffers(st->fbo, COLOR_OUTPUTS, draw_buffers);
-    *state = st;
-    return true;
+    return cgp_graphics_program(st, "gbuffer/gbuffer.vert", NULL, "gbuffer/gbuffer.frag",
+                                                        NULL, &st->program, err);
 }
 
 static bool
-gbuffer_execute(fg_pass *pass, void *state, cg_error *err)
+gbuffer_execute(fg_pass *pass, gbuffer_state *st, cg_error *err)
 {
-    gbuffer_state *st = state;
     const fg_frame *frame = fg_pass_frame(pass);
     /* Pooled storage may hand this pass other textures from frame to frame: attach each time. */
     glNamedFramebufferTexture(st->fbo, GL_DEPTH_ATTACHMENT, fg_texture(pass, "depth"), 0);
@@ -96,28 +88,7 @@ gbuffer_execute(fg_pass *pass, void *state, cg_error *err)
     return true;
 }
 
-static void
-gbuffer_destroy(void *state)
-{
-    gbuffer_state *st = state;
-    if (!st)
-        return;
-    glDeleteProgram(st->program);
-    glDeleteFramebuffers(1, &st->fbo);
-    free(st);
-}
-
-static const fg_pass_type gbuffer_type = {
-    .abi_version = FG_ABI_VERSION,
-    .name = "gbuffer",
-    .doc = "The visible surface of each pixel of the output image: depth, world position "
-           "(w = 1 where covered), world normal facing the camera, linear albedo and emitted "
-           "radiance. Deferred shading's G-buffer; the VCT paper's cones start from it.",
-    CGP_NO_PARAMS,
-    .declare = gbuffer_declare,
-    .prepare = gbuffer_prepare,
-    .execute = gbuffer_execute,
-    .destroy = gbuffer_destroy,
-};
-
-CGP_REGISTER_PASS(gbuffer, gbuffer_type)
+CGP_PASS(gbuffer, CGP_NO_PARAMS,
+         "The visible surface of each pixel of the output image: depth, world position "
+         "(w = 1 where covered), world normal facing the camera, linear albedo and emitted "
+         "radiance. Deferred shading's G-buffer; the VCT paper's cones start from it.");

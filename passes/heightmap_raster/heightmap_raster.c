@@ -39,11 +39,11 @@ static const fg_param_desc heightmap_params[] = {
      "texel format; rgba32f keeps heights to 24 bits (rgba16f: 11 bits, centimetres at 30 m, metres at 10 km)"},
 };
 
-typedef struct heightmap_state {
+typedef struct heightmap_raster_state {
     GLuint program;
     GLuint fbo;
     cgp_no_shadow no_shadow;
-} heightmap_state;
+} heightmap_raster_state;
 
 typedef struct heightmap_region {
     double lo[3], hi[3];    /* world bounds of the height-field instances */
@@ -66,7 +66,7 @@ is_power_of_two(int v)
 }
 
 static bool
-heightmap_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
+heightmap_raster_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
 {
     const fg_frame *frame = fg_pass_frame(pass);
     int resolution = fg_param_int(pass, "resolution");
@@ -98,26 +98,18 @@ heightmap_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
 }
 
 static bool
-heightmap_prepare(fg_pass *pass, void **state, cg_error *err)
+heightmap_raster_prepare(fg_pass *pass, heightmap_raster_state *s, cg_error *err)
 {
-    heightmap_state *s = cgp_state_new(pass, sizeof *s, err);
-    if (!s)
-        return false;
-    if (!cg_program_graphics("heightmap_raster/raster.vert", NULL, "heightmap_raster/raster.frag", NULL,
-                             &s->program, err)) {
-        free(s);
-        return false;
-    }
-    glCreateFramebuffers(1, &s->fbo);
-    cgp_no_shadow_create(&s->no_shadow);
-    *state = s;
-    return true;
+    (void)pass;
+    s->fbo = cgp_framebuffer(s);
+    cgp_no_shadow_create(s, &s->no_shadow);
+    return cgp_graphics_program(s, "heightmap_raster/raster.vert", NULL,
+                                                       "heightmap_raster/raster.frag", NULL, &s->program, err);
 }
 
 static bool
-heightmap_execute(fg_pass *pass, void *state, cg_error *err)
+heightmap_raster_execute(fg_pass *pass, heightmap_raster_state *s, cg_error *err)
 {
-    heightmap_state *s = state;
     const fg_frame *frame = fg_pass_frame(pass);
     heightmap_region region;
     if (!heightfield_bounds(frame->scene, &region))
@@ -176,30 +168,8 @@ heightmap_execute(fg_pass *pass, void *state, cg_error *err)
     return true;
 }
 
-static void
-heightmap_destroy(void *state)
-{
-    heightmap_state *s = state;
-    if (!s)
-        return;
-    glDeleteProgram(s->program);
-    glDeleteFramebuffers(1, &s->fbo);
-    cgp_no_shadow_destroy(&s->no_shadow);
-    free(s);
-}
-
-static const fg_pass_type heightmap_type = {
-    .abi_version = FG_ABI_VERSION,
-    .name = "heightmap_raster",
-    .doc = "Rasterizes the scene's height-field meshes from above (orthographic, looking down -y) "
-           "into a 2D lightmap over their xz bounds (hybrid paper V.B): rgb = outgoing diffuse "
-           "radiance of the direct light, shadowed through the optional shadow map, plus emission; "
-           "alpha = height (world y). Nothing to do for a scene without height-field meshes.",
-    CGP_PARAMS(heightmap_params),
-    .declare = heightmap_declare,
-    .prepare = heightmap_prepare,
-    .execute = heightmap_execute,
-    .destroy = heightmap_destroy,
-};
-
-CGP_REGISTER_PASS(heightmap_raster, heightmap_type)
+CGP_PASS(heightmap_raster, CGP_PARAMS(heightmap_params),
+         "Rasterizes the scene's height-field meshes from above (orthographic, looking down -y) "
+         "into a 2D lightmap over their xz bounds (hybrid paper V.B): rgb = outgoing diffuse "
+         "radiance of the direct light, shadowed through the optional shadow map, plus emission; "
+         "alpha = height (world y). Nothing to do for a scene without height-field meshes.");

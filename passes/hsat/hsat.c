@@ -76,28 +76,9 @@ hsat_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
     return true;
 }
 
-static void
-hsat_destroy(void *state)
-{
-    hsat_state *s = state;
-    if (!s)
-        return;
-    glDeleteProgram(s->first);
-    glDeleteProgram(s->next);
-    glDeleteProgram(s->row_sums);
-    glDeleteProgram(s->mean);
-    glDeleteProgram(s->rows);
-    glDeleteProgram(s->columns);
-    glDeleteBuffers(1, &s->row_buffer);
-    free(s);
-}
-
 static bool
-hsat_prepare(fg_pass *pass, void **state, cg_error *err)
+hsat_prepare(fg_pass *pass, hsat_state *s, cg_error *err)
 {
-    hsat_state *s = cgp_state_new(pass, sizeof *s, err);
-    if (!s)
-        return false;
     s->mode = fg_param_enum(pass, "mode");
     s->lightmap_format = fg_resource(pass, "lightmap")->format;
     const char *format = s->lightmap_format == GL_RGBA16F ? "rgba16f" : "rgba32f";
@@ -105,34 +86,27 @@ hsat_prepare(fg_pass *pass, void **state, cg_error *err)
     bool ok = true;
     if (s->mode == MODE_PYRAMID) {
         snprintf(defines, sizeof defines, "#define LIGHTMAP_FORMAT %s\n#define FIRST\n", format);
-        ok = cg_program_compute("hsat/pyramid.comp", defines, &s->first, err) &&
-             cg_program_compute("hsat/pyramid.comp", "#define LIGHTMAP_FORMAT rgba32f\n", &s->next, err);
+        ok = cgp_compute_program(s, "hsat/pyramid.comp", defines, &s->first, err) &&
+             cgp_compute_program(s, "hsat/pyramid.comp", "#define LIGHTMAP_FORMAT rgba32f\n", &s->next, err);
     } else {
         static const char *const stages[4] = {"ROW_SUMS", "MEAN", "ROWS", "COLUMNS"};
         GLuint *programs[4] = {&s->row_sums, &s->mean, &s->rows, &s->columns};
         for (int i = 0; i < 4 && ok; i++) {
             snprintf(defines, sizeof defines, "#define LIGHTMAP_FORMAT %s\n#define %s\n", format, stages[i]);
-            ok = cg_program_compute("hsat/sat.comp", defines, programs[i], err);
+            ok = cgp_compute_program(s, "hsat/sat.comp", defines, programs[i], err);
         }
         if (ok) {
             int size = fg_resource(pass, "lightmap")->width;
-            glCreateBuffers(1, &s->row_buffer);
-            glNamedBufferStorage(s->row_buffer, (GLsizeiptr)size * 4 * sizeof(double), NULL, 0);
+            s->row_buffer = cgp_buffer(s, (size_t)size * 4 * sizeof(double), NULL, 0);
         }
     }
-    if (!ok) {
-        hsat_destroy(s);
-        return false;
-    }
-    *state = s;
-    return true;
+    return ok;
 }
 
 static bool
-hsat_execute(fg_pass *pass, void *state, cg_error *err)
+hsat_execute(fg_pass *pass, hsat_state *s, cg_error *err)
 {
     (void)err;
-    hsat_state *s = state;
     const fg_resource_desc *lightmap_desc = fg_resource(pass, "lightmap");
     GLuint lightmap = fg_texture(pass, "lightmap");
     GLuint table = fg_texture(pass, "table");
@@ -190,19 +164,9 @@ hsat_execute(fg_pass *pass, void *state, cg_error *err)
     return true;
 }
 
-static const fg_pass_type hsat_type = {
-    .abi_version = FG_ABI_VERSION,
-    .name = "hsat",
-    .doc = "Per-level min/max height tables of a mipped 2D lightmap (hybrid paper VI.A, HSAT, "
-           "eq. 13-14): the lowest and highest terrain under any rectangle in constant time. "
-           "Default: an exact min/max pyramid (conservative); or summed-area tables of x^p read "
-           "as the un-normalised p-norm (an upper bound) or as eq. 14's power mean (the paper's, "
-           "which under-estimates). SAT entries are stored minus the level mean (Hensley 2005).",
-    CGP_PARAMS(hsat_params),
-    .declare = hsat_declare,
-    .prepare = hsat_prepare,
-    .execute = hsat_execute,
-    .destroy = hsat_destroy,
-};
-
-CGP_REGISTER_PASS(hsat, hsat_type)
+CGP_PASS(hsat, CGP_PARAMS(hsat_params),
+         "Per-level min/max height tables of a mipped 2D lightmap (hybrid paper VI.A, HSAT, "
+         "eq. 13-14): the lowest and highest terrain under any rectangle in constant time. "
+         "Default: an exact min/max pyramid (conservative); or summed-area tables of x^p read "
+         "as the un-normalised p-norm (an upper bound) or as eq. 14's power mean (the paper's, "
+         "which under-estimates). SAT entries are stored minus the level mean (Hensley 2005).");

@@ -48,11 +48,9 @@ static const fg_param_desc hybrid_gather_params[] = {
 };
 
 typedef struct hybrid_gather_state {
-    GLuint program;
-    GLuint volume_sampler, map_sampler, table_sampler;
+    cgp_gather gather;      /* its block: CG_HYBRID_GATHER_BLOCK */
+    GLuint map_sampler, table_sampler;
     GLuint empty_block;     /* bound where a map is absent, so no block is left unbound */
-    GLuint cone_block, gather_block;    /* CG_CONE_SET_BLOCK, CG_HYBRID_GATHER_BLOCK */
-    cgp_cone_set set;
     bool has_2d, has_3d;
 } hybrid_gather_state;
 
@@ -109,103 +107,50 @@ hybrid_gather_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
     return true;
 }
 
-static void
-hybrid_gather_destroy(void *state)
-{
-    hybrid_gather_state *s = state;
-    if (!s)
-        return;
-    glDeleteProgram(s->program);
-    glDeleteSamplers(1, &s->volume_sampler);
-    glDeleteSamplers(1, &s->map_sampler);
-    glDeleteSamplers(1, &s->table_sampler);
-    glDeleteBuffers(1, &s->empty_block);
-    glDeleteBuffers(1, &s->cone_block);
-    glDeleteBuffers(1, &s->gather_block);
-    free(s);
-}
-
 static bool
-hybrid_gather_prepare(fg_pass *pass, void **state, cg_error *err)
+hybrid_gather_prepare(fg_pass *pass, hybrid_gather_state *s, cg_error *err)
 {
-    hybrid_gather_state *s = cgp_state_new(pass, sizeof *s, err);
-    if (!s)
-        return false;
-    if (!cgp_cone_set_of_pass(pass, &s->set, err)) {
-        free(s);
-        return false;
-    }
     s->has_3d = fg_input_present(pass, "volume");
     s->has_2d = fg_input_present(pass, "lightmap2d");
-    if (!cg_program_compute("hybrid_gather/hybrid_gather.comp", s->has_2d ? "#define HAS_2D\n" : NULL,
-                            &s->program, err)) {
-        hybrid_gather_destroy(s);
-        return false;
-    }
-    s->volume_sampler = cgp_sampler_volume();
     /* The cube-centre sample (dda = false) reads the 2D lightmap filtered; the DDA and HSAT fetch. */
-    s->map_sampler = cgp_sampler_lightmap2d();
-    s->table_sampler = cgp_sampler_table();
-    s->cone_block = cgp_uniform_buffer(sizeof(cg_cone_set_block));
-    s->gather_block = cgp_uniform_buffer(sizeof(cg_hybrid_gather_block));
-    glCreateBuffers(1, &s->empty_block);
-    glNamedBufferStorage(s->empty_block, sizeof(cg_hsat_info_block), NULL, GL_DYNAMIC_STORAGE_BIT);
-    const unsigned zero = 0;
-    glClearNamedBufferData(s->empty_block, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-    *state = s;
-    return true;
+    s->map_sampler = cgp_sampler_lightmap2d(s);
+    s->table_sampler = cgp_sampler_table(s);
+    static const cg_hsat_info_block zero;
+    s->empty_block = cgp_buffer(s, sizeof zero, &zero, 0);
+    return cgp_gather_prepare(s, pass, &s->gather, "hybrid_gather/hybrid_gather.comp",
+                                                     s->has_2d ? "#define HAS_2D\n" : NULL,
+                                                     sizeof(cg_hybrid_gather_block), err);
 }
 
 static bool
-hybrid_gather_execute(fg_pass *pass, void *state, cg_error *err)
+hybrid_gather_execute(fg_pass *pass, hybrid_gather_state *s, cg_error *err)
 {
     (void)err;
-    hybrid_gather_state *s = state;
-    const fg_resource_desc *out = fg_resource(pass, "radiance");
     const cg_hybrid_gather_block block = {
         .maps = {s->has_3d},
         .switches = {fg_param_enum(pass, "cube") == CUBE_EQ11, fg_param_enum(pass, "occlusion"),
                      fg_param_bool(pass, "dda"), fg_param_bool(pass, "skip")},
     };
 
-    glUseProgram(s->program);
-    cgp_cone_upload(pass, &s->set, s->cone_block);
-    cgp_uniform_upload(s->gather_block, CG_BINDING_GATHER, &block, sizeof block);
-    glBindBufferBase(GL_UNIFORM_BUFFER, CG_BINDING_VOLUME, s->has_3d ? fg_buffer(pass, "region") : s->empty_block);
+    cgp_gather_begin(pass, &s->gather, &block, sizeof block, s->has_3d ? fg_texture(pass, "volume") : 0,
+                     s->has_3d ? fg_buffer(pass, "region") : s->empty_block);
     glBindBufferBase(GL_UNIFORM_BUFFER, CG_BINDING_HEIGHTMAP, s->has_2d ? fg_buffer(pass, "region2d") : s->empty_block);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_HSAT, s->has_2d ? fg_buffer(pass, "hsat_info") : s->empty_block);
-    glBindTextureUnit(CG_UNIT_VOLUME, s->has_3d ? fg_texture(pass, "volume") : 0);
-    glBindSampler(CG_UNIT_VOLUME, s->volume_sampler);
-    glBindTextureUnit(CG_UNIT_POSITION, fg_texture(pass, "position"));
-    glBindTextureUnit(CG_UNIT_NORMAL, fg_texture(pass, "normal"));
     glBindTextureUnit(CG_UNIT_LIGHTMAP2D, s->has_2d ? fg_texture(pass, "lightmap2d") : 0);
     glBindSampler(CG_UNIT_LIGHTMAP2D, s->map_sampler);
     glBindTextureUnit(CG_UNIT_HSAT, s->has_2d ? fg_texture(pass, "hsat") : 0);
     glBindSampler(CG_UNIT_HSAT, s->table_sampler);
-    glBindImageTexture(0, fg_texture(pass, "radiance"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    cgp_dispatch_2d(out->width, out->height);
-    glBindSampler(CG_UNIT_VOLUME, 0);
+    cgp_gather_end(pass);
     glBindSampler(CG_UNIT_LIGHTMAP2D, 0);
     glBindSampler(CG_UNIT_HSAT, 0);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_HSAT, 0);
-    glUseProgram(0);
     return true;
 }
 
-static const fg_pass_type hybrid_gather_type = {
-    .abi_version = FG_ABI_VERSION,
-    .name = "hybrid_gather",
-    .doc = "Indirect diffuse light by hybrid cone tracing (hybrid paper VI): per step an "
-           "axis-aligned fitting cube (eq. 10-11) tested against the 3D lightmap's box (eq. 12) "
-           "and the terrain's height range from HSAT (eq. 13-14, empty space skipped), the 3D "
-           "lightmap sampled at the intersection's centre (eq. 15) at the level of eq. 8, the 2D "
-           "lightmap walked by a DDA, occlusion by eq. 16 or 17. Cone weights integrate the "
-           "cosine lobe to 1. Without a 2D lightmap: the VCT march of cone_gather.",
-    CGP_PARAMS(hybrid_gather_params),
-    .declare = hybrid_gather_declare,
-    .prepare = hybrid_gather_prepare,
-    .execute = hybrid_gather_execute,
-    .destroy = hybrid_gather_destroy,
-};
-
-CGP_REGISTER_PASS(hybrid_gather, hybrid_gather_type)
+CGP_PASS(hybrid_gather, CGP_PARAMS(hybrid_gather_params),
+         "Indirect diffuse light by hybrid cone tracing (hybrid paper VI): per step an "
+         "axis-aligned fitting cube (eq. 10-11) tested against the 3D lightmap's box (eq. 12) "
+         "and the terrain's height range from HSAT (eq. 13-14, empty space skipped), the 3D "
+         "lightmap sampled at the intersection's centre (eq. 15) at the level of eq. 8, the 2D "
+         "lightmap walked by a DDA, occlusion by eq. 16 or 17. Cone weights integrate the "
+         "cosine lobe to 1. Without a 2D lightmap: the VCT march of cone_gather.");

@@ -41,27 +41,18 @@ mip2d_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
 }
 
 static bool
-mip2d_prepare(fg_pass *pass, void **state, cg_error *err)
+mip2d_prepare(fg_pass *pass, mip2d_state *s, cg_error *err)
 {
-    mip2d_state *s = cgp_state_new(pass, sizeof *s, err);
-    if (!s)
-        return false;
     s->format = fg_resource(pass, "lightmap")->format;
     char defines[64];
     snprintf(defines, sizeof defines, "#define FORMAT %s\n", s->format == GL_RGBA16F ? "rgba16f" : "rgba32f");
-    if (!cg_program_compute("mip2d/downsample.comp", defines, &s->program, err)) {
-        free(s);
-        return false;
-    }
-    *state = s;
-    return true;
+    return cgp_compute_program(s, "mip2d/downsample.comp", defines, &s->program, err);
 }
 
 static bool
-mip2d_execute(fg_pass *pass, void *state, cg_error *err)
+mip2d_execute(fg_pass *pass, mip2d_state *s, cg_error *err)
 {
     (void)err;
-    mip2d_state *s = state;
     const fg_resource_desc *desc = fg_resource(pass, "lightmap");
     GLuint tex = fg_texture(pass, "lightmap");
     glUseProgram(s->program);
@@ -80,27 +71,7 @@ mip2d_execute(fg_pass *pass, void *state, cg_error *err)
     return true;
 }
 
-static void
-mip2d_destroy(void *state)
-{
-    mip2d_state *s = state;
-    if (!s)
-        return;
-    glDeleteProgram(s->program);
-    free(s);
-}
-
-static const fg_pass_type mip2d_type = {
-    .abi_version = FG_ABI_VERSION,
-    .name = "mip2d",
-    .doc = "Mip chain of a 2D lightmap (hybrid paper V.B) by a 2x2 box filter, one compute dispatch "
-           "per level, in place: mean radiance in rgb, mean height in alpha (the paper's filtered "
-           "geometry; per-level height extremes come from hsat).",
-    CGP_NO_PARAMS,
-    .declare = mip2d_declare,
-    .prepare = mip2d_prepare,
-    .execute = mip2d_execute,
-    .destroy = mip2d_destroy,
-};
-
-CGP_REGISTER_PASS(mip2d, mip2d_type)
+CGP_PASS(mip2d, CGP_NO_PARAMS,
+         "Mip chain of a 2D lightmap (hybrid paper V.B) by a 2x2 box filter, one compute dispatch "
+         "per level, in place: mean radiance in rgb, mean height in alpha (the paper's filtered "
+         "geometry; per-level height extremes come from hsat).");

@@ -63,12 +63,9 @@ mip3d_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
 }
 
 static bool
-mip3d_prepare(fg_pass *pass, void **state, cg_error *err)
+mip3d_prepare(fg_pass *pass, mip3d_state *s, cg_error *err)
 {
     const fg_resource_desc *desc = fg_resource(pass, "volume");
-    mip3d_state *s = cgp_state_new(pass, sizeof *s, err);
-    if (!s)
-        return false;
     s->format = desc->format;
     char defines[128];
     snprintf(defines, sizeof defines, "#define FORMAT %s\n#define %s\n",
@@ -77,21 +74,15 @@ mip3d_prepare(fg_pass *pass, void **state, cg_error *err)
     s->anisotropic = fg_param_bool(pass, "anisotropic");
     char format_define[64];
     snprintf(format_define, sizeof format_define, "#define FORMAT %s\n", s->format == GL_RGBA8 ? "rgba8" : "rgba16f");
-    if (!cg_program_compute("mip3d/downsample.comp", defines, &s->program, err) ||
-        (s->anisotropic && !cg_program_compute("mip3d/directional.comp", format_define, &s->directional, err))) {
-        glDeleteProgram(s->program);
-        free(s);
-        return false;
-    }
-    *state = s;
-    return true;
+    return cgp_compute_program(s, "mip3d/downsample.comp", defines, &s->program, err) &&
+                            (!s->anisotropic ||
+                             cgp_compute_program(s, "mip3d/directional.comp", format_define, &s->directional, err));
 }
 
 static bool
-mip3d_execute(fg_pass *pass, void *state, cg_error *err)
+mip3d_execute(fg_pass *pass, mip3d_state *s, cg_error *err)
 {
     (void)err;
-    mip3d_state *s = state;
     const fg_resource_desc *desc = fg_resource(pass, "volume");
     GLuint tex = fg_texture(pass, "volume");
     glUseProgram(s->program);
@@ -132,27 +123,6 @@ mip3d_execute(fg_pass *pass, void *state, cg_error *err)
     return true;
 }
 
-static void
-mip3d_destroy(void *state)
-{
-    mip3d_state *s = state;
-    if (!s)
-        return;
-    glDeleteProgram(s->program);
-    glDeleteProgram(s->directional);
-    free(s);
-}
-
-static const fg_pass_type mip3d_type = {
-    .abi_version = FG_ABI_VERSION,
-    .name = "mip3d",
-    .doc = "Filtered mip chain of a 3D lightmap by a 2x2x2 box filter, one compute dispatch per "
-           "level, in place (VCT paper 3.1). Opacity by the max or the average of the children.",
-    CGP_PARAMS(mip3d_params),
-    .declare = mip3d_declare,
-    .prepare = mip3d_prepare,
-    .execute = mip3d_execute,
-    .destroy = mip3d_destroy,
-};
-
-CGP_REGISTER_PASS(mip3d, mip3d_type)
+CGP_PASS(mip3d, CGP_PARAMS(mip3d_params),
+         "Filtered mip chain of a 3D lightmap by a 2x2x2 box filter, one compute dispatch per "
+         "level, in place (VCT paper 3.1). Opacity by the max or the average of the children.");

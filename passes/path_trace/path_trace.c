@@ -48,13 +48,21 @@ path_trace_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
     return true;
 }
 
-static bool
-path_trace_prepare(fg_pass *pass, void **state, cg_error *err)
+/* What the state holds: the Embree scene and the last image (no GL objects). */
+static void
+path_trace_cleanup(void *state)
 {
-    path_trace_state *st = cgp_state_new(pass, sizeof *st, err);
-    if (!st)
-        return false;
-    *state = st;
+    path_trace_state *st = state;
+    pt_scene_destroy(st->pts);
+    free(st->rgba);
+}
+
+static bool
+path_trace_prepare(fg_pass *pass, path_trace_state *st, cg_error *err)
+{
+    (void)err;
+    (void)pass;
+    cgp_state_on_destroy(st, path_trace_cleanup);
     return true;
 }
 
@@ -81,9 +89,8 @@ same_image(const path_trace_state *st, const cg_view *view, const pt_settings *s
 }
 
 static bool
-path_trace_execute(fg_pass *pass, void *state, cg_error *err)
+path_trace_execute(fg_pass *pass, path_trace_state *st, cg_error *err)
 {
-    path_trace_state *st = state;
     const fg_frame *frame = fg_pass_frame(pass);
     pt_settings settings = settings_of(pass);
     if (st->scene != frame->scene) {
@@ -133,30 +140,9 @@ path_trace_execute(fg_pass *pass, void *state, cg_error *err)
     return true;
 }
 
-static void
-path_trace_destroy(void *state)
-{
-    path_trace_state *st = state;
-    if (!st)
-        return;
-    pt_scene_destroy(st->pts);
-    free(st->rgba);
-    free(st);
-}
-
-static const fg_pass_type path_trace_type = {
-    .abi_version = FG_ABI_VERSION,
-    .name = "path_trace",
-    .doc = "CPU path-traced reference on Embree 3: Lambertian materials with base colour "
-           "textures, emissive surfaces, directional/point/spot lights by next-event estimation "
-           "with hard shadows, cosine-sampled diffuse bounces; camera rays through the pixel "
-           "centres of the raster passes' view. Output `radiance`: linear RGBA32F. Bit-identical "
-           "for a seed whatever the thread count (counter-based random numbers per pixel and sample).",
-    CGP_PARAMS(path_trace_params),
-    .declare = path_trace_declare,
-    .prepare = path_trace_prepare,
-    .execute = path_trace_execute,
-    .destroy = path_trace_destroy,
-};
-
-CGP_REGISTER_PASS(path_trace, path_trace_type)
+CGP_PASS(path_trace, CGP_PARAMS(path_trace_params),
+         "CPU path-traced reference on Embree 3: Lambertian materials with base colour "
+         "textures, emissive surfaces, directional/point/spot lights by next-event estimation "
+         "with hard shadows, cosine-sampled diffuse bounces; camera rays through the pixel "
+         "centres of the raster passes' view. Output `radiance`: linear RGBA32F. Bit-identical "
+         "for a seed whatever the thread count (counter-based random numbers per pixel and sample).");

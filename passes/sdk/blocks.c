@@ -1,13 +1,12 @@
 /* Uniform buffers of the pass blocks (sdk/blocks.h). */
 #include "sdk/blocks.h"
 
+#include "sdk/pass.h"
+
 GLuint
-cgp_uniform_buffer(size_t bytes)
+cgp_uniform_buffer(void *state, size_t bytes)
 {
-    GLuint buffer;
-    glCreateBuffers(1, &buffer);
-    glNamedBufferStorage(buffer, (GLsizeiptr)bytes, NULL, GL_DYNAMIC_STORAGE_BIT);
-    return buffer;
+    return cgp_buffer(state, bytes, NULL, GL_DYNAMIC_STORAGE_BIT);
 }
 
 void

@@ -16,8 +16,9 @@
 #include "cg/gpu_scene.h"
 #include "common/blocks.h"
 
-/* A uniform buffer of `bytes` for a pass's own block, updated every execute. */
-GLuint cgp_uniform_buffer(size_t bytes);
+/* A uniform buffer of `bytes` for a pass's own block, updated every execute, owned by the pass
+ * state (cgp_state_new, sdk/pass.h). */
+GLuint cgp_uniform_buffer(void *state, size_t bytes);
 /* Writes a block into `buffer` and binds it at `binding` (a CG_BINDING_* uniform binding). */
 void cgp_uniform_upload(GLuint buffer, GLuint binding, const void *block, size_t bytes);
 

@@ -2,7 +2,7 @@
  *
  * Declares: CGP_CONE_MAX, cgp_cone, cgp_cone_set, cgp_cone_set_make, cgp_cone_set_sizes,
  *           cgp_cone_set_valid_size, cgp_cone_frame, cgp_cone_set_of_pass, cgp_cone_block_fill,
- *           cgp_cone_upload.
+ *           cgp_cone_upload, cgp_gather, cgp_gather_prepare, cgp_gather_begin, cgp_gather_end.
  *
  * Shared by every cone tracer (the VCT gather and the hybrid tracer), so it lives in the
  * pass SDK; core knows nothing of cones.
@@ -64,5 +64,28 @@ bool cgp_cone_set_of_pass(const fg_pass *pass, cgp_cone_set *out, cg_error *err)
 void cgp_cone_block_fill(const fg_pass *pass, const cgp_cone_set *set, cg_cone_set_block *out);
 /* Fills the block and uploads it to `buffer` (cgp_uniform_buffer of its size), bound at CG_BINDING_CONES. */
 void cgp_cone_upload(const fg_pass *pass, const cgp_cone_set *set, GLuint buffer);
+
+/* What every cone gather's state holds, and its frame around the dispatch: the G-buffer inputs
+ * `position` and `normal` at CG_UNIT_POSITION and CG_UNIT_NORMAL, the 3D lightmap at
+ * CG_UNIT_VOLUME (trilinear, zero outside), the cone set at CG_BINDING_CONES and the pass's own
+ * block at CG_BINDING_GATHER, and the output image `radiance` (RGBA16F) at image unit 0. */
+typedef struct cgp_gather {
+    cgp_cone_set set;
+    GLuint program;
+    GLuint volume_sampler;
+    GLuint cone_block;      /* CG_CONE_SET_BLOCK */
+    GLuint gather_block;    /* the pass's block */
+} cgp_gather;
+
+/* In prepare(): the cone set of the parameter `cones`, the compute program `shader` with
+ * `defines`, the sampler and the blocks (`gather_bytes` for the pass's), owned by `state`. */
+bool cgp_gather_prepare(void *state, const fg_pass *pass, cgp_gather *g, const char *shader, const char *defines,
+                        size_t gather_bytes, cg_error *err);
+/* In execute(): uses the program, uploads the cone set and the pass's block (`gather_bytes` at
+ * `block`), binds the G-buffer, `volume` with its `region` block (either may be 0) and `radiance`. */
+void cgp_gather_begin(const fg_pass *pass, const cgp_gather *g, const void *block, size_t gather_bytes,
+                      GLuint volume, GLuint region);
+/* Dispatches over `radiance` and unbinds what cgp_gather_begin bound. */
+void cgp_gather_end(const fg_pass *pass);
 
 #endif

@@ -2,6 +2,7 @@
 #include "sdk/shadow.h"
 
 #include "sdk/blocks.h"
+#include "sdk/pass.h"
 
 bool
 cgp_declare_shadow_inputs(fg_pass *pass, fg_declare *decl, cg_error *err)
@@ -23,7 +24,7 @@ cgp_declare_shadow_inputs(fg_pass *pass, fg_declare *decl, cg_error *err)
 }
 
 void
-cgp_no_shadow_create(cgp_no_shadow *out)
+cgp_no_shadow_create(void *state, cgp_no_shadow *out)
 {
     const cg_shadow_block block = {.frustum = {-1.0f, 0.0f, 0.0f, 0.0f}};
     glCreateBuffers(1, &out->block);
@@ -32,14 +33,8 @@ cgp_no_shadow_create(cgp_no_shadow *out)
     glTextureStorage2D(out->map, 1, GL_DEPTH_COMPONENT32F, 1, 1);
     const float far_depth = 1.0f;
     glClearTexImage(out->map, 0, GL_DEPTH_COMPONENT, GL_FLOAT, &far_depth);
-}
-
-void
-cgp_no_shadow_destroy(cgp_no_shadow *fallback)
-{
-    glDeleteBuffers(1, &fallback->block);
-    glDeleteTextures(1, &fallback->map);
-    fallback->block = fallback->map = 0;
+    cgp_own(state, CGP_GL_BUFFER, out->block);
+    cgp_own(state, CGP_GL_TEXTURE, out->map);
 }
 
 void

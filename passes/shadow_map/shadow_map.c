@@ -37,11 +37,11 @@ static const fg_param_desc shadow_params[] = {
       "percentage-closer filtering of the lookup: 1, 3x3 or 5x5 depth comparisons" },
 };
 
-typedef struct shadow_state {
+typedef struct shadow_map_state {
     GLuint program;
     GLuint fbo;
     GLuint staging;
-} shadow_state;
+} shadow_map_state;
 
 /* The light this instance serves: the `light` parameter, or the first directional or spot
  * light. Returns false with an error for an index the scene does not have or a point light;
@@ -80,7 +80,7 @@ spot_fov(const cg_light *light)
 }
 
 static bool
-shadow_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
+shadow_map_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
 {
     const fg_frame *frame = fg_pass_frame(pass);
     if (frame->scene) {
@@ -107,22 +107,16 @@ shadow_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
 }
 
 static bool
-shadow_prepare(fg_pass *pass, void **state, cg_error *err)
+shadow_map_prepare(fg_pass *pass, shadow_map_state *st, cg_error *err)
 {
-    shadow_state *st = cgp_state_new(pass, sizeof *st, err);
-    if (!st)
-        return false;
-    if (!cg_program_graphics("shadow_map/depth.vert", NULL, NULL, NULL, &st->program, err)) {
-        free(st);
-        return false;
-    }
-    glCreateFramebuffers(1, &st->fbo);
+    (void)pass;
+    st->fbo = cgp_framebuffer(st);
     glNamedFramebufferDrawBuffer(st->fbo, GL_NONE);
     glNamedFramebufferReadBuffer(st->fbo, GL_NONE);
-    glCreateBuffers(1, &st->staging);
-    glNamedBufferStorage(st->staging, sizeof(cg_shadow_block), NULL, GL_DYNAMIC_STORAGE_BIT);
-    *state = st;
-    return true;
+    /* The block is written here and copied into the graph's buffer `matrix`. */
+    st->staging = cgp_buffer(st, sizeof(cg_shadow_block), NULL, GL_DYNAMIC_STORAGE_BIT);
+    return cgp_graphics_program(st, "shadow_map/depth.vert", NULL, NULL, NULL, &st->program,
+                                                        err);
 }
 
 static void
@@ -221,9 +215,8 @@ fit_spot(const cg_scene *scene, const cg_light *light, int resolution, cg_shadow
 }
 
 static bool
-shadow_execute(fg_pass *pass, void *state, cg_error *err)
+shadow_map_execute(fg_pass *pass, shadow_map_state *st, cg_error *err)
 {
-    shadow_state *st = state;
     const fg_frame *frame = fg_pass_frame(pass);
     int index;
     if (!pick_light(pass, frame->scene, &index, err))
@@ -269,30 +262,8 @@ shadow_execute(fg_pass *pass, void *state, cg_error *err)
     return true;
 }
 
-static void
-shadow_destroy(void *state)
-{
-    shadow_state *st = state;
-    if (!st)
-        return;
-    glDeleteProgram(st->program);
-    glDeleteFramebuffers(1, &st->fbo);
-    glDeleteBuffers(1, &st->staging);
-    free(st);
-}
-
-static const fg_pass_type shadow_map_type = {
-    .abi_version = FG_ABI_VERSION,
-    .name = "shadow_map",
-    .doc = "Depth map of the scene from one directional light (orthographic, fitted to the "
-           "scene bounds) or spot light (perspective over the outer cone), and the matrices "
-           "and bias of its lookup (shaders/common/shadow.glsl) in the buffer `matrix`. "
-           "Point lights are unshadowed. Nothing to do without a directional or spot light.",
-    CGP_PARAMS(shadow_params),
-    .declare = shadow_declare,
-    .prepare = shadow_prepare,
-    .execute = shadow_execute,
-    .destroy = shadow_destroy,
-};
-
-CGP_REGISTER_PASS(shadow_map, shadow_map_type)
+CGP_PASS(shadow_map, CGP_PARAMS(shadow_params),
+         "Depth map of the scene from one directional light (orthographic, fitted to the "
+         "scene bounds) or spot light (perspective over the outer cone), and the matrices "
+         "and bias of its lookup (shaders/common/shadow.glsl) in the buffer `matrix`. "
+         "Point lights are unshadowed. Nothing to do without a directional or spot light.");

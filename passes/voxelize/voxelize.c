@@ -164,31 +164,30 @@ voxelize_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
     return true;
 }
 
-static bool
-voxelize_prepare(fg_pass *pass, void **state, cg_error *err)
+/* What the state holds beside its GL objects: the light cache of radiance_bound(). */
+static void
+voxelize_cleanup(void *state)
 {
-    voxelize_state *s = cgp_state_new(pass, sizeof *s, err);
-    if (!s)
-        return false;
+    voxelize_state *s = state;
+    free(s->light_positions);
+    free(s->light_nearest);
+}
+
+static bool
+voxelize_prepare(fg_pass *pass, voxelize_state *s, cg_error *err)
+{
+    cgp_state_on_destroy(s, voxelize_cleanup);
     s->format = fg_resource(pass, "radiance")->format;
     char defines[64];
     snprintf(defines, sizeof defines, "#define FORMAT %s\n", s->format == GL_RGBA8 ? "rgba8" : "rgba16f");
-    if (!cg_program_graphics("voxelize/voxelize.vert", "voxelize/voxelize.geom", "voxelize/voxelize.frag",
-                             NULL, &s->program, err) ||
-        !cg_program_compute("voxelize/resolve.comp", defines, &s->resolve, err) ||
-        (s->format == GL_RGBA8 &&
-         !cg_program_compute("voxelize/resolve.comp", "#define FORMAT rgba8\n#define FIND_MAX\n", &s->find_max, err))) {
-        glDeleteProgram(s->program);
-        glDeleteProgram(s->resolve);
-        free(s);
-        return false;
-    }
-    glCreateBuffers(1, &s->max_buffer);
-    glNamedBufferStorage(s->max_buffer, sizeof(GLuint), NULL, GL_DYNAMIC_STORAGE_BIT);
-    glCreateFramebuffers(1, &s->fbo);
-    cgp_no_shadow_create(&s->no_shadow);
-    *state = s;
-    return true;
+    s->max_buffer = cgp_buffer(s, sizeof(GLuint), NULL, GL_DYNAMIC_STORAGE_BIT);
+    s->fbo = cgp_framebuffer(s);
+    cgp_no_shadow_create(s, &s->no_shadow);
+    return cgp_graphics_program(s, "voxelize/voxelize.vert", "voxelize/voxelize.geom", "voxelize/voxelize.frag", NULL,
+                                &s->program, err) &&
+           cgp_compute_program(s, "voxelize/resolve.comp", defines, &s->resolve, err) &&
+           (s->format != GL_RGBA8 ||
+            cgp_compute_program(s, "voxelize/resolve.comp", "#define FORMAT rgba8\n#define FIND_MAX\n", &s->find_max, err));
 }
 
 /* Squared distance from p to triangle abc (Ericson, Real-Time Collision Detection 5.1.5). */
@@ -300,9 +299,8 @@ radiance_bound(voxelize_state *s, const cg_scene *scene, cg_mesh_filter filter, 
 }
 
 static bool
-voxelize_execute(fg_pass *pass, void *state, cg_error *err)
+voxelize_execute(fg_pass *pass, voxelize_state *s, cg_error *err)
 {
-    voxelize_state *s = state;
     const fg_frame *frame = fg_pass_frame(pass);
     const cg_scene *scene = frame->scene;
     cg_mesh_filter filter = (cg_mesh_filter)fg_param_enum(pass, "meshes");
@@ -389,36 +387,9 @@ voxelize_execute(fg_pass *pass, void *state, cg_error *err)
     return true;
 }
 
-static void
-voxelize_destroy(void *state)
-{
-    voxelize_state *s = state;
-    if (!s)
-        return;
-    glDeleteProgram(s->program);
-    glDeleteProgram(s->resolve);
-    glDeleteProgram(s->find_max);
-    glDeleteBuffers(1, &s->max_buffer);
-    glDeleteFramebuffers(1, &s->fbo);
-    cgp_no_shadow_destroy(&s->no_shadow);
-    free(s->light_positions);
-    free(s->light_nearest);
-    free(s);
-}
-
-static const fg_pass_type voxelize_type = {
-    .abi_version = FG_ABI_VERSION,
-    .name = "voxelize",
-    .doc = "Voxelizes the outgoing diffuse radiance of the scene's direct light (shadowed through "
-           "the optional shadow map) plus emission into a cubic 3D lightmap, opacity in alpha "
-           "(VCT paper 3.1): dominant-axis projection in a geometry shader, conservative coverage "
-           "by triangle dilation and an exact triangle/voxel test, fragments averaged by "
-           "fixed-point atomic sums. Rebuilt every frame.",
-    CGP_PARAMS(voxelize_params),
-    .declare = voxelize_declare,
-    .prepare = voxelize_prepare,
-    .execute = voxelize_execute,
-    .destroy = voxelize_destroy,
-};
-
-CGP_REGISTER_PASS(voxelize, voxelize_type)
+CGP_PASS(voxelize, CGP_PARAMS(voxelize_params),
+         "Voxelizes the outgoing diffuse radiance of the scene's direct light (shadowed through "
+         "the optional shadow map) plus emission into a cubic 3D lightmap, opacity in alpha "
+         "(VCT paper 3.1): dominant-axis projection in a geometry shader, conservative coverage "
+         "by triangle dilation and an exact triangle/voxel test, fragments averaged by "
+         "fixed-point atomic sums. Rebuilt every frame.");

@@ -49,4 +49,4 @@ static const fg_pass_type fill_type = {
     .execute = execute,
 };
 
-CGP_PLUGIN(&fill_type)
+CGP_PLUGIN(&fill_type);

@@ -61,4 +61,4 @@ static const fg_pass_type fill_type = {
 
 /* conegraph_plugin_register(): refuses a host of another ABI (the bad-ABI build above), then
  * registers fill_type. */
-CGP_PLUGIN(&fill_type)
+CGP_PLUGIN(&fill_type);
