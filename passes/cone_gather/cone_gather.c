@@ -107,7 +107,7 @@ cone_gather_prepare(fg_pass *pass, cone_gather_state *s, cg_error *err)
              s->shadow_cone ? "#define SHADOW_CONE\n" : "",
              s->anisotropic ? "#define CG_CONE_ANISOTROPIC\n" : "");
     return cgp_gather_prepare(s, pass, &s->gather, "cone_gather/cone_gather.comp", defines,
-                                                     sizeof(cg_cone_gather_block), err);
+                              sizeof(cg_cone_gather_block), err);
 }
 
 static double

@@ -49,8 +49,7 @@ gbuffer_prepare(fg_pass *pass, gbuffer_state *st, cg_error *err)
         GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3,
     };
     glNamedFramebufferDrawBuffers(st->fbo, COLOR_OUTPUTS, draw_buffers);
-    return cgp_graphics_program(st, "gbuffer/gbuffer.vert", NULL, "gbuffer/gbuffer.frag",
-                                                        NULL, &st->program, err);
+    return cgp_graphics_program(st, "gbuffer/gbuffer.vert", NULL, "gbuffer/gbuffer.frag", NULL, &st->program, err);
 }
 
 static bool

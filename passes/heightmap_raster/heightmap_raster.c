@@ -103,8 +103,8 @@ heightmap_raster_prepare(fg_pass *pass, heightmap_raster_state *s, cg_error *err
     (void)pass;
     s->fbo = cgp_framebuffer(s);
     cgp_no_shadow_create(s, &s->no_shadow);
-    return cgp_graphics_program(s, "heightmap_raster/raster.vert", NULL,
-                                                       "heightmap_raster/raster.frag", NULL, &s->program, err);
+    return cgp_graphics_program(s, "heightmap_raster/raster.vert", NULL, "heightmap_raster/raster.frag", NULL,
+                                &s->program, err);
 }
 
 static bool

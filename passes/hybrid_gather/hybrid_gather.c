@@ -118,8 +118,7 @@ hybrid_gather_prepare(fg_pass *pass, hybrid_gather_state *s, cg_error *err)
     static const cg_hsat_info_block zero;
     s->empty_block = cgp_buffer(s, sizeof zero, &zero, 0);
     return cgp_gather_prepare(s, pass, &s->gather, "hybrid_gather/hybrid_gather.comp",
-                                                     s->has_2d ? "#define HAS_2D\n" : NULL,
-                                                     sizeof(cg_hybrid_gather_block), err);
+                              s->has_2d ? "#define HAS_2D\n" : NULL, sizeof(cg_hybrid_gather_block), err);
 }
 
 static bool

@@ -115,8 +115,7 @@ shadow_map_prepare(fg_pass *pass, shadow_map_state *st, cg_error *err)
     glNamedFramebufferReadBuffer(st->fbo, GL_NONE);
     /* The block is written here and copied into the graph's buffer `matrix`. */
     st->staging = cgp_buffer(st, sizeof(cg_shadow_block), NULL, GL_DYNAMIC_STORAGE_BIT);
-    return cgp_graphics_program(st, "shadow_map/depth.vert", NULL, NULL, NULL, &st->program,
-                                                        err);
+    return cgp_graphics_program(st, "shadow_map/depth.vert", NULL, NULL, NULL, &st->program, err);
 }
 
 static void
@@ -137,6 +136,19 @@ bounds_corner(const cg_scene *scene, int i, vec3 out)
     out[2] = (i & 4) ? scene->bounds_max[2] : scene->bounds_min[2];
 }
 
+/* The light's view, its projection and depth range into the block. */
+static void
+store_view(mat4 view, mat4 proj, bool orthographic, float znear, float zfar, cg_shadow_block *b)
+{
+    mat4 view_proj;
+    glm_mat4_mul(proj, view, view_proj);
+    memcpy(b->view, view, sizeof b->view);
+    memcpy(b->view_proj, view_proj, sizeof b->view_proj);
+    b->frustum[1] = orthographic ? 1.0f : 0.0f;
+    b->frustum[2] = znear;
+    b->frustum[3] = zfar;
+}
+
 /* Orthographic projection along the light that just holds the scene bounds. */
 static void
 fit_directional(const cg_scene *scene, const cg_light *light, int resolution, cg_shadow_block *b)
@@ -151,7 +163,7 @@ fit_directional(const cg_scene *scene, const cg_light *light, int resolution, cg
     float radius = diagonal > 0.0f ? 0.5f * diagonal : 1.0f;
     glm_vec3_scale(dir, -radius, eye);
     glm_vec3_add(center, eye, eye);
-    mat4 view, proj, view_proj;
+    mat4 view, proj;
     glm_lookat(eye, center, up, view);
 
     vec3 lo = { INFINITY, INFINITY, INFINITY }, hi = { -INFINITY, -INFINITY, -INFINITY };
@@ -168,13 +180,8 @@ fit_directional(const cg_scene *scene, const cg_light *light, int resolution, cg
     float bottom = lo[1] - margin, top = hi[1] + margin;
     float znear = -hi[2] - margin, zfar = -lo[2] + margin;
     glm_ortho(left, right, bottom, top, znear, zfar, proj);
-    glm_mat4_mul(proj, view, view_proj);
 
-    memcpy(b->view, view, sizeof b->view);
-    memcpy(b->view_proj, view_proj, sizeof b->view_proj);
-    b->frustum[1] = 1.0f;
-    b->frustum[2] = znear;
-    b->frustum[3] = zfar;
+    store_view(view, proj, true, znear, zfar, b);
     glm_vec3_negate_to(dir, b->light);
     b->texel[0] = (right - left) / (float)resolution;
     b->texel[1] = (top - bottom) / (float)resolution;
@@ -200,16 +207,11 @@ fit_spot(const cg_scene *scene, const cg_light *light, int resolution, cg_shadow
     /* fp32 depth linearised in shadow.glsl keeps ~1e-4 relative precision at far/near = 1e4. */
     float znear = zfar * 1e-4f;
     float fov = spot_fov(light);
-    mat4 view, proj, view_proj;
+    mat4 view, proj;
     glm_lookat(eye, target, up, view);
     glm_perspective(fov, 1.0f, znear, zfar, proj);
-    glm_mat4_mul(proj, view, view_proj);
 
-    memcpy(b->view, view, sizeof b->view);
-    memcpy(b->view_proj, view_proj, sizeof b->view_proj);
-    b->frustum[1] = 0.0f;
-    b->frustum[2] = znear;
-    b->frustum[3] = zfar;
+    store_view(view, proj, false, znear, zfar, b);
     glm_vec3_copy(eye, b->light);
     b->texel[0] = b->texel[1] = 2.0f * tanf(0.5f * fov) / (float)resolution;
 }
