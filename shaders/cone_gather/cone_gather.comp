@@ -11,15 +11,9 @@
 // transmittance 1 - a is a soft visibility.
 #version 450 core
 #include "common/cone_trace.glsl"
+#include "common/gather.glsl"
 #include "common/lights.glsl"
 
-layout(local_size_x = 8, local_size_y = 8) in;
-
-layout(binding = CG_UNIT_VOLUME) uniform sampler3D u_volume;
-layout(binding = CG_UNIT_POSITION) uniform sampler2D u_position;
-layout(binding = CG_UNIT_NORMAL) uniform sampler2D u_normal;
-
-layout(binding = 0, rgba16f) writeonly uniform image2D u_radiance;
 #ifdef SPECULAR
 layout(binding = 1, rgba16f) writeonly uniform image2D u_specular;
 #endif
@@ -33,42 +27,39 @@ CG_UNIFORM_BLOCK(CgConeGather, cg_cone_gather_block, CG_BINDING_GATHER, CG_CONE_
 void
 main()
 {
-    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(pixel, imageSize(u_radiance))))
+    ivec2 pixel;
+    if (!cg_gather_pixel(pixel))
         return;
-    vec4 position = texelFetch(u_position, pixel, 0);
-    vec3 normal = texelFetch(u_normal, pixel, 0).xyz;
+    vec3 position, n;
     vec4 diffuse = vec4(0.0, 0.0, 0.0, 1.0);
     vec4 specular = vec4(0.0);
     float visibility = 1.0;
-    // Background pixels (w = 0) and a degenerate normal gather nothing.
-    if (position.w > 0.0 && dot(normal, normal) > 1e-12) {
+    if (cg_gather_surface(pixel, position, n)) {
         CgVolume v = cg_volume();
         CgMarch march = cg_cone_march();
-        vec3 n = normalize(normal);
         float t_max = cg_cone_reach(v, march.max_distance);
-        vec3 origin = cg_cone_origin(v, position.xyz, n, march.start_offset);
+        vec3 origin = cg_cone_origin(v, position, n, march.start_offset);
         mat3 frame = cg_tangent_frame(n);
         // The surface every cone leaves: no sample may read its voxels (cg_cone_trace_surface).
         vec4 surface = vec4(n, march.start_offset * v.voxel_size);
-        diffuse = cg_cone_gather_diffuse(u_volume, v, origin, frame, t_max, surface.w);
+        diffuse = cg_cone_gather_diffuse(cg_gather_volume, v, origin, frame, t_max, surface.w);
 #ifdef SPECULAR
-        vec3 view = normalize(position.xyz - cg_cone_gather_block.camera.xyz);
+        vec3 view = normalize(position - cg_cone_gather_block.camera.xyz);
         CgCone mirror = CgCone(origin, reflect(view, n), cg_cone_gather_block.tan_half.x, v.voxel_size, t_max,
                                march.step, march.lod_bias);
-        specular = cg_cone_trace_surface(u_volume, v, mirror, surface);
+        specular = cg_cone_trace_surface(cg_gather_volume, v, mirror, surface);
 #endif
 #ifdef SHADOW_CONE
         int light = cg_cone_gather_block.shadow.x;
         if (light >= 0 && uint(light) < cg_light_count()) {
-            CgLightSample s = cg_light_sample(cg_lights[light], position.xyz);
+            CgLightSample s = cg_light_sample(cg_lights[light], position);
             CgCone towards = CgCone(origin, s.to_light, cg_cone_gather_block.tan_half.y, v.voxel_size,
                                     min(t_max, s.distance), march.step, march.lod_bias);
-            visibility = 1.0 - cg_cone_trace_surface(u_volume, v, towards, surface).a;
+            visibility = 1.0 - cg_cone_trace_surface(cg_gather_volume, v, towards, surface).a;
         }
 #endif
     }
-    imageStore(u_radiance, pixel, diffuse);
+    imageStore(cg_gather_radiance, pixel, diffuse);
 #ifdef SPECULAR
     imageStore(u_specular, pixel, specular);
 #endif

@@ -21,21 +21,15 @@
 //   Mixed: 3D first, then 2D, in the same step (the paper's mix case).
 #version 450 core
 #include "common/cone_trace.glsl"
+#include "common/gather.glsl"
 #ifdef HAS_2D
 #include "common/heightmap.glsl"
 #include "common/hsat.glsl"
 #include "common/fitting_cube.glsl"
 #endif
 
-layout(local_size_x = 8, local_size_y = 8) in;
-
-layout(binding = CG_UNIT_VOLUME) uniform sampler3D u_volume;
-layout(binding = CG_UNIT_POSITION) uniform sampler2D u_position;
-layout(binding = CG_UNIT_NORMAL) uniform sampler2D u_normal;
 layout(binding = CG_UNIT_LIGHTMAP2D) uniform sampler2D u_lightmap;
 layout(binding = CG_UNIT_HSAT) uniform usampler2D u_hsat;
-
-layout(binding = 0, rgba16f) writeonly uniform image2D u_radiance;
 
 // The cone set and march: cg_cone_set_block (common/cone_trace.glsl); the hybrid's switches:
 CG_UNIFORM_BLOCK(CgHybridGather, cg_hybrid_gather_block, CG_BINDING_GATHER, CG_HYBRID_GATHER_BLOCK);
@@ -166,7 +160,7 @@ hybrid_trace(vec3 origin, vec3 dir, float tan_half, float t_start, float t_max, 
                 // the span the sample stood for, so that its coverage is exact (cg_cone_step).
                 vec3 centre = 0.5 * (lo + hi);
                 CgConeSample at = CgConeSample(centre, d, surface.w + dot(centre - origin, surface.xyz));
-                dt = cg_cone_step(u_volume, v, cone, surface, at, v.radiance_scale, acc);
+                dt = cg_cone_step(cg_gather_volume, v, cone, surface, at, v.radiance_scale, acc);
             }
         }
         // The height field fills everything below its surface: its box reaches down without
@@ -210,15 +204,12 @@ hybrid_trace(vec3 origin, vec3 dir, float tan_half, float t_start, float t_max, 
 void
 main()
 {
-    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    if (any(greaterThanEqual(pixel, imageSize(u_radiance))))
+    ivec2 pixel;
+    if (!cg_gather_pixel(pixel))
         return;
-    vec4 position = texelFetch(u_position, pixel, 0);
-    vec3 normal = texelFetch(u_normal, pixel, 0).xyz;
+    vec3 position, n;
     vec4 diffuse = vec4(0.0, 0.0, 0.0, 1.0);
-    // Background pixels (w = 0) and a degenerate normal gather nothing.
-    if (position.w > 0.0 && dot(normal, normal) > 1e-12) {
-        vec3 n = normalize(normal);
+    if (cg_gather_surface(pixel, position, n)) {
         mat3 frame = cg_tangent_frame(n);
         CgMarch march = cg_cone_march();
         diffuse = vec4(0.0);
@@ -227,7 +218,7 @@ main()
         CgHeightmap m = cg_heightmap();
         // The coarser of the two xels: off the surface's own voxels and texels (self-influence, VI.B).
         float xel = has_3d() ? max(v.voxel_size, cg_heightmap_xel(m)) : cg_heightmap_xel(m);
-        vec3 origin = position.xyz + n * (march.start_offset * xel);
+        vec3 origin = position + n * (march.start_offset * xel);
         vec4 surface = vec4(n, march.start_offset * xel);
         vec3 lo = vec3(m.origin.x, m.y_min, m.origin.y);
         vec3 hi = vec3(m.origin.x + m.texel.x * m.resolution, m.y_max, m.origin.y + m.texel.y * m.resolution);
@@ -242,9 +233,9 @@ main()
 #else
         // No 2D lightmap: the VCT gather, the very function cone_gather calls.
         CgVolume v = cg_volume();
-        diffuse = cg_cone_gather_diffuse(u_volume, v, cg_cone_origin(v, position.xyz, n, march.start_offset), frame,
+        diffuse = cg_cone_gather_diffuse(cg_gather_volume, v, cg_cone_origin(v, position, n, march.start_offset), frame,
                                          cg_cone_reach(v, march.max_distance), march.start_offset * v.voxel_size);
 #endif
     }
-    imageStore(u_radiance, pixel, diffuse);
+    imageStore(cg_gather_radiance, pixel, diffuse);
 }
