@@ -1,11 +1,12 @@
 /* passes/hybrid_gather: indirect light by hybrid cone tracing (hybrid paper VI, eq. 8-17)
  * through a 3D lightmap of the complex meshes and a 2D lightmap of the height-field meshes.
  *
- * A separate pass rather than a mode of cone_gather: the VCT gather stays as it is (its
- * author was still changing it), both share shaders/common/cone_trace.glsl and the cone
- * sets of passes/sdk/cone.c, and each shader reads as one method. Without the 2D branch
- * (a scene with no height field, where the graph culls heightmap_raster, mip2d and hsat)
- * the shader compiles without HAS_2D and runs the very VCT march of cone_gather.
+ * A separate pass rather than a mode of cone_gather, each shader reading as one method, but
+ * no copy of it: both take the 3D steps of shaders/common/cone_trace.glsl (cg_cone_step, here
+ * at the sample position of eq. 15) and share the pass SDK's cgp_gather (cone set, blocks,
+ * bindings). Without the 2D branch (a scene with no height field, where the graph culls
+ * heightmap_raster, mip2d and hsat) the shader compiles without HAS_2D and runs the very VCT
+ * gather of cone_gather.
  *
  * Inputs: position, normal (G-buffer, required); volume + region (mip3d'd voxelize radiance
  * and its block); lightmap + region2d (mip2d'd heightmap_raster lightmap and its block) and
@@ -36,7 +37,8 @@ static const fg_param_desc hybrid_gather_params[] = {
     {"step", FG_PARAM_FLOAT, 0.25, 0.05, 4, NULL, "step length as a fraction of the cone diameter"},
     {"start_offset", FG_PARAM_FLOAT, 1.5, 0, 16, NULL,
      "xels the cone origin is moved along the normal (the coarser of voxel and 2D texel)"},
-    {"lod_bias", FG_PARAM_FLOAT, -2, -4, 4, NULL, "added to the mip levels of hybrid eq. 8 (as cone_gather)"},
+    {"lod_bias", FG_PARAM_FLOAT, -2, -4, 4, NULL,
+     "added to the 3D lightmap's matched level (one below hybrid eq. 8, as cone_gather) and to the 2D lightmap's eq. 8"},
     {"max_distance", FG_PARAM_FLOAT, 0, 0, 1e9, NULL, "metres a cone travels at most; 0: the maps' diagonal"},
     {"cube", FG_PARAM_ENUM, CUBE_EQ11, 0, 0, "eq11|eq10",
      "fitting cube: eq. 11 for cones off the axes (eq. 10 on them, the paper), or eq. 10's inscribed cube always"},
@@ -89,8 +91,9 @@ hybrid_gather_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
                        "'hsat' and 'hsat_info' (an hsat pass's 'table' and 'info')", fg_pass_name(pass));
     if (region && !check_buffer(pass, region, "region", sizeof(cg_volume_block), "a voxelize 'region'", err))
         return false;
-    if (lightmap && (!check_buffer(pass, region2d, "region2d", sizeof(cg_heightmap_block), "a heightmap_raster 'region'", err) ||
-                     !check_buffer(pass, hsat_info, "hsat_info", sizeof(cg_hsat_info_block), "an hsat 'info'", err)))
+    if (lightmap &&
+        (!check_buffer(pass, region2d, "region2d", sizeof(cg_heightmap_block), "a heightmap_raster 'region'", err) ||
+         !check_buffer(pass, hsat_info, "hsat_info", sizeof(cg_hsat_info_block), "an hsat 'info'", err)))
         return false;
     if (lightmap && hsat && hsat->levels < lightmap->levels)
         return cg_fail(err, CG_ERR_GRAPH_INCOMPATIBLE,
@@ -134,7 +137,8 @@ hybrid_gather_execute(fg_pass *pass, hybrid_gather_state *s, cg_error *err)
     cgp_gather_begin(pass, &s->gather, &block, sizeof block, s->has_3d ? fg_texture(pass, "volume") : 0,
                      s->has_3d ? fg_buffer(pass, "region") : s->empty_block);
     glBindBufferBase(GL_UNIFORM_BUFFER, CG_BINDING_HEIGHTMAP, s->has_2d ? fg_buffer(pass, "region2d") : s->empty_block);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_HSAT, s->has_2d ? fg_buffer(pass, "hsat_info") : s->empty_block);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_HSAT,
+                     s->has_2d ? fg_buffer(pass, "hsat_info") : s->empty_block);
     glBindTextureUnit(CG_UNIT_LIGHTMAP2D, s->has_2d ? fg_texture(pass, "lightmap2d") : 0);
     glBindSampler(CG_UNIT_LIGHTMAP2D, s->map_sampler);
     glBindTextureUnit(CG_UNIT_HSAT, s->has_2d ? fg_texture(pass, "hsat") : 0);
@@ -150,6 +154,7 @@ CGP_PASS(hybrid_gather, CGP_PARAMS(hybrid_gather_params),
          "Indirect diffuse light by hybrid cone tracing (hybrid paper VI): per step an "
          "axis-aligned fitting cube (eq. 10-11) tested against the 3D lightmap's box (eq. 12) "
          "and the terrain's height range from HSAT (eq. 13-14, empty space skipped), the 3D "
-         "lightmap sampled at the intersection's centre (eq. 15) at the level of eq. 8, the 2D "
-         "lightmap walked by a DDA, occlusion by eq. 16 or 17. Cone weights integrate the "
-         "cosine lobe to 1. Without a 2D lightmap: the VCT march of cone_gather.");
+         "lightmap sampled at the intersection's centre (eq. 15) by cone_gather's step (matched "
+         "level of eq. 8, surface cap, coverage compositing), the 2D lightmap walked by a DDA, "
+         "occlusion by eq. 16 or 17. Cone weights integrate the cosine lobe to 1. Without a 2D "
+         "lightmap: the VCT march of cone_gather.");

@@ -186,8 +186,8 @@ voxelize_prepare(fg_pass *pass, voxelize_state *s, cg_error *err)
     return cgp_graphics_program(s, "voxelize/voxelize.vert", "voxelize/voxelize.geom", "voxelize/voxelize.frag", NULL,
                                 &s->program, err) &&
            cgp_compute_program(s, "voxelize/resolve.comp", defines, &s->resolve, err) &&
-           (s->format != GL_RGBA8 ||
-            cgp_compute_program(s, "voxelize/resolve.comp", "#define FORMAT rgba8\n#define FIND_MAX\n", &s->find_max, err));
+           (s->format != GL_RGBA8 || cgp_compute_program(s, "voxelize/resolve.comp",
+                                                         "#define FORMAT rgba8\n#define FIND_MAX\n", &s->find_max, err));
 }
 
 /* Squared distance from p to triangle abc (Ericson, Real-Time Collision Detection 5.1.5). */
@@ -353,7 +353,8 @@ voxelize_execute(fg_pass *pass, voxelize_state *s, cg_error *err)
     glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
 
     const cg_volume_block block = {
-        .origin_voxel = {(float)region.origin[0], (float)region.origin[1], (float)region.origin[2], (float)region.voxel},
+        .origin_voxel = {(float)region.origin[0], (float)region.origin[1], (float)region.origin[2],
+                         (float)region.voxel},
         .info = {(float)resolution, (float)fg_resource(pass, "radiance")->levels, (float)radiance_scale, 0.0f},
     };
     GLuint region_buffer = fg_buffer(pass, "region");

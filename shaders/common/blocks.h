@@ -85,7 +85,8 @@
     A(vec4, cones, CG_CONE_SET_MAX)       /* xyz: tangent-space direction (z = normal), w: weight W_k */ \
     A(vec4, apertures, CG_CONE_SET_MAX)   /* x: tan of the half apex angle */                     \
     M(ivec4, count)                       /* x: cones in the set */                               \
-    M(vec4, march)        /* x step (fraction of the diameter), y start offset (xels), z max distance (m; <= 0: the maps' diagonal), w lod bias */
+    M(vec4, march)        /* x step (fraction of the diameter), y start offset (xels), */        \
+                          /* z max distance (m; <= 0: the maps' diagonal), w lod bias */
 
 /* cone_gather's specular and shadow cones; 48 bytes. */
 #define CG_CONE_GATHER_BLOCK(M, A)                                                                \

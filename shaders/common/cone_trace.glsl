@@ -2,16 +2,17 @@
 //
 // Provides: CgCone, CgMarch, cg_cone_set_block, cg_cone_march(), cg_cone_count(), cg_cone_direction(),
 //           cg_cone_tan_half(), cg_cone_accumulate(), cg_cone_trace(), cg_cone_lod(), cg_cone_origin(),
-//           cg_cone_reach(), CgConeSample, cg_cone_step(), cg_cone_trace_surface(),
-//           cg_cone_gather_diffuse(), cg_tangent_frame().
+//           cg_cone_reach(), CgConeSample, cg_cone_composite(), cg_cone_composite_span(), cg_cone_step(),
+//           cg_cone_trace_surface(), cg_cone_gather_diffuse(), cg_tangent_frame().
 //
 // VCT paper 3.2 (after Crassin et al. 2011): the cone's footprint at distance t has the
 // diameter d = 2 t tan(half angle); the sample is read from the mip level whose voxels
-// are d wide (hybrid eq. 8: Lv = log2(d / voxel size)) and composited front to back,
-//     c += (1 - a) * alpha_s * c_s,   a += (1 - a) * alpha_s,
-// where the volume stores premultiplied colour (alpha_s * c_s), so it is added as read.
-// The march stops when a reaches CG_CONE_OPAQUE, past t_max, or once the footprint has
-// left the volume (VCT paper 3.2.1). hybrid_gather's 3D steps (its Case 1) are cg_cone_step(),
+// are about d wide (hybrid eq. 8: Lv = log2(d / voxel size); cg_cone_level: one finer) and
+// composited front to back; the paper's rule is c += (1 - a) * alpha_s * c_s,
+// a += (1 - a) * alpha_s (cg_cone_composite), the march adds coverage over the path length a
+// sample stands for instead (cg_cone_composite_span, exact for walls). The volume stores
+// premultiplied colour (alpha_s * c_s). The march stops when a reaches CG_CONE_OPAQUE, past
+// t_max, or once the footprint has left the volume (VCT paper 3.2.1). hybrid_gather's 3D steps (its Case 1) are cg_cone_step(),
 // the very step of this march, and its gather is cg_cone_accumulate(), as cg_cone_gather_diffuse().
 #ifndef CG_COMMON_CONE_TRACE_GLSL
 #define CG_COMMON_CONE_TRACE_GLSL

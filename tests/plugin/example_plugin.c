@@ -3,7 +3,8 @@
  *
  * It registers `example_fill`, which fills a 2D RGBA16F output with a colour. Built a second
  * time with EXAMPLE_PLUGIN_ABI set to another value, it stands for a plugin built against an
- * older or newer cg/fg.h, which the host must refuse with CG_ERR_PLUGIN_ABI. */
+ * older or newer cg/fg.h, which the host must refuse with CG_ERR_PLUGIN_ABI. It uses the pass SDK
+ * (sdk/pass.h) as the built-in passes do; docs/architecture.md walks through it. */
 #include <stdbool.h>
 #include <stdint.h>
 
@@ -27,13 +28,9 @@ fill_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
 {
     (void)err;
     const fg_frame *frame = fg_pass_frame(pass);
-    fg_resource_desc desc = { 0 };
-    desc.kind = FG_TEXTURE_2D;
-    desc.format = GL_RGBA16F;
-    desc.width = fg_param_int(pass, "width") ? fg_param_int(pass, "width") : frame->width;
-    desc.height = fg_param_int(pass, "height") ? fg_param_int(pass, "height") : frame->height;
-    desc.depth = 1;
-    desc.levels = 1;
+    int width = fg_param_int(pass, "width"), height = fg_param_int(pass, "height");
+    /* A single-level 2D texture (sdk/pass.h); 0 means the output image's size. */
+    fg_resource_desc desc = cgp_image_2d(GL_RGBA16F, width ? width : frame->width, height ? height : frame->height);
     fg_declare_output(decl, "color", &desc, FG_ACCESS_TRANSFER);
     return true;
 }
