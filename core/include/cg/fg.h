@@ -35,7 +35,7 @@
 #include "cg/scene.h"
 
 /* Bumped whenever fg_pass_type or any function a pass calls changes incompatibly. */
-#define FG_ABI_VERSION 1u
+#define FG_ABI_VERSION 2u  /* 2: cg_gpu_scene lost the no-shadow fallback (now the pass SDK's) */
 
 /* ---------------------------------------------------------------- parameters */
 
