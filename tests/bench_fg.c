@@ -23,9 +23,12 @@
 #define RUNS 31
 
 static const fg_param_desc bench_params[] = {
-    { "inputs", FG_PARAM_INT, 0, 0, 3, NULL, "number of inputs in0..in2 (sampled)" },
-    { "format", FG_PARAM_ENUM, 0, 0, 0, "rgba16f|r32f|rgba8", "format of the output" },
-    { "store", FG_PARAM_BOOL, 0, 0, 1, NULL, "write the output with image stores (else as an attachment)" },
+    { .name = "inputs", .type = FG_PARAM_INT, .min = 0, .max = 3,
+      .doc = "number of inputs in0..in2 (sampled)" },
+    { .name = "format", .type = FG_PARAM_ENUM, .choices = "rgba16f|r32f|rgba8",
+      .doc = "format of the output" },
+    { .name = "store", .type = FG_PARAM_BOOL,
+      .doc = "write the output with image stores (else as an attachment)" },
 };
 
 static bool

@@ -6,14 +6,27 @@
 #include <string.h>
 
 static const fg_param_desc test_params[] = {
-    { "inputs", FG_PARAM_STRING, 0, 0, 0, "", "input slots: NAME:KIND:ACCESS[:opt] ..." },
-    { "outputs", FG_PARAM_STRING, 0, 0, 0, "", "outputs: NAME:KIND:FORMAT:SIZE:ACCESS[:persistent][:gi][:mips] ..." },
-    { "nothing", FG_PARAM_BOOL, 0, 0, 1, NULL, "declare that there is nothing to do" },
-    { "value", FG_PARAM_FLOAT, 0, -1e6, 1e6, NULL, "value execute() clears colour outputs to" },
-    { "cones", FG_PARAM_ENUM, 1, 0, 0, "1|6|9|16", "number of cones (validation tests only)" },
-    { "resolution", FG_PARAM_INT, 64, 1, 4096, NULL, "a resolution (validation tests only)" },
-    { "scale", FG_PARAM_FLOAT, 0.5, 0, 1, NULL, "a fraction (validation tests only)" },
-    { "label", FG_PARAM_STRING, 0, 0, 0, "none", "a label (validation tests only)" },
+    { .name = "inputs", .type = FG_PARAM_STRING, .choices = "",
+      .doc = "input slots: NAME:KIND:ACCESS[:opt] ..." },
+    { .name = "outputs", .type = FG_PARAM_STRING, .choices = "",
+      .doc = "outputs: NAME:KIND:FORMAT:SIZE:ACCESS[:persistent][:gi][:mips] ..." },
+    { .name = "nothing", .type = FG_PARAM_BOOL, .doc = "declare that there is nothing to do" },
+    { .name = "value", .type = FG_PARAM_FLOAT, .min = -1e6, .max = 1e6,
+      .doc = "value execute() clears colour outputs to" },
+    /* For the validation tests only: */
+    { .name = "cones", .type = FG_PARAM_INT, .default_value = 6, .min = 1, .max = 16,
+      .allowed = FG_PARAM_VALUES(1, 6, 9, 16), .doc = "number of cones" },
+    { .name = "resolution", .type = FG_PARAM_INT, .default_value = 64, .min = 1, .max = 4096,
+      .power_of_two = true, .doc = "a resolution" },
+    { .name = "scale", .type = FG_PARAM_FLOAT, .default_value = 0.5, .min = 0, .max = 1, .doc = "a fraction" },
+    { .name = "label", .type = FG_PARAM_STRING, .choices = "none", .doc = "a label" },
+    { .name = "bounded", .type = FG_PARAM_BOOL, .doc = "whether low and high apply" },
+    { .name = "low", .type = FG_PARAM_FLOAT, .min = -100, .max = 100, .active_when = "bounded",
+      .doc = "lower end" },
+    { .name = "high", .type = FG_PARAM_FLOAT, .default_value = 1, .min = -100, .max = 100,
+      .active_when = "bounded", .greater_than = { .param = "low" }, .doc = "upper end, above low" },
+    { .name = "margin", .type = FG_PARAM_FLOAT, .min = 0, .max = 100,
+      .less_than = { .param = "resolution", .scale = 0.25 }, .doc = "below a quarter of the resolution" },
 };
 
 static const struct {

@@ -10,8 +10,11 @@
  *            "frame" (the output image), or BYTES for buffers; mips = full chain
  *   nothing  declare nothing to do
  *   value    what execute() clears every 2D/3D colour output to (RGBA)
- *   cones    enum 1|6|9|16, resolution int [1, 4096], scale float [0, 1], label string:
- *            only for parameter validation tests
+ *   for parameter validation tests only:
+ *   cones    int 1, 6, 9 or 16 (allowed values); resolution int 1..4096, a power of two;
+ *   scale    float [0, 1]; label string;
+ *   bounded  bool; low, high floats [-100, 100] that matter only while bounded, high > low;
+ *   margin   float [0, 100], below 0.25 x resolution
  * execute() clears each colour texture output to `value` with glClearTexImage and counts
  * its calls in the pass state (an int).
  */

@@ -110,6 +110,146 @@ bad_input_exits_with_2(void **state)
     assert_non_null(strstr(out, "usage: conegraph bench"));
 }
 
+static bool
+exists(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0;
+}
+
+/* A sweep whose last setting or last scene is bad exits 2 before it renders anything (no
+ * reference, no setting) and before it makes the output or cache directory: every setting is
+ * compiled on every scene first. The output names what it would have rendered first. */
+static void
+one_bad_setting_renders_and_writes_nothing(void **state)
+{
+    (void)state;
+    static char out[1 << 16];
+    char args[16384], out_dir[4200], cache_dir[4200];
+    const char *dir = cg_test_tmpdir();
+    snprintf(out_dir, sizeof out_dir, "%s/first/out", dir);
+    snprintf(cache_dir, sizeof cache_dir, "%s/first/cache", dir);
+    const char *cases[] = {
+        /* A value the parameter table takes but the pass refuses when it declares (compile). */
+        "--scene builtin:cornell --graph direct.json --graph vct.json --vary gather.cones=6,7",
+        /* An unknown parameter in the last of several settings. */
+        "--scene builtin:cornell --graph direct.json --graph vct.json --set gather.nosuchparam=1",
+        /* A bad second scene. */
+        "--scene builtin:cornell --scene builtin:nosuchscene --graph direct.json",
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        snprintf(args, sizeof args, "bench %s --out '%s' --cache '%s'", cases[i], out_dir, cache_dir);
+        int code = run(args, out, sizeof out);
+        if (code != 2)
+            fail_msg("'%s' exited with %d, expected 2:\n%s", cases[i], code, out);
+        assert_null(strstr(out, "rendering the reference"));
+        assert_null(strstr(out, "path_trace"));
+        assert_false(exists(out_dir));
+        assert_false(exists(cache_dir));
+    }
+}
+
+/* The fields of one CSV line (quoted fields unquoted, "" inside them as "); returns the count. */
+static int
+csv_fields(const char *line, char fields[][512], int max)
+{
+    int n = 0;
+    const char *p = line;
+    while (n < max) {
+        size_t len = 0;
+        if (*p == '"') {
+            for (p++; *p && !(*p == '"' && p[1] != '"'); p++) {
+                if (*p == '"')
+                    p++;
+                if (len + 1 < 512)
+                    fields[n][len++] = *p;
+            }
+            if (*p == '"')
+                p++;
+        } else {
+            for (; *p && *p != ',' && *p != '\n'; p++)
+                if (len + 1 < 512)
+                    fields[n][len++] = *p;
+        }
+        fields[n++][len] = '\0';
+        if (*p != ',')
+            break;
+        p++;
+    }
+    return n;
+}
+
+/* A sweep run as two shards and merged gives the table of one unsharded run: the same rows in
+ * the same order with the same images' figures (times differ from run to run and are left out:
+ * ms, pass_ms, the speed-up and the Pareto flags). Merging refuses a missing shard and shards
+ * of another sweep. */
+static void
+shards_merge_into_the_unsharded_table(void **state)
+{
+    (void)state;
+    static char out[1 << 16];
+    char args[16384], path[4200];
+    const char *dir = cg_test_tmpdir();
+    const char *sweep = "--scene builtin:cornell --scene builtin:furnace --graph direct.json "
+                        "--vary shadow.resolution=256,512 --size 24x16 --ref-spp 2 --pt-spp 1,2 --frames 1 --warmup 0";
+    snprintf(args, sizeof args, "bench %s --out '%s/whole' --cache '%s/shared-cache'", sweep, dir, dir);
+    int code = run(args, out, sizeof out);
+    if (code != 0)
+        fail_msg("bench exited with %d:\n%s", code, out);
+    for (int k = 1; k <= 2; k++) {
+        snprintf(args, sizeof args, "bench %s --shard %d/2 --out '%s/shard%d' --cache '%s/shared-cache'", sweep, k,
+                 dir, k, dir);
+        code = run(args, out, sizeof out);
+        if (code != 0)
+            fail_msg("shard %d exited with %d:\n%s", k, code, out);
+        snprintf(path, sizeof path, "%s/shard%d/bench.csv", dir, k);
+        assert_false(exists(path));     /* a shard's table waits for the merge */
+    }
+    snprintf(args, sizeof args, "bench %s --merge '%s/shard2' '%s/shard1' --out '%s/merged'", sweep, dir, dir, dir);
+    code = run(args, out, sizeof out);
+    if (code != 0)
+        fail_msg("merge exited with %d:\n%s", code, out);
+
+    static char whole[1 << 14], merged[1 << 14];
+    snprintf(path, sizeof path, "%s/whole/bench.csv", dir);
+    FILE *a = fopen(path, "r");
+    snprintf(path, sizeof path, "%s/merged/bench.csv", dir);
+    FILE *b = fopen(path, "r");
+    assert_non_null(a);
+    assert_non_null(b);
+    int lines = 0;
+    static char fa[32][512], fb[32][512];
+    while (fgets(whole, sizeof whole, a)) {
+        assert_non_null(fgets(merged, sizeof merged, b));
+        int na = csv_fields(whole, fa, 32), nb = csv_fields(merged, fb, 32);
+        assert_int_equal(na, 23);
+        assert_int_equal(nb, 23);
+        /* scene .. params, gi_bytes .. indirect_lum_ratio */
+        for (int f = 0; f < 19; f++)
+            if (f != 5 && f != 6)
+                assert_string_equal(fa[f], fb[f]);
+        lines++;
+    }
+    assert_null(fgets(merged, sizeof merged, b));
+    fclose(a);
+    fclose(b);
+    assert_int_equal(lines, 1 + 2 * (2 + 2));    /* header; per scene 2 path tracer rows, 2 settings */
+    snprintf(path, sizeof path, "%s/merged/builtin-furnace-time.png", dir);
+    assert_true(exists(path));
+
+    snprintf(args, sizeof args, "bench %s --merge '%s/shard1' --out '%s/half'", sweep, dir, dir);
+    assert_int_equal(run(args, out, sizeof out), 2);
+    assert_non_null(strstr(out, "shard 2/2 is missing"));
+    snprintf(args, sizeof args, "bench %s --frames 2 --merge '%s/shard1' '%s/shard2' --out '%s/other'", sweep, dir,
+             dir, dir);
+    assert_int_equal(run(args, out, sizeof out), 2);
+    assert_non_null(strstr(out, "of another sweep"));
+    snprintf(path, sizeof path, "%s/other", dir);
+    assert_false(exists(path));
+    assert_int_equal(run("bench --shard 3/2", out, sizeof out), 2);
+    assert_int_equal(run("bench --shard 1/2 --merge x", out, sizeof out), 2);
+}
+
 int
 main(void)
 {
@@ -117,6 +257,8 @@ main(void)
         cmocka_unit_test(sweep_runs_and_caches_the_reference),
         cmocka_unit_test(sweep_file),
         cmocka_unit_test(bad_input_exits_with_2),
+        cmocka_unit_test(one_bad_setting_renders_and_writes_nothing),
+        cmocka_unit_test(shards_merge_into_the_unsharded_table),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

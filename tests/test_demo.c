@@ -14,15 +14,28 @@
 #include "cg/graphfile.h"
 #include "test_support.h"
 
-static const fg_param_desc cones = { "cones", FG_PARAM_INT, 6, 1, 16, NULL, "cones" };
-static const fg_param_desc resolution = { "resolution", FG_PARAM_INT, 128, 16, 512, NULL, "voxels" };
-static const fg_param_desc light = { "light", FG_PARAM_INT, -1, -1, 65535, NULL, "light index" };
-static const fg_param_desc exposure = { "exposure", FG_PARAM_FLOAT, 0, -20, 20, NULL, "EV" };
-static const fg_param_desc step = { "step", FG_PARAM_FLOAT, 0.25, 0.05, 4, NULL, "step" };
-static const fg_param_desc distance = { "max_distance", FG_PARAM_FLOAT, 0, 0, 1e9, NULL, "metres" };
-static const fg_param_desc flag = { "specular", FG_PARAM_BOOL, 0, 0, 1, NULL, "mirror cone" };
-static const fg_param_desc tonemap = { "tonemap", FG_PARAM_ENUM, 2, 0, 0, "none|reinhard|aces", "tonemap" };
-static const fg_param_desc text = { "name", FG_PARAM_STRING, 0, 0, 0, "x", "a string" };
+static const fg_param_desc cones = { .name = "cones", .type = FG_PARAM_INT, .default_value = 6, .min = 1,
+                                     .max = 16, .allowed = FG_PARAM_VALUES(1, 6, 9, 16), .doc = "cones" };
+static const fg_param_desc resolution = { .name = "resolution", .type = FG_PARAM_INT, .default_value = 128,
+                                          .min = 16, .max = 512, .power_of_two = true, .doc = "voxels" };
+static const fg_param_desc samples = { .name = "spp", .type = FG_PARAM_INT, .default_value = 64, .min = 1,
+                                       .max = 65536, .step_doubles = true, .doc = "samples" };
+static const fg_param_desc count = { .name = "threads", .type = FG_PARAM_INT, .min = 0, .max = 256,
+                                     .doc = "threads" };
+static const fg_param_desc light = { .name = "light", .type = FG_PARAM_INT, .default_value = -1, .min = -1,
+                                     .max = 65535, .doc = "light index" };
+static const fg_param_desc exposure = { .name = "exposure", .type = FG_PARAM_FLOAT, .min = -20, .max = 20,
+                                        .doc = "EV" };
+static const fg_param_desc aperture = { .name = "aperture", .type = FG_PARAM_FLOAT, .min = 0, .max = 150,
+                                        .step = 5, .doc = "degrees" };
+static const fg_param_desc step = { .name = "step", .type = FG_PARAM_FLOAT, .default_value = 0.25, .min = 0.05,
+                                    .max = 4, .doc = "step" };
+static const fg_param_desc distance = { .name = "max_distance", .type = FG_PARAM_FLOAT, .min = 0, .max = 1e9,
+                                        .doc = "metres" };
+static const fg_param_desc flag = { .name = "specular", .type = FG_PARAM_BOOL, .doc = "mirror cone" };
+static const fg_param_desc tonemap = { .name = "tonemap", .type = FG_PARAM_ENUM, .default_value = 2,
+                                       .choices = "none|reinhard|aces", .doc = "tonemap" };
+static const fg_param_desc text = { .name = "name", .type = FG_PARAM_STRING, .choices = "x", .doc = "a string" };
 
 /* One step from `value`; fails the test when there is none. */
 static double
@@ -46,23 +59,41 @@ static void
 test_step_int(void **state)
 {
     (void)state;
-    assert_true(stepped(&cones, 6, 1) == 7);
-    assert_true(stepped(&cones, 6, -1) == 5);
+    /* Allowed values: exactly those, both ways; the ends stop the keys. */
+    assert_true(stepped(&cones, 6, 1) == 9);
+    assert_true(stepped(&cones, 9, 1) == 16);
+    assert_true(stepped(&cones, 16, -1) == 9);
+    assert_true(stepped(&cones, 9, -1) == 6);
+    assert_true(stepped(&cones, 6, -1) == 1);
     assert_no_step(&cones, 16, 1);
     assert_no_step(&cones, 1, -1);
-    /* A wide range starting below 1 (an index) still steps by one. */
+    /* A plain int range steps by one, also from below 1 (an index). */
+    assert_true(stepped(&count, 0, 1) == 1);
+    assert_true(stepped(&count, 7, -1) == 6);
+    assert_no_step(&count, 256, 1);
     assert_true(stepped(&light, -1, 1) == 0);
     assert_no_step(&light, -1, -1);
-    /* Resolutions double and halve; the bounds stop them. */
+    /* Powers of two: the next power of two in the range, from any value. */
     assert_true(stepped(&resolution, 128, 1) == 256);
+    assert_true(stepped(&resolution, 256, 1) == 512);
     assert_true(stepped(&resolution, 128, -1) == 64);
     assert_true(stepped(&resolution, 300, 1) == 512);
+    assert_true(stepped(&resolution, 300, -1) == 256);
     assert_true(stepped(&resolution, 17, -1) == 16);
-    assert_true(stepped(&resolution, 25, -1) == 16);
+    assert_true(stepped(&resolution, 17, 1) == 32);
     assert_no_step(&resolution, 512, 1);
     assert_no_step(&resolution, 16, -1);
-    assert_true(demo_param_step_size(&cones, 6) == 1);
+    /* step_doubles: doubled and halved, the bounds stop it. */
+    assert_true(stepped(&samples, 64, 1) == 128);
+    assert_true(stepped(&samples, 64, -1) == 32);
+    assert_true(stepped(&samples, 3, -1) == 1);
+    assert_true(stepped(&samples, 40000, 1) == 65536);
+    assert_no_step(&samples, 1, -1);
+    assert_no_step(&samples, 65536, 1);
+    assert_true(demo_param_step_size(&count, 6) == 1);
+    assert_true(demo_param_step_size(&cones, 6) == 0);
     assert_true(demo_param_step_size(&resolution, 128) == 0);
+    assert_true(demo_param_step_size(&samples, 64) == 0);
 }
 
 static void
@@ -87,6 +118,13 @@ test_step_float(void **state)
     assert_true(fabs(stepped(&step, (float)0.05, 1) - 0.1) < 1e-12);
     assert_no_step(&step, (float)0.05, -1);
     assert_no_step(&step, 4, 1);
+    /* The table's step hint, on its grid. */
+    assert_true(demo_param_step_size(&aperture, 0) == 5);
+    assert_true(stepped(&aperture, 0, 1) == 5);
+    assert_true(stepped(&aperture, 12, 1) == 15);
+    assert_true(stepped(&aperture, 12, -1) == 10);
+    assert_true(stepped(&aperture, 148, 1) == 150);
+    assert_no_step(&aperture, 0, -1);
     /* A range wider than 1000: about a quarter of the value, at least 0.2. */
     assert_true(demo_param_step_size(&distance, 0) == 0.2);
     assert_true(fabs(stepped(&distance, 0, 1) - 0.2) < 1e-12);
@@ -116,8 +154,8 @@ test_format(void **state)
 {
     (void)state;
     char out[64];
-    demo_param_format(&cones, 7, out, sizeof out);
-    assert_string_equal(out, "7");
+    demo_param_format(&cones, 9, out, sizeof out);
+    assert_string_equal(out, "9");
     demo_param_format(&step, 0.35000000000000003, out, sizeof out);
     assert_string_equal(out, "0.35");
     demo_param_format(&exposure, -0.5, out, sizeof out);
@@ -207,6 +245,42 @@ select_param(const fg_graph *graph, demo_selection *sel, const char *pass, const
     fail_msg("%s.%s not reached with Tab and Down", pass, param);
 }
 
+static const fg_param_desc *
+desc_of(const fg_pass *pass, const char *name)
+{
+    const fg_pass_type *type = fg_pass_type_of(pass);
+    for (int i = 0; i < type->param_count; i++)
+        if (!strcmp(type->params[i].name, name))
+            return &type->params[i];
+    fail_msg("%s has no parameter %s", type->name, name);
+    return NULL;
+}
+
+/* The selected parameter's line: the values as `conegraph passes` lists them, the stepping,
+ * the dependencies and whether they hold now. */
+static void
+test_describe(void **state)
+{
+    (void)state;
+    fg_registry *registry;
+    fg_graph *graph = load_graph("vct.json", &registry);
+    cg_error err = { 0 };
+    fg_pass *gather = fg_graph_find_pass(graph, "gather"), *vox = fg_graph_find_pass(graph, "vox");
+    char line[1024];
+    demo_param_describe(gather, desc_of(gather, "cones"), line, sizeof line);
+    assert_true(!strncmp(line, "gather.cones = 6 (int 1, 6, 9, 16): diffuse cones", 49));
+    demo_param_describe(vox, desc_of(vox, "resolution"), line, sizeof line);
+    assert_true(!strncmp(line, "vox.resolution = 128 (int 16..512, power of two): ", 50));
+    demo_param_describe(gather, desc_of(gather, "roughness"), line, sizeof line);
+    assert_non_null(strstr(line, "gather.roughness = 0.3 (float 0..1, step 0.05; only with specular = true: "
+                                 "inactive now): "));
+    assert_cg_ok(fg_graph_set_param(graph, "gather", "specular", "true", NULL, &err), &err);
+    demo_param_describe(gather, desc_of(gather, "roughness"), line, sizeof line);
+    assert_non_null(strstr(line, "(float 0..1, step 0.05; only with specular = true): "));
+    fg_graph_destroy(graph);
+    fg_registry_destroy(registry);
+}
+
 /* Left/Right go through fg_graph_set_param: the graph holds the new value, the old text
  * comes back for undoing, and the ends of the range stop the keys. */
 static void
@@ -223,11 +297,34 @@ test_adjust(void **state)
     assert_cg_ok(demo_adjust(graph, &sel, 1, &changed, previous, sizeof previous, &err), &err);
     assert_true(changed);
     assert_string_equal(previous, "6");
-    assert_int_equal(fg_param_int(fg_graph_find_pass(graph, "gather"), "cones"), 7);
-    assert_cg_ok(fg_graph_set_param(graph, "gather", "cones", "16", NULL, &err), &err);
+    assert_int_equal(fg_param_int(fg_graph_find_pass(graph, "gather"), "cones"), 9);
+    assert_cg_ok(demo_adjust(graph, &sel, 1, &changed, previous, sizeof previous, &err), &err);
+    assert_int_equal(fg_param_int(fg_graph_find_pass(graph, "gather"), "cones"), 16);
     assert_cg_ok(demo_adjust(graph, &sel, 1, &changed, previous, sizeof previous, &err), &err);
     assert_false(changed);
     assert_int_equal(fg_param_int(fg_graph_find_pass(graph, "gather"), "cones"), 16);
+    for (int i = 0; i < 2; i++)
+        assert_cg_ok(demo_adjust(graph, &sel, -1, &changed, previous, sizeof previous, &err), &err);
+    assert_int_equal(fg_param_int(fg_graph_find_pass(graph, "gather"), "cones"), 6);
+
+    select_param(graph, &sel, "vox", "resolution");
+    assert_cg_ok(demo_adjust(graph, &sel, 1, &changed, previous, sizeof previous, &err), &err);
+    assert_string_equal(previous, "128");
+    assert_int_equal(fg_param_int(fg_graph_find_pass(graph, "vox"), "resolution"), 256);
+
+    /* A step that breaks a dependency (padding below a quarter of the resolution) is
+     * refused by the table, without a compile, and leaves the value as it was. */
+    assert_cg_ok(fg_graph_set_param(graph, "vox", "resolution", "16", NULL, &err), &err);
+    assert_cg_ok(fg_graph_set_param(graph, "vox", "padding", "3.8", NULL, &err), &err);
+    select_param(graph, &sel, "vox", "padding");
+    assert_cg_status(demo_adjust(graph, &sel, 1, &changed, previous, sizeof previous, &err), &err,
+                     CG_ERR_GRAPH_PARAM_RANGE);
+    assert_false(changed);
+    assert_non_null(strstr(err.message, "vox.padding = 4; expected less than 0.25 x resolution = 4"));
+    assert_float_equal(fg_param_float(fg_graph_find_pass(graph, "vox"), "padding"), 3.8f, 1e-6);
+    cg_error_clear(&err);
+    assert_cg_ok(demo_adjust(graph, &sel, -1, &changed, previous, sizeof previous, &err), &err);
+    assert_true(changed);
 
     select_param(graph, &sel, "final", "tonemap");
     assert_cg_ok(demo_adjust(graph, &sel, 1, &changed, previous, sizeof previous, &err), &err);
@@ -282,6 +379,41 @@ test_every_table_steps_validly(void **state)
         }
     }
     assert_true(checked > 40);
+
+    /* Walking up from the bottom of the range visits exactly the table's list: the allowed
+     * values, or every power of two in the range; and walking down visits it backwards. */
+    int walked = 0;
+    for (int t = 0; t < fg_registry_count(registry); t++) {
+        const fg_pass_type *type = fg_registry_at(registry, t);
+        for (int i = 0; i < type->param_count; i++) {
+            const fg_param_desc *desc = &type->params[i];
+            if (desc->allowed.count == 0 && !desc->power_of_two)
+                continue;
+            double expected[64] = { 0 };
+            int n = 0;
+            if (desc->allowed.count > 0)
+                for (int k = 0; k < desc->allowed.count && n < 64; k++)
+                    expected[n++] = desc->allowed.values[k];
+            else
+                for (double v = desc->min; v <= desc->max && n < 64; v *= 2)
+                    expected[n++] = v;
+            double v = expected[0];
+            for (int k = 1; k < n; k++) {
+                assert_true(demo_param_step(desc, v, 1, &v));
+                if (v != expected[k])
+                    fail_msg("%s.%s: step up %d gave %g, expected %g", type->name, desc->name, k, v, expected[k]);
+            }
+            assert_no_step(desc, v, 1);
+            for (int k = n - 2; k >= 0; k--) {
+                assert_true(demo_param_step(desc, v, -1, &v));
+                if (v != expected[k])
+                    fail_msg("%s.%s: step down gave %g, expected %g", type->name, desc->name, v, expected[k]);
+            }
+            assert_no_step(desc, v, -1);
+            walked++;
+        }
+    }
+    assert_true(walked >= 4); /* cones of both gathers, voxelize and heightmap_raster resolutions */
     fg_graph_destroy(graph);
     fg_registry_destroy(registry);
 }
@@ -394,6 +526,7 @@ main(void)
         cmocka_unit_test(test_step_bool_enum_string),
         cmocka_unit_test(test_format),
         cmocka_unit_test(test_selection),
+        cmocka_unit_test(test_describe),
         cmocka_unit_test(test_adjust),
         cmocka_unit_test(test_every_table_steps_validly),
         cmocka_unit_test(test_camera),

@@ -92,16 +92,82 @@ order_names(fixture *f)
 static bool noop_declare(fg_pass *p, fg_declare *d, cg_error *e) { (void)p; (void)d; (void)e; return true; }
 static bool noop_execute(fg_pass *p, void *s, cg_error *e) { (void)p; (void)s; (void)e; return true; }
 
+/* Tables whose constraints fg_registry_add must refuse, one fault each. */
+static const fg_param_desc bad_constraints[][2] = {
+    /* default not among the allowed values */
+    { { .name = "n", .type = FG_PARAM_INT, .default_value = 2, .max = 16, .allowed = FG_PARAM_VALUES(1, 6),
+        .doc = "n" } },
+    /* an allowed value outside the range, or not increasing, or fractional for an int */
+    { { .name = "n", .type = FG_PARAM_INT, .default_value = 1, .max = 16, .allowed = FG_PARAM_VALUES(1, 32),
+        .doc = "n" } },
+    { { .name = "n", .type = FG_PARAM_INT, .default_value = 1, .max = 16, .allowed = FG_PARAM_VALUES(6, 1),
+        .doc = "n" } },
+    { { .name = "n", .type = FG_PARAM_INT, .default_value = 1, .max = 16, .allowed = FG_PARAM_VALUES(1, 1.5),
+        .doc = "n" } },
+    /* a list without a count */
+    { { .name = "n", .type = FG_PARAM_INT, .default_value = 1, .max = 16,
+        .allowed = { (const double[]){ 1 }, 0 }, .doc = "n" } },
+    /* power of two: bounds, default, type */
+    { { .name = "n", .type = FG_PARAM_INT, .default_value = 16, .min = 10, .max = 512, .power_of_two = true,
+        .doc = "n" } },
+    { { .name = "n", .type = FG_PARAM_INT, .default_value = 24, .min = 16, .max = 512, .power_of_two = true,
+        .doc = "n" } },
+    { { .name = "n", .type = FG_PARAM_FLOAT, .default_value = 16, .min = 16, .max = 512, .power_of_two = true,
+        .doc = "n" } },
+    /* step hints: on a bool, negative, wider than the range, with a list, doubling from 0 */
+    { { .name = "b", .type = FG_PARAM_BOOL, .step = 1, .doc = "b" } },
+    { { .name = "x", .type = FG_PARAM_FLOAT, .max = 1, .step = -0.1, .doc = "x" } },
+    { { .name = "x", .type = FG_PARAM_FLOAT, .max = 1, .step = 2, .doc = "x" } },
+    { { .name = "n", .type = FG_PARAM_INT, .default_value = 1, .max = 16, .allowed = FG_PARAM_VALUES(1, 6),
+        .step = 5, .doc = "n" } },
+    { { .name = "n", .type = FG_PARAM_INT, .max = 16, .step_doubles = true, .doc = "n" } },
+    /* active_when: naming nothing, itself, a non-bool bare, a value the other does not take */
+    { { .name = "x", .type = FG_PARAM_FLOAT, .max = 1, .active_when = "ghost", .doc = "x" } },
+    { { .name = "x", .type = FG_PARAM_FLOAT, .max = 1, .active_when = "x", .doc = "x" } },
+    { { .name = "x", .type = FG_PARAM_FLOAT, .max = 1, .active_when = "m", .doc = "x" },
+      { .name = "m", .type = FG_PARAM_ENUM, .choices = "a|b", .doc = "m" } },
+    { { .name = "x", .type = FG_PARAM_FLOAT, .max = 1, .active_when = "m=a|c", .doc = "x" },
+      { .name = "m", .type = FG_PARAM_ENUM, .choices = "a|b", .doc = "m" } },
+    /* bounds: naming nothing, a non-number, a negative scale, a default that breaks them */
+    { { .name = "x", .type = FG_PARAM_FLOAT, .max = 1, .less_than = { .param = "ghost" }, .doc = "x" } },
+    { { .name = "x", .type = FG_PARAM_FLOAT, .max = 1, .less_than = { .param = "m" }, .doc = "x" },
+      { .name = "m", .type = FG_PARAM_ENUM, .choices = "a|b", .doc = "m" } },
+    { { .name = "x", .type = FG_PARAM_FLOAT, .max = 1, .less_than = { .param = "y", .scale = -1 }, .doc = "x" },
+      { .name = "y", .type = FG_PARAM_FLOAT, .default_value = 1, .max = 1, .doc = "y" } },
+    { { .name = "x", .type = FG_PARAM_FLOAT, .default_value = 1, .max = 1, .less_than = { .param = "y" },
+        .doc = "x" },
+      { .name = "y", .type = FG_PARAM_FLOAT, .default_value = 1, .max = 1, .doc = "y" } },
+};
+
+/* And tables that use every constraint correctly. */
+static const fg_param_desc good_constraints[] = {
+    { .name = "n", .type = FG_PARAM_INT, .default_value = 6, .min = 1, .max = 16,
+      .allowed = FG_PARAM_VALUES(1, 6, 9, 16), .doc = "n" },
+    { .name = "size", .type = FG_PARAM_INT, .default_value = 64, .min = 16, .max = 512, .power_of_two = true,
+      .doc = "size" },
+    { .name = "spp", .type = FG_PARAM_INT, .default_value = 3, .min = 1, .max = 100, .step_doubles = true,
+      .doc = "spp" },
+    { .name = "m", .type = FG_PARAM_ENUM, .choices = "a|b|c", .doc = "m" },
+    { .name = "x", .type = FG_PARAM_FLOAT, .max = 10, .step = 0.5, .active_when = "m=b|c",
+      .less_than = { .param = "size", .scale = 0.25 }, .doc = "x" },
+    { .name = "y", .type = FG_PARAM_FLOAT, .default_value = 1, .max = 10, .active_when = "m=b",
+      .greater_than = { .param = "x" }, .doc = "y" },
+};
+
 static void
 registry_checks_descriptors(void **state)
 {
     fixture *f = *state;
-    static const fg_param_desc out_of_range[] = { { "n", FG_PARAM_INT, 10, 0, 5, NULL, "n" } };
-    static const fg_param_desc bad_enum[] = { { "mode", FG_PARAM_ENUM, 3, 0, 0, "a|b|c", "mode" } };
-    static const fg_param_desc fractional[] = { { "n", FG_PARAM_INT, 1.5, 0, 5, NULL, "n" } };
-    static const fg_param_desc no_doc[] = { { "n", FG_PARAM_INT, 1, 0, 5, NULL, NULL } };
-    static const fg_param_desc twice[] = { { "n", FG_PARAM_INT, 1, 0, 5, NULL, "n" },
-                                           { "n", FG_PARAM_FLOAT, 1, 0, 5, NULL, "n" } };
+    static const fg_param_desc out_of_range[] = {
+        { .name = "n", .type = FG_PARAM_INT, .default_value = 10, .min = 0, .max = 5, .doc = "n" } };
+    static const fg_param_desc bad_enum[] = {
+        { .name = "mode", .type = FG_PARAM_ENUM, .default_value = 3, .choices = "a|b|c", .doc = "mode" } };
+    static const fg_param_desc fractional[] = {
+        { .name = "n", .type = FG_PARAM_INT, .default_value = 1.5, .min = 0, .max = 5, .doc = "n" } };
+    static const fg_param_desc no_doc[] = { { .name = "n", .type = FG_PARAM_INT, .default_value = 1, .max = 5 } };
+    static const fg_param_desc twice[] = {
+        { .name = "n", .type = FG_PARAM_INT, .default_value = 1, .max = 5, .doc = "n" },
+        { .name = "n", .type = FG_PARAM_FLOAT, .default_value = 1, .max = 5, .doc = "n" } };
     fg_pass_type good = { FG_ABI_VERSION, "good", "doc", NULL, 0, false, noop_declare, NULL, noop_execute, NULL };
     assert_cg_ok(fg_registry_add(f->registry, &good, &f->err), &f->err);
     assert_cg_status(fg_registry_add(f->registry, &good, &f->err), &f->err, CG_ERR_PLUGIN_LOAD);
@@ -128,7 +194,23 @@ registry_checks_descriptors(void **state)
         assert_cg_status(fg_registry_add(f->registry, &t, &f->err), &f->err, CG_ERR_PLUGIN_LOAD);
         assert_non_null(strstr(f->err.message, "'table'"));
     }
-    assert_int_equal(fg_registry_count(f->registry), 3); /* t, t_side, good */
+    for (size_t i = 0; i < sizeof bad_constraints / sizeof bad_constraints[0]; i++) {
+        t = good;
+        t.name = "constrained";
+        t.params = bad_constraints[i];
+        t.param_count = bad_constraints[i][1].name ? 2 : 1;
+        cg_error_clear(&f->err);
+        if (fg_registry_add(f->registry, &t, &f->err))
+            fail_msg("bad constraint table %zu was registered", i);
+        assert_int_equal(f->err.status, CG_ERR_PLUGIN_LOAD);
+        assert_non_null(strstr(f->err.message, "'constrained'"));
+    }
+    t = good;
+    t.name = "constrained";
+    t.params = good_constraints;
+    t.param_count = (int)(sizeof good_constraints / sizeof good_constraints[0]);
+    assert_cg_ok(fg_registry_add(f->registry, &t, &f->err), &f->err);
+    assert_int_equal(fg_registry_count(f->registry), 4); /* t, t_side, good, constrained */
     assert_ptr_equal(fg_registry_find(f->registry, "good"), fg_registry_at(f->registry, 2));
     assert_null(fg_registry_find(f->registry, "table"));
 }
@@ -141,39 +223,135 @@ parameters_are_validated(void **state)
     fixture *f = *state;
     add(f, "p", "t", NULL, NULL);
     fg_source_loc loc = { "vct.json", 7, 24 };
+    /* Allowed values and powers of two are the table's, checked where the value is set; the
+     * message says where, names the pass once and says what was expected. */
     assert_cg_status(fg_graph_set_param(f->graph, "p", "cones", "7", &loc, &f->err), &f->err,
                      CG_ERR_GRAPH_PARAM_RANGE);
-    assert_string_equal(f->err.message, "vct.json:7:24: pass 'p' parameter 'cones': 7 is not one of 1|6|9|16");
+    assert_string_equal(f->err.message, "vct.json:7:24: p.cones = 7; expected one of 1, 6, 9, 16");
+    assert_cg_status(fg_graph_set_param(f->graph, "p", "resolution", "100", &loc, &f->err), &f->err,
+                     CG_ERR_GRAPH_PARAM_RANGE);
+    assert_string_equal(f->err.message, "vct.json:7:24: p.resolution = 100; expected a power of two in 1..4096");
     assert_cg_status(fg_graph_set_param(f->graph, "p", "resolution", "2.5", &loc, &f->err), &f->err,
                      CG_ERR_GRAPH_PARAM_TYPE);
     assert_cg_status(fg_graph_set_param(f->graph, "p", "resolution", "12abc", &loc, &f->err), &f->err,
                      CG_ERR_GRAPH_PARAM_TYPE);
-    assert_cg_status(fg_graph_set_param(f->graph, "p", "resolution", "4097", &loc, &f->err), &f->err,
+    assert_cg_status(fg_graph_set_param(f->graph, "p", "resolution", "8192", &loc, &f->err), &f->err,
                      CG_ERR_GRAPH_PARAM_RANGE);
     assert_cg_status(fg_graph_set_param(f->graph, "p", "resolution", "0", &loc, &f->err), &f->err,
                      CG_ERR_GRAPH_PARAM_RANGE);
     assert_cg_status(fg_graph_set_param(f->graph, "p", "scale", "1.01", &loc, &f->err), &f->err,
                      CG_ERR_GRAPH_PARAM_RANGE);
+    assert_string_equal(f->err.message, "vct.json:7:24: p.scale = 1.01; expected a number in 0..1");
     assert_cg_status(fg_graph_set_param(f->graph, "p", "scale", "nan", &loc, &f->err), &f->err,
+                     CG_ERR_GRAPH_PARAM_TYPE);
+    assert_cg_status(fg_graph_set_param(f->graph, "p", "scale", "1e-400", &loc, &f->err), &f->err,
                      CG_ERR_GRAPH_PARAM_TYPE);
     assert_cg_status(fg_graph_set_param(f->graph, "p", "nothing", "1", &loc, &f->err), &f->err,
                      CG_ERR_GRAPH_PARAM_TYPE);
+    assert_string_equal(f->err.message, "vct.json:7:24: p.nothing = 1; expected true or false");
     assert_cg_status(fg_graph_set_param(f->graph, "p", "rays", "1", &loc, &f->err), &f->err,
                      CG_ERR_GRAPH_UNKNOWN_PARAM);
     assert_non_null(strstr(f->err.message, "resolution"));
-    /* Inclusive ranges, integral values written as reals, enum by name. */
+    /* Without a location: the same message without its start. */
+    assert_cg_status(fg_graph_set_param(f->graph, "p", "cones", "8", NULL, &f->err), &f->err,
+                     CG_ERR_GRAPH_PARAM_RANGE);
+    assert_string_equal(f->err.message, "p.cones = 8; expected one of 1, 6, 9, 16");
+    /* Inclusive ranges, integral values written as reals, allowed values, powers of two. */
     assert_cg_ok(fg_graph_set_param(f->graph, "p", "resolution", "4096", NULL, &f->err), &f->err);
     assert_cg_ok(fg_graph_set_param(f->graph, "p", "scale", "0", NULL, &f->err), &f->err);
-    assert_cg_ok(fg_graph_set_param(f->graph, "p", "cones", "9", NULL, &f->err), &f->err);
+    assert_cg_ok(fg_graph_set_param(f->graph, "p", "cones", "9.0", NULL, &f->err), &f->err);
     assert_cg_ok(fg_graph_set_param(f->graph, "p", "nothing", "true", NULL, &f->err), &f->err);
     assert_cg_ok(fg_graph_set_param(f->graph, "p", "label", "x y", NULL, &f->err), &f->err);
     fg_pass *p = fg_graph_find_pass(f->graph, "p");
     assert_int_equal(fg_param_int(p, "resolution"), 4096);
-    assert_int_equal(fg_param_enum(p, "cones"), 2);
+    assert_int_equal(fg_param_int(p, "cones"), 9);
     assert_true(fg_param_bool(p, "nothing"));
     assert_true(fg_param_float(p, "scale") == 0.0f);
     assert_string_equal(fg_param_string(p, "label"), "x y");
     assert_true(fg_param_float(p, "resolution") == 4096.0f);
+}
+
+/* What one value requires of another is checked once, at compile, before declare(); only
+ * while the parameter is active; the message starts where a value was written. */
+static void
+parameter_dependencies_are_checked_at_compile(void **state)
+{
+    fixture *f = *state;
+    add(f, "p", "t", NULL, "out:2d:RGBA16F:frame:store");
+    assert_cg_ok(fg_graph_mark_output(f->graph, "p.out", NULL, &f->err), &f->err);
+    fg_pass *p = fg_graph_find_pass(f->graph, "p");
+    const fg_param_desc *high = NULL, *margin = NULL;
+    for (int i = 0; i < fg_pass_type_of(p)->param_count; i++) {
+        if (!strcmp(fg_pass_type_of(p)->params[i].name, "high"))
+            high = &fg_pass_type_of(p)->params[i];
+        if (!strcmp(fg_pass_type_of(p)->params[i].name, "margin"))
+            margin = &fg_pass_type_of(p)->params[i];
+    }
+    assert_non_null(high);
+    assert_non_null(margin);
+
+    /* high <= low does not matter while 'bounded' is false. */
+    fg_source_loc low_at = { "g.json", 4, 30 }, high_at = { "g.json", 5, 31 }, bounded_at = { "g.json", 6, 20 };
+    assert_cg_ok(fg_graph_set_param(f->graph, "p", "low", "5", &low_at, &f->err), &f->err);
+    assert_false(fg_param_active(p, high));
+    assert_true(fg_param_active(p, margin));
+    assert_cg_ok(compile(f), &f->err);
+    assert_cg_ok(fg_graph_set_param(f->graph, "p", "bounded", "true", &bounded_at, &f->err), &f->err);
+    assert_true(fg_param_active(p, high));
+    /* Only low was written: the message starts at low and reads the bound its way round. */
+    assert_cg_status(compile(f), &f->err, CG_ERR_GRAPH_PARAM_RANGE);
+    assert_string_equal(f->err.message, "g.json:4:30: p.low = 5; expected less than high = 1 (its default)");
+    assert_cg_status(fg_pass_check_params(p, &f->err), &f->err, CG_ERR_GRAPH_PARAM_RANGE);
+    assert_cg_ok(fg_graph_set_param(f->graph, "p", "high", "5", &high_at, &f->err), &f->err);
+    assert_cg_status(compile(f), &f->err, CG_ERR_GRAPH_PARAM_RANGE);
+    assert_string_equal(f->err.message,
+                        "g.json:5:31: p.high = 5; expected greater than low = 5 (set at g.json:4:30)");
+    assert_cg_ok(fg_graph_set_param(f->graph, "p", "high", "5.5", &high_at, &f->err), &f->err);
+    assert_cg_ok(compile(f), &f->err);
+    assert_cg_ok(fg_pass_check_params(p, &f->err), &f->err);
+
+    /* A scaled bound: margin < 0.25 x resolution; a --set value is quoted as it was given. */
+    fg_source_loc set_at = { "--set p.margin=16", 0, 0 };
+    assert_cg_ok(fg_graph_set_param(f->graph, "p", "margin", "16", &set_at, &f->err), &f->err);
+    assert_cg_status(compile(f), &f->err, CG_ERR_GRAPH_PARAM_RANGE);
+    assert_string_equal(f->err.message,
+                        "--set p.margin=16: expected less than 0.25 x resolution = 16 (resolution = 64, its default)");
+    fg_source_loc res_at = { "g.json", 9, 22 };
+    assert_cg_ok(fg_graph_set_param(f->graph, "p", "resolution", "128", &res_at, &f->err), &f->err);
+    assert_cg_ok(compile(f), &f->err);
+    assert_cg_ok(fg_graph_set_param(f->graph, "p", "resolution", "32", &res_at, &f->err), &f->err);
+    assert_cg_status(compile(f), &f->err, CG_ERR_GRAPH_PARAM_RANGE);
+    assert_string_equal(f->err.message, "--set p.margin=16: expected less than 0.25 x resolution = 8 "
+                                        "(resolution = 32, set at g.json:9:22)");
+}
+
+/* The table's constraints as text: what `conegraph passes`, the docs and the demo print. */
+static void
+parameter_constraints_as_text(void **state)
+{
+    fixture *f = *state;
+    const fg_pass_type *t = fg_registry_find(f->registry, "t");
+    static const struct { const char *name, *values, *depends; } expected[] = {
+        { "cones", "1, 6, 9, 16", "" },
+        { "resolution", "1..4096, power of two", "" },
+        { "scale", "0..1", "" },
+        { "nothing", "true|false", "" },
+        { "label", "any text", "" },
+        { "high", "-100..100", "only with bounded = true; greater than low" },
+        { "margin", "0..100", "less than 0.25 x resolution" },
+    };
+    for (size_t i = 0; i < sizeof expected / sizeof expected[0]; i++) {
+        const fg_param_desc *p = NULL;
+        for (int k = 0; k < t->param_count; k++)
+            if (!strcmp(t->params[k].name, expected[i].name))
+                p = &t->params[k];
+        assert_non_null(p);
+        char values[256], depends[256];
+        fg_param_values_text(p, values, sizeof values);
+        fg_param_dependency_text(p, depends, sizeof depends);
+        assert_string_equal(values, expected[i].values);
+        assert_string_equal(depends, expected[i].depends);
+    }
 }
 
 static void
@@ -720,6 +898,8 @@ main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_setup_teardown(registry_checks_descriptors, setup, teardown),
         cmocka_unit_test_setup_teardown(parameters_are_validated, setup, teardown),
+        cmocka_unit_test_setup_teardown(parameter_dependencies_are_checked_at_compile, setup, teardown),
+        cmocka_unit_test_setup_teardown(parameter_constraints_as_text, setup, teardown),
         cmocka_unit_test_setup_teardown(building_errors_are_named, setup, teardown),
         cmocka_unit_test_setup_teardown(order_is_topological_and_stable, setup, teardown),
         cmocka_unit_test_setup_teardown(cycles_are_named, setup, teardown),

@@ -1,6 +1,8 @@
 /* `conegraph graph` and `conegraph passes` end to end: exit codes, what is printed, that a
- * bad graph writes nothing, plugins by --plugin and $CONEGRAPH_PLUGIN_PATH.
- * argv[1]: the example plugin; argv[2]: graphs/direct.json; the executable: $CONEGRAPH_EXE. */
+ * bad graph writes nothing, plugins by --plugin and $CONEGRAPH_PLUGIN_PATH, and that
+ * docs/pass-parameters.md is what `passes --markdown` prints.
+ * argv[1]: the example plugin; argv[2]: graphs/direct.json; argv[3]: docs/pass-parameters.md;
+ * the executable: $CONEGRAPH_EXE. */
 #include "test_support.h"
 
 #include <limits.h>
@@ -11,7 +13,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-static const char *plugin_path, *direct_graph;
+static const char *plugin_path, *direct_graph, *parameters_doc;
 
 /* Runs conegraph with `args`; returns the exit code. */
 static int
@@ -54,7 +56,7 @@ bad_graphs_exit_2_and_write_nothing(void **state)
     snprintf(args, sizeof args, "graph '%s' builtin:cornell --set shadow.resolution=9 --report '%s'", direct_graph,
              report);
     assert_int_equal(run(args, out, sizeof out), 2);
-    assert_non_null(strstr(out, "--set:1:19: pass 'shadow' parameter 'resolution'"));
+    assert_non_null(strstr(out, "--set shadow.resolution=9: expected an integer in 16..16384"));
     assert_int_not_equal(access(report, F_OK), 0);
 
     const char *cycle = cg_test_write_file("cycle.json",
@@ -82,9 +84,16 @@ passes_lists_tables_and_plugins(void **state)
     assert_int_equal(run("passes", out, sizeof out), 0);
     assert_non_null(strstr(out, "shadow_map"));
     assert_non_null(strstr(out, "composite"));
+    /* The constraints of the tables: allowed values, powers of two, dependencies. */
+    assert_non_null(strstr(out, "  cones            int    default 6        1, 6, 9, 16 "));
+    assert_non_null(strstr(out, "  resolution       int    default 128      16..512, power of two "));
+    assert_non_null(strstr(out, "[only with region = explicit; greater than min_x]"));
     assert_int_equal(run("passes --markdown", out, sizeof out), 0);
     assert_non_null(strstr(out, "## `shadow_map`"));
     assert_non_null(strstr(out, "| `resolution` | int | `2048` | 16..16384 |"));
+    assert_non_null(strstr(out, "| `cones` | int | `6` | 1, 6, 9, 16 |"));
+    assert_non_null(strstr(out, "| `resolution` | int | `1024` | 16..8192, power of two |"));
+    assert_non_null(strstr(out, "(*less than 0.25 x resolution*)"));
     assert_int_equal(run("passes --plugin /nonexistent/plugin.so", out, sizeof out), 2);
     assert_non_null(strstr(out, "/nonexistent/plugin.so"));
 
@@ -112,19 +121,49 @@ passes_lists_tables_and_plugins(void **state)
     unsetenv("CONEGRAPH_PLUGIN_PATH");
 }
 
+/* The document is generated; this keeps it from going stale when a table changes. */
+static void
+parameters_doc_is_generated(void **state)
+{
+    (void)state;
+    unsetenv("CONEGRAPH_PLUGIN_PATH");
+    assert_int_equal(cg_test_run_conegraph("passes --markdown", false, out, sizeof out), 0);
+    assert_true(strlen(out) + 1 < sizeof out);
+    FILE *f = fopen(parameters_doc, "rb");
+    if (!f)
+        fail_msg("cannot open %s", parameters_doc);
+    static char doc[sizeof out];
+    size_t n = fread(doc, 1, sizeof doc - 1, f);
+    doc[n] = '\0';
+    fclose(f);
+    if (strcmp(doc, out)) {
+        size_t at = 0;
+        int line = 1;
+        while (doc[at] && doc[at] == out[at]) {
+            line += doc[at] == '\n';
+            at++;
+        }
+        fail_msg("%s differs from `conegraph passes --markdown` from line %d on; regenerate it with\n"
+                 "  build/apps/conegraph passes --markdown > docs/pass-parameters.md",
+                 parameters_doc, line);
+    }
+}
+
 int
 main(int argc, char **argv)
 {
-    if (argc < 3) {
-        fprintf(stderr, "usage: %s EXAMPLE_PLUGIN DIRECT_GRAPH\n", argv[0]);
+    if (argc < 4) {
+        fprintf(stderr, "usage: %s EXAMPLE_PLUGIN DIRECT_GRAPH PARAMETERS_DOC\n", argv[0]);
         return 2;
     }
     plugin_path = argv[1];
     direct_graph = argv[2];
+    parameters_doc = argv[3];
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(graph_check_and_report),
         cmocka_unit_test(bad_graphs_exit_2_and_write_nothing),
         cmocka_unit_test(passes_lists_tables_and_plugins),
+        cmocka_unit_test(parameters_doc_is_generated),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

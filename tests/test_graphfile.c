@@ -77,21 +77,37 @@ good_graph_loads(void **state)
     assert_int_equal(fg_graph_order(f->graph, &order), 2);
     assert_int_equal(order[0], 1);
     fg_pass *use = fg_graph_find_pass(f->graph, "use");
-    assert_int_equal(fg_param_enum(use, "cones"), 1);
+    assert_int_equal(fg_param_int(use, "cones"), 6);
     assert_true(fg_param_float(use, "scale") == 0.25f);
     assert_string_equal(fg_param_string(use, "label"), "caf\xc3\xa9");
     assert_int_equal(fg_graph_output_count(f->graph), 1);
     assert_string_equal(fg_graph_output_at(f->graph, 0), "use.out");
 
     assert_cg_ok(fg_graph_apply_override(f->graph, "use.cones=16", &f->err), &f->err);
-    assert_int_equal(fg_param_enum(use, "cones"), 3);
+    assert_int_equal(fg_param_int(use, "cones"), 16);
+    /* A --set value's error quotes the assignment, names the pass once and no file line. */
     assert_cg_status(fg_graph_apply_override(f->graph, "use.cones=7", &f->err), &f->err,
                      CG_ERR_GRAPH_PARAM_RANGE);
-    assert_string_equal(f->err.message, "--set:1:11: pass 'use' parameter 'cones': 7 is not one of 1|6|9|16");
+    assert_string_equal(f->err.message, "--set use.cones=7: expected one of 1, 6, 9, 16");
+    assert_cg_status(fg_graph_apply_override(f->graph, "use.resolution=48", &f->err), &f->err,
+                     CG_ERR_GRAPH_PARAM_RANGE);
+    assert_string_equal(f->err.message, "--set use.resolution=48: expected a power of two in 1..4096");
+    assert_cg_status(fg_graph_apply_override(f->graph, "use.scale=x", &f->err), &f->err,
+                     CG_ERR_GRAPH_PARAM_TYPE);
+    assert_string_equal(f->err.message, "--set use.scale=x: expected a number in 0..1");
     assert_cg_status(fg_graph_apply_override(f->graph, "use.rays=7", &f->err), &f->err,
                      CG_ERR_GRAPH_UNKNOWN_PARAM);
+    assert_non_null(strstr(f->err.message, "--set use.rays=7: pass type t has no parameter 'rays' (parameters: "));
     assert_cg_status(fg_graph_apply_override(f->graph, "ghost.rays=7", &f->err), &f->err,
                      CG_ERR_GRAPH_DANGLING);
+    assert_string_equal(f->err.message, "--set ghost.rays=7: the graph has no pass named 'ghost'");
+    /* A --set value that breaks a dependency is found at compile, and still quoted. */
+    assert_cg_ok(fg_graph_apply_override(f->graph, "use.margin=20", &f->err), &f->err);
+    assert_cg_status(compile(f, 0), &f->err, CG_ERR_GRAPH_PARAM_RANGE);
+    assert_string_equal(f->err.message,
+                        "--set use.margin=20: expected less than 0.25 x resolution = 16 (resolution = 64, its default)");
+    assert_cg_ok(fg_graph_apply_override(f->graph, "use.resolution=128", &f->err), &f->err);
+    assert_cg_ok(compile(f, 0), &f->err);
     assert_cg_status(fg_graph_apply_override(f->graph, "use.cones", &f->err), &f->err, CG_ERR_USAGE);
     assert_cg_status(fg_graph_apply_override(f->graph, "use.resolution=1e9", &f->err), &f->err,
                      CG_ERR_GRAPH_PARAM_RANGE);
@@ -133,15 +149,27 @@ static const bad_graph corpus[] = {
     { "unknown_param", HEAD USE(", \"rays\": 4", "\"in\": \"src.out\"") TAIL, CG_ERR_GRAPH_UNKNOWN_PARAM,
       "\"rays\"", 1, 0, "has no parameter 'rays'" },
     { "param_type", HEAD USE(", \"resolution\": \"high\"", "\"in\": \"src.out\"") TAIL,
-      CG_ERR_GRAPH_PARAM_TYPE, "\"high\"", 1, 0, "parameter 'resolution': expected an integer, got a string" },
+      CG_ERR_GRAPH_PARAM_TYPE, "\"high\"", 1, 0, "use.resolution: expected a power of two in 1..4096, got a string" },
     { "param_fraction", HEAD USE(", \"resolution\": 2.5", "\"in\": \"src.out\"") TAIL,
-      CG_ERR_GRAPH_PARAM_TYPE, "2.5", 1, 0, "expected an integer, got '2.5'" },
+      CG_ERR_GRAPH_PARAM_TYPE, "2.5", 1, 0, "use.resolution = 2.5; expected a power of two in 1..4096" },
     { "param_bool", HEAD USE(", \"nothing\": 1", "\"in\": \"src.out\"") TAIL, CG_ERR_GRAPH_PARAM_TYPE,
       "1 }", 1, 0, "expected true or false" },
     { "param_range", HEAD USE(", \"cones\": 7", "\"in\": \"src.out\"") TAIL, CG_ERR_GRAPH_PARAM_RANGE,
-      "7 }", 1, 0, "pass 'use' parameter 'cones': 7 is not one of 1|6|9|16" },
+      "7 }", 1, 0, ": use.cones = 7; expected one of 1, 6, 9, 16" },
     { "param_range_int", HEAD USE(", \"resolution\": 5000", "\"in\": \"src.out\"") TAIL,
-      CG_ERR_GRAPH_PARAM_RANGE, "5000", 1, 0, "5000 is not within [1, 4096]" },
+      CG_ERR_GRAPH_PARAM_RANGE, "5000", 1, 0, "use.resolution = 5000; expected a power of two in 1..4096" },
+    { "param_range_float", HEAD USE(", \"scale\": 1.5", "\"in\": \"src.out\"") TAIL,
+      CG_ERR_GRAPH_PARAM_RANGE, "1.5", 1, 0, "use.scale = 1.5; expected a number in 0..1" },
+    { "param_power_of_two", HEAD USE(", \"resolution\": 100", "\"in\": \"src.out\"") TAIL,
+      CG_ERR_GRAPH_PARAM_RANGE, "100", 1, 0, "use.resolution = 100; expected a power of two in 1..4096" },
+    { "param_bool_text", HEAD USE(", \"label\": \"x\", \"nothing\": \"maybe\"", "\"in\": \"src.out\"") TAIL,
+      CG_ERR_GRAPH_PARAM_TYPE, "\"maybe\"", 1, 0, "use.nothing: expected true or false, got a string" },
+    /* Dependencies, checked at compile: at the value written, naming where the other came from. */
+    { "param_dependency", HEAD USE(", \"bounded\": true, \"low\": 2,\n              \"high\": 1.5",
+                                   "\"in\": \"src.out\"") TAIL,
+      CG_ERR_GRAPH_PARAM_RANGE, "1.5", 1, 0, "use.high = 1.5; expected greater than low = 2 (set at " },
+    { "param_dependency_default", HEAD USE(", \"bounded\": true, \"low\": 3", "\"in\": \"src.out\"") TAIL,
+      CG_ERR_GRAPH_PARAM_RANGE, "3 }", 1, 0, "use.low = 3; expected less than high = 1 (its default)" },
     { "cycle", HEAD "\"a\": { \"type\": \"t\", \"params\": { " USE_PARAMS " }, \"inputs\": { \"in\": \"use\" } },\n    "
                USE("", "\"in\": \"a\"") TAIL, CG_ERR_GRAPH_CYCLE, "\"a\"", 1, 0, "'a' -> 'use' -> 'a'" },
     { "dangling_pass", HEAD USE("", "\"in\": \"ghost.out\"") TAIL, CG_ERR_GRAPH_DANGLING, "\"ghost.out\"", 1,

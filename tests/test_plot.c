@@ -1,10 +1,10 @@
-/* The bench plots (apps/conegraph/plot.c): markers land in the right order on linear and
+/* The bench plots (apps/conegraph/bench/plot.c): markers land in the right order on linear and
  * log axes, unusable points are skipped, rings and lines are drawn. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "../apps/conegraph/plot.h"
+#include "../apps/conegraph/bench/plot.h"
 #include "test_support.h"
 
 static float
@@ -80,12 +80,74 @@ rings_and_lines_are_drawn(void **state)
     cg_image_free(&img);
 }
 
+/* The dark grey (label) pixels of four points, the first two 1% of the y axis apart, with
+ * these labels; *cx: their mean column. */
+static int
+label_pixels(const char *const labels[4], double *cx)
+{
+    static const float label_grey[3] = { 0.25f, 0.25f, 0.25f };
+    const double x[] = { 2.0, 2.0, 8.0, 8.0 }, y[] = { 5.0, 5.1, 0.0, 10.0 };
+    plot_series series[1] = { { .color = { 0, 0, 1 }, .x = x, .y = y, .count = 4, .labels = labels } };
+    plot_desc plot = { .series = series, .series_count = 1, .width = 400, .height = 300 };
+    cg_image img = { 0 };
+    cg_error err = { 0 };
+    assert_cg_ok(plot_render(&plot, &img, &err), &err);
+    double cy;
+    int n = centroid(&img, label_grey, cx, &cy);
+    cg_image_free(&img);
+    return n;
+}
+
+/* Each marker shape covers its own set of pixels (a square: 7x7 in the colour); a label is
+ * drawn beside its point in dark grey, and a second label that would cover the first goes
+ * elsewhere. */
+static void
+markers_and_labels(void **state)
+{
+    (void)state;
+    enum { W = 200, H = 150 };
+    static const float red[3] = { 1, 0, 0 };
+    static bool masks[PLOT_MARKER_COUNT][W * H];
+    for (int m = 0; m < PLOT_MARKER_COUNT; m++) {
+        const double x[] = { 1.0 }, y[] = { 1.0 };
+        const plot_marker markers[] = { (plot_marker)m };
+        plot_series series[1] = { { .color = { 1, 0, 0 }, .x = x, .y = y, .count = 1, .markers = markers } };
+        plot_desc plot = { .series = series, .series_count = 1, .width = W, .height = H };
+        cg_image img = { 0 };
+        cg_error err = { 0 };
+        assert_cg_ok(plot_render(&plot, &img, &err), &err);
+        double cx, cy;
+        int count = centroid(&img, red, &cx, &cy);
+        assert_true(count > 0);
+        if (m == PLOT_SQUARE)
+            assert_int_equal(count, 49);
+        for (int i = 0; i < W * H; i++)
+            masks[m][i] = fabsf(img.rgba[4 * i] - 1.0f) < 1e-6f && img.rgba[4 * i + 1] == 0.0f;
+        cg_image_free(&img);
+    }
+    for (int a = 0; a < PLOT_MARKER_COUNT; a++)
+        for (int b = a + 1; b < PLOT_MARKER_COUNT; b++)
+            assert_true(memcmp(masks[a], masks[b], sizeof masks[a]) != 0);
+
+    /* Two points close together, both labelled: each label is drawn whole, clear of the other. */
+    static const char *const both[] = { "A=1", "A=2", "", "" }, *first[] = { "A=1", "", "", "" },
+                             *second[] = { "", "A=2", "", "" };
+    double cx;
+    int n1 = label_pixels(first, &cx);
+    assert_true(n1 > 0);
+    assert_true(cx < 200);  /* beside its point at x = 2 of 0..10: in the left half */
+    int n2 = label_pixels(second, &cx);
+    assert_true(n2 > 0);
+    assert_int_equal(label_pixels(both, &cx), n1 + n2);
+}
+
 int
 main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(markers_follow_the_data),
         cmocka_unit_test(rings_and_lines_are_drawn),
+        cmocka_unit_test(markers_and_labels),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -86,6 +86,46 @@ test_bad_input_writes_nothing(void **state)
     }
 }
 
+/* A parameter value the table refuses is reported where it was given: a --set value quotes
+ * the assignment (no graph-file line), names the pass once and says what was expected. */
+static void
+test_refused_parameter_points_at_its_source(void **state)
+{
+    (void)state;
+    const char *out_png = tmp("refused.png");
+    static char out[1 << 14];
+    char args[8192];
+    snprintf(args, sizeof args, "render builtin:cornell --size 32x32 --set gather.cones=7 -o '%s'", out_png);
+    assert_int_equal(cg_test_run_conegraph(args, true, out, sizeof out), 2);
+    assert_false(exists(out_png));
+    const char *message = strstr(out, "--set gather.cones=7: expected one of 1, 6, 9, 16");
+    if (!message)
+        fail_msg("unexpected error text: %s", out);
+    int passes_named = 0;
+    for (const char *at = strstr(out, "gather"); at; at = strstr(at + 1, "gather"))
+        passes_named++;
+    assert_int_equal(passes_named, 1);
+    assert_null(strstr(out, ".json:"));
+
+    /* A file value points at the file, its line and the column of the value itself. */
+    const char *graph = cg_test_write_file("bad_resolution.json",
+        "{ \"version\": 1,\n"
+        "  \"passes\": {\n"
+        "    \"gbuf\": { \"type\": \"gbuffer\" },\n"
+        "    \"vox\": { \"type\": \"voxelize\",\n"
+        "             \"params\": { \"resolution\": 100 } },\n"
+        "    \"final\": { \"type\": \"composite\", \"inputs\": { \"albedo\": \"gbuf\", \"emissive\": \"gbuf\" } }\n"
+        "  },\n"
+        "  \"outputs\": [ \"final.hdr\", \"final.ldr\" ] }\n", 0);
+    snprintf(args, sizeof args, "render builtin:cornell --size 32x32 --graph '%s' -o '%s'", graph, out_png);
+    assert_int_equal(cg_test_run_conegraph(args, true, out, sizeof out), 2);
+    char expected[4300];
+    snprintf(expected, sizeof expected, "%s:5:40: vox.resolution = 100; expected a power of two in 16..512", graph);
+    if (!strstr(out, expected))
+        fail_msg("expected '%s' in: %s", expected, out);
+    assert_false(exists(out_png));
+}
+
 static void
 test_render_png_exr_dump_report(void **state)
 {
@@ -125,6 +165,7 @@ main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_help_and_usage),
         cmocka_unit_test(test_bad_input_writes_nothing),
+        cmocka_unit_test(test_refused_parameter_points_at_its_source),
         cmocka_unit_test(test_render_png_exr_dump_report),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -10,8 +10,8 @@
 #include "cg/metrics.h"
 #include "commands.h"
 
-static void
-compare_usage(FILE *out)
+void
+cmd_compare_usage(FILE *out)
 {
     fprintf(out,
         "usage: conegraph compare TEST REF [--direct REF_DIRECT] [--json] [--heatmap FILE.png]\n"
@@ -101,10 +101,7 @@ cmd_compare(int argc, char **argv)
     double heatmap_max = 1.0;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
-        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-            compare_usage(stdout);
-            return 0;
-        } else if (!strcmp(a, "--json")) {
+        if (!strcmp(a, "--json")) {
             json = true;
         } else if (!strcmp(a, "--direct") || !strcmp(a, "--heatmap") || !strcmp(a, "--heatmap-max")) {
             if (i + 1 >= argc) {

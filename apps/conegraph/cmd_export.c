@@ -6,8 +6,8 @@
 #include "cg/scene.h"
 #include "commands.h"
 
-static void
-usage(FILE *out)
+void
+cmd_export_usage(FILE *out)
 {
     fprintf(out,
             "usage: conegraph export SCENE OUT.gltf|OUT.glb\n"
@@ -29,10 +29,6 @@ cmd_export(int argc, char **argv)
     const char *args[2];
     int n = 0;
     for (int i = 1; i < argc; i++) {
-        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
-            usage(stdout);
-            return 0;
-        }
         if (argv[i][0] == '-' && argv[i][1]) {
             fprintf(stderr, "conegraph export: unknown option '%s' (see conegraph export --help)\n", argv[i]);
             return 2;
@@ -44,7 +40,7 @@ cmd_export(int argc, char **argv)
         args[n++] = argv[i];
     }
     if (n != 2) {
-        usage(stderr);
+        cmd_export_usage(stderr);
         return 2;
     }
     size_t len = strlen(args[1]);

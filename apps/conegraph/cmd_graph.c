@@ -4,16 +4,17 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "app_registry.h"
-#include "cg/camera.h"
-#include "cg/graphfile.h"
-#include "cg/scene.h"
+#include "app_common.h"
+#include "app_session.h"
+#include "cg/fg.h"
 #include "commands.h"
+
+#define TOOL "conegraph graph"
 
 #define MAX_REPEATED 64
 
-static void
-graph_usage(FILE *out)
+void
+cmd_graph_usage(FILE *out)
 {
     fprintf(out,
         "usage: conegraph graph FILE [--check] [--dot] [--set PASS.PARAM=VALUE]... [--plugin PATH]...\n"
@@ -42,17 +43,6 @@ graph_usage(FILE *out)
         "2 bad usage, bad graph file (with file:line:column) or unloadable scene.\n");
 }
 
-static bool
-parse_positive(const char *text, long max, long *out)
-{
-    char *end;
-    long v = strtol(text, &end, 10);
-    if (*text == '\0' || *end != '\0' || v <= 0 || v > max)
-        return false;
-    *out = v;
-    return true;
-}
-
 int
 cmd_graph(int argc, char **argv)
 {
@@ -65,10 +55,7 @@ cmd_graph(int argc, char **argv)
         const char *a = argv[i];
         bool has_value = i + 1 < argc;
         long v;
-        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-            graph_usage(stdout);
-            return 0;
-        } else if (!strcmp(a, "--check")) {
+        if (!strcmp(a, "--check")) {
             dot = false;
         } else if (!strcmp(a, "--dot")) {
             dot = true;
@@ -77,20 +64,19 @@ cmd_graph(int argc, char **argv)
         } else if (!strcmp(a, "--plugin") && has_value && plugin_count < MAX_REPEATED) {
             plugins[plugin_count++] = argv[++i];
         } else if (!strcmp(a, "--size") && has_value) {
-            if (sscanf(argv[++i], "%dx%d", &width, &height) != 2 || width < 1 || height < 1 ||
-                width > 65536 || height > 65536) {
+            if (!app_parse_size(argv[++i], &width, &height)) {
                 fprintf(stderr, "conegraph graph: --size %s: expected WxH, e.g. 1280x720\n", argv[i]);
                 return 2;
             }
         } else if (!strcmp(a, "--max-gpu-memory") && has_value) {
-            if (!parse_positive(argv[++i], 1L << 30, &v)) {
+            if (!app_parse_int(argv[++i], 1, 1L << 30, &v)) {
                 fprintf(stderr, "conegraph graph: --max-gpu-memory %s: expected MiB, a positive integer\n",
                         argv[i]);
                 return 2;
             }
             options.max_gpu_memory = (size_t)v << 20;
         } else if ((!strcmp(a, "--max-texture-size") || !strcmp(a, "--max-3d-texture-size")) && has_value) {
-            if (!parse_positive(argv[++i], 1 << 20, &v)) {
+            if (!app_parse_int(argv[++i], 1, 1 << 20, &v)) {
                 fprintf(stderr, "conegraph graph: %s %s: expected a positive integer\n", a, argv[i]);
                 return 2;
             }
@@ -104,7 +90,7 @@ cmd_graph(int argc, char **argv)
             report = argv[++i];
         } else if (a[0] == '-') {
             fprintf(stderr, "conegraph graph: unknown or incomplete option '%s'\n", a);
-            graph_usage(stderr);
+            cmd_graph_usage(stderr);
             return 2;
         } else if (!file) {
             file = a;
@@ -114,57 +100,31 @@ cmd_graph(int argc, char **argv)
     }
     if (!file) {
         fprintf(stderr, "conegraph graph: no graph file given\n");
-        graph_usage(stderr);
+        cmd_graph_usage(stderr);
         return 2;
     }
 
+    /* The app session without GL: scene, registry with plugins, graph with overrides, and the
+     * compile that every app runs first. */
     cg_error err = { 0 };
-    fg_registry *registry = app_registry_create(plugins, plugin_count, &err);
-    if (!registry) {
-        fprintf(stderr, "conegraph graph: %s\n", err.message);
-        return cg_status_exit_code(err.status);
-    }
-    fg_graph *graph = fg_graph_create(registry);
-    cg_scene scene;
-    memset(&scene, 0, sizeof scene);
-    bool scene_loaded = false;
-    bool ok = fg_graph_load_file(graph, file, &err);
-    for (int i = 0; ok && i < set_count; i++)
-        ok = fg_graph_apply_override(graph, sets[i], &err);
-    if (ok)
-        ok = scene_loaded = cg_scene_load(scene_source, &scene, &err);
-    int camera = -1;
-    if (ok)
-        ok = cg_camera_select(&scene, NULL, &camera, &err);
-    if (ok) {
-        fg_frame frame;
-        memset(&frame, 0, sizeof frame);
-        frame.scene = &scene;
-        frame.width = width;
-        frame.height = height;
-        cg_view_from_scene(&scene, camera, width, height, &frame.view);
-        ok = fg_graph_compile(graph, &frame, &options, &err);
-    }
-    int code = 0;
-    if (!ok) {
-        fprintf(stderr, "conegraph graph: %s\n", err.message);
-        code = cg_status_exit_code(err.status);
-    } else if (dot) {
-        fg_graph_write_dot(graph, stdout);
-    } else {
+    app_session session;
+    app_session_desc desc = { .scene = scene_source, .plugins = plugins, .plugin_count = plugin_count,
+                              .width = width, .height = height, .compile = options };
+    app_graph_desc graph = { .graph = file, .sets = sets, .set_count = set_count };
+    bool ok = app_session_open(&session, &desc, &err) && app_session_load_graph(&session, &graph, &err) &&
+              app_session_check(&session, &err);
+    int code = ok ? 0 : app_fail(TOOL, NULL, &err);
+    if (ok && dot) {
+        fg_graph_write_dot(session.graph, stdout);
+    } else if (ok) {
         const int *order;
-        int live = fg_graph_order(graph, &order);
+        int live = fg_graph_order(session.graph, &order);
         printf("%s: compiles for %s at %dx%d: %d of %d passes run\n\n", file, scene_source, width, height, live,
-               fg_graph_pass_count(graph));
-        fg_graph_print_report(graph, stdout);
+               fg_graph_pass_count(session.graph));
+        fg_graph_print_report(session.graph, stdout);
     }
-    if (ok && report && !fg_graph_write_report_json(graph, report, &err)) {
-        fprintf(stderr, "conegraph graph: %s\n", err.message);
-        code = 1;
-    }
-    if (scene_loaded)
-        cg_scene_free(&scene);
-    fg_graph_destroy(graph);
-    fg_registry_destroy(registry);
+    if (ok && report && !fg_graph_write_report_json(session.graph, report, &err))
+        code = app_fail(TOOL, NULL, &err);
+    app_session_close(&session);
     return code;
 }

@@ -7,8 +7,8 @@
 #include "cg/scene.h"
 #include "commands.h"
 
-static void
-usage(FILE *out)
+void
+cmd_info_usage(FILE *out)
 {
     fprintf(out,
             "usage: conegraph info SCENE [--gl] [--context egl|osmesa|glfw|auto]\n"
@@ -111,10 +111,7 @@ cmd_info(int argc, char **argv)
     bool gl = false;
     cg_context_desc desc = { 0 };
     for (int i = 1; i < argc; i++) {
-        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
-            usage(stdout);
-            return 0;
-        } else if (!strcmp(argv[i], "--gl")) {
+        if (!strcmp(argv[i], "--gl")) {
             gl = true;
         } else if (!strcmp(argv[i], "--context")) {
             if (i + 1 >= argc || !cg_context_backend_parse(argv[i + 1], &desc.backend)) {
@@ -134,7 +131,7 @@ cmd_info(int argc, char **argv)
         }
     }
     if (!source) {
-        usage(stderr);
+        cmd_info_usage(stderr);
         return 2;
     }
     cg_scene scene;

@@ -2,6 +2,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "app_options.h"
 #include "commands.h"
 
 static const cg_command commands[] = { CG_COMMAND_LIST };
@@ -38,9 +39,15 @@ main(int argc, char **argv)
         usage(stdout);
         return 0;
     }
-    for (int i = 0; i < command_count; i++)
-        if (!strcmp(argv[1], commands[i].name))
-            return commands[i].run(argc - 1, argv + 1);
+    for (int i = 0; i < command_count; i++) {
+        if (strcmp(argv[1], commands[i].name))
+            continue;
+        if (commands[i].usage && app_wants_help(argc - 1, argv + 1)) {
+            commands[i].usage(stdout);
+            return 0;
+        }
+        return commands[i].run(argc - 1, argv + 1);
+    }
     fprintf(stderr, "conegraph: unknown command '%s' (see conegraph --help)\n", argv[1]);
     return 2;
 }

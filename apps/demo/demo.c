@@ -11,7 +11,8 @@
 #include <GLFW/glfw3.h>
 
 #include "app_common.h"
-#include "app_registry.h"
+#include "app_options.h"
+#include "app_session.h"
 #include "cg/camera.h"
 #include "cg/error.h"
 #include "cg/fg.h"
@@ -34,17 +35,9 @@ typedef struct scripted_key {
 } scripted_key;
 
 typedef struct demo_options {
-    const char *scene;
-    const char *graph;
-    int width, height;
-    const char *sets[MAX_LIST];
-    int set_count;
-    const char *plugins[MAX_LIST];
-    int plugin_count;
-    int frames;                 /* 0: until the window closes */
+    app_options common;         /* scene, graph, size, sets, plugins, timing; frames 0: until the
+                                 * window closes */
     const char *screenshot;
-    fg_timing_mode timing;
-    bool timing_given;
     scripted_key keys[MAX_LIST];  /* --keys: pressed one per frame from the first */
     int key_count;
 } demo_options;
@@ -58,16 +51,10 @@ typedef struct pending_change {
 
 typedef struct demo {
     demo_options o;
-    char graph_path[4096];
-    cg_scene scene;
-    int camera_index;
-    fg_registry *registry;
-    fg_graph *graph;
-    cg_context *ctx;
+    /* Scene, registry, graph, context, GPU scene and the frame (view, size) it renders. */
+    app_session s;
+    fg_graph *graph;            /* s.graph: loaded once, compiled again after every change */
     GLFWwindow *window;
-    cg_gpu_scene gpu;
-    bool uploaded;
-    fg_frame frame;
     fg_timing_mode timing;
     GLuint read_fbo;
 
@@ -143,20 +130,12 @@ usage(FILE *out)
         "with 1.\n");
 }
 
+#define TOOL "conegraph-demo"
+
 static int
 usage_error(const char *fmt, const char *arg)
 {
-    fprintf(stderr, "conegraph-demo: ");
-    fprintf(stderr, fmt, arg);
-    fprintf(stderr, " (see conegraph-demo --help)\n");
-    return 2;
-}
-
-static bool
-has_extension(const char *path, const char *ext)
-{
-    size_t n = strlen(path), e = strlen(ext);
-    return n > e && !strcasecmp(path + n - e, ext);
+    return app_usage_error(TOOL, fmt, arg);
 }
 
 static const struct {
@@ -214,70 +193,38 @@ parse_keys(const char *list, demo_options *o)
     return o->key_count > 0;
 }
 
+/* --screenshot, --keys: the demo's own options. */
 static int
-parse_args(int argc, char **argv, demo_options *o)
+own_option(void *user, const char *a, const char *v)
 {
-    memset(o, 0, sizeof *o);
-    o->width = 1280;
-    o->height = 720;
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        const char *v = i + 1 < argc ? argv[i + 1] : NULL;
-        bool option = a[0] == '-' && a[1] != '\0';
-        if (option && !v)
-            return usage_error("%s needs a value", a);
-        if (!strcmp(a, "--graph")) {
-            o->graph = v;
-        } else if (!strcmp(a, "--size")) {
-            if (!app_parse_size(v, &o->width, &o->height))
-                return usage_error("--size wants WxH with 1..65536 pixels each, not '%s'", v);
-        } else if (!strcmp(a, "--set")) {
-            if (o->set_count == MAX_LIST)
-                return usage_error("%s: too many --set options", v);
-            o->sets[o->set_count++] = v;
-        } else if (!strcmp(a, "--plugin")) {
-            if (o->plugin_count == MAX_LIST)
-                return usage_error("%s: too many --plugin options", v);
-            o->plugins[o->plugin_count++] = v;
-        } else if (!strcmp(a, "--frames")) {
-            long n;
-            if (!app_parse_int(v, 1, 1000000, &n))
-                return usage_error("--frames wants a count from 1 to 1000000, not '%s'", v);
-            o->frames = (int)n;
-        } else if (!strcmp(a, "--screenshot")) {
-            if (!has_extension(v, ".png"))
-                return usage_error("--screenshot writes .png files only, not '%s'", v);
-            o->screenshot = v;
-        } else if (!strcmp(a, "--timing")) {
-            if (!app_parse_timing(v, &o->timing))
-                return usage_error("--timing wants sync, queries or none, not '%s'", v);
-            o->timing_given = true;
-        } else if (!strcmp(a, "--keys")) {
-            if (!parse_keys(v, o))
-                return usage_error("--keys wants a comma-separated list of tab, shift+tab, up, down, "
-                                   "left, right, 1..9, r, l, p, f12, esc, w, a, s, d, q, e "
-                                   "(at most 64), not '%s'", v);
-        } else if (option) {
-            return usage_error("unknown option '%s'", a);
-        } else {
-            if (o->scene)
-                return usage_error("one scene only; '%s' is a second one", a);
-            o->scene = a;
-            continue;
-        }
-        i++;
+    demo_options *o = user;
+    if (!strcmp(a, "--screenshot")) {
+        if (!app_has_extension(v, ".png"))
+            return usage_error("--screenshot writes .png files only, not '%s'", v);
+        o->screenshot = v;
+    } else if (!strcmp(a, "--keys")) {
+        if (!parse_keys(v, o))
+            return usage_error("--keys wants a comma-separated list of tab, shift+tab, up, down, "
+                               "left, right, 1..9, r, l, p, f12, esc, w, a, s, d, q, e "
+                               "(at most 64), not '%s'", v);
+    } else {
+        return -1;
     }
-    if (!o->scene)
-        o->scene = "builtin:openworld";
     return 0;
 }
 
 static int
-fail_with(const char *what, const cg_error *err)
+parse_args(int argc, char **argv, demo_options *o)
 {
-    fprintf(stderr, "conegraph-demo: %s: %s\n", what, err->message);
-    int code = cg_status_exit_code(err->status);
-    return code ? code : 1;
+    memset(o, 0, sizeof *o);
+    o->common.width = 1280;
+    o->common.height = 720;
+    int code = app_parse_options(TOOL, argc, argv,
+                                 APP_OPT_GRAPH | APP_OPT_SIZE | APP_OPT_SET | APP_OPT_PLUGIN | APP_OPT_FRAMES |
+                                 APP_OPT_TIMING, &o->common, own_option, o);
+    if (!code && !o->common.scene)
+        o->common.scene = "builtin:openworld";
+    return code;
 }
 
 /* ------------------------------------------------------------ view and graph */
@@ -286,11 +233,11 @@ static void
 update_view(demo *d)
 {
     cg_view base;
-    cg_view_from_scene(&d->scene, d->camera_index, d->frame.width, d->frame.height, &base);
+    cg_view_from_scene(&d->s.scene, d->s.camera, d->s.frame.width, d->s.frame.height, &base);
     if (d->flying)
-        demo_camera_view(&d->cam, &d->scene, &base, &d->frame.view);
+        demo_camera_view(&d->cam, &d->s.scene, &base, &d->s.frame.view);
     else
-        d->frame.view = base;
+        d->s.frame.view = base;
 }
 
 static bool
@@ -333,28 +280,15 @@ list_shown(demo *d, const char *ldr)
             d->shown_index = i;
 }
 
-static bool
-is_output(const fg_graph *graph, const char *source)
-{
-    for (int i = 0; i < fg_graph_output_count(graph); i++)
-        if (!strcmp(fg_graph_output_at(graph, i), source))
-            return true;
-    return false;
-}
-
-/* Compiles for the current size and camera, then prepares (GL storage, programs). */
+/* Compiles for the current size and camera, then prepares (GL storage, programs); the
+ * session checks that the ldr output is there for this scene. */
 static bool
 compile_and_prepare(demo *d, cg_error *err)
 {
     update_view(d);
-    fg_compile_options copts = { 0 };
-    if (!fg_graph_compile(d->graph, &d->frame, &copts, err) || !fg_graph_prepare(d->graph, err))
+    if (!app_session_compile(&d->s, err))
         return false;
-    const char *ldr = app_find_output(d->graph, "ldr");
-    const fg_resource_info *info = ldr ? fg_graph_find_resource(d->graph, ldr) : NULL;
-    if (!info || info->absent || info->desc.kind != FG_TEXTURE_2D)
-        return cg_fail(err, CG_ERR_USAGE, "%s: the graph's ldr output is absent for this scene", d->graph_path);
-    list_shown(d, ldr);
+    list_shown(d, d->s.image_source);
     return true;
 }
 
@@ -413,14 +347,10 @@ apply_changes(demo *d, cg_error *err)
 
 /* ------------------------------------------------------------ input */
 
-/* Most that one key press steps past values the graph refuses. */
-#define MAX_REFUSED_STEPS 64
-
-/* Left/Right. A table range can be wider than what a pass accepts (cone_gather's cones is
- * 1..16 but only 1, 6, 9 or 16 make a cone set; its declare says so), and a value can pass
- * the table yet not compile (a resolution past the GL limits): the key then goes on stepping
- * the same way until the graph compiles, and if it never does within the range, nothing
- * changes and the first refusal is printed. */
+/* Left/Right. The step lands on a value the table allows (demo_params.h), so nothing is
+ * compiled to find it; a value whose dependencies fail is refused at once. The graph is
+ * compiled before the next frame, and a value that still fails there (a resolution past the
+ * GL limits) is undone by apply_changes. */
 static void
 adjust(demo *d, int direction)
 {
@@ -434,47 +364,22 @@ adjust(demo *d, int direction)
     const fg_param_desc *desc;
     if (!demo_selected(d->graph, &d->sel, &pass, &desc))
         return;
-    cg_error refused = { 0 };
-    bool stepped = false, compiled = false;
-    for (int tries = 0; tries < MAX_REFUSED_STEPS && !compiled; tries++) {
-        cg_error err = { 0 };
-        bool changed = false;
-        char previous[sizeof c->previous];
-        if (!demo_adjust(d->graph, &d->sel, direction, &changed, previous, sizeof previous, &err)) {
-            fprintf(stderr, "conegraph-demo: %s\n", err.message);
-            break;
-        }
-        if (!changed)
-            break;
-        if (!stepped)
-            memcpy(c->previous, previous, sizeof previous);
-        stepped = true;
-        /* Compiling needs no new GL objects; it does release the graph's, so a prepare
-         * follows before the next frame in any case. */
-        update_view(d);
-        fg_compile_options copts = { 0 };
-        compiled = fg_graph_compile(d->graph, &d->frame, &copts, &err);
-        if (!compiled && refused.status == CG_OK)
-            refused = err;
+    cg_error err = { 0 };
+    bool changed = false;
+    if (!demo_adjust(d->graph, &d->sel, direction, &changed, c->previous, sizeof c->previous, &err)) {
+        fprintf(stderr, "conegraph-demo: %s; not changed\n", err.message);
+        return;
     }
-    if (!stepped) {
+    if (!changed) {
         printf("param: %s.%s: no step %s from here\n", fg_pass_name(pass), desc->name,
                desc->type == FG_PARAM_STRING ? "(a string)" : direction > 0 ? "up" : "down");
         fflush(stdout);
         return;
     }
-    d->recompile = true;
-    if (!compiled) {
-        cg_error err = { 0 };
-        fprintf(stderr, "conegraph-demo: %s; no value that way compiles, change undone\n", refused.message);
-        if (!fg_graph_set_param(d->graph, fg_pass_name(pass), desc->name, c->previous, NULL, &err))
-            fprintf(stderr, "conegraph-demo: undoing %s.%s: %s\n", fg_pass_name(pass), desc->name, err.message);
-        print_selection(d);
-        return;
-    }
     snprintf(c->pass, sizeof c->pass, "%s", fg_pass_name(pass));
     snprintf(c->param, sizeof c->param, "%s", desc->name);
     d->change_count++;
+    d->recompile = true;
     print_selection(d);
 }
 
@@ -490,16 +395,15 @@ show(demo *d, int index)
         return;
     }
     d->shown_index = index;
-    if (!is_output(d->graph, d->shown[index])) {
-        /* Marked as an output so that it is kept and not pooled away before the blit. */
-        cg_error err = { 0 };
-        if (!fg_graph_mark_output(d->graph, d->shown[index], NULL, &err)) {
-            fprintf(stderr, "conegraph-demo: %s\n", err.message);
-            d->shown_index = 0;
-            return;
-        }
-        d->recompile = true;
+    /* Marked as an output so that it is kept and not pooled away before the blit. */
+    cg_error err = { 0 };
+    bool added = false;
+    if (!app_session_mark_output(&d->s, d->shown[index], &added, &err)) {
+        fprintf(stderr, "conegraph-demo: %s\n", err.message);
+        d->shown_index = 0;
+        return;
     }
+    d->recompile |= added;
     printf("show: %d %s%s\n", index + 1, d->shown[index],
            index ? " (raw values, clamped to [0,1] by the blit)" : "");
     fflush(stdout);
@@ -579,7 +483,7 @@ start_flying(demo *d)
 {
     if (d->flying)
         return;
-    demo_camera_from_view(&d->frame.view, &d->cam);
+    demo_camera_from_view(&d->s.frame.view, &d->cam);
     d->flying = true;
 }
 
@@ -656,8 +560,8 @@ move_sun(demo *d, double seconds, cg_error *err)
     float angle = (float)(seconds * SUN_DEGREES_PER_SECOND * 3.14159265358979 / 180.0);
     float c = cosf(angle), s = sinf(angle);
     bool any = false;
-    for (int i = 0; i < d->scene.light_count; i++) {
-        cg_light *l = &d->scene.lights[i];
+    for (int i = 0; i < d->s.scene.light_count; i++) {
+        cg_light *l = &d->s.scene.lights[i];
         if (l->type != CG_LIGHT_DIRECTIONAL)
             continue;
         float x = l->direction[0], z = l->direction[2];
@@ -665,7 +569,7 @@ move_sun(demo *d, double seconds, cg_error *err)
         l->direction[2] = -s * x + c * z;
         any = true;
     }
-    return !any || cg_gpu_scene_update_lights(&d->gpu, err);
+    return !any || cg_gpu_scene_update_lights(&d->s.gpu, err);
 }
 
 /* ------------------------------------------------------------ frame */
@@ -687,9 +591,9 @@ blit(demo *d)
     glNamedFramebufferTexture(d->read_fbo, GL_COLOR_ATTACHMENT0, texture, 0);
     glNamedFramebufferReadBuffer(d->read_fbo, GL_COLOR_ATTACHMENT0);
     int sw = info->desc.width, sh = info->desc.height;
-    bool same = sw == d->frame.width && sh == d->frame.height;
+    bool same = sw == d->s.frame.width && sh == d->s.frame.height;
     /* Texture rows and the window both run bottom to top in GL: no flip is needed. */
-    glBlitNamedFramebuffer(d->read_fbo, 0, 0, 0, sw, sh, 0, 0, d->frame.width, d->frame.height,
+    glBlitNamedFramebuffer(d->read_fbo, 0, 0, 0, sw, sh, 0, 0, d->s.frame.width, d->s.frame.height,
                            GL_COLOR_BUFFER_BIT, same ? GL_NEAREST : GL_LINEAR);
 }
 
@@ -697,7 +601,7 @@ blit(demo *d)
 static bool
 write_screenshot(demo *d, const char *path, cg_error *err)
 {
-    int w = d->frame.width, h = d->frame.height;
+    int w = d->s.frame.width, h = d->s.frame.height;
     unsigned char *px = malloc((size_t)w * (size_t)h * 4);
     if (!px)
         return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "%s: %dx%d pixels", path, w, h);
@@ -731,8 +635,7 @@ median_ms(const double *values, int count)
 {
     double sorted[FRAME_HISTORY];
     memcpy(sorted, values, (size_t)count * sizeof *sorted);
-    qsort(sorted, (size_t)count, sizeof *sorted, app_compare_double);
-    return sorted[count / 2];
+    return app_median(sorted, count);
 }
 
 /* Title and stdout: the selection, frame time, per-pass times and GI memory. */
@@ -764,8 +667,8 @@ report_status(demo *d, bool force)
     if (len >= sizeof passes)
         len = sizeof passes - 1;
     snprintf(d->status, sizeof d->status, "frame %.1f ms | %s ms | GI %.1f MiB | %dx%d | %s",
-             frame, passes, (double)mem.gi_bytes / (1024.0 * 1024.0), d->frame.width,
-             d->frame.height, d->shown[d->shown_index]);
+             frame, passes, (double)mem.gi_bytes / (1024.0 * 1024.0), d->s.frame.width,
+             d->s.frame.height, d->shown[d->shown_index]);
     printf("%s\n", d->status);
     fflush(stdout);
 
@@ -794,7 +697,7 @@ run(demo *d)
     cg_error err = { 0 };
     int frames_run = 0;
     double last = app_now_ms();
-    while (!glfwWindowShouldClose(d->window) && (!d->o.frames || frames_run < d->o.frames)) {
+    while (!glfwWindowShouldClose(d->window) && (!d->o.common.frames || frames_run < d->o.common.frames)) {
         glfwPollEvents();
         int w, h;
         glfwGetFramebufferSize(d->window, &w, &h);
@@ -810,9 +713,9 @@ run(demo *d)
             if (glfwWindowShouldClose(d->window))
                 break;
         }
-        if (w != d->frame.width || h != d->frame.height) {
-            d->frame.width = w;
-            d->frame.height = h;
+        if (w != d->s.frame.width || h != d->s.frame.height) {
+            d->s.frame.width = w;
+            d->s.frame.height = h;
             d->recompile = true;
         }
         double now = app_now_ms();
@@ -821,8 +724,8 @@ run(demo *d)
         if (d->recompile) {
             double t0 = app_now_ms();
             if (!apply_changes(d, &err))
-                return fail_with("graph", &err);
-            printf("graph: compiled and prepared for %dx%d in %.0f ms\n", d->frame.width, d->frame.height,
+                return app_fail(TOOL, NULL, &err);
+            printf("graph: compiled and prepared for %dx%d in %.0f ms\n", d->s.frame.width, d->s.frame.height,
                    app_now_ms() - t0);
             fflush(stdout);
             report_status(d, true);
@@ -831,25 +734,25 @@ run(demo *d)
         float step = (float)(seconds < 0.25 ? seconds : 0.25);
         move_camera(d, step, script);
         if (d->sun_moving && !move_sun(d, step, &err))
-            return fail_with("sun", &err);
+            return app_fail(TOOL, "sun", &err);
         update_view(d);
 
-        d->frame.index = (uint64_t)frames_run;
+        d->s.frame.index = (uint64_t)frames_run;
         double t0 = app_now_ms();
-        if (!fg_graph_execute(d->graph, &d->frame, d->timing, &err))
-            return fail_with("frame", &err);
+        if (!fg_graph_execute(d->graph, &d->s.frame, d->timing, &err))
+            return app_fail(TOOL, "frame", &err);
         blit(d);
-        bool last_frame = d->o.frames && frames_run + 1 == d->o.frames;
+        bool last_frame = d->o.common.frames && frames_run + 1 == d->o.common.frames;
         if (d->screenshot_requested || (last_frame && d->o.screenshot)) {
             char buf[64];
             const char *path = screenshot_path(d, buf, sizeof buf);
             d->screenshot_requested = false;
             if (!write_screenshot(d, path, &err))
-                return fail_with(path, &err);
+                return app_fail(TOOL, path, &err);
             printf("screenshot: %s\n", path);
             fflush(stdout);
         }
-        cg_context_swap(d->ctx);
+        cg_context_swap(d->s.ctx);
         /* With sync or no timing, finish here so that the frame time is the frame's work,
          * not how far the driver queued ahead. */
         if (d->timing != FG_TIMING_QUERIES)
@@ -864,7 +767,7 @@ run(demo *d)
             d->all_frame_ms[frames_run] = ms;
         frames_run++;
 
-        int errors = cg_context_gl_error_count(d->ctx);
+        int errors = cg_context_gl_error_count(d->s.ctx);
         if (errors > 0) {
             fprintf(stderr, "conegraph-demo: %d GL error(s) in frame %d (logged above)\n", errors, frames_run);
             return 1;
@@ -879,70 +782,44 @@ run(demo *d)
     report_status(d, true);
     fg_graph_print_report(d->graph, stdout);
     if (d->all_frame_ms && frames_run > 0) {
-        qsort(d->all_frame_ms, (size_t)frames_run, sizeof *d->all_frame_ms, app_compare_double);
-        printf("demo: %s %dx%d, graph %s, on %s: median frame %.1f ms over %d frame(s)\n", d->scene.name,
-               d->frame.width, d->frame.height, d->graph_path, cg_context_renderer(d->ctx),
-               d->all_frame_ms[frames_run / 2], frames_run);
+        printf("demo: %s %dx%d, graph %s, on %s: median frame %.1f ms over %d frame(s)\n", d->s.scene.name,
+               d->s.frame.width, d->s.frame.height, d->s.graph_path, cg_context_renderer(d->s.ctx),
+               app_median(d->all_frame_ms, frames_run), frames_run);
     }
     fflush(stdout);
     return 0;
 }
 
-/* Loads, checks and opens everything, runs, and tears down. */
+/* Loads and checks everything (bad input exits 2 before a window opens), opens the window,
+ * runs, and tears down. */
 static int
 demo_main(demo *d)
 {
     cg_error err = { 0 };
     int code = 1;
-    app_resolve_graph(d->o.graph, d->graph_path, sizeof d->graph_path);
-    if (!cg_scene_load(d->o.scene, &d->scene, &err))
-        return fail_with("scene", &err);
-    if (!cg_camera_select(&d->scene, NULL, &d->camera_index, &err)) {
-        code = fail_with("camera", &err);
+    app_session_desc desc = app_options_session(&d->o.common);
+    app_graph_desc graph = app_options_graph(&d->o.common);
+    graph.image = "ldr";
+    cg_context_desc context = { .backend = CG_CONTEXT_GLFW, .width = d->o.common.width, .height = d->o.common.height,
+                                .title = "conegraph-demo", .debug = true };
+    if (!app_session_open(&d->s, &desc, &err) || !app_session_load_graph(&d->s, &graph, &err) ||
+        !app_session_check(&d->s, &err)) {
+        code = app_fail(TOOL, NULL, &err);
         goto done;
     }
-    d->registry = app_registry_create(d->o.plugins, d->o.plugin_count, &err);
-    if (!d->registry) {
-        code = fail_with("passes", &err);
-        goto done;
-    }
-    d->graph = fg_graph_create(d->registry);
-    if (!d->graph) {
-        fprintf(stderr, "conegraph-demo: out of memory\n");
-        goto done;
-    }
-    if (!app_load_graph(d->graph, d->graph_path, d->o.sets, d->o.set_count, &err)) {
-        code = fail_with("graph", &err);
-        goto done;
-    }
-    if (!app_find_output(d->graph, "ldr")) {
-        fprintf(stderr, "conegraph-demo: %s: the graph marks no output named *.ldr to show\n", d->graph_path);
-        code = 2;
-        goto done;
-    }
-    d->frame = (fg_frame){ .scene = &d->scene, .width = d->o.width, .height = d->o.height };
-    update_view(d);
-    /* A first compile without GL finds every bad-input error before a window opens. */
-    fg_compile_options copts = { 0 };
-    if (!fg_graph_compile(d->graph, &d->frame, &copts, &err)) {
-        code = fail_with("graph", &err);
-        goto done;
-    }
-    if (d->o.frames) {
-        d->all_frame_ms = calloc((size_t)d->o.frames, sizeof *d->all_frame_ms);
+    d->graph = d->s.graph;
+    if (d->o.common.frames) {
+        d->all_frame_ms = calloc((size_t)d->o.common.frames, sizeof *d->all_frame_ms);
         if (!d->all_frame_ms) {
             fprintf(stderr, "conegraph-demo: out of memory\n");
             goto done;
         }
     }
-
-    cg_context_desc cdesc = { .backend = CG_CONTEXT_GLFW, .width = d->o.width, .height = d->o.height,
-                              .title = "conegraph-demo", .debug = true };
-    if (!cg_context_create(&cdesc, &d->ctx, &err)) {
-        code = fail_with("window", &err);
+    if (!app_session_start_gl(&d->s, &context, &err)) {
+        code = app_fail(TOOL, NULL, &err);
         goto done;
     }
-    d->window = cg_context_window(d->ctx);
+    d->window = cg_context_window(d->s.ctx);
     glfwSetWindowUserPointer(d->window, d);
     glfwSetKeyCallback(d->window, on_key);
     glfwSetMouseButtonCallback(d->window, on_mouse_button);
@@ -951,29 +828,22 @@ demo_main(demo *d)
     glfwSetScrollCallback(d->window, on_scroll);
     /* Frame times measure the frames, not the display's refresh. */
     glfwSwapInterval(0);
-    d->timing = d->o.timing_given ? d->o.timing
-                                  : is_software(cg_context_renderer(d->ctx)) ? FG_TIMING_SYNC : FG_TIMING_QUERIES;
+    d->timing = d->o.common.timing_given ? d->o.common.timing
+                                  : is_software(cg_context_renderer(d->s.ctx)) ? FG_TIMING_SYNC : FG_TIMING_QUERIES;
     glCreateFramebuffers(1, &d->read_fbo);
-
-    if (!cg_gpu_scene_upload(&d->scene, &d->gpu, &err)) {
-        code = fail_with("scene upload", &err);
-        goto done;
-    }
-    d->uploaded = true;
-    d->frame.gpu_scene = &d->gpu;
-    glfwGetFramebufferSize(d->window, &d->frame.width, &d->frame.height);
+    glfwGetFramebufferSize(d->window, &d->s.frame.width, &d->s.frame.height);
     if (!compile_and_prepare(d, &err)) {
-        code = fail_with("graph", &err);
+        code = app_fail(TOOL, NULL, &err);
         goto done;
     }
     float diagonal = 0;
     for (int k = 0; k < 3; k++)
-        diagonal += (d->scene.bounds_max[k] - d->scene.bounds_min[k]) * (d->scene.bounds_max[k] - d->scene.bounds_min[k]);
+        diagonal += (d->s.scene.bounds_max[k] - d->s.scene.bounds_min[k]) * (d->s.scene.bounds_max[k] - d->s.scene.bounds_min[k]);
     /* A tenth of the scene per second. */
     d->base_speed = d->speed = diagonal > 0 ? sqrtf(diagonal) * 0.1f : 1.0f;
 
-    printf("conegraph-demo: %s, graph %s, %dx%d, %s on %s, timing %s\n", d->scene.name, d->graph_path,
-           d->frame.width, d->frame.height, cg_context_version(d->ctx), cg_context_renderer(d->ctx),
+    printf("conegraph-demo: %s, graph %s, %dx%d, %s on %s, timing %s\n", d->s.scene.name, d->s.graph_path,
+           d->s.frame.width, d->s.frame.height, cg_context_version(d->s.ctx), cg_context_renderer(d->s.ctx),
            d->timing == FG_TIMING_SYNC ? "sync" : d->timing == FG_TIMING_QUERIES ? "queries" : "none");
     printf("keys: WASD/QE fly, drag look, scroll speed, R reset, Tab/Shift+Tab pass, Up/Down param, "
            "Left/Right value, 1..%d show, L sun, P report, F12 screenshot, Esc quit\n", d->shown_count);
@@ -983,28 +853,20 @@ demo_main(demo *d)
 
 done:
     free(d->all_frame_ms);
-    if (d->graph)
-        fg_graph_destroy(d->graph);
+    /* The window's framebuffer object goes before its context. */
     if (d->read_fbo)
         glDeleteFramebuffers(1, &d->read_fbo);
-    if (d->uploaded)
-        cg_gpu_scene_destroy(&d->gpu);
-    if (d->ctx)
-        cg_context_destroy(d->ctx);
-    if (d->registry)
-        fg_registry_destroy(d->registry);
-    cg_scene_free(&d->scene);
+    app_session_close(&d->s);
     return code;
 }
 
 int
 main(int argc, char **argv)
 {
-    for (int i = 1; i < argc; i++)
-        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
-            usage(stdout);
-            return 0;
-        }
+    if (app_wants_help(argc, argv)) {
+        usage(stdout);
+        return 0;
+    }
     demo *d = calloc(1, sizeof *d);
     if (!d) {
         fprintf(stderr, "conegraph-demo: out of memory\n");

@@ -9,10 +9,17 @@
 /* Values read back through fg_param_float are floats: compare and snap with this slack. */
 #define VALUE_SLACK 1e-5
 
+/* Steps that move along a list rather than by an amount. */
+static bool
+lists_values(const fg_param_desc *desc)
+{
+    return desc->allowed.count > 0 || (desc->type == FG_PARAM_INT && desc->power_of_two);
+}
+
 static bool
 doubles(const fg_param_desc *desc)
 {
-    return desc->type == FG_PARAM_INT && desc->min >= 1 && desc->max - desc->min > 64;
+    return desc->step_doubles && !lists_values(desc);
 }
 
 /* The largest 1, 2 or 5 x 10^k not above x (x > 0). */
@@ -34,15 +41,61 @@ nice_step_below(double x)
 double
 demo_param_step_size(const fg_param_desc *desc, double value)
 {
-    if (desc->type == FG_PARAM_INT)
-        return doubles(desc) ? 0 : 1;
-    if (desc->type != FG_PARAM_FLOAT)
+    if (desc->type != FG_PARAM_INT && desc->type != FG_PARAM_FLOAT)
         return 0;
+    if (lists_values(desc) || doubles(desc))
+        return 0;
+    if (desc->step > 0)
+        return desc->step;
+    if (desc->type == FG_PARAM_INT)
+        return 1;
     double width = desc->max - desc->min;
     if (width <= 1000)
         return width > 0 ? nice_step_below(width / 50) : 0;
     double magnitude = fabs(value) > 1 ? fabs(value) : 1;
     return nice_step_below(magnitude / 4);
+}
+
+/* The next value of the table's list (allowed values, or the powers of two in the range)
+ * above `value` (direction > 0) or below it; false at the end of the list. */
+static bool
+next_listed(const fg_param_desc *desc, double value, int direction, double *out)
+{
+    double slack = VALUE_SLACK * (fabs(value) > 1 ? fabs(value) : 1);
+    if (desc->allowed.count > 0) {
+        const fg_param_values *a = &desc->allowed;
+        if (direction > 0) {
+            for (int i = 0; i < a->count; i++)
+                if (a->values[i] > value + slack) {
+                    *out = a->values[i];
+                    return true;
+                }
+        } else {
+            for (int i = a->count - 1; i >= 0; i--)
+                if (a->values[i] < value - slack) {
+                    *out = a->values[i];
+                    return true;
+                }
+        }
+        return false;
+    }
+    /* Powers of two: the range's bounds are powers of two too (fg_registry_add checks). */
+    if (direction > 0) {
+        double p = desc->min;
+        while (p <= value + slack && p < desc->max)
+            p *= 2;
+        if (p > desc->max || p <= value + slack)
+            return false;
+        *out = p;
+    } else {
+        double p = desc->max;
+        while (p >= value - slack && p > desc->min)
+            p /= 2;
+        if (p < desc->min || p >= value - slack)
+            return false;
+        *out = p;
+    }
+    return true;
 }
 
 static int
@@ -93,12 +146,15 @@ demo_param_step(const fg_param_desc *desc, double value, int direction, double *
         break;
     }
     case FG_PARAM_INT:
-        if (doubles(desc))
-            next = direction > 0 ? value * 2 : floor(value / 2);
-        else
-            next = value + (direction > 0 ? 1 : -1);
-        break;
     case FG_PARAM_FLOAT: {
+        if (lists_values(desc))
+            return next_listed(desc, value, direction, out);
+        if (doubles(desc)) {
+            next = direction > 0 ? value * 2 : value / 2;
+            if (desc->type == FG_PARAM_INT)
+                next = floor(next);
+            break;
+        }
         double step = demo_param_step_size(desc, value);
         if (step <= 0)
             return false;
@@ -170,26 +226,32 @@ void
 demo_param_describe(const fg_pass *pass, const fg_param_desc *desc, char *out, size_t size)
 {
     double value = demo_param_value(pass, desc);
-    char text[256], range[320];
+    /* The values as `conegraph passes` lists them, then how the keys step them. */
+    char text[256], values[512], range[768], depends[512], state[640] = "";
+    fg_param_values_text(desc, values, sizeof values);
     if (desc->type == FG_PARAM_STRING) {
         snprintf(text, sizeof text, "\"%s\"", fg_param_string(pass, desc->name));
         snprintf(range, sizeof range, "string, not steppable");
-    } else if (desc->type == FG_PARAM_FLOAT) {
-        /* Floats are stored as floats: %g shows 0.35, not 0.349999994. */
-        snprintf(text, sizeof text, "%g", value);
-        snprintf(range, sizeof range, "float %g..%g, step %g", desc->min, desc->max,
-                 demo_param_step_size(desc, value));
+    } else if (desc->type == FG_PARAM_INT || desc->type == FG_PARAM_FLOAT) {
+        if (desc->type == FG_PARAM_FLOAT)
+            snprintf(text, sizeof text, "%g", value); /* stored as floats: 0.35, not 0.349999994 */
+        else
+            demo_param_format(desc, value, text, sizeof text);
+        const char *type = desc->type == FG_PARAM_INT ? "int" : "float";
+        if (lists_values(desc))
+            snprintf(range, sizeof range, "%s %s", type, values);
+        else if (doubles(desc))
+            snprintf(range, sizeof range, "%s %s, doubles/halves", type, values);
+        else
+            snprintf(range, sizeof range, "%s %s, step %g", type, values, demo_param_step_size(desc, value));
     } else {
         demo_param_format(desc, value, text, sizeof text);
-        if (desc->type == FG_PARAM_INT)
-            snprintf(range, sizeof range, "int %g..%g, %s", desc->min, desc->max,
-                     doubles(desc) ? "doubles/halves" : "step 1");
-        else if (desc->type == FG_PARAM_BOOL)
-            snprintf(range, sizeof range, "bool");
-        else
-            snprintf(range, sizeof range, "%s", desc->choices);
+        snprintf(range, sizeof range, "%s", desc->type == FG_PARAM_BOOL ? "bool" : desc->choices);
     }
-    snprintf(out, size, "%s.%s = %s (%s): %s", fg_pass_name(pass), desc->name, text, range, desc->doc);
+    fg_param_dependency_text(desc, depends, sizeof depends);
+    if (depends[0])
+        snprintf(state, sizeof state, "; %s%s", depends, fg_param_active(pass, desc) ? "" : ": inactive now");
+    snprintf(out, size, "%s.%s = %s (%s%s): %s", fg_pass_name(pass), desc->name, text, range, state, desc->doc);
 }
 
 /* ------------------------------------------------------------ selection */
@@ -272,6 +334,15 @@ demo_adjust(fg_graph *graph, const demo_selection *sel, int direction, bool *cha
     demo_param_format(desc, value, previous, previous_size);
     if (!fg_graph_set_param(graph, fg_pass_name(pass), desc->name, text, NULL, err))
         return false;
+    /* What this value requires of the others (voxelize: padding below a quarter of the
+     * resolution) is in the table too: refuse the step here rather than by compiling. */
+    if (!fg_pass_check_params(pass, err)) {
+        cg_error undo = { 0 };
+        if (!fg_graph_set_param(graph, fg_pass_name(pass), desc->name, previous, NULL, &undo))
+            snprintf(err->message + strlen(err->message), sizeof err->message - strlen(err->message),
+                     " (and undoing it failed: %s)", undo.message);
+        return false;
+    }
     *changed = true;
     return true;
 }

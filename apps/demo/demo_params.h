@@ -7,12 +7,18 @@
  *
  * Stepping (Left/Right in the demo), a pure function of the table entry and the value:
  * - bool toggles; enum moves to the next or previous choice, wrapping round;
- * - int: +-1, or doubled/halved when the range starts at 1 or more and is wider than 64
- *   (resolutions, sample counts: 128 -> 256 -> 512 rather than 128 -> 129);
- * - float: the largest 1, 2 or 5 x 10^k not above 1/50 of the range, or, when the range is
- *   wider than 1000 (unbounded-like: distances, region corners), not above a quarter of
- *   max(|value|, 1); the value lands on a multiple of the step;
+ * - int or float with allowed values: the next or previous of them (cones 1, 6, 9, 16);
+ * - int that is a power of two: the next or previous power of two in the range
+ *   (resolutions 128 -> 256 -> 512);
+ * - step_doubles: doubled or halved (sample counts, shadow-map sizes);
+ * - otherwise +- the table's step; without one, 1 for an int, and for a float the largest
+ *   1, 2 or 5 x 10^k not above 1/50 of the range, or, when the range is wider than 1000
+ *   (unbounded-like: distances, region corners), not above a quarter of max(|value|, 1);
+ *   the value lands on a multiple of the step;
  * - the range bounds stop the step (there is no step beyond them); strings do not step.
+ * So every step lands on a value that fg_graph_set_param accepts: nothing is tried and
+ * refused. What a value requires of another parameter (greater_than, less_than) is checked
+ * by demo_adjust through fg_pass_check_params, again without compiling.
  */
 #ifndef CONEGRAPH_DEMO_PARAMS_H
 #define CONEGRAPH_DEMO_PARAMS_H
@@ -26,14 +32,16 @@
 /* The value one step up (direction > 0) or down (direction < 0) from `value`. False when
  * there is none: a string parameter, or the value is already at that end of the range. */
 bool demo_param_step(const fg_param_desc *desc, double value, int direction, double *out);
-/* The step of an int or float parameter at `value` (a factor of 2 for doubling ints is
- * reported as 0); 0 for the other types. */
+/* The step of an int or float parameter at `value`; 0 when it steps along a list (allowed
+ * values, powers of two) or doubles, and for the other types. */
 double demo_param_step_size(const fg_param_desc *desc, double value);
 /* `value` as the text fg_graph_set_param takes ("7", "0.35", "true", "aces"). */
 void demo_param_format(const fg_param_desc *desc, double value, char *out, size_t size);
 /* The current value of a pass's parameter as a number (enum: its index; string: 0). */
 double demo_param_value(const fg_pass *pass, const fg_param_desc *desc);
-/* One line: "pass.param = value (type range): doc". */
+/* One line: "pass.param = value (type values, stepping[; dependencies]): doc", e.g.
+ * "gather.cones = 6 (int 1, 6, 9, 16): ...", "vox.min_x = -1 (float -1e+09..1e+09, step 0.2;
+ * only with region = explicit: inactive now): ...". */
 void demo_param_describe(const fg_pass *pass, const fg_param_desc *desc, char *out, size_t size);
 
 /* Which pass (file order) and which of its parameters the keys act on; -1 when the graph
@@ -54,8 +62,10 @@ bool demo_selected(const fg_graph *graph, const demo_selection *sel, fg_pass **p
                    const fg_param_desc **desc);
 
 /* Steps the selected parameter through fg_graph_set_param (the same validation as graph
- * files and --set). *changed is false when there was no step to take; `previous` receives
- * the old value's text (for undoing the change if the graph then fails to compile). */
+ * files and --set), then checks the pass's dependencies (fg_pass_check_params): a value that
+ * breaks one is undone and the error says why. *changed is false when there was no step to
+ * take; `previous` receives the old value's text (for undoing the change if the graph then
+ * fails to compile, e.g. past the GL limits). */
 bool demo_adjust(fg_graph *graph, const demo_selection *sel, int direction, bool *changed,
                  char *previous, size_t previous_size, cg_error *err);
 

@@ -6,25 +6,21 @@
  * Runs the graph synchronously (glFinish + CPU clock around each pass: FG_TIMING_SYNC, the
  * only timing llvmpipe gets right), discards the warm-up frames (shader JIT), and prints the
  * median of each pass over the timed frames, the median whole frame, and the graph's memory
- * report (GI bytes: resources flagged gi). Exit codes: 0 done, 1 failed, 2 bad usage.
+ * report (GI bytes: resources flagged gi). Exit codes: 0 done, 1 failed while running, 2 bad
+ * usage, scene or graph, found by the app session before anything runs.
  */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "../conegraph/app_common.h"
-#include "sdk/builtin.h"
-#include "cg/camera.h"
+#include "app_common.h"
+#include "app_options.h"
+#include "app_session.h"
 #include "cg/error.h"
+#include "cg/fg.h"
 #include "cg/gl.h"
-#include "cg/gpu_scene.h"
-#include "cg/graphfile.h"
-#include "cg/image.h"
-#include "cg/log.h"
-#include "cg/scene.h"
 
-#define MAX_SETS 64
-#define MAX_FRAMES 1000
+#define TOOL "vct-bench"
 
 static void
 usage(FILE *out)
@@ -35,163 +31,84 @@ usage(FILE *out)
             "Per-pass median milliseconds (synchronous timing, after warm-up frames) and the\n"
             "graph's memory report. SCENE defaults to builtin:openworld, the graph to vct.json,\n"
             "the size to 640x360, 2 warm-up and 5 timed frames. -o writes the graph's ldr\n"
-            "(.png) or hdr (.exr) output of the last frame.\n");
+            "(.png) or hdr (.exr) output of the last frame. Exit codes: 0 done, 1 failed while\n"
+            "running, 2 bad usage, scene or graph (found before anything runs).\n");
 }
 
 static int
-fail(const cg_error *err)
+usage_error(const char *fmt, const char *arg)
 {
-    fprintf(stderr, "vct-bench: %s\n", err->message);
-    return cg_status_exit_code(err->status);
+    return app_usage_error(TOOL, fmt, arg);
+}
+
+typedef struct vct_options {
+    app_options common;         /* scene, graph, size, sets, frames, context */
+    long warmup;
+    const char *image_path;
+} vct_options;
+
+/* --warmup, -o: vct-bench's own options. */
+static int
+own_option(void *user, const char *a, const char *v)
+{
+    vct_options *o = user;
+    if (!strcmp(a, "--warmup")) {
+        if (!app_parse_int(v, 0, 100, &o->warmup))
+            return usage_error("--warmup wants 0 to 100, not '%s'", v);
+    } else if (!strcmp(a, "-o")) {
+        if (!app_has_extension(v, ".png") && !app_has_extension(v, ".exr"))
+            return usage_error("-o wants a .png or .exr file, not '%s'", v);
+        o->image_path = v;
+    } else {
+        return -1;
+    }
+    return 0;
 }
 
 int
 main(int argc, char **argv)
 {
-    const char *scene_name = "builtin:openworld", *graph_arg = NULL, *image_path = NULL;
-    const char *sets[MAX_SETS];
-    int set_count = 0, width = 640, height = 360;
-    long warmup = 2, frames = 5;
-    cg_context_backend backend = CG_CONTEXT_AUTO;
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        bool has_value = i + 1 < argc;
-        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-            usage(stdout);
-            return 0;
-        } else if (!strcmp(a, "--graph") && has_value) {
-            graph_arg = argv[++i];
-        } else if (!strcmp(a, "--size") && has_value) {
-            if (!app_parse_size(argv[++i], &width, &height)) {
-                fprintf(stderr, "vct-bench: --size expects WxH, got '%s'\n", argv[i]);
-                return 2;
-            }
-        } else if (!strcmp(a, "--warmup") && has_value) {
-            if (!app_parse_int(argv[++i], 0, 100, &warmup)) {
-                fprintf(stderr, "vct-bench: --warmup expects 0..100, got '%s'\n", argv[i]);
-                return 2;
-            }
-        } else if (!strcmp(a, "--frames") && has_value) {
-            if (!app_parse_int(argv[++i], 1, MAX_FRAMES, &frames)) {
-                fprintf(stderr, "vct-bench: --frames expects 1..%d, got '%s'\n", MAX_FRAMES, argv[i]);
-                return 2;
-            }
-        } else if (!strcmp(a, "--set") && has_value) {
-            if (set_count == MAX_SETS) {
-                fprintf(stderr, "vct-bench: at most %d --set\n", MAX_SETS);
-                return 2;
-            }
-            sets[set_count++] = argv[++i];
-        } else if (!strcmp(a, "--context") && has_value) {
-            if (!cg_context_backend_parse(argv[++i], &backend)) {
-                fprintf(stderr, "vct-bench: --context expects egl, osmesa or glfw, got '%s'\n", argv[i]);
-                return 2;
-            }
-        } else if (!strcmp(a, "-o") && has_value) {
-            image_path = argv[++i];
-        } else if (a[0] == '-') {
-            fprintf(stderr, "vct-bench: unknown or incomplete option '%s'\n", a);
-            usage(stderr);
-            return 2;
-        } else {
-            scene_name = a;
-        }
+    if (app_wants_help(argc, argv)) {
+        usage(stdout);
+        return 0;
     }
+    vct_options o = { .common = { .width = 640, .height = 360, .frames = 5 }, .warmup = 2 };
+    int code = app_parse_options(TOOL, argc, argv, APP_OPT_GRAPH | APP_OPT_SIZE | APP_OPT_SET | APP_OPT_FRAMES |
+                                 APP_OPT_CONTEXT, &o.common, own_option, &o);
+    if (code)
+        return code;
+    if (!o.common.scene)
+        o.common.scene = "builtin:openworld";
 
-    char graph_path[4096];
-    app_resolve_graph(graph_arg, graph_path, sizeof graph_path);
-    cg_error err = {0};
-    cg_scene scene;
-    if (!cg_scene_load(scene_name, &scene, &err))
-        return fail(&err);
-    cg_context *ctx = NULL;
-    cg_context_desc desc = {.backend = backend};
-    if (!cg_context_create(&desc, &ctx, &err)) {
-        cg_scene_free(&scene);
-        return fail(&err);
+    bool png = o.image_path && app_has_extension(o.image_path, ".png");
+    cg_error err = { 0 };
+    app_session s;
+    app_frame_stats stats = { 0 };
+    app_session_desc desc = app_options_session(&o.common);
+    app_graph_desc graph = app_options_graph(&o.common);
+    graph.image = o.image_path ? (png ? "ldr" : "hdr") : NULL;
+    /* No debug context: synchronous KHR_debug output would be part of every pass's time. */
+    cg_context_desc context = { .backend = o.common.backend };
+    app_run_desc run = { .warmup = (int)o.warmup, .frames = o.common.frames, .timing = FG_TIMING_SYNC };
+    bool ok = app_session_open(&s, &desc, &err) && app_session_load_graph(&s, &graph, &err) &&
+              app_session_check(&s, &err) && app_session_start_gl(&s, &context, &err) &&
+              app_session_compile(&s, &err) && app_session_run(&s, &run, &stats, &err);
+    if (ok) {
+        printf("scene %s, graph %s, %dx%d, median of %d frames after %ld warm-up\n", o.common.scene, s.graph_path,
+               o.common.width, o.common.height, o.common.frames, o.warmup);
+        for (int p = 0; p < stats.pass_count; p++)
+            if (!fg_pass_is_culled(fg_graph_pass_at(s.graph, p)))
+                printf("  %-12s %9.2f ms\n", fg_pass_name(fg_graph_pass_at(s.graph, p)),
+                       app_frame_stats_pass_median(&stats, p));
+        printf("  %-12s %9.2f ms\n", "frame", stats.median_frame_ms);
+        fg_memory_report mem;
+        fg_graph_memory_report(s.graph, &mem);
+        printf("  gi_bytes     %zu\n  peak_bytes   %zu\n", mem.gi_bytes, mem.peak_bytes);
     }
-    int status = 1;
-    fg_registry *registry = fg_registry_create();
-    fg_graph *graph = NULL;
-    cg_gpu_scene gpu;
-    bool uploaded = false;
-    double *samples = NULL;
-    if (!registry || !cg_builtin_passes_register(registry, &err))
-        goto done;
-    if (!cg_gpu_scene_upload(&scene, &gpu, &err))
-        goto done;
-    uploaded = true;
-    graph = fg_graph_create(registry);
-    if (!graph || !fg_graph_load_file(graph, graph_path, &err))
-        goto done;
-    for (int i = 0; i < set_count; i++)
-        if (!fg_graph_apply_override(graph, sets[i], &err))
-            goto done;
-    fg_frame frame = {.scene = &scene, .gpu_scene = &gpu, .width = width, .height = height};
-    cg_view_from_scene(&scene, scene.camera_count > 0 ? 0 : -1, width, height, &frame.view);
-    fg_compile_options options = {0};
-    if (!fg_graph_compile(graph, &frame, &options, &err) || !fg_graph_prepare(graph, &err))
-        goto done;
-    int passes = fg_graph_pass_count(graph);
-    samples = calloc((size_t)(passes + 1) * (size_t)frames, sizeof *samples);
-    if (!samples) {
-        cg_fail(&err, CG_ERR_OUT_OF_MEMORY, "vct-bench: samples");
-        goto done;
-    }
-    for (long f = 0; f < warmup + frames; f++) {
-        double t0 = app_now_ms();
-        if (!fg_graph_execute(graph, &frame, FG_TIMING_SYNC, &err))
-            goto done;
-        glFinish();
-        double total = app_now_ms() - t0;
-        frame.index++;
-        if (f < warmup)
-            continue;
-        long k = f - warmup;
-        for (int p = 0; p < passes; p++)
-            samples[(size_t)p * (size_t)frames + (size_t)k] = fg_pass_milliseconds(fg_graph_pass_at(graph, p));
-        samples[(size_t)passes * (size_t)frames + (size_t)k] = total;
-    }
-    printf("scene %s, graph %s, %dx%d, median of %ld frames after %ld warm-up\n", scene_name, graph_path,
-           width, height, frames, warmup);
-    for (int p = 0; p <= passes; p++) {
-        double *s = &samples[(size_t)p * (size_t)frames];
-        if (p < passes && fg_pass_is_culled(fg_graph_pass_at(graph, p)))
-            continue;
-        qsort(s, (size_t)frames, sizeof *s, app_compare_double);
-        printf("  %-12s %9.2f ms\n", p < passes ? fg_pass_name(fg_graph_pass_at(graph, p)) : "frame",
-               s[frames / 2]);
-    }
-    fg_memory_report mem;
-    fg_graph_memory_report(graph, &mem);
-    printf("  gi_bytes     %zu\n  peak_bytes   %zu\n", mem.gi_bytes, mem.peak_bytes);
-    if (image_path) {
-        size_t n = strlen(image_path);
-        bool png = n > 4 && !strcmp(image_path + n - 4, ".png");
-        const char *source = app_find_output(graph, png ? "ldr" : "hdr");
-        cg_image img = {0};
-        if (!source) {
-            cg_fail(&err, CG_ERR_USAGE, "vct-bench: the graph marks no %s output for %s", png ? "ldr" : "hdr",
-                    image_path);
-            goto done;
-        }
-        if (!app_read_resource(graph, source, png, &img, &err) ||
-            !cg_image_write(image_path, &img, CG_EXR_HALF, &err)) {
-            cg_image_free(&img);
-            goto done;
-        }
-        cg_image_free(&img);
-    }
-    status = 0;
-done:
-    if (status != 0)
-        status = fail(&err);
-    free(samples);
-    fg_graph_destroy(graph);
-    if (uploaded)
-        cg_gpu_scene_destroy(&gpu);
-    fg_registry_destroy(registry);
-    cg_context_destroy(ctx);
-    cg_scene_free(&scene);
-    return status;
+    if (ok && o.image_path)
+        ok = app_session_write_image(&s, s.image_source, png, o.image_path, CG_EXR_HALF, &err);
+    code = ok ? 0 : app_fail(TOOL, NULL, &err);
+    app_frame_stats_free(&stats);
+    app_session_close(&s);
+    return code;
 }

@@ -996,6 +996,11 @@ fg_graph_compile(fg_graph *graph, const fg_frame *frame, const fg_compile_option
             conn->source_index = source->index;
         }
     }
+    /* Each value met its own table entry when it was set; what one value requires of another
+     * (voxelize's max_x > min_x) is checked here, once, before any declare() reads them. */
+    for (int p = 0; p < graph->pass_count; p++)
+        if (!fg_pass_check_params(graph->passes[p], err))
+            return false;
     int *topo = malloc(((size_t)graph->pass_count + 1) * sizeof *topo);
     if (!topo)
         return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "out of memory");

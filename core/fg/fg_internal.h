@@ -4,7 +4,9 @@
  *           fg_barrier_bits_for, fg_loc_prefix, fg_strdup, fg_grow, fg_param_value,
  *           fg_connection, fg_input, fg_output, fg_res, fg_storage, struct fg_pass,
  *           struct fg_graph, struct fg_declare, struct fg_registry, fg_graph_release_gl,
- *           fg_graph_reset_compile, fg_param_find, fg_param_choice_count, fg_param_choice.
+ *           fg_graph_reset_compile, fg_is_identifier, fg_param_find, fg_param_choice_count,
+ *           fg_param_choice, fg_param_table_check, fg_param_parse, fg_param_accepts,
+ *           fg_param_expected, fg_loc_is_assignment, fg_param_lead, fg_param_active_in.
  *
  * Nothing here is part of the public interface: passes see only cg/fg.h.
  */
@@ -45,7 +47,8 @@ GLbitfield fg_barrier_bits_for(unsigned writer, unsigned reader, fg_resource_kin
 /* "12.5 MiB", "3.0 KiB", "17 B". */
 const char *fg_bytes_text(size_t bytes, char *buf, size_t size);
 
-/* "file:line:column: " for a location with a file, "" otherwise. */
+/* "file:line:column: " for a location with a file, "file: " for one without lines
+ * (line 0, e.g. "--set p.n=1: "), "" otherwise. */
 const char *fg_loc_prefix(const fg_source_loc *loc, char *buf, size_t size);
 char *fg_strdup(const char *s);
 /* Grows *items to hold at least `need` elements of `size` bytes; false when out of memory. */
@@ -60,10 +63,32 @@ struct fg_registry {
     int plugin_count, plugin_cap;
 };
 
+/* ---------------------------------------------------------------- parameter tables (params.c) */
+
+/* Letters, digits, '_' and '-': pass, parameter and choice names appear in "pass.param=value"
+ * overrides and in "pass.output" references, so they may not contain '.', '=', '@' or '|'. */
+bool fg_is_identifier(const char *s);
 const fg_param_desc *fg_param_find(const fg_pass_type *type, const char *name, int *index);
 int fg_param_choice_count(const char *choices);
 /* Copies choice `index` of "a|b|c" into buf; false when out of range. */
 bool fg_param_choice(const char *choices, int index, char *buf, size_t size);
+/* The table checks of fg_registry_add: each entry sane, dependencies naming other entries,
+ * defaults that satisfy every constraint. */
+bool fg_param_table_check(const fg_pass_type *type, cg_error *err);
+/* Reads all of `text` as a value of the parameter's type (a decimal number, an integer,
+ * true/false, a choice's name; any text for strings): the number (enum: index). */
+bool fg_param_parse(const fg_param_desc *p, const char *text, double *out);
+/* Whether a parsed value meets the table: range, allowed values, power of two. */
+bool fg_param_accepts(const fg_param_desc *p, double value);
+/* What the parameter takes, after "expected ": "one of 1, 6, 9, 16", "a power of two in
+ * 16..512", "an integer in 0..16", "a number in 0.05..4", "true or false", "one of a, b". */
+void fg_param_expected(const fg_param_desc *p, char *buf, size_t size);
+/* Whether loc is a place without lines that spells the assignment ("--set p.n=1"). */
+bool fg_loc_is_assignment(const fg_source_loc *loc);
+/* The start of a message about a value: "g.json:7:24: p.n = 7; ", "p.n = 7; " without a
+ * location, or "--set p.n=7: " for an assignment (which names pass, parameter and value). */
+void fg_param_lead(const fg_source_loc *loc, const char *pass, const char *param, const char *value,
+                   char *buf, size_t size);
 
 /* ---------------------------------------------------------------- graphs */
 
@@ -73,6 +98,9 @@ typedef struct fg_param_value {
     bool set;               /* given by a file or an override (not the default) */
     fg_source_loc loc;
 } fg_param_value;
+
+/* Whether p's active_when holds for `values` (one per entry of type->params). */
+bool fg_param_active_in(const fg_pass_type *type, const fg_param_desc *p, const fg_param_value *values);
 
 /* An edge of the graph as written in the file: input slot <- source. */
 typedef struct fg_connection {

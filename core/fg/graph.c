@@ -1,7 +1,5 @@
 /* Building a graph: pass instances, parameter values, connections, marked outputs;
  * and what a pass reads of itself (parameters, name, frame). */
-#include <errno.h>
-#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -150,25 +148,6 @@ fg_graph_add_pass(fg_graph *graph, const char *name, const char *type, const fg_
     return true;
 }
 
-/* Parses all of `text` as a finite number. */
-static bool
-parse_number(const char *text, double *out)
-{
-    if (!*text)
-        return false;
-    char *end;
-    errno = 0;
-    double v = strtod(text, &end);
-    if (*end || errno == ERANGE || !isfinite(v))
-        return false;
-    /* strtod also takes "nan", "inf" and hex floats; a parameter is a plain decimal number. */
-    for (const char *c = text; *c; c++)
-        if (!strchr("0123456789+-.eE", *c))
-            return false;
-    *out = v;
-    return true;
-}
-
 static void
 list_param_names(const fg_pass_type *type, char *buf, size_t size)
 {
@@ -188,7 +167,7 @@ bool
 fg_graph_set_param(fg_graph *graph, const char *pass_name, const char *param, const char *value,
                    const fg_source_loc *loc, cg_error *err)
 {
-    char at[512];
+    char at[1200];
     fg_loc_prefix(loc, at, sizeof at);
     fg_pass *pass = fg_graph_find_pass(graph, pass_name);
     if (!pass)
@@ -198,56 +177,30 @@ fg_graph_set_param(fg_graph *graph, const char *pass_name, const char *param, co
     if (!p) {
         char names[1024];
         list_param_names(pass->type, names, sizeof names);
+        if (fg_loc_is_assignment(loc))
+            return cg_fail(err, CG_ERR_GRAPH_UNKNOWN_PARAM, "%spass type %s has no parameter '%s' (parameters: %s)",
+                           at, pass->type->name, param, names);
         return cg_fail(err, CG_ERR_GRAPH_UNKNOWN_PARAM,
                        "%spass '%s' (type %s) has no parameter '%s' (parameters: %s)", at, pass_name,
                        pass->type->name, param, names);
     }
     fg_param_value *v = &pass->values[index];
     double number = 0;
-    switch (p->type) {
-    case FG_PARAM_INT:
-    case FG_PARAM_FLOAT: {
-        bool integral = p->type == FG_PARAM_INT;
-        if (!parse_number(value, &number) || (integral && number != floor(number)))
-            return cg_fail(err, CG_ERR_GRAPH_PARAM_TYPE,
-                           "%spass '%s' parameter '%s': expected %s, got '%s'", at, pass_name, param,
-                           integral ? "an integer" : "a number", value);
-        if (number < p->min || number > p->max)
-            return cg_fail(err, CG_ERR_GRAPH_PARAM_RANGE,
-                           "%spass '%s' parameter '%s': %s is not within [%g, %g]", at, pass_name,
-                           param, value, p->min, p->max);
-        break;
+    bool parsed = fg_param_parse(p, value, &number);
+    if (!parsed || !fg_param_accepts(p, number)) {
+        /* One message for both: "g.json:7:24: gather.cones = 7; expected one of 1, 6, 9, 16". */
+        char lead[1400], expected[1024];
+        fg_param_lead(loc, pass_name, param, value, lead, sizeof lead);
+        fg_param_expected(p, expected, sizeof expected);
+        return cg_fail(err, parsed || p->type == FG_PARAM_ENUM ? CG_ERR_GRAPH_PARAM_RANGE : CG_ERR_GRAPH_PARAM_TYPE,
+                       "%sexpected %s", lead, expected);
     }
-    case FG_PARAM_BOOL:
-        if (!strcmp(value, "true"))
-            number = 1;
-        else if (!strcmp(value, "false"))
-            number = 0;
-        else
-            return cg_fail(err, CG_ERR_GRAPH_PARAM_TYPE,
-                           "%spass '%s' parameter '%s': expected true or false, got '%s'", at,
-                           pass_name, param, value);
-        break;
-    case FG_PARAM_ENUM: {
-        int n = fg_param_choice_count(p->choices), found = -1;
-        char choice[256];
-        for (int c = 0; c < n && found < 0; c++)
-            if (fg_param_choice(p->choices, c, choice, sizeof choice) && !strcmp(choice, value))
-                found = c;
-        if (found < 0)
-            return cg_fail(err, CG_ERR_GRAPH_PARAM_RANGE, "%spass '%s' parameter '%s': %s is not one of %s",
-                           at, pass_name, param, value, p->choices);
-        number = found;
-        break;
-    }
-    case FG_PARAM_STRING: {
+    if (p->type == FG_PARAM_STRING) {
         char *copy = fg_strdup(value);
         if (!copy)
             return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "out of memory");
         free(v->text);
         v->text = copy;
-        break;
-    }
     }
     v->number = number;
     v->set = true;

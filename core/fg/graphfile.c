@@ -314,10 +314,15 @@ set_param_from_json(fg_graph *graph, const char *pass_name, const jpos *pos, jso
             expected = "a string";
         break;
     }
-    if (expected)
-        return cg_fail(err, CG_ERR_GRAPH_PARAM_TYPE, "%s:%d:%d: pass '%s' parameter '%s': expected %s, got %s",
-                       name, at_value.line, at_value.column, pass_name, param, expected,
-                       json_type_name(value));
+    if (expected) {
+        char values[1024];
+        if (p->type == FG_PARAM_STRING)
+            snprintf(values, sizeof values, "%s", expected);
+        else
+            fg_param_expected(p, values, sizeof values);
+        return cg_fail(err, CG_ERR_GRAPH_PARAM_TYPE, "%s:%d:%d: %s.%s: expected %s, got %s", name,
+                       at_value.line, at_value.column, pass_name, param, values, json_type_name(value));
+    }
     if (json_is_string(value)) {
         return fg_graph_set_param(graph, pass_name, param, json_string_value(value), &at_value, err);
     } else if (json_is_boolean(value)) {
@@ -506,10 +511,12 @@ fg_graph_apply_override(fg_graph *graph, const char *assignment, cg_error *err)
     char pass[256], param[256];
     snprintf(pass, sizeof pass, "%.*s", (int)(dot - assignment), assignment);
     snprintf(param, sizeof param, "%.*s", (int)(eq - dot - 1), dot + 1);
-    /* The command line is the "file": the column points at the value. */
-    fg_source_loc loc = { "--set", 1, (int)(eq - assignment) + 2 };
+    /* The place is the assignment itself: messages quote it instead of a file line, and a
+     * dependency checked at compile points back at it. */
+    char place[1200];
+    snprintf(place, sizeof place, "--set %s", assignment);
+    fg_source_loc loc = { place, 0, 0 };
     if (!fg_graph_find_pass(graph, pass))
-        return cg_fail(err, CG_ERR_GRAPH_DANGLING, "--set:1:1: %s: the graph has no pass named '%s'",
-                       assignment, pass);
+        return cg_fail(err, CG_ERR_GRAPH_DANGLING, "%s: the graph has no pass named '%s'", place, pass);
     return fg_graph_set_param(graph, pass, param, eq + 1, &loc, err);
 }

@@ -1,5 +1,4 @@
 /* The pass registry, the checks on pass descriptors, and the resource format table. */
-#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -181,7 +180,10 @@ fg_loc_prefix(const fg_source_loc *loc, char *buf, size_t size)
         buf[0] = '\0';
         return buf;
     }
-    snprintf(buf, size, "%s:%d:%d: ", loc->file, loc->line, loc->column);
+    if (loc->line <= 0)
+        snprintf(buf, size, "%s: ", loc->file);
+    else
+        snprintf(buf, size, "%s:%d:%d: ", loc->file, loc->line, loc->column);
     return buf;
 }
 
@@ -212,143 +214,6 @@ fg_grow(void **items, int *cap, int need, size_t size)
     return true;
 }
 
-/* ---------------------------------------------------------------- parameter tables */
-
-int
-fg_param_choice_count(const char *choices)
-{
-    if (!choices || !*choices)
-        return 0;
-    int n = 1;
-    for (const char *c = choices; *c; c++)
-        n += *c == '|';
-    return n;
-}
-
-bool
-fg_param_choice(const char *choices, int index, char *buf, size_t size)
-{
-    if (!choices || index < 0)
-        return false;
-    const char *start = choices;
-    for (int i = 0; i < index; i++) {
-        start = strchr(start, '|');
-        if (!start)
-            return false;
-        start++;
-    }
-    const char *end = strchr(start, '|');
-    size_t len = end ? (size_t)(end - start) : strlen(start);
-    if (len >= size)
-        len = size - 1;
-    memcpy(buf, start, len);
-    buf[len] = '\0';
-    return true;
-}
-
-const fg_param_desc *
-fg_param_find(const fg_pass_type *type, const char *name, int *index)
-{
-    for (int i = 0; i < type->param_count; i++) {
-        if (!strcmp(type->params[i].name, name)) {
-            if (index)
-                *index = i;
-            return &type->params[i];
-        }
-    }
-    return NULL;
-}
-
-/* Pass, parameter and choice names appear in "pass.param=value" overrides and in
- * "pass.output" references, so they may not contain '.', '=', '@', '|' or spaces. */
-static bool
-is_identifier(const char *s)
-{
-    if (!s || !*s)
-        return false;
-    for (const char *c = s; *c; c++)
-        if (!((*c >= 'a' && *c <= 'z') || (*c >= 'A' && *c <= 'Z') || (*c >= '0' && *c <= '9') ||
-              *c == '_' || *c == '-'))
-            return false;
-    return true;
-}
-
-static bool
-is_integral(double v)
-{
-    return isfinite(v) && v == floor(v);
-}
-
-static bool
-check_param(const fg_pass_type *type, int i, cg_error *err)
-{
-    const fg_param_desc *p = &type->params[i];
-    if (!is_identifier(p->name))
-        return cg_fail(err, CG_ERR_PLUGIN_LOAD,
-                       "pass type '%s': parameter %d: name '%s' is not an identifier "
-                       "(letters, digits, '_' and '-')", type->name, i, p->name ? p->name : "(null)");
-    for (int j = 0; j < i; j++)
-        if (!strcmp(type->params[j].name, p->name))
-            return cg_fail(err, CG_ERR_PLUGIN_LOAD, "pass type '%s': parameter '%s' is declared twice",
-                           type->name, p->name);
-    if (!p->doc || !*p->doc)
-        return cg_fail(err, CG_ERR_PLUGIN_LOAD, "pass type '%s': parameter '%s' has no doc line",
-                       type->name, p->name);
-    switch (p->type) {
-    case FG_PARAM_INT:
-    case FG_PARAM_FLOAT: {
-        bool integral = p->type == FG_PARAM_INT;
-        if (!isfinite(p->min) || !isfinite(p->max) || !isfinite(p->default_value) ||
-            (integral && (!is_integral(p->min) || !is_integral(p->max) ||
-                          !is_integral(p->default_value))))
-            return cg_fail(err, CG_ERR_PLUGIN_LOAD,
-                           "pass type '%s': parameter '%s': default and range must be finite%s",
-                           type->name, p->name, integral ? " integers" : " numbers");
-        if (p->min > p->max || p->default_value < p->min || p->default_value > p->max)
-            return cg_fail(err, CG_ERR_PLUGIN_LOAD,
-                           "pass type '%s': parameter '%s': default %g is not within [%g, %g]",
-                           type->name, p->name, p->default_value, p->min, p->max);
-        return true;
-    }
-    case FG_PARAM_BOOL:
-        if (p->default_value != 0 && p->default_value != 1)
-            return cg_fail(err, CG_ERR_PLUGIN_LOAD,
-                           "pass type '%s': parameter '%s': a bool default is 0 or 1, not %g",
-                           type->name, p->name, p->default_value);
-        return true;
-    case FG_PARAM_ENUM: {
-        int n = fg_param_choice_count(p->choices);
-        if (!n)
-            return cg_fail(err, CG_ERR_PLUGIN_LOAD, "pass type '%s': parameter '%s': enum without choices",
-                           type->name, p->name);
-        char a[128], b[128];
-        for (int c = 0; c < n; c++) {
-            fg_param_choice(p->choices, c, a, sizeof a);
-            if (!is_identifier(a))
-                return cg_fail(err, CG_ERR_PLUGIN_LOAD,
-                               "pass type '%s': parameter '%s': choice %d '%s' is not an identifier",
-                               type->name, p->name, c, a);
-            for (int d = 0; d < c; d++) {
-                fg_param_choice(p->choices, d, b, sizeof b);
-                if (!strcmp(a, b))
-                    return cg_fail(err, CG_ERR_PLUGIN_LOAD,
-                                   "pass type '%s': parameter '%s': choice '%s' appears twice",
-                                   type->name, p->name, a);
-            }
-        }
-        if (!is_integral(p->default_value) || p->default_value < 0 || p->default_value >= n)
-            return cg_fail(err, CG_ERR_PLUGIN_LOAD,
-                           "pass type '%s': parameter '%s': default index %g is not one of 0..%d (%s)",
-                           type->name, p->name, p->default_value, n - 1, p->choices);
-        return true;
-    }
-    case FG_PARAM_STRING:
-        return true;
-    }
-    return cg_fail(err, CG_ERR_PLUGIN_LOAD, "pass type '%s': parameter '%s': unknown type %d",
-                   type->name, p->name, (int)p->type);
-}
-
 /* ---------------------------------------------------------------- registry */
 
 fg_registry *
@@ -368,7 +233,7 @@ fg_registry_add(fg_registry *registry, const fg_pass_type *type, cg_error *err)
                        "pass type '%s' was built for frame-graph ABI %u; this conegraph has ABI %u "
                        "(rebuild the pass against this version's cg/fg.h)",
                        name, type->abi_version, FG_ABI_VERSION);
-    if (!is_identifier(type->name))
+    if (!fg_is_identifier(type->name))
         return cg_fail(err, CG_ERR_PLUGIN_LOAD,
                        "pass type name '%s' is not an identifier (letters, digits, '_' and '-')", name);
     if (fg_registry_find(registry, type->name))
@@ -381,9 +246,8 @@ fg_registry_add(fg_registry *registry, const fg_pass_type *type, cg_error *err)
     if (type->param_count < 0 || (type->param_count > 0 && !type->params))
         return cg_fail(err, CG_ERR_PLUGIN_LOAD, "pass type '%s': %d parameters but no table",
                        name, type->param_count);
-    for (int i = 0; i < type->param_count; i++)
-        if (!check_param(type, i, err))
-            return false;
+    if (!fg_param_table_check(type, err))
+        return false;
     if (!fg_grow((void **)&registry->types, &registry->cap, registry->count + 1, sizeof *registry->types))
         return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "out of memory registering pass type '%s'", name);
     registry->types[registry->count++] = type;

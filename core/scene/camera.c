@@ -7,8 +7,9 @@
  * - proj maps camera space to GL clip space, NDC x, y, z in [-1, 1], z = -1 at znear.
  * - Pixels: (px, py) in window coordinates as GL rasterises them, px from the left, py
  *   from the BOTTOM row; pixel (i, j) has its centre at (i + 0.5, j + 0.5), so
- *   ndc = 2 * (p / size) - 1. A primary ray runs from inv_view_proj x (ndc, -1) (the near
- *   plane) towards inv_view_proj x (ndc, 0); images stored top to bottom flip y.
+ *   ndc = 2 * (p / size) - 1. A primary ray goes through inv_proj x (ndc, -1) (the near
+ *   plane, camera space), from the eye (perspective) or along -z (orthographic), turned into
+ *   the world by inv_view; images stored top to bottom flip y.
  * - Perspective: vertical field of view yfov; aspect = the camera's aspect when non-zero,
  *   else width / height (the image decides). zfar 0 (glTF: infinite) becomes a finite far
  *   plane just beyond the farthest corner of the scene bounds (1.05x the distance, at least

@@ -1,6 +1,8 @@
 /* The CPU path tracer on Embree 3: see pt_render.h for the physics and the conventions. */
 #include "cg/pt_render.h"
 
+#include "pt_sky.h"
+
 #include <embree3/rtcore.h>
 #include <math.h>
 #include <pthread.h>
@@ -86,8 +88,20 @@ typedef struct pt_texture {
 /* What shading needs of one Embree geometry (one scene instance). */
 typedef struct pt_geometry {
     const cg_mesh *mesh;
+    const cg_material *material;
+    const float *vertices;    /* world space, x y z per vertex: Embree's own vertex buffer */
     float normal_matrix[9];   /* cofactor of the upper 3x3 of the instance matrix, column-major */
+    int64_t emitter_base;     /* emitter index of triangle 0 (triangle k is base + k); -1: emits nothing */
 } pt_geometry;
+
+/* Every triangle of an emissive material, for next-event estimation: one is chosen with
+ * probability proportional to its power (area x mean emitted radiance), then a point
+ * uniformly on it. */
+typedef struct pt_emitters {
+    int64_t count;
+    uint32_t *geometry, *triangle; /* by emitter index */
+    double *cdf;              /* count + 1 running sums of the power, cdf[0] = 0 */
+} pt_emitters;
 
 struct pt_scene {
     const cg_scene *scene;
@@ -97,6 +111,8 @@ struct pt_scene {
     unsigned geometry_count;
     pt_texture *textures;     /* by cg_scene texture index */
     size_t triangles;
+    pt_emitters emitters;
+    pt_sky sky;
 };
 
 pt_settings
@@ -161,6 +177,114 @@ textures_create(pt_scene *pts, cg_error *err)
             float v = (float)src->rgba[k] / 255.0f;
             dst->rgba[k] = (src->srgb && (k & 3) != 3) ? srgb_decode(v) : v;
         }
+    }
+    return true;
+}
+
+static const cg_material *
+material_of(const cg_scene *scene, const cg_mesh *mesh)
+{
+    int mi = mesh->material;
+    return (mi >= 0 && mi < scene->material_count) ? &scene->materials[mi] : &scene->materials[0];
+}
+
+static inline v3
+emissive_factor(const cg_material *mat)
+{
+    return mk(mat->emissive[0] * mat->emissive_strength, mat->emissive[1] * mat->emissive_strength,
+              mat->emissive[2] * mat->emissive_strength);
+}
+
+/* A triangle's world-space vertices, unit normal (of its winding) and area. */
+static void
+triangle_frame(const pt_geometry *g, uint32_t prim, v3 p[3], v3 *normal, float *area)
+{
+    const uint32_t *tri = &g->mesh->indices[3 * (size_t)prim];
+    for (int k = 0; k < 3; k++) {
+        const float *q = &g->vertices[3 * (size_t)tri[k]];
+        p[k] = mk(q[0], q[1], q[2]);
+    }
+    v3 e1 = sub(p[1], p[0]), e2 = sub(p[2], p[0]);
+    v3 c = mk(e1.y * e2.z - e1.z * e2.y, e1.z * e2.x - e1.x * e2.z, e1.x * e2.y - e1.y * e2.x);
+    float len = sqrtf(dot(c, c));
+    *area = 0.5f * len;
+    *normal = len > 0.0f ? scale(c, 1.0f / len) : mk(0, 0, 0);
+}
+
+/* The mean of a texture's linear RGB: what an emissive texture does to a triangle's power. */
+static float
+texture_mean(const pt_texture *tex)
+{
+    double sum = 0.0;
+    size_t n = (size_t)tex->width * (size_t)tex->height;
+    for (size_t k = 0; k < n; k++)
+        sum += (double)tex->rgba[4 * k] + tex->rgba[4 * k + 1] + tex->rgba[4 * k + 2];
+    return (float)(sum / (3.0 * (double)n));
+}
+
+/* The emitter table: every triangle of every geometry whose material emits, with its power
+ * area x mean emitted radiance (the factor's channel mean times the emissive texture's mean). */
+static bool
+emitters_create(pt_scene *pts, cg_error *err)
+{
+    const cg_scene *scene = pts->scene;
+    pt_emitters *e = &pts->emitters;
+    int64_t count = 0;
+    for (unsigned g = 0; g < pts->geometry_count; g++) {
+        pt_geometry *geo = &pts->geometries[g];
+        v3 f = emissive_factor(geo->material);
+        geo->emitter_base = -1;
+        if (f.x > 0.0f || f.y > 0.0f || f.z > 0.0f) {
+            geo->emitter_base = count;
+            count += geo->mesh->index_count / 3;
+        }
+    }
+    if (count == 0)
+        return true;
+    e->geometry = malloc(sizeof *e->geometry * (size_t)count);
+    e->triangle = malloc(sizeof *e->triangle * (size_t)count);
+    e->cdf = malloc(sizeof *e->cdf * (size_t)(count + 1));
+    float *means = calloc((size_t)(scene->texture_count > 0 ? scene->texture_count : 1), sizeof *means);
+    if (!e->geometry || !e->triangle || !e->cdf || !means) {
+        free(means);
+        return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "path_trace: %lld emissive triangles", (long long)count);
+    }
+    for (int t = 0; t < scene->texture_count; t++)
+        means[t] = -1.0f; /* computed when first needed */
+    e->count = count;
+    e->cdf[0] = 0.0;
+    for (unsigned g = 0; g < pts->geometry_count; g++) {
+        const pt_geometry *geo = &pts->geometries[g];
+        if (geo->emitter_base < 0)
+            continue;
+        v3 f = emissive_factor(geo->material);
+        double power = ((double)f.x + f.y + f.z) / 3.0;
+        int t = geo->material->emissive_texture;
+        if (t >= 0 && t < scene->texture_count) {
+            if (means[t] < 0.0f)
+                means[t] = texture_mean(&pts->textures[t]);
+            power *= means[t];
+        }
+        uint32_t tris = geo->mesh->index_count / 3;
+        for (uint32_t k = 0; k < tris; k++) {
+            int64_t i = geo->emitter_base + k;
+            v3 p[3], n;
+            float area;
+            triangle_frame(geo, k, p, &n, &area);
+            e->geometry[i] = g;
+            e->triangle[i] = k;
+            e->cdf[i + 1] = e->cdf[i] + power * area;
+        }
+    }
+    free(means);
+    if (!(e->cdf[count] > 0.0)) {
+        /* Emissive materials on triangles of zero area only: nothing to sample. */
+        free(e->geometry);
+        free(e->triangle);
+        free(e->cdf);
+        memset(e, 0, sizeof *e);
+        for (unsigned g = 0; g < pts->geometry_count; g++)
+            pts->geometries[g].emitter_base = -1;
     }
     return true;
 }
@@ -241,6 +365,8 @@ pt_scene_create(const cg_scene *scene, pt_scene **out, cg_error *err)
         rtcAttachGeometryByID(pts->rtc, geom, id);
         rtcReleaseGeometry(geom);
         pts->geometries[id].mesh = mesh;
+        pts->geometries[id].material = material_of(scene, mesh);
+        pts->geometries[id].vertices = vtx;
         cofactor3(inst->world, pts->geometries[id].normal_matrix);
         pts->triangles += tris;
     }
@@ -250,6 +376,8 @@ pt_scene_create(const cg_scene *scene, pt_scene **out, cg_error *err)
         cg_fail(err, CG_ERR_PASS, "path_trace: building the BVH failed (embree error %d)", (int)code);
         goto fail;
     }
+    if (!emitters_create(pts, err) || !pt_sky_create(scene, &pts->sky, err))
+        goto fail;
     *out = pts;
     return true;
 fail:
@@ -271,6 +399,10 @@ pt_scene_destroy(pt_scene *pts)
             free(pts->textures[t].rgba);
     free(pts->textures);
     free(pts->geometries);
+    free(pts->emitters.geometry);
+    free(pts->emitters.triangle);
+    free(pts->emitters.cdf);
+    pt_sky_destroy(&pts->sky);
     free(pts);
 }
 
@@ -340,12 +472,77 @@ texture_sample(const pt_texture *tex, float s, float t, float out[4])
 }
 
 typedef struct pt_hit {
+    unsigned geometry, triangle; /* Embree geomID and primID */
     v3 position;
+    float magnitude;      /* largest |coordinate| of the hit triangle's vertices */
+    v3 origin;            /* where rays leave the surface (spawn_point) */
+    float offset;         /* and their tnear */
     v3 geometric_normal;  /* unit, facing the incoming ray */
     v3 shading_normal;    /* unit, same hemisphere as geometric_normal */
     v3 albedo;
     v3 emission;
 } pt_hit;
+
+/* Relative size of the offset that lifts a spawned ray's origin off its surface: 2^-19, 16
+ * times float's unit roundoff 2^-23 (FLT_EPSILON). */
+#define PT_OFFSET_RELATIVE 1.9073486328125e-6f
+
+/* Where rays leave the hit's surface on the side of n (the unit geometric normal): the point
+ * pushed along n by d = 2^-19 times the largest coordinate of the triangle's vertices, and
+ * the rays start at tnear = d from there. No absolute term, so the offset scales with the
+ * scene (the same image at 1e-6 m and at 1e6 m). The bound covers the error of the
+ * barycentric hit point (a few ulps of the vertices' magnitude) and that of Embree's test of
+ * the same triangle from the new origin (its edge and plane functions are formed from
+ * vertex - origin differences, so their errors are ulps of that same magnitude): the ray
+ * cannot find its own triangle again, the self-intersection that Wächter and Binder, "A Fast
+ * and Robust Method for Avoiding Self-Intersection" (Ray Tracing Gems, ch. 6), avoid with an
+ * integer-ulp offset. Their method keeps an absolute offset of 2^-16 near the origin, which
+ * would still be larger than a 1e-6 m scene; a bound proportional to the vertices' magnitude
+ * has no such floor. tnear is for the neighbour across a concave crease: a hit on the crease
+ * itself rounds to either side of the other surface's plane, and a shadow ray from the wrong
+ * side would cross that plane within a few ulps of its origin and leave a black line along
+ * the crease. */
+static inline void
+spawn_point(pt_hit *hit)
+{
+    const v3 p = hit->position;
+    float m = fmaxf(hit->magnitude, fmaxf(fabsf(p.x), fmaxf(fabsf(p.y), fabsf(p.z))));
+    hit->offset = PT_OFFSET_RELATIVE * m;
+    hit->origin = add(p, scale(hit->geometric_normal, hit->offset));
+}
+
+static inline void
+triangle_texcoords(const cg_mesh *mesh, const uint32_t *tri, float u, float v, float st[2])
+{
+    st[0] = st[1] = 0.0f;
+    if (!mesh->texcoords)
+        return;
+    float w = 1.0f - u - v;
+    const float *t0 = &mesh->texcoords[2 * tri[0]], *t1 = &mesh->texcoords[2 * tri[1]],
+                *t2 = &mesh->texcoords[2 * tri[2]];
+    st[0] = w * t0[0] + u * t1[0] + v * t2[0];
+    st[1] = w * t0[1] + u * t1[1] + v * t2[1];
+}
+
+/* Emitted radiance = emissive x emissive texture x emissive_strength (the same from both sides). */
+static v3
+emission_at(const pt_scene *pts, const cg_material *mat, const float st[2])
+{
+    v3 emission = emissive_factor(mat);
+    if (mat->emissive_texture >= 0 && mat->emissive_texture < pts->scene->texture_count &&
+        (emission.x > 0.0f || emission.y > 0.0f || emission.z > 0.0f)) {
+        float texel[4];
+        texture_sample(&pts->textures[mat->emissive_texture], st[0], st[1], texel);
+        emission = mul(emission, mk(texel[0], texel[1], texel[2]));
+    }
+    return emission;
+}
+
+static inline float
+max_abs3(const float *p)
+{
+    return fmaxf(fabsf(p[0]), fmaxf(fabsf(p[1]), fabsf(p[2])));
+}
 
 static void
 shade_hit(const pt_scene *pts, const RTCRayHit *rh, pt_hit *hit)
@@ -353,10 +550,19 @@ shade_hit(const pt_scene *pts, const RTCRayHit *rh, pt_hit *hit)
     const pt_geometry *g = &pts->geometries[rh->hit.geomID];
     const cg_mesh *mesh = g->mesh;
     const uint32_t *tri = &mesh->indices[3 * rh->hit.primID];
+    hit->geometry = rh->hit.geomID;
+    hit->triangle = rh->hit.primID;
     float u = rh->hit.u, v = rh->hit.v, w = 1.0f - u - v;
     v3 dir = mk(rh->ray.dir_x, rh->ray.dir_y, rh->ray.dir_z);
 
-    hit->position = add(mk(rh->ray.org_x, rh->ray.org_y, rh->ray.org_z), scale(dir, rh->ray.tfar));
+    /* The hit point from the barycentrics on the triangle's own world-space vertices, not
+     * org + t dir: its error is then a few ulps of the vertices' coordinates whatever the
+     * ray's length, which is what spawn_point's bound assumes. */
+    const float *p0 = &g->vertices[3 * tri[0]], *p1 = &g->vertices[3 * tri[1]],
+                *p2 = &g->vertices[3 * tri[2]];
+    hit->position = mk(w * p0[0] + u * p1[0] + v * p2[0], w * p0[1] + u * p1[1] + v * p2[1],
+                       w * p0[2] + u * p1[2] + v * p2[2]);
+    hit->magnitude = fmaxf(max_abs3(p0), fmaxf(max_abs3(p1), max_abs3(p2)));
     v3 ng = normalize(mk(rh->hit.Ng_x, rh->hit.Ng_y, rh->hit.Ng_z));
     if (dot(ng, dir) > 0.0f)
         ng = neg(ng);
@@ -378,16 +584,9 @@ shade_hit(const pt_scene *pts, const RTCRayHit *rh, pt_hit *hit)
     hit->shading_normal = ns;
 
     const cg_scene *scene = pts->scene;
-    int mi = mesh->material;
-    const cg_material *mat = (mi >= 0 && mi < scene->material_count) ? &scene->materials[mi]
-                                                                       : &scene->materials[0];
-    float st[2] = { 0.0f, 0.0f };
-    if (mesh->texcoords) {
-        const float *t0 = &mesh->texcoords[2 * tri[0]], *t1 = &mesh->texcoords[2 * tri[1]],
-                    *t2 = &mesh->texcoords[2 * tri[2]];
-        st[0] = w * t0[0] + u * t1[0] + v * t2[0];
-        st[1] = w * t0[1] + u * t1[1] + v * t2[1];
-    }
+    const cg_material *mat = g->material;
+    float st[2];
+    triangle_texcoords(mesh, tri, u, v, st);
     v3 albedo = mk(mat->base_color[0], mat->base_color[1], mat->base_color[2]);
     if (mat->base_color_texture >= 0 && mat->base_color_texture < scene->texture_count) {
         float texel[4];
@@ -395,23 +594,8 @@ shade_hit(const pt_scene *pts, const RTCRayHit *rh, pt_hit *hit)
         albedo = mul(albedo, mk(texel[0], texel[1], texel[2]));
     }
     hit->albedo = albedo;
-    v3 emission = scale(mk(mat->emissive[0], mat->emissive[1], mat->emissive[2]), mat->emissive_strength);
-    if (mat->emissive_texture >= 0 && mat->emissive_texture < scene->texture_count &&
-        (emission.x > 0.0f || emission.y > 0.0f || emission.z > 0.0f)) {
-        float texel[4];
-        texture_sample(&pts->textures[mat->emissive_texture], st[0], st[1], texel);
-        emission = mul(emission, mk(texel[0], texel[1], texel[2]));
-    }
-    hit->emission = emission;
-}
-
-/* Offset along the geometric normal, growing with the coordinates' magnitude so that the
- * spawned ray clears the surface in float precision from millimetre to kilometre scenes. */
-static inline v3
-offset_origin(v3 p, v3 n)
-{
-    float m = fmaxf(fabsf(p.x), fmaxf(fabsf(p.y), fabsf(p.z)));
-    return add(p, scale(n, 1e-4f + 4e-6f * m));
+    hit->emission = emission_at(pts, mat, st);
+    spawn_point(hit);
 }
 
 typedef struct pt_worker_ctx {
@@ -421,12 +605,12 @@ typedef struct pt_worker_ctx {
 } pt_worker_ctx;
 
 static bool
-occluded(pt_worker_ctx *wc, v3 org, v3 dir, float tfar)
+occluded(pt_worker_ctx *wc, v3 org, v3 dir, float tnear, float tfar)
 {
     RTCRay ray = { 0 };
     ray.org_x = org.x; ray.org_y = org.y; ray.org_z = org.z;
     ray.dir_x = dir.x; ray.dir_y = dir.y; ray.dir_z = dir.z;
-    ray.tnear = 0.0f;
+    ray.tnear = tnear;
     ray.tfar = tfar;
     ray.mask = 0xFFFFFFFFu;
     ray.flags = 0;
@@ -441,7 +625,6 @@ punctual_irradiance(pt_worker_ctx *wc, const pt_hit *hit)
 {
     const cg_scene *scene = wc->pts->scene;
     v3 total = mk(0, 0, 0);
-    v3 org = offset_origin(hit->position, hit->geometric_normal);
     for (int i = 0; i < scene->light_count; i++) {
         const cg_light *l = &scene->lights[i];
         v3 color = scale(mk(l->color[0], l->color[1], l->color[2]), l->intensity);
@@ -480,7 +663,7 @@ punctual_irradiance(pt_worker_ctx *wc, const pt_hit *hit)
             continue;
         /* Shorten the shadow ray so that it does not hit a surface at the light itself. */
         float tfar = isinf(dist) ? INFINITY : dist * (1.0f - 1e-5f);
-        if (occluded(wc, org, wi, tfar))
+        if (occluded(wc, hit->origin, wi, hit->offset, tfar))
             continue;
         total = add(total, scale(color, factor * cos_theta));
     }
@@ -515,26 +698,259 @@ ray_init(RTCRayHit *rh, v3 org, v3 dir, float tnear)
     rh->hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
 }
 
-/* Radiance along one camera ray: emission and punctual light at every vertex, `bounces`
- * cosine-sampled continuations. The Lambertian BRDF albedo/pi times cos over the cosine
- * pdf cos/pi leaves the albedo as the throughput factor. */
-static v3
-radiance(pt_worker_ctx *wc, v3 org, v3 dir, int bounces, pt_rng *rng)
+/* ---------------------------------------------------------------- emitters and MIS */
+
+/* The power heuristic with beta = 2 (Veach and Guibas, "Optimally Combining Sampling
+ * Techniques for Monte Carlo Rendering", SIGGRAPH 1995, section 4.1): the weight of the
+ * strategy that drew the sample with density `pa` against the other one's `pb`, both
+ * solid-angle densities of the same direction. In double: a small emitter far away has a
+ * density beyond float's range once squared. */
+static inline float
+power_heuristic(double pa, double pb)
 {
+    if (!(pa > 0.0))
+        return 0.0f;
+    double r = pb / pa;
+    return (float)(1.0 / (1.0 + r * r));
+}
+
+/* Index of the emitter whose power interval holds u x total (u in [0, 1)): binary search of
+ * the first cdf[i + 1] > u total, so that triangles of zero power are never chosen. */
+static int64_t
+emitter_pick(const pt_emitters *e, double u)
+{
+    double target = u * e->cdf[e->count];
+    int64_t lo = 0, hi = e->count - 1;
+    while (lo < hi) {
+        int64_t mid = lo + (hi - lo) / 2;
+        if (e->cdf[mid + 1] > target)
+            hi = mid;
+        else
+            lo = mid + 1;
+    }
+    return lo;
+}
+
+/* Solid-angle density with which emitter sampling from `from` picks the point `at` of
+ * triangle (geometry, triangle) seen along the unit direction `dir`: the triangle's share of
+ * the power over its area, times distance^2 / |cos| at the emitter (both sides emit). */
+static double
+emitter_pdf(const pt_scene *pts, unsigned geometry, unsigned triangle, v3 from, v3 at, v3 dir)
+{
+    const pt_emitters *e = &pts->emitters;
+    const pt_geometry *g = &pts->geometries[geometry];
+    if (g->emitter_base < 0 || e->count == 0)
+        return 0.0;
+    int64_t i = g->emitter_base + triangle;
+    double share = (e->cdf[i + 1] - e->cdf[i]) / e->cdf[e->count];
+    v3 p[3], n;
+    float area;
+    triangle_frame(g, triangle, p, &n, &area);
+    double cos_l = fabs((double)dot(n, dir));
+    if (!(share > 0.0) || !(area > 0.0f) || !(cos_l > 0.0))
+        return 0.0;
+    v3 d = sub(at, from);
+    return share * (double)dot(d, d) / ((double)area * cos_l);
+}
+
+/* Light from the emissive triangles at the hit, by one emitter sample (next-event
+ * estimation) weighted against cosine sampling of the BRDF: returns albedo/pi x Le x cos x w /
+ * pdf for a point chosen by power, then uniformly on its triangle (Shirley's square-root
+ * map of the unit square onto a triangle), with a shadow ray between the two offset ends. */
+static v3
+emitter_direct(pt_worker_ctx *wc, const pt_hit *hit, pt_rng *rng)
+{
+    const pt_scene *pts = wc->pts;
+    const pt_emitters *e = &pts->emitters;
+    /* 48 random bits for the choice: 24 would not tell apart millions of triangles. */
+    double u = ((double)rng_next(rng) + (double)rng_next(rng) * (1.0 / 16777216.0));
+    float r1 = rng_next(rng), r2 = rng_next(rng);
+    int64_t i = emitter_pick(e, u);
+    unsigned geometry = e->geometry[i], triangle = e->triangle[i];
+    if (geometry == hit->geometry && triangle == hit->triangle)
+        return mk(0, 0, 0); /* a flat triangle does not light itself */
+    const pt_geometry *g = &pts->geometries[geometry];
+    v3 p[3], n;
+    float area;
+    triangle_frame(g, triangle, p, &n, &area);
+    float su = sqrtf(r1), bu = 1.0f - su, bv = r2 * su, bw = 1.0f - bu - bv;
+    v3 y = mk(bw * p[0].x + bu * p[1].x + bv * p[2].x, bw * p[0].y + bu * p[1].y + bv * p[2].y,
+              bw * p[0].z + bu * p[1].z + bv * p[2].z);
+    v3 to = sub(y, hit->position);
+    float d2 = dot(to, to);
+    if (!(d2 > 0.0f) || !(area > 0.0f))
+        return mk(0, 0, 0);
+    v3 wi = scale(to, 1.0f / sqrtf(d2));
+    float cos_x = dot(hit->shading_normal, wi), cos_l = fabsf(dot(n, wi));
+    if (cos_x <= 0.0f || dot(hit->geometric_normal, wi) <= 0.0f || !(cos_l > 0.0f))
+        return mk(0, 0, 0);
+    const uint32_t *tri = &g->mesh->indices[3 * (size_t)triangle];
+    float st[2];
+    triangle_texcoords(g->mesh, tri, bu, bv, st);
+    v3 le = emission_at(pts, g->material, st);
+    if (le.x <= 0.0f && le.y <= 0.0f && le.z <= 0.0f)
+        return mk(0, 0, 0);
+    double share = (e->cdf[i + 1] - e->cdf[i]) / e->cdf[e->count];
+    double pdf = share * (double)d2 / ((double)area * cos_l);
+    /* The light's end of the shadow ray is lifted off the emitter towards the hit, as the
+     * hit's end is (spawn_point), so that neither end finds its own surface. */
+    float m = fmaxf(fmaxf(fabsf(p[0].x), fmaxf(fabsf(p[0].y), fabsf(p[0].z))),
+                    fmaxf(fmaxf(fabsf(p[1].x), fmaxf(fabsf(p[1].y), fabsf(p[1].z))),
+                          fmaxf(fabsf(p[2].x), fmaxf(fabsf(p[2].y), fabsf(p[2].z)))));
+    v3 n_towards = dot(n, wi) < 0.0f ? n : neg(n);
+    v3 target = add(y, scale(n_towards, PT_OFFSET_RELATIVE * m));
+    /* An unnormalised direction: the segment is t in [tnear, 1); stopping 1e-5 of its length
+     * short of the lifted end leaves what rounding does to org + 1 x dir out of it. */
+    v3 seg = sub(target, hit->origin);
+    float seg_len = sqrtf(dot(seg, seg));
+    if (!(seg_len > 0.0f))
+        return mk(0, 0, 0);
+    if (occluded(wc, hit->origin, seg, hit->offset / seg_len, 1.0f - 1e-5f))
+        return mk(0, 0, 0);
+    float w = power_heuristic(pdf, cos_x / PT_PI);
+    float k = (float)((double)cos_x * w / (PT_PI * pdf));
+    return scale(mul(hit->albedo, le), k);
+}
+
+/* ---------------------------------------------------------------- sky */
+
+static inline v3
+sky_radiance(const pt_scene *pts, v3 dir)
+{
+    float d[3] = { dir.x, dir.y, dir.z }, rgb[3];
+    cg_sky_model_radiance(&pts->sky.model, d, rgb);
+    return mk(rgb[0], rgb[1], rgb[2]);
+}
+
+/* Solid-angle density with which sky sampling at a point of shading normal n draws dir: the
+ * cosine about n for a uniform sky, the table's for an analytic one. */
+static double
+sky_pdf(const pt_scene *pts, v3 n, v3 dir)
+{
+    if (pts->sky.model.type == CG_SKY_UNIFORM)
+        return fmax(0.0, (double)dot(n, dir)) / PT_PI;
+    float d[3] = { dir.x, dir.y, dir.z };
+    return pt_sky_pdf(&pts->sky, d);
+}
+
+/* Light from the sky at the hit by one sky sample weighted against cosine sampling of the
+ * BRDF (power heuristic): a uniform sky is sampled by the cosine about the shading normal
+ * (the BRDF's own density, so both weights are 1/2 and an unoccluded surface gets exactly
+ * albedo x L), an analytic one from its table. */
+static v3
+sky_direct(pt_worker_ctx *wc, const pt_hit *hit, pt_rng *rng)
+{
+    const pt_scene *pts = wc->pts;
+    float u1 = rng_next(rng), u2 = rng_next(rng);
+    v3 wi;
+    double pdf;
+    if (pts->sky.model.type == CG_SKY_UNIFORM) {
+        wi = sample_cosine(hit->shading_normal, u1, u2);
+        pdf = fmax(0.0, (double)dot(hit->shading_normal, wi)) / PT_PI;
+    } else {
+        float d[3];
+        if (!pt_sky_sample(&pts->sky, u1, u2, d, &pdf))
+            return mk(0, 0, 0);
+        wi = mk(d[0], d[1], d[2]);
+    }
+    float cos_x = dot(hit->shading_normal, wi);
+    if (!(pdf > 0.0) || cos_x <= 0.0f || dot(hit->geometric_normal, wi) <= 0.0f)
+        return mk(0, 0, 0);
+    v3 l = sky_radiance(pts, wi);
+    if (l.x <= 0.0f && l.y <= 0.0f && l.z <= 0.0f)
+        return mk(0, 0, 0);
+    if (occluded(wc, hit->origin, wi, hit->offset, INFINITY))
+        return mk(0, 0, 0);
+    float w = power_heuristic(pdf, cos_x / PT_PI);
+    float k = (float)((double)cos_x * w / (PT_PI * pdf));
+    return scale(mul(hit->albedo, l), k);
+}
+
+/* ---------------------------------------------------------------- paths */
+
+/* Radiance along one camera ray, with bounces counted as Cycles and pbrt count them: at
+ * every vertex x1 ... x(n+1) of the path (n = `bounces`), light arrives directly from every
+ * source: punctual lights (next-event estimation), emissive triangles and the sky (one
+ * sample of each, combined with the cosine-sampled continuation by the power heuristic);
+ * emission and sky are seen where the camera ray lands or escapes. So n = 0 is the direct
+ * light of every source plus what the camera sees, and each bounce adds one diffuse
+ * reflection. The continuation from x(n+1) only looks for emitters and the sky (its MIS
+ * half of their direct light); it is not traced when the scene has neither. The Lambertian BRDF albedo/pi times cos over the cosine pdf cos/pi leaves
+ * the albedo as the throughput factor. */
+/* Which part of the image a contribution belongs to: light that arrives at vertex `depth`
+ * (0 = where the camera ray lands) reaches the camera after `depth` reflections, and light
+ * that a vertex receives directly after depth + 1. */
+static inline pt_part
+part_seen(int depth, pt_part direct)
+{
+    return depth == 0 ? PT_PART_EMITTED : (depth == 1 ? direct : PT_PART_INDIRECT);
+}
+
+static inline pt_part
+part_received(int depth, pt_part direct)
+{
+    return depth == 0 ? direct : PT_PART_INDIRECT;
+}
+
+static v3
+radiance(pt_worker_ctx *wc, v3 org, v3 dir, float tnear, int bounces, pt_rng *rng, v3 parts[PT_PART_COUNT])
+{
+    const pt_scene *pts = wc->pts;
+    const bool emitters = pts->emitters.count > 0;
+    const bool sky = pts->sky.model.type != CG_SKY_NONE;
     v3 sum = mk(0, 0, 0), throughput = mk(1, 1, 1);
+    v3 prev_position = mk(0, 0, 0), prev_normal = mk(0, 0, 0);
+    float prev_pdf = 0.0f; /* solid-angle density of the cosine sample that made this ray */
     RTCRayHit rh;
-    ray_init(&rh, org, dir, 0.0f);
+    ray_init(&rh, org, dir, tnear);
     for (int depth = 0;; depth++) {
         wc->rays++;
-        rtcIntersect1(wc->pts->rtc, &wc->ictx, &rh);
-        if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID)
-            break; /* no sky: black background */
+        rtcIntersect1(pts->rtc, &wc->ictx, &rh);
+        if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
+            if (sky) {
+                v3 d = mk(rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z);
+                float w = depth == 0 ? 1.0f : power_heuristic(prev_pdf, sky_pdf(pts, prev_normal, d));
+                v3 c = mul(throughput, scale(sky_radiance(pts, d), w));
+                sum = add(sum, c);
+                parts[part_seen(depth, PT_PART_DIRECT_SKY)] = add(parts[part_seen(depth, PT_PART_DIRECT_SKY)], c);
+            }
+            break;
+        }
         pt_hit hit;
-        shade_hit(wc->pts, &rh, &hit);
-        sum = add(sum, mul(throughput, hit.emission));
-        v3 e = punctual_irradiance(wc, &hit);
-        sum = add(sum, mul(throughput, scale(mul(hit.albedo, e), 1.0f / PT_PI)));
-        if (depth >= bounces)
+        shade_hit(pts, &rh, &hit);
+        if (hit.emission.x > 0.0f || hit.emission.y > 0.0f || hit.emission.z > 0.0f) {
+            float w = 1.0f; /* the camera ray: no other strategy finds this light */
+            if (depth > 0) {
+                v3 d = mk(rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z);
+                w = power_heuristic(prev_pdf, emitter_pdf(pts, hit.geometry, hit.triangle, prev_position,
+                                                           hit.position, d));
+            }
+            v3 c = mul(throughput, scale(hit.emission, w));
+            sum = add(sum, c);
+            pt_part part = part_seen(depth, PT_PART_DIRECT_EMITTERS);
+            parts[part] = add(parts[part], c);
+        }
+        if (depth > bounces)
+            break; /* the continuation of the last vertex: emitters and sky only */
+        /* `sum` adds the terms in the order it always did, so that the image does not depend
+         * on whether the parts are asked for; the parts are summed beside it. */
+        v3 c = mul(throughput, scale(mul(hit.albedo, punctual_irradiance(wc, &hit)), 1.0f / PT_PI));
+        sum = add(sum, c);
+        pt_part part = part_received(depth, PT_PART_DIRECT_PUNCTUAL);
+        parts[part] = add(parts[part], c);
+        if (emitters) {
+            c = mul(throughput, emitter_direct(wc, &hit, rng));
+            sum = add(sum, c);
+            part = part_received(depth, PT_PART_DIRECT_EMITTERS);
+            parts[part] = add(parts[part], c);
+        }
+        if (sky) {
+            c = mul(throughput, sky_direct(wc, &hit, rng));
+            sum = add(sum, c);
+            part = part_received(depth, PT_PART_DIRECT_SKY);
+            parts[part] = add(parts[part], c);
+        }
+        if (depth == bounces && !emitters && !sky)
             break;
         throughput = mul(throughput, hit.albedo);
         if (throughput.x <= 0.0f && throughput.y <= 0.0f && throughput.z <= 0.0f)
@@ -543,21 +959,50 @@ radiance(pt_worker_ctx *wc, v3 org, v3 dir, int bounces, pt_rng *rng)
         v3 next = sample_cosine(hit.shading_normal, u1, u2);
         if (dot(next, hit.geometric_normal) <= 0.0f)
             break; /* below the true surface (shading normal tilted away): no light */
-        ray_init(&rh, offset_origin(hit.position, hit.geometric_normal), next, 0.0f);
+        prev_pdf = dot(hit.shading_normal, next) / PT_PI;
+        prev_position = hit.position;
+        prev_normal = hit.shading_normal;
+        ray_init(&rh, hit.origin, next, hit.offset);
     }
     return sum;
 }
 
 /* ---------------------------------------------------------------- camera and tiles */
 
-static v3
-unproject(const float m[16], float x, float y, float z)
+/* The camera ray through NDC (x, y). Built in camera space and in double precision, then
+ * turned into the world by the camera-to-world matrix: a perspective ray starts at the eye
+ * with tnear = its distance to the near plane (what the rasteriser clips), an orthographic
+ * one on the near plane. Never the difference of two world-space points: at 1.6 km from the
+ * origin two points 5 cm apart (a near plane) differ by a few float ulps only, which tilted
+ * each ray by up to 1e-3 rad and stair-stepped the edges. */
+static void
+camera_ray(const cg_view *view, double ndc_x, double ndc_y, v3 *org, v3 *dir, float *tnear)
 {
-    float X = m[0] * x + m[4] * y + m[8] * z + m[12];
-    float Y = m[1] * x + m[5] * y + m[9] * z + m[13];
-    float Z = m[2] * x + m[6] * y + m[10] * z + m[14];
-    float W = m[3] * x + m[7] * y + m[11] * z + m[15];
-    return mk(X / W, Y / W, Z / W);
+    const float *ip = view->inv_proj, *iv = view->inv_view;
+    double c[4];
+    for (int r = 0; r < 4; r++)
+        c[r] = ip[r] * ndc_x + ip[4 + r] * ndc_y - ip[8 + r] + ip[12 + r];
+    double p[3] = { c[0] / c[3], c[1] / c[3], c[2] / c[3] }; /* the near-plane point, camera space */
+    double o[3], d[3], t0;
+    if (view->orthographic) {
+        o[0] = p[0], o[1] = p[1], o[2] = p[2];
+        d[0] = 0.0, d[1] = 0.0, d[2] = -1.0;
+        t0 = 0.0;
+    } else {
+        double len = sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+        o[0] = o[1] = o[2] = 0.0;
+        d[0] = p[0] / len, d[1] = p[1] / len, d[2] = p[2] / len;
+        t0 = len;
+    }
+    double wo[3], wd[3];
+    for (int r = 0; r < 3; r++) {
+        wo[r] = iv[r] * o[0] + iv[4 + r] * o[1] + iv[8 + r] * o[2] + iv[12 + r];
+        wd[r] = iv[r] * d[0] + iv[4 + r] * d[1] + iv[8 + r] * d[2];
+    }
+    double n = sqrt(wd[0] * wd[0] + wd[1] * wd[1] + wd[2] * wd[2]);
+    *org = mk((float)wo[0], (float)wo[1], (float)wo[2]);
+    *dir = mk((float)(wd[0] / n), (float)(wd[1] / n), (float)(wd[2] / n));
+    *tnear = (float)(t0 * n); /* inv_view is orthonormal (camera.c), so n = 1 up to rounding */
 }
 
 typedef struct pt_job {
@@ -565,6 +1010,7 @@ typedef struct pt_job {
     const cg_view *view;
     const pt_settings *settings;
     float *rgba;
+    float *const *parts;      /* PT_PART_COUNT images or NULLs, or NULL */
     int tiles_x, tiles_y, tile_count;
     atomic_int next_tile;
     atomic_int tiles_done;
@@ -582,7 +1028,8 @@ render_tile(pt_job *job, pt_worker_ctx *wc, int tile)
     for (int y = y0; y < y1; y++) {
         for (int x = x0; x < x1; x++) {
             uint64_t pixel = (uint64_t)y * (uint64_t)view->width + (uint64_t)x;
-            double acc[3] = { 0, 0, 0 };
+            double acc[3] = { 0, 0, 0 }, acc_parts[PT_PART_COUNT][3];
+            memset(acc_parts, 0, sizeof acc_parts);
             for (int k = 0; k < s->spp; k++) {
                 pt_rng rng = rng_for_sample(s->seed, pixel, (uint32_t)k);
                 float jx = 0.5f, jy = 0.5f;
@@ -592,21 +1039,36 @@ render_tile(pt_job *job, pt_worker_ctx *wc, int tile)
                 }
                 /* Rows top to bottom: row y's centre is at NDC y = 1 - 2 (y + 0.5) / height, the
                  * same point as GL's gl_FragCoord.y = height - y - 0.5 of the flipped read-back. */
-                float ndc_x = 2.0f * ((float)x + jx) / (float)view->width - 1.0f;
-                float ndc_y = 1.0f - 2.0f * ((float)y + jy) / (float)view->height;
-                /* From the near plane (what the rasteriser clips) towards the NDC z = 0 point,
-                 * which stays finite for an infinite far plane. */
-                v3 near = unproject(view->inv_view_proj, ndc_x, ndc_y, -1.0f);
-                v3 mid = unproject(view->inv_view_proj, ndc_x, ndc_y, 0.0f);
-                v3 l = radiance(wc, near, normalize(sub(mid, near)), s->bounces, &rng);
+                double ndc_x = 2.0 * ((double)x + jx) / (double)view->width - 1.0;
+                double ndc_y = 1.0 - 2.0 * ((double)y + jy) / (double)view->height;
+                v3 org, dir;
+                float tnear;
+                camera_ray(view, ndc_x, ndc_y, &org, &dir, &tnear);
+                v3 parts[PT_PART_COUNT];
+                for (int p = 0; p < PT_PART_COUNT; p++)
+                    parts[p] = mk(0, 0, 0);
+                v3 l = radiance(wc, org, dir, tnear, s->bounces, &rng, parts);
                 acc[0] += l.x;
                 acc[1] += l.y;
                 acc[2] += l.z;
+                for (int p = 0; p < PT_PART_COUNT; p++) {
+                    acc_parts[p][0] += parts[p].x;
+                    acc_parts[p][1] += parts[p].y;
+                    acc_parts[p][2] += parts[p].z;
+                }
             }
             float *out = &job->rgba[4 * pixel];
             for (int c = 0; c < 3; c++)
                 out[c] = (float)(acc[c] / s->spp);
             out[3] = 1.0f;
+            for (int p = 0; job->parts && p < PT_PART_COUNT; p++) {
+                if (!job->parts[p])
+                    continue;
+                float *po = &job->parts[p][4 * pixel];
+                for (int c = 0; c < 3; c++)
+                    po[c] = (float)(acc_parts[p][c] / s->spp);
+                po[3] = 1.0f;
+            }
         }
     }
 }
@@ -658,9 +1120,24 @@ worker(void *arg)
     return NULL;
 }
 
+const char *
+pt_part_name(pt_part part)
+{
+    static const char *const names[PT_PART_COUNT] = { "emitted", "direct_punctual", "direct_emitters",
+                                                       "direct_sky", "indirect" };
+    return part >= 0 && part < PT_PART_COUNT ? names[part] : "?";
+}
+
 bool
 pt_render(const pt_scene *pts, const cg_view *view, const pt_settings *settings, float *rgba,
           uint64_t *rays_traced, cg_error *err)
+{
+    return pt_render_parts(pts, view, settings, rgba, NULL, rays_traced, err);
+}
+
+bool
+pt_render_parts(const pt_scene *pts, const cg_view *view, const pt_settings *settings, float *rgba,
+                float *const parts[PT_PART_COUNT], uint64_t *rays_traced, cg_error *err)
 {
     if (view->width <= 0 || view->height <= 0)
         return cg_fail(err, CG_ERR_USAGE, "path_trace: image size %dx%d, expected positive",
@@ -678,7 +1155,7 @@ pt_render(const pt_scene *pts, const cg_view *view, const pt_settings *settings,
         long n = sysconf(_SC_NPROCESSORS_ONLN);
         threads = n > 0 ? (n > PT_MAX_THREADS ? PT_MAX_THREADS : (int)n) : 1;
     }
-    pt_job job = { .pts = pts, .view = view, .settings = settings, .rgba = rgba };
+    pt_job job = { .pts = pts, .view = view, .settings = settings, .rgba = rgba, .parts = parts };
     job.tiles_x = (view->width + PT_TILE - 1) / PT_TILE;
     job.tiles_y = (view->height + PT_TILE - 1) / PT_TILE;
     job.tile_count = job.tiles_x * job.tiles_y;

@@ -22,26 +22,36 @@
 #include "cg/shader.h"
 
 static const fg_param_desc cone_gather_params[] = {
-    {"cones", FG_PARAM_INT, 6, 1, 16, NULL,
-     "diffuse cones: 1, 6 (Crassin et al.), 9 (VCT paper 3.2.1) or 16; weights integrate the cosine lobe to 1"},
-    {"aperture", FG_PARAM_FLOAT, 0, 0, 150, NULL,
-     "full apex angle of the diffuse cones in degrees; 0: per cone, the cone with its cell's solid angle"},
-    {"step", FG_PARAM_FLOAT, 0.5, 0.05, 4, NULL,
-     "sample spacing as a fraction of the cone diameter; 0.5 and less: one sampled voxel or less, "
-     "where the coverage per step is exact and the result independent of the step"},
-    {"start_offset", FG_PARAM_FLOAT, 1.5, 0, 16, NULL,
-     "voxels the cone origin is moved along the normal, off the surface's own voxels"},
-    {"lod_bias", FG_PARAM_FLOAT, 0, -4, 4, NULL,
-     "added to the matched level, one below hybrid eq. 8 (a trilinear sample there spans the "
-     "footprint); -1 (graphs/vct.json) measured closer to the path tracer, docs/vct.md"},
-    {"max_distance", FG_PARAM_FLOAT, 0, 0, 1e9, NULL, "metres a cone travels at most; 0: the volume's diagonal"},
-    {"specular", FG_PARAM_BOOL, 0, 0, 1, NULL, "also trace a mirror cone (output 'specular', VCT paper 3.2.2)"},
-    {"roughness", FG_PARAM_FLOAT, 0.3, 0, 1, NULL,
-     "specular cone: its half-angle has tangent roughness^2 (the GGX alpha), at least 0.01"},
-    {"shadow_cone", FG_PARAM_BOOL, 0, 0, 1, NULL,
-     "also trace a cone towards a light (output 'visibility', VCT paper 3.2.3)"},
-    {"shadow_light", FG_PARAM_INT, 0, 0, 65535, NULL, "shadow cone: index of the scene light"},
-    {"shadow_aperture", FG_PARAM_FLOAT, 10, 0.1, 90, NULL, "shadow cone: full apex angle in degrees"},
+    { .name = "cones", .type = FG_PARAM_INT, .default_value = 6, .min = 1, .max = 16,
+      .allowed = FG_PARAM_VALUES(CGP_CONE_SET_SIZES),
+      .doc = "diffuse cones: 1, 6 (Crassin et al.), 9 (VCT paper 3.2.1) or 16; weights integrate the cosine lobe to 1" },
+    { .name = "aperture", .type = FG_PARAM_FLOAT, .min = 0, .max = 150,
+      .step = 5,
+      .doc = "full apex angle of the diffuse cones in degrees; 0: per cone, the cone with its cell's solid angle" },
+    { .name = "step", .type = FG_PARAM_FLOAT, .default_value = 0.5, .min = 0.05, .max = 4,
+      .doc = "sample spacing as a fraction of the cone diameter; 0.5 and less: one sampled voxel or less, "
+             "where the coverage per step is exact and the result independent of the step" },
+    { .name = "start_offset", .type = FG_PARAM_FLOAT, .default_value = 1.5, .min = 0, .max = 16,
+      .doc = "voxels the cone origin is moved along the normal, off the surface's own voxels" },
+    { .name = "lod_bias", .type = FG_PARAM_FLOAT, .min = -4, .max = 4,
+      .step = 0.25,
+      .doc = "added to the matched level, one below hybrid eq. 8 (a trilinear sample there spans the "
+             "footprint); -1 (graphs/vct.json) measured closer to the path tracer, docs/vct.md" },
+    { .name = "max_distance", .type = FG_PARAM_FLOAT, .min = 0, .max = 1e9,
+      .doc = "metres a cone travels at most; 0: the volume's diagonal" },
+    { .name = "specular", .type = FG_PARAM_BOOL,
+      .doc = "also trace a mirror cone (output 'specular', VCT paper 3.2.2)" },
+    { .name = "roughness", .type = FG_PARAM_FLOAT, .default_value = 0.3, .min = 0, .max = 1,
+      .step = 0.05, .active_when = "specular",
+      .doc = "specular cone: its half-angle has tangent roughness^2 (the GGX alpha), at least 0.01" },
+    { .name = "shadow_cone", .type = FG_PARAM_BOOL,
+      .doc = "also trace a cone towards a light (output 'visibility', VCT paper 3.2.3)" },
+    { .name = "shadow_light", .type = FG_PARAM_INT, .min = 0, .max = 65535,
+      .active_when = "shadow_cone",
+      .doc = "shadow cone: index of the scene light" },
+    { .name = "shadow_aperture", .type = FG_PARAM_FLOAT, .default_value = 10, .min = 0.1, .max = 90,
+      .step = 1, .active_when = "shadow_cone",
+      .doc = "shadow cone: full apex angle in degrees" },
 };
 
 typedef struct cone_gather_state {
@@ -55,10 +65,6 @@ static const char *const direction_names[6] = {"px", "nx", "py", "ny", "pz", "nz
 static bool
 cone_gather_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
 {
-    int cones = fg_param_int(pass, "cones");
-    if (!cgp_cone_set_valid_size(cones))
-        return cg_fail(err, CG_ERR_GRAPH_PARAM_RANGE,
-                       "pass '%s': cones = %d; expected 1, 6, 9 or 16", fg_pass_name(pass), cones);
     const fg_resource_desc *position =
         fg_declare_input(decl, "position", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, true);
     fg_declare_input(decl, "normal", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, true);

@@ -33,10 +33,11 @@
 enum { FORMAT_RGBA16F, FORMAT_RGBA32F };
 
 static const fg_param_desc heightmap_params[] = {
-    {"resolution", FG_PARAM_INT, 1024, 16, 8192, NULL,
-     "texels per edge of the 2D lightmap at level 0 (a power of two)"},
-    {"format", FG_PARAM_ENUM, FORMAT_RGBA32F, 0, 0, "rgba16f|rgba32f",
-     "texel format; rgba32f keeps heights to 24 bits (rgba16f: 11 bits, centimetres at 30 m, metres at 10 km)"},
+    { .name = "resolution", .type = FG_PARAM_INT, .default_value = 1024, .min = 16, .max = 8192,
+      .power_of_two = true,
+      .doc = "texels per edge of the 2D lightmap at level 0" },
+    { .name = "format", .type = FG_PARAM_ENUM, .default_value = FORMAT_RGBA32F, .choices = "rgba16f|rgba32f",
+      .doc = "texel format; rgba32f keeps heights to 24 bits (rgba16f: 11 bits, centimetres at 30 m, metres at 10 km)" },
 };
 
 typedef struct heightmap_raster_state {
@@ -60,20 +61,10 @@ heightfield_bounds(const cg_scene *scene, heightmap_region *out)
 }
 
 static bool
-is_power_of_two(int v)
-{
-    return v > 0 && (v & (v - 1)) == 0;
-}
-
-static bool
 heightmap_raster_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
 {
     const fg_frame *frame = fg_pass_frame(pass);
     int resolution = fg_param_int(pass, "resolution");
-    if (!is_power_of_two(resolution))
-        return cg_fail(err, CG_ERR_GRAPH_PARAM_RANGE,
-                       "pass '%s': resolution %d is not a power of two (16, 32, ..., 8192)",
-                       fg_pass_name(pass), resolution);
     if (!cgp_declare_shadow_inputs(pass, decl, err))
         return false;
     heightmap_region region;

@@ -30,10 +30,12 @@
 enum { MODE_PYRAMID, MODE_PNORM, MODE_POWER_MEAN };
 
 static const fg_param_desc hsat_params[] = {
-    {"mode", FG_PARAM_ENUM, MODE_PYRAMID, 0, 0, "pyramid|pnorm|power_mean",
-     "pyramid: exact min/max mip pyramid (conservative); pnorm: SAT with the un-normalised p-norm "
-     "(an upper bound); power_mean: SAT with eq. 14 as the paper writes it (under-estimates)"},
-    {"p", FG_PARAM_FLOAT, 16, 1, 64, NULL, "exponent of eq. 14 (SAT modes)"},
+    { .name = "mode", .type = FG_PARAM_ENUM, .default_value = MODE_PYRAMID, .choices = "pyramid|pnorm|power_mean",
+      .doc = "pyramid: exact min/max mip pyramid (conservative); pnorm: SAT with the un-normalised p-norm "
+             "(an upper bound); power_mean: SAT with eq. 14 as the paper writes it (under-estimates)" },
+    { .name = "p", .type = FG_PARAM_FLOAT, .default_value = 16, .min = 1, .max = 64,
+      .active_when = "mode=pnorm|power_mean",
+      .doc = "exponent of eq. 14 (SAT modes)" },
 };
 
 typedef struct hsat_state {

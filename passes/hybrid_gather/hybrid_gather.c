@@ -30,23 +30,30 @@ enum { CUBE_EQ11, CUBE_EQ10 };
 enum { OCCLUSION_EQ16, OCCLUSION_EQ17 };
 
 static const fg_param_desc hybrid_gather_params[] = {
-    {"cones", FG_PARAM_INT, 6, 1, 16, NULL,
-     "diffuse cones: 1, 6, 9 or 16; weights integrate the cosine lobe to 1 (hybrid eq. 3-4)"},
-    {"aperture", FG_PARAM_FLOAT, 0, 0, 150, NULL,
-     "full apex angle of the diffuse cones in degrees; 0: per cone, the cone with its cell's solid angle"},
-    {"step", FG_PARAM_FLOAT, 0.25, 0.05, 4, NULL, "step length as a fraction of the cone diameter"},
-    {"start_offset", FG_PARAM_FLOAT, 1.5, 0, 16, NULL,
-     "xels the cone origin is moved along the normal (the coarser of voxel and 2D texel)"},
-    {"lod_bias", FG_PARAM_FLOAT, -2, -4, 4, NULL,
-     "added to the 3D lightmap's matched level (one below hybrid eq. 8, as cone_gather) and to the 2D lightmap's eq. 8"},
-    {"max_distance", FG_PARAM_FLOAT, 0, 0, 1e9, NULL, "metres a cone travels at most; 0: the maps' diagonal"},
-    {"cube", FG_PARAM_ENUM, CUBE_EQ11, 0, 0, "eq11|eq10",
-     "fitting cube: eq. 11 for cones off the axes (eq. 10 on them, the paper), or eq. 10's inscribed cube always"},
-    {"occlusion", FG_PARAM_ENUM, OCCLUSION_EQ16, 0, 0, "eq16|eq17",
-     "height-field occlusion per step: eq. 16 (newly covered part of the section) or eq. 17 (d / t)"},
-    {"dda", FG_PARAM_BOOL, 1, 0, 1, NULL,
-     "walk the 2D lightmap along the cone's projection by a 2D DDA (else one sample at the cube's centre)"},
-    {"skip", FG_PARAM_BOOL, 1, 0, 1, NULL, "skip steps above the highest terrain under the cube (HSAT)"},
+    { .name = "cones", .type = FG_PARAM_INT, .default_value = 6, .min = 1, .max = 16,
+      .allowed = FG_PARAM_VALUES(CGP_CONE_SET_SIZES),
+      .doc = "diffuse cones: 1, 6, 9 or 16; weights integrate the cosine lobe to 1 (hybrid eq. 3-4)" },
+    { .name = "aperture", .type = FG_PARAM_FLOAT, .min = 0, .max = 150,
+      .step = 5,
+      .doc = "full apex angle of the diffuse cones in degrees; 0: per cone, the cone with its cell's solid angle" },
+    { .name = "step", .type = FG_PARAM_FLOAT, .default_value = 0.25, .min = 0.05, .max = 4,
+      .doc = "step length as a fraction of the cone diameter" },
+    { .name = "start_offset", .type = FG_PARAM_FLOAT, .default_value = 1.5, .min = 0, .max = 16,
+      .doc = "xels the cone origin is moved along the normal (the coarser of voxel and 2D texel)" },
+    { .name = "lod_bias", .type = FG_PARAM_FLOAT, .default_value = -2, .min = -4, .max = 4,
+      .step = 0.25,
+      .doc = "added to the 3D lightmap's matched level (one below hybrid eq. 8, as cone_gather) and to the 2D "
+             "lightmap's eq. 8" },
+    { .name = "max_distance", .type = FG_PARAM_FLOAT, .min = 0, .max = 1e9,
+      .doc = "metres a cone travels at most; 0: the maps' diagonal" },
+    { .name = "cube", .type = FG_PARAM_ENUM, .default_value = CUBE_EQ11, .choices = "eq11|eq10",
+      .doc = "fitting cube: eq. 11 for cones off the axes (eq. 10 on them, the paper), or eq. 10's inscribed cube always" },
+    { .name = "occlusion", .type = FG_PARAM_ENUM, .default_value = OCCLUSION_EQ16, .choices = "eq16|eq17",
+      .doc = "height-field occlusion per step: eq. 16 (newly covered part of the section) or eq. 17 (d / t)" },
+    { .name = "dda", .type = FG_PARAM_BOOL, .default_value = 1,
+      .doc = "walk the 2D lightmap along the cone's projection by a 2D DDA (else one sample at the cube's centre)" },
+    { .name = "skip", .type = FG_PARAM_BOOL, .default_value = 1,
+      .doc = "skip steps above the highest terrain under the cube (HSAT)" },
 };
 
 typedef struct hybrid_gather_state {
@@ -69,10 +76,6 @@ check_buffer(const fg_pass *pass, const fg_resource_desc *desc, const char *name
 static bool
 hybrid_gather_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
 {
-    int cones = fg_param_int(pass, "cones");
-    if (!cgp_cone_set_valid_size(cones))
-        return cg_fail(err, CG_ERR_GRAPH_PARAM_RANGE,
-                       "pass '%s': cones = %d; expected 1, 6, 9 or 16", fg_pass_name(pass), cones);
     const fg_resource_desc *position = fg_declare_input(decl, "position", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, true);
     fg_declare_input(decl, "normal", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, true);
     const fg_resource_desc *volume = fg_declare_input(decl, "volume", FG_TEXTURE_3D, FG_ACCESS_SAMPLED, false);

@@ -13,10 +13,10 @@
 #include "cg/shader.h"
 
 static const fg_param_desc mip3d_params[] = {
-    {"opacity", FG_PARAM_ENUM, 0, 0, 0, "max|average",
-     "coarse opacity: max of the 8 children (thin walls stay opaque) or their average (volume fraction)"},
-    {"anisotropic", FG_PARAM_BOOL, 0, 0, 1, NULL,
-     "also build six directional chains of levels 1.. (outputs px nx py ny pz nz, Crassin et al. 2011)"},
+    { .name = "opacity", .type = FG_PARAM_ENUM, .choices = "max|average",
+      .doc = "coarse opacity: max of the 8 children (thin walls stay opaque) or their average (volume fraction)" },
+    { .name = "anisotropic", .type = FG_PARAM_BOOL,
+      .doc = "also build six directional chains of levels 1.. (outputs px nx py ny pz nz, Crassin et al. 2011)" },
 };
 
 /* Outputs of the anisotropic chains: level k holds global level k + 1 as seen by a cone

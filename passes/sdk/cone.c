@@ -7,7 +7,7 @@
 #include <math.h>
 #include <stddef.h>
 
-static const int cone_set_sizes[] = {1, 6, 9, 16};
+static const int cone_set_sizes[] = { CGP_CONE_SET_SIZES };
 
 /* The widest automatic cone: a hemisphere-wide cone (1-cone set) would have an infinite
  * diameter, so its half-angle is capped here; the gather's aperture parameter overrides. */

@@ -1,8 +1,9 @@
 /* sdk/cone.h (pass SDK): diffuse cone sets for cone tracing: directions, apertures and weights.
  *
- * Declares: CGP_CONE_MAX, cgp_cone, cgp_cone_set, cgp_cone_set_make, cgp_cone_set_sizes,
- *           cgp_cone_set_valid_size, cgp_cone_frame, cgp_cone_set_of_pass, cgp_cone_block_fill,
- *           cgp_cone_upload, cgp_gather, cgp_gather_prepare, cgp_gather_begin, cgp_gather_end.
+ * Declares: CGP_CONE_MAX, CGP_CONE_SET_SIZES, cgp_cone, cgp_cone_set, cgp_cone_set_make,
+ *           cgp_cone_set_sizes, cgp_cone_set_valid_size, cgp_cone_frame, cgp_cone_set_of_pass,
+ *           cgp_cone_block_fill, cgp_cone_upload, cgp_gather, cgp_gather_prepare, cgp_gather_begin,
+ *           cgp_gather_end.
  *
  * Shared by every cone tracer (the VCT gather and the hybrid tracer), so it lives in the
  * pass SDK; core knows nothing of cones.
@@ -25,6 +26,9 @@
 #include "sdk/blocks.h"
 
 #define CGP_CONE_MAX CG_CONE_SET_MAX
+/* The sizes of the sets cgp_cone_set_make makes, as a list for parameter tables:
+ * `.allowed = FG_PARAM_VALUES(CGP_CONE_SET_SIZES)`. */
+#define CGP_CONE_SET_SIZES 1, 6, 9, 16
 
 typedef struct cgp_cone {
     float direction[3];     /* tangent space, z = normal; unit length */

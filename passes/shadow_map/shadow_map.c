@@ -25,16 +25,19 @@ enum { FILTER_NONE, FILTER_PCF3, FILTER_PCF5 };
 #define MAX_SPOT_FOV_DEGREES 170.0f
 
 static const fg_param_desc shadow_params[] = {
-    { "light", FG_PARAM_INT, -1, -1, 65535, NULL,
-      "index of the scene light to shadow (directional or spot); -1 = the first directional or spot light" },
-    { "resolution", FG_PARAM_INT, 2048, 16, 16384, NULL,
-      "width and height of the depth map, texels" },
-    { "bias", FG_PARAM_FLOAT, 1.0, 0.0, 64.0, NULL,
-      "constant depth bias, in shadow-map texels (world size of a texel at the receiver)" },
-    { "slope_bias", FG_PARAM_FLOAT, 1.0, 0.0, 64.0, NULL,
-      "depth bias per unit of tan(angle between normal and light), in texels; tan is capped at 10" },
-    { "filter", FG_PARAM_ENUM, FILTER_PCF3, 0, 0, "none|pcf3|pcf5",
-      "percentage-closer filtering of the lookup: 1, 3x3 or 5x5 depth comparisons" },
+    { .name = "light", .type = FG_PARAM_INT, .default_value = -1, .min = -1, .max = 65535,
+      .doc = "index of the scene light to shadow (directional or spot); -1 = the first directional or spot light" },
+    { .name = "resolution", .type = FG_PARAM_INT, .default_value = 2048, .min = 16, .max = 16384,
+      .step_doubles = true,
+      .doc = "width and height of the depth map, texels" },
+    { .name = "bias", .type = FG_PARAM_FLOAT, .default_value = 1.0, .min = 0.0, .max = 64.0,
+      .step = 0.25,
+      .doc = "constant depth bias, in shadow-map texels (world size of a texel at the receiver)" },
+    { .name = "slope_bias", .type = FG_PARAM_FLOAT, .default_value = 1.0, .min = 0.0, .max = 64.0,
+      .step = 0.25,
+      .doc = "depth bias per unit of tan(angle between normal and light), in texels; tan is capped at 10" },
+    { .name = "filter", .type = FG_PARAM_ENUM, .default_value = FILTER_PCF3, .choices = "none|pcf3|pcf5",
+      .doc = "percentage-closer filtering of the lookup: 1, 3x3 or 5x5 depth comparisons" },
 };
 
 typedef struct shadow_map_state {

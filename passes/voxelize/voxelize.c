@@ -34,25 +34,40 @@ enum { FORMAT_RGBA8, FORMAT_RGBA16F };
 enum { REGION_MESHES, REGION_SCENE, REGION_EXPLICIT };
 
 static const fg_param_desc voxelize_params[] = {
-    {"resolution", FG_PARAM_INT, 128, 16, 512, NULL,
-     "voxels per edge of the cubic volume at level 0 (a power of two)"},
-    {"format", FG_PARAM_ENUM, FORMAT_RGBA16F, 0, 0, "rgba8|rgba16f",
-     "texel format: rgba8 as in the VCT paper (radiance over the volume's maximum) or rgba16f"},
-    {"meshes", FG_PARAM_ENUM, CG_MESHES_ALL, 0, 0, "all|complex|heightfield",
-     "which meshes to voxelize (the hybrid method voxelizes only complex meshes)"},
-    {"region", FG_PARAM_ENUM, REGION_MESHES, 0, 0, "meshes|scene|explicit",
-     "volume bounds: the voxelized meshes' bounds, the whole scene's, or min_*/max_*"},
-    {"min_x", FG_PARAM_FLOAT, -1, -1e9, 1e9, NULL, "explicit region: minimum x (m)"},
-    {"min_y", FG_PARAM_FLOAT, -1, -1e9, 1e9, NULL, "explicit region: minimum y (m)"},
-    {"min_z", FG_PARAM_FLOAT, -1, -1e9, 1e9, NULL, "explicit region: minimum z (m)"},
-    {"max_x", FG_PARAM_FLOAT, 1, -1e9, 1e9, NULL, "explicit region: maximum x (m)"},
-    {"max_y", FG_PARAM_FLOAT, 1, -1e9, 1e9, NULL, "explicit region: maximum y (m)"},
-    {"max_z", FG_PARAM_FLOAT, 1, -1e9, 1e9, NULL, "explicit region: maximum z (m)"},
-    {"padding", FG_PARAM_FLOAT, 1, 0, 16, NULL,
-     "empty voxels added on each side of the bounds, so that surfaces on them lie inside"},
-    {"conservative", FG_PARAM_BOOL, 1, 0, 1, NULL,
-     "every voxel a triangle touches (dilation + exact overlap test); false: one voxel per "
-     "covered pixel centre, as plain rasterization gives (leaves holes)"},
+    { .name = "resolution", .type = FG_PARAM_INT, .default_value = 128, .min = 16, .max = 512,
+      .power_of_two = true,
+      .doc = "voxels per edge of the cubic volume at level 0" },
+    { .name = "format", .type = FG_PARAM_ENUM, .default_value = FORMAT_RGBA16F, .choices = "rgba8|rgba16f",
+      .doc = "texel format: rgba8 as in the VCT paper (radiance over the volume's maximum) or rgba16f" },
+    { .name = "meshes", .type = FG_PARAM_ENUM, .default_value = CG_MESHES_ALL, .choices = "all|complex|heightfield",
+      .doc = "which meshes to voxelize (the hybrid method voxelizes only complex meshes)" },
+    { .name = "region", .type = FG_PARAM_ENUM, .default_value = REGION_MESHES, .choices = "meshes|scene|explicit",
+      .doc = "volume bounds: the voxelized meshes' bounds, the whole scene's, or min_*/max_*" },
+    { .name = "min_x", .type = FG_PARAM_FLOAT, .default_value = -1, .min = -1e9, .max = 1e9,
+      .active_when = "region=explicit",
+      .doc = "explicit region: minimum x (m)" },
+    { .name = "min_y", .type = FG_PARAM_FLOAT, .default_value = -1, .min = -1e9, .max = 1e9,
+      .active_when = "region=explicit",
+      .doc = "explicit region: minimum y (m)" },
+    { .name = "min_z", .type = FG_PARAM_FLOAT, .default_value = -1, .min = -1e9, .max = 1e9,
+      .active_when = "region=explicit",
+      .doc = "explicit region: minimum z (m)" },
+    { .name = "max_x", .type = FG_PARAM_FLOAT, .default_value = 1, .min = -1e9, .max = 1e9,
+      .active_when = "region=explicit", .greater_than = { .param = "min_x" },
+      .doc = "explicit region: maximum x (m)" },
+    { .name = "max_y", .type = FG_PARAM_FLOAT, .default_value = 1, .min = -1e9, .max = 1e9,
+      .active_when = "region=explicit", .greater_than = { .param = "min_y" },
+      .doc = "explicit region: maximum y (m)" },
+    { .name = "max_z", .type = FG_PARAM_FLOAT, .default_value = 1, .min = -1e9, .max = 1e9,
+      .active_when = "region=explicit", .greater_than = { .param = "min_z" },
+      .doc = "explicit region: maximum z (m)" },
+    { .name = "padding", .type = FG_PARAM_FLOAT, .default_value = 1, .min = 0, .max = 16,
+      .less_than = { .param = "resolution", .scale = 0.25 },
+      .doc = "empty voxels added on each side of the bounds, so that surfaces on them lie inside; "
+             "the scene keeps at least half the volume's edge" },
+    { .name = "conservative", .type = FG_PARAM_BOOL, .default_value = 1,
+      .doc = "every voxel a triangle touches (dilation + exact overlap test); false: one voxel per "
+             "covered pixel centre, as plain rasterization gives (leaves holes)" },
 };
 
 typedef struct voxelize_state {
@@ -75,16 +90,17 @@ typedef struct voxel_region {
     double voxel;
 } voxel_region;
 
-/* The cube the volume covers. Fails (bad parameters) or returns false in *has (nothing to voxelize). */
+/* The cube the volume covers; false when there is nothing to voxelize. The parameters met
+ * their table (max_* > min_*, padding below a quarter of the resolution) before declare(). */
 static bool
-voxelize_region(const fg_pass *pass, const cg_scene *scene, voxel_region *out, bool *has, cg_error *err)
+voxelize_region(const fg_pass *pass, const cg_scene *scene, voxel_region *out)
 {
     int mode = fg_param_enum(pass, "region");
     cg_mesh_filter filter = (cg_mesh_filter)fg_param_enum(pass, "meshes");
     int resolution = fg_param_int(pass, "resolution");
     double padding = fg_param_float(pass, "padding");
     double lo[3], hi[3];
-    *has = cgp_mesh_bounds(scene, filter, lo, hi);
+    bool has = cgp_mesh_bounds(scene, filter, lo, hi);
     if (mode == REGION_SCENE) {
         for (int k = 0; k < 3; k++)
             lo[k] = scene->bounds_min[k], hi[k] = scene->bounds_max[k];
@@ -94,18 +110,13 @@ voxelize_region(const fg_pass *pass, const cg_scene *scene, voxel_region *out, b
         for (int k = 0; k < 3; k++) {
             lo[k] = fg_param_float(pass, mins[k]);
             hi[k] = fg_param_float(pass, maxs[k]);
-            if (!(hi[k] > lo[k]))
-                return cg_fail(err, CG_ERR_GRAPH_PARAM_RANGE,
-                               "pass '%s': explicit region needs %s > %s (got %g and %g)",
-                               fg_pass_name(pass), maxs[k], mins[k], hi[k], lo[k]);
         }
     }
-    if (!*has)
-        return true;
+    if (!has)
+        return false;
     double extent = fmax(hi[0] - lo[0], fmax(hi[1] - lo[1], hi[2] - lo[2]));
     if (!(extent > 0.0) || !isfinite(extent)) {
-        *has = false;   /* all geometry in one point: no surface to voxelize */
-        return true;
+        return false;   /* all geometry in one point: no surface to voxelize */
     }
     /* Cubic voxels (VCT paper 3.1: the texture must be cubic); the padding is in voxels. */
     double side = extent * resolution / (resolution - 2.0 * padding);
@@ -116,32 +127,15 @@ voxelize_region(const fg_pass *pass, const cg_scene *scene, voxel_region *out, b
 }
 
 static bool
-is_power_of_two(int v)
-{
-    return v > 0 && (v & (v - 1)) == 0;
-}
-
-static bool
 voxelize_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
 {
     const fg_frame *frame = fg_pass_frame(pass);
     int resolution = fg_param_int(pass, "resolution");
-    if (!is_power_of_two(resolution))
-        return cg_fail(err, CG_ERR_GRAPH_PARAM_RANGE,
-                       "pass '%s': resolution %d is not a power of two (16, 32, ..., 512)",
-                       fg_pass_name(pass), resolution);
-    if (2.0 * fg_param_float(pass, "padding") >= resolution / 2.0)
-        return cg_fail(err, CG_ERR_GRAPH_PARAM_RANGE,
-                       "pass '%s': padding %g voxels leaves less than half the volume for the scene",
-                       fg_pass_name(pass), fg_param_float(pass, "padding"));
     if (!cgp_declare_shadow_inputs(pass, decl, err))
         return false;
 
     voxel_region region;
-    bool has = false;
-    if (!voxelize_region(pass, frame->scene, &region, &has, err))
-        return false;
-    if (!has) {
+    if (!voxelize_region(pass, frame->scene, &region)) {
         fg_declare_nothing_to_do(decl, "no mesh passes the 'meshes' filter (or all are degenerate)");
         return true;
     }
@@ -306,9 +300,8 @@ voxelize_execute(fg_pass *pass, voxelize_state *s, cg_error *err)
     cg_mesh_filter filter = (cg_mesh_filter)fg_param_enum(pass, "meshes");
     int resolution = fg_param_int(pass, "resolution");
     voxel_region region;
-    bool has = false;
-    if (!voxelize_region(pass, scene, &region, &has, err))
-        return false;
+    if (!voxelize_region(pass, scene, &region))
+        return cg_fail(err, CG_ERR_PASS, "pass '%s': the voxelized meshes vanished since compile", fg_pass_name(pass));
     double bound = 0.0;
     if (!radiance_bound(s, scene, filter, region.voxel, &bound, err))
         return false;

@@ -348,9 +348,9 @@ test_direct_spot_light(void **state)
 
 /* A test-only pass that fills its output `color` (RGBA16F, output size) with (r, g, b, 1). */
 static const fg_param_desc constant_params[] = {
-    { "r", FG_PARAM_FLOAT, 0.0, -100.0, 100.0, NULL, "red" },
-    { "g", FG_PARAM_FLOAT, 0.0, -100.0, 100.0, NULL, "green" },
-    { "b", FG_PARAM_FLOAT, 0.0, -100.0, 100.0, NULL, "blue" },
+    { .name = "r", .type = FG_PARAM_FLOAT, .min = -100.0, .max = 100.0, .doc = "red" },
+    { .name = "g", .type = FG_PARAM_FLOAT, .min = -100.0, .max = 100.0, .doc = "green" },
+    { .name = "b", .type = FG_PARAM_FLOAT, .min = -100.0, .max = 100.0, .doc = "blue" },
 };
 
 static bool

@@ -8,11 +8,14 @@
 #include "sdk/pass.h"
 
 static const fg_param_desc params[] = {
-    { "red", FG_PARAM_INT, 200, 0, 255, NULL, "red level stored in the ldr output" },
-    { "green", FG_PARAM_INT, 100, 0, 255, NULL, "green level stored in the ldr output" },
-    { "blue", FG_PARAM_INT, 50, 0, 255, NULL, "blue level stored in the ldr output" },
-    { "error_frame", FG_PARAM_INT, -1, -1, 1000000, NULL,
-      "frame index on which to provoke GL_INVALID_ENUM; -1 = never" },
+    { .name = "red", .type = FG_PARAM_INT, .default_value = 200, .min = 0, .max = 255,
+      .doc = "red level stored in the ldr output" },
+    { .name = "green", .type = FG_PARAM_INT, .default_value = 100, .min = 0, .max = 255,
+      .doc = "green level stored in the ldr output" },
+    { .name = "blue", .type = FG_PARAM_INT, .default_value = 50, .min = 0, .max = 255,
+      .doc = "blue level stored in the ldr output" },
+    { .name = "error_frame", .type = FG_PARAM_INT, .default_value = -1, .min = -1, .max = 1000000,
+      .doc = "frame index on which to provoke GL_INVALID_ENUM; -1 = never" },
 };
 
 static bool

@@ -15,12 +15,18 @@
 #endif
 
 static const fg_param_desc fill_params[] = {
-    { "red", FG_PARAM_FLOAT, 1, 0, 65504, NULL, "red component of the fill colour (linear)" },
-    { "green", FG_PARAM_FLOAT, 0, 0, 65504, NULL, "green component of the fill colour (linear)" },
-    { "blue", FG_PARAM_FLOAT, 1, 0, 65504, NULL, "blue component of the fill colour (linear)" },
-    { "alpha", FG_PARAM_FLOAT, 1, 0, 65504, NULL, "alpha component of the fill colour" },
-    { "width", FG_PARAM_INT, 0, 0, 16384, NULL, "output width in texels; 0 = the output image's" },
-    { "height", FG_PARAM_INT, 0, 0, 16384, NULL, "output height in texels; 0 = the output image's" },
+    { .name = "red", .type = FG_PARAM_FLOAT, .default_value = 1, .min = 0, .max = 65504,
+      .doc = "red component of the fill colour (linear)" },
+    { .name = "green", .type = FG_PARAM_FLOAT, .min = 0, .max = 65504,
+      .doc = "green component of the fill colour (linear)" },
+    { .name = "blue", .type = FG_PARAM_FLOAT, .default_value = 1, .min = 0, .max = 65504,
+      .doc = "blue component of the fill colour (linear)" },
+    { .name = "alpha", .type = FG_PARAM_FLOAT, .default_value = 1, .min = 0, .max = 65504,
+      .doc = "alpha component of the fill colour" },
+    { .name = "width", .type = FG_PARAM_INT, .min = 0, .max = 16384,
+      .doc = "output width in texels; 0 = the output image's" },
+    { .name = "height", .type = FG_PARAM_INT, .min = 0, .max = 16384,
+      .doc = "output height in texels; 0 = the output image's" },
 };
 
 static bool

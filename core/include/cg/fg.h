@@ -1,15 +1,18 @@
 /* cg/fg.h: the frame graph: pass types, their parameters and resources, compile and execute.
  *
  * Declares:
- *   pass types   FG_ABI_VERSION, fg_param_type, fg_param_desc, fg_pass_type
+ *   pass types   FG_ABI_VERSION, fg_param_type, fg_param_values, FG_PARAM_VALUES,
+ *                fg_param_bound, fg_param_desc, fg_pass_type
  *   resources    fg_resource_kind, fg_access, fg_resource_desc, fg_resource_bytes
  *   registry     fg_registry, fg_registry_create, fg_registry_destroy, fg_registry_add,
- *                fg_registry_find, fg_registry_count, fg_registry_at, fg_registry_load_plugin,
+ *                fg_registry_find, fg_registry_count, fg_registry_at, fg_param_values_text,
+ *                fg_param_dependency_text, fg_registry_load_plugin,
  *                fg_registry_load_plugin_dirs, fg_plugin_register_fn
  *   declare      fg_declare, fg_declare_input, fg_declare_output, fg_declare_nothing_to_do
  *   pass access  fg_pass, fg_pass_name, fg_pass_type_of, fg_pass_frame, fg_param_int,
  *                fg_param_float, fg_param_bool, fg_param_enum, fg_param_string,
- *                fg_input_present, fg_texture, fg_buffer, fg_resource
+ *                fg_param_active, fg_pass_check_params, fg_input_present, fg_texture,
+ *                fg_buffer, fg_resource
  *   graph        fg_graph, fg_source_loc, fg_graph_create, fg_graph_destroy, fg_graph_add_pass,
  *                fg_graph_set_param, fg_graph_connect, fg_graph_mark_output, fg_graph_compile,
  *                fg_graph_prepare, fg_graph_execute, introspection and report functions
@@ -34,8 +37,12 @@
 #include "cg/gpu_scene.h"
 #include "cg/scene.h"
 
-/* Bumped whenever fg_pass_type or any function a pass calls changes incompatibly. */
-#define FG_ABI_VERSION 2u  /* 2: cg_gpu_scene lost the no-shadow fallback (now the pass SDK's) */
+/* Bumped whenever fg_pass_type or any function a pass calls changes incompatibly.
+ * 2: fg_param_desc gained its constraints (allowed values, power of two, step hints,
+ *    dependencies between parameters).
+ * 3: cg_gpu_scene lost its no-shadow fallback and cg_gpu_scene_bind_shadow (now the pass SDK's,
+ *    sdk/shadow.h). */
+#define FG_ABI_VERSION 3u
 
 /* ---------------------------------------------------------------- parameters */
 
@@ -47,6 +54,33 @@ typedef enum fg_param_type {
     FG_PARAM_STRING
 } fg_param_type;
 
+/* A list of numbers: the only values an int or float parameter takes. */
+typedef struct fg_param_values {
+    const double *values;   /* strictly increasing */
+    int count;
+} fg_param_values;
+
+/* `.allowed = FG_PARAM_VALUES(1, 6, 9, 16)` in a table at file scope (where a compound
+ * literal has static storage); in a function, point `values` at a static array instead. */
+#define FG_PARAM_VALUES(...)                                                              \
+    { (const double[]){ __VA_ARGS__ },                                                    \
+      (int)(sizeof((const double[]){ __VA_ARGS__ }) / sizeof(double)) }
+
+/* A bound that another parameter of the same pass sets: strictly beyond scale x its value. */
+typedef struct fg_param_bound {
+    const char *param;      /* an int or float parameter of the same table; NULL: no bound */
+    double scale;           /* 0: 1 */
+} fg_param_bound;
+
+/* One parameter of a pass type. Every field past `doc` may stay zero (no constraint, the
+ * default stepping), so that a table lists only what it needs:
+ *     { .name = "cones", .type = FG_PARAM_INT, .default_value = 6, .min = 1, .max = 16,
+ *       .allowed = FG_PARAM_VALUES(1, 6, 9, 16), .doc = "diffuse cones" },
+ * fg_registry_add checks the table (defaults allowed, bounds powers of two, names that
+ * dependencies refer to exist, ...). Values are validated where they are set
+ * (fg_graph_set_param: range, allowed values, power of two), dependencies between values
+ * once at fg_graph_compile before any declare(); `conegraph passes`, docs/pass-parameters.md
+ * and the demo's controls print and step the same data. */
 typedef struct fg_param_desc {
     const char *name;
     fg_param_type type;
@@ -54,6 +88,24 @@ typedef struct fg_param_desc {
     double min, max;        /* int and float: inclusive range, checked on every assignment */
     const char *choices;    /* enum: "a|b|c"; string: the default value */
     const char *doc;        /* one line, shown by `conegraph passes`, docs and the demo */
+
+    /* Values (int and float), checked on every assignment. */
+    fg_param_values allowed; /* the only values taken, within [min, max]; count 0: any in range */
+    bool power_of_two;      /* int: powers of two only (then min and max are powers of two) */
+
+    /* How an interface steps the value (int and float; the demo's Left/Right, a slider).
+     * Allowed values and powers of two step to their neighbours; otherwise: */
+    double step;            /* added per step; 0: 1 for an int; for a float the 1, 2 or 5 x 10^k
+                             * below 1/50 of the range, or below a quarter of the value's
+                             * magnitude (at least 1) when the range is wider than 1000 */
+    bool step_doubles;      /* multiply or divide by 2 per step (sizes, sample counts; min > 0) */
+
+    /* Dependencies on other parameters of the same pass, checked at compile. */
+    const char *active_when; /* "PARAM": the parameter matters only while bool PARAM is true;
+                              * "PARAM=A|B": only while PARAM (enum, bool or int) is A or B;
+                              * NULL: always. The bounds below are checked only while active. */
+    fg_param_bound greater_than; /* value > scale x that parameter's value */
+    fg_param_bound less_than;    /* value < scale x that parameter's value */
 } fg_param_desc;
 
 /* ---------------------------------------------------------------- resources */
@@ -145,6 +197,12 @@ float fg_param_float(const fg_pass *pass, const char *name);
 bool fg_param_bool(const fg_pass *pass, const char *name);
 int fg_param_enum(const fg_pass *pass, const char *name);
 const char *fg_param_string(const fg_pass *pass, const char *name);
+/* Whether the parameter matters for this instance's values (its desc->active_when holds). */
+bool fg_param_active(const fg_pass *pass, const fg_param_desc *desc);
+/* Checks the dependencies between this instance's values (greater_than, less_than of the
+ * active parameters); the error points at where the values were set. fg_graph_compile
+ * calls it for every pass before any declare(); an interface may call it after a change. */
+bool fg_pass_check_params(const fg_pass *pass, cg_error *err);
 
 /* During execute: resources of this pass by slot name (inputs and outputs). */
 bool fg_input_present(const fg_pass *pass, const char *name);
@@ -168,6 +226,12 @@ bool fg_registry_add(fg_registry *registry, const fg_pass_type *type, cg_error *
 const fg_pass_type *fg_registry_find(const fg_registry *registry, const char *name);
 int fg_registry_count(const fg_registry *registry);
 const fg_pass_type *fg_registry_at(const fg_registry *registry, int index);
+/* The values a parameter takes, as `conegraph passes` prints them: "1, 6, 9, 16",
+ * "16..512, power of two", "0.05..4", "true|false", "none|reinhard|aces", "any text". */
+void fg_param_values_text(const fg_param_desc *desc, char *buf, size_t size);
+/* Its dependencies, "" when none: "only with region = explicit; greater than min_x",
+ * "less than 0.25 x resolution". */
+void fg_param_dependency_text(const fg_param_desc *desc, char *buf, size_t size);
 /* dlopen()s a shared object and calls its entry point. */
 bool fg_registry_load_plugin(fg_registry *registry, const char *path, cg_error *err);
 /* Loads every *.so in each directory of a ':'-separated list (e.g. $CONEGRAPH_PLUGIN_PATH). */
@@ -177,7 +241,10 @@ bool fg_registry_load_plugin_dirs(fg_registry *registry, const char *dirs, cg_er
 
 typedef struct fg_graph fg_graph;
 
-/* Where a graph element came from, for error messages; file NULL for graphs built in code. */
+/* Where a graph element came from, for error messages; file NULL for graphs built in code.
+ * line 0: `file` is a place without lines, quoted as is. fg_graph_apply_override sets a
+ * value at { "--set PASS.PARAM=VALUE", 0, 0 }: that text already names the pass, the
+ * parameter and the value, so messages about the value say only what was expected. */
 typedef struct fg_source_loc {
     const char *file;
     int line, column;
@@ -189,7 +256,10 @@ void fg_graph_destroy(fg_graph *graph);
 /* Adds a pass instance; names are unique. loc may be NULL. */
 bool fg_graph_add_pass(fg_graph *graph, const char *name, const char *type,
                        const fg_source_loc *loc, cg_error *err);
-/* Sets a parameter from text ("9", "0.5", "true", "anisotropic"), validated against the table. */
+/* Sets a parameter from text ("9", "0.5", "true", "anisotropic"), validated against the
+ * table: type, range, allowed values, power of two (CG_ERR_GRAPH_PARAM_TYPE, _RANGE). The
+ * error starts at loc and says what was expected: "g.json:7:24: gather.cones = 7; expected
+ * one of 1, 6, 9, 16", or "--set gather.cones=7: expected one of 1, 6, 9, 16". */
 bool fg_graph_set_param(fg_graph *graph, const char *pass, const char *param, const char *value,
                         const fg_source_loc *loc, cg_error *err);
 /* Connects input slot `input` of `pass` to `source`: "pass.output", or "pass" for the

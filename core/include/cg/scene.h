@@ -1,9 +1,10 @@
 /* cg/scene.h: the plain C scene every pass reads: glTF 2.0 files and built-in scenes.
  *
  * Declares: cg_mesh_kind, cg_texture, cg_material, cg_mesh, cg_instance, cg_light_type,
- *           cg_light, cg_camera_type, cg_camera, cg_scene, cg_scene_load, cg_scene_free,
- *           cg_scene_export_gltf, cg_scene_compute_bounds, cg_scene_triangle_count,
- *           cg_scene_builtin_names, cg_scene_validate.
+ *           cg_light, cg_camera_type, cg_camera, cg_sky_type, cg_sky, cg_scene, cg_scene_load,
+ *           cg_scene_free, cg_scene_export_gltf, cg_scene_compute_bounds, cg_scene_triangle_count,
+ *           cg_scene_builtin_names, cg_scene_validate, cg_scene_set_sky, cg_sky_parse,
+ *           cg_sky_model, cg_sky_model_init, cg_sky_model_radiance.
  *
  * Units and conventions (see docs/architecture.md): metres, y up, glTF 2.0.
  * Lambertian BRDF with albedo = base_color x base colour texture.
@@ -11,6 +12,8 @@
  * surface facing it; a white Lambertian surface facing it has radiance E/pi.
  * Point and spot lights: intensity x color is the radiant intensity I; E = I/d^2.
  * Emissive radiance = emissive x emissive texture x emissive_strength.
+ * Sky: radiance in W/(m^2 sr) arriving from every direction where no surface is; none (black)
+ * unless set with cg_scene_set_sky.
  */
 #ifndef CG_SCENE_H
 #define CG_SCENE_H
@@ -100,6 +103,23 @@ typedef struct cg_camera {
     float world[16];        /* column-major camera-to-world; the camera looks down its -z */
 } cg_camera;
 
+/* The sky (docs/reference.md has the formulas). Every loader leaves it CG_SKY_NONE. */
+typedef enum cg_sky_type {
+    CG_SKY_NONE = 0,        /* black */
+    CG_SKY_UNIFORM,         /* `radiance` from every direction, the whole sphere */
+    CG_SKY_PREETHAM         /* daylight of Preetham, Shirley and Smits (SIGGRAPH 1999), the sun
+                             * in the direction the first directional light comes from; black
+                             * below the horizon (y = 0 plane of directions) */
+} cg_sky_type;
+
+typedef struct cg_sky {
+    cg_sky_type type;
+    float radiance[3];      /* uniform: W/(m^2 sr) per channel */
+    float turbidity;        /* preetham: 1.7 (very clear) to 10 (hazy) */
+    float scale;            /* preetham: radiance = scale x the model's linear sRGB, whose
+                             * luminance Y is in kcd/m^2 (scale 1: kilo-nits) */
+} cg_sky;
+
 typedef struct cg_scene {
     char name[256];         /* file path or builtin:name */
     cg_mesh *meshes;         int mesh_count;
@@ -109,6 +129,7 @@ typedef struct cg_scene {
     cg_light *lights;        int light_count;
     cg_camera *cameras;      int camera_count;
     float bounds_min[3], bounds_max[3]; /* world space, over all instances */
+    cg_sky sky;             /* CG_SKY_NONE unless set (cg_scene_set_sky) */
 } cg_scene;
 
 /* Loads `source`: a .gltf/.glb path, or "builtin:NAME[?key=value&...]"
@@ -128,6 +149,34 @@ void cg_scene_compute_bounds(cg_scene *scene);
 size_t cg_scene_triangle_count(const cg_scene *scene);
 /* Checks indices, finiteness and references; used by every loader. */
 bool cg_scene_validate(const cg_scene *scene, cg_error *err);
+
+/* Sets the scene's sky after checking it: finite radiance >= 0; turbidity in [1.7, 10] and
+ * a finite scale >= 0 for Preetham, whose sun is the first directional light (the scene must
+ * have one). Fails with CG_ERR_USAGE and a message naming the bad value. */
+bool cg_scene_set_sky(cg_scene *scene, const cg_sky *sky, cg_error *err);
+
+/* Parses a sky as `--sky` and graph files give it: "none"; "R,G,B" or "L" (uniform radiance,
+ * W/(m^2 sr)); "preetham", "preetham:T" or "preetham:T,SCALE" (defaults T 3, SCALE 1).
+ * Fails with CG_ERR_USAGE naming what was expected. */
+bool cg_sky_parse(const char *text, cg_sky *out, cg_error *err);
+
+/* The sky's radiance in any direction, ready to evaluate: built once per scene. */
+typedef struct cg_sky_model {
+    cg_sky_type type;
+    float radiance[3];      /* uniform */
+    float sun[3];           /* preetham: unit direction towards the sun, world space (y up) */
+    float sun_zenith;       /* preetham: the sun's zenith angle theta_s, radians, at most pi/2 */
+    double perez[3][5];     /* preetham: A..E of the Perez function for Y, x, y */
+    double zenith[3];       /* preetham: Y_z (kcd/m^2), x_z, y_z */
+    double norm[3];         /* preetham: zenith value / F(0, theta_s), per quantity */
+    double scale;
+} cg_sky_model;
+
+/* Fills the model for the scene's sky (CG_SKY_NONE gives a black model). Fails with
+ * CG_ERR_USAGE when a Preetham sky has no directional light to follow. */
+bool cg_sky_model_init(const cg_scene *scene, cg_sky_model *model, cg_error *err);
+/* Radiance arriving from the unit world direction `dir` (towards the sky), linear RGB. */
+void cg_sky_model_radiance(const cg_sky_model *model, const float dir[3], float rgb[3]);
 
 /* NULL-terminated list of built-in scene names, and a one-line description of each. */
 const char *const *cg_scene_builtin_names(void);

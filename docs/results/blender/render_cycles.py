@@ -1,6 +1,6 @@
 # Renders a glTF exported by `conegraph export` with Blender Cycles, set up as the same
 # physics as the path_trace pass, for an independent check of the reference:
-#   blender -b --factory-startup -P render_cycles.py -- SCENE.gltf OUT.exr W H SAMPLES BOUNCES
+#   blender -b --factory-startup -P render_cycles.py -- SCENE.gltf OUT.exr W H SAMPLES BOUNCES [SKY [FILTER]]
 # - lights imported in COMPAT mode: sun strength = glTF intensity (irradiance, W/m^2),
 #   point/spot power = 4 pi x intensity (Cycles' I = P / 4 pi); hard shadows (radius 0,
 #   sun angle 0); KHR spot cones become Blender's spot size and blend (the falloff
@@ -8,9 +8,14 @@
 # - every material becomes a Lambertian Diffuse BSDF (roughness 0) of the glTF base colour
 #   plus an Emission of the glTF emissive, replacing the importer's Principled BSDF (whose
 #   specular layer and Disney diffuse are not Lambertian);
-# - black world, box pixel filter 1 px wide (path_trace jitter=true), no clamping, no light
-#   threshold, no denoising, linear EXR with the Standard view transform;
-# - diffuse bounces = BOUNCES; glossy, transmission and volume bounces 0.
+# - the world: black, or with SKY = R,G,B a uniform sky of that radiance (the world's
+#   Background colour at strength 1), as path_trace's uniform sky;
+# - FILTER `area` (default): the box pixel filter, samples over the pixel (path_trace
+#   jitter=true); `centre`: a Gaussian 0.01 px wide, rays through pixel centres (path_trace's
+#   default; Cycles' box filter ignores its width, so it cannot be narrowed);
+# - no clamping, no light threshold, no denoising, linear EXR with the Standard view transform;
+# - diffuse bounces = BOUNCES (Cycles and path_trace count them alike: 0 = direct light of
+#   every source, emissive surfaces included); glossy, transmission and volume bounces 0.
 import sys
 
 import bpy
@@ -23,6 +28,8 @@ if not hasattr(numpy, "bool"):
 argv = sys.argv[sys.argv.index("--") + 1:]
 scene_path, out_path = argv[0], argv[1]
 width, height, samples, bounces = int(argv[2]), int(argv[3]), int(argv[4]), int(argv[5])
+sky = argv[6] if len(argv) > 6 else "none"
+pixel_filter = argv[7] if len(argv) > 7 else "area"
 
 bpy.ops.wm.read_factory_settings(use_empty=True)
 bpy.ops.import_scene.gltf(filepath=scene_path, convert_lighting_mode='COMPAT')
@@ -65,9 +72,15 @@ for mat in bpy.data.materials:
     links.new(emission.outputs['Emission'], add.inputs[1])
     links.new(add.outputs['Shader'], output.inputs['Surface'])
 
-world = bpy.data.worlds.new("black")
+world = bpy.data.worlds.new("sky")
 world.use_nodes = True
-world.node_tree.nodes['Background'].inputs['Strength'].default_value = 0.0
+background = world.node_tree.nodes['Background']
+if sky == "none":
+    background.inputs['Strength'].default_value = 0.0
+else:
+    rgb = [float(v) for v in sky.split(",")]
+    background.inputs['Color'].default_value = (rgb[0], rgb[1], rgb[2], 1.0)
+    background.inputs['Strength'].default_value = 1.0
 scene.world = world
 
 scene.render.engine = 'CYCLES'
@@ -87,8 +100,12 @@ cycles.sample_clamp_indirect = 0.0
 cycles.light_sampling_threshold = 0.0
 cycles.caustics_reflective = False
 cycles.caustics_refractive = False
-cycles.filter_type = 'BOX'
-cycles.filter_width = 1.0
+if pixel_filter == "centre":
+    cycles.filter_type = 'GAUSSIAN'
+    cycles.filter_width = 0.01
+else:
+    cycles.filter_type = 'BOX'
+    cycles.filter_width = 1.0
 cycles.seed = 1
 scene.render.resolution_x = width
 scene.render.resolution_y = height

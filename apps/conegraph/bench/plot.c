@@ -118,35 +118,71 @@ text_width(const char *s, int scale)
     return (int)strlen(s) * 6 * scale;
 }
 
+/* Text from (x, y), its glyphs' top-left corner; vertical: rotated 90 degrees counter-clockwise,
+ * read bottom to top, (x, y) the bottom-left corner of the first glyph. */
 static void
-text(canvas *cv, int x, int y, const char *s, int scale, const float c[3])
+draw_text(canvas *cv, int x, int y, const char *s, int scale, bool vertical, const float c[3])
 {
-    for (; *s; s++, x += 6 * scale) {
+    for (; *s; s++) {
         const glyph *g = glyph_for(*s);
-        if (!g)
-            continue;
-        for (int r = 0; r < 7; r++)
-            for (int col = 0; col < 5; col++)
-                if (g->rows[r] & (0x10 >> col))
-                    fill_rect(cv, x + col * scale, y + r * scale, x + col * scale + scale - 1,
-                              y + r * scale + scale - 1, c);
+        for (int r = 0; g && r < 7; r++)
+            for (int col = 0; col < 5; col++) {
+                if (!(g->rows[r] & (0x10 >> col)))
+                    continue;
+                /* Glyph row r, column col: down and right, or right and up when vertical. */
+                int px = vertical ? x + r * scale : x + col * scale;
+                int py = vertical ? y - col * scale - scale + 1 : y + r * scale;
+                fill_rect(cv, px, py, px + scale - 1, py + scale - 1, c);
+            }
+        if (vertical)
+            y -= 6 * scale;
+        else
+            x += 6 * scale;
     }
 }
 
-/* Text rotated 90 degrees counter-clockwise, read bottom to top, starting at (x, y) going up. */
 static void
-text_vertical(canvas *cv, int x, int y, const char *s, int scale, const float c[3])
+text(canvas *cv, int x, int y, const char *s, int scale, const float c[3])
 {
-    for (; *s; s++, y -= 6 * scale) {
-        const glyph *g = glyph_for(*s);
-        if (!g)
-            continue;
-        for (int r = 0; r < 7; r++)
-            for (int col = 0; col < 5; col++)
-                if (g->rows[r] & (0x10 >> col))
-                    fill_rect(cv, x + r * scale, y - col * scale - scale + 1, x + r * scale + scale - 1,
-                              y - col * scale, c);
+    draw_text(cv, x, y, s, scale, false, c);
+}
+
+/* Whether (x, y) lies inside the marker of shape m of half-size r centred at the origin. */
+static bool
+inside_marker(plot_marker m, int x, int y, int r)
+{
+    int ax = abs(x), ay = abs(y);
+    switch (m) {
+    case PLOT_CIRCLE:
+        return x * x + y * y <= r * r + r;
+    case PLOT_TRIANGLE:
+        /* Apex up: width grows from the top row (y = -r) to the full base at y = r. */
+        return ay <= r && 2 * ax <= y + r;
+    case PLOT_DIAMOND:
+        return ax + ay <= r;
+    case PLOT_CROSS:
+        return ax <= r && ay <= r && abs(ax - ay) <= r / 3;
+    case PLOT_PLUS:
+        return ax <= r && ay <= r && (ax <= r / 3 || ay <= r / 3);
+    case PLOT_SQUARE:
+    default:
+        return ax <= r && ay <= r;
     }
+}
+
+/* A marker: the shape in black at half-size 4, its inside at half-size 3 in the colour
+ * (a square is thus 7x7 colour pixels in a 9x9 outline). */
+static void
+marker(canvas *cv, plot_marker m, int cx, int cy, const float c[3])
+{
+    static const float black[3] = { 0, 0, 0 };
+    for (int y = -5; y <= 5; y++)
+        for (int x = -5; x <= 5; x++) {
+            if (inside_marker(m, x, y, 3))
+                put(cv, cx + x, cy + y, c);
+            else if (inside_marker(m, x, y, 4))
+                put(cv, cx + x, cy + y, black);
+        }
 }
 
 typedef struct axis {
@@ -226,6 +262,58 @@ axis_ticks(const axis *a, double *ticks, int max)
     return n;
 }
 
+typedef struct box {
+    int x0, y0, x1, y1;
+} box;
+
+static bool
+overlaps(const box *a, const box *b)
+{
+    return a->x0 <= b->x1 && b->x0 <= a->x1 && a->y0 <= b->y1 && b->y0 <= a->y1;
+}
+
+/* Point labels, after every marker: each goes right of its point, else left, above or below,
+ * whichever first stays inside the plot area clear of the labels placed before it; a label
+ * with no such place is left out rather than drawn over another. */
+static bool
+place_labels(canvas *cv, const plot_desc *plot, const axis *ax, const axis *ay, cg_error *err)
+{
+    static const float label_color[3] = { 0.25f, 0.25f, 0.25f };
+    int total = 0;
+    for (int s = 0; s < plot->series_count; s++)
+        total += plot->series[s].labels ? plot->series[s].count : 0;
+    box *placed = malloc(sizeof *placed * (size_t)(total > 0 ? total : 1));
+    if (!placed)
+        return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "plot labels");
+    int n = 0;
+    for (int s = 0; s < plot->series_count; s++) {
+        const plot_series *ser = &plot->series[s];
+        for (int i = 0; ser->labels && i < ser->count; i++) {
+            const char *label = ser->labels[i];
+            if (!label || !*label || !usable(ser->x[i], plot->logx) || !usable(ser->y[i], plot->logy))
+                continue;
+            int px = axis_pixel(ax, ser->x[i]), py = axis_pixel(ay, ser->y[i]), tw = text_width(label, 1);
+            const box candidates[4] = {
+                { px + 8, py - 3, px + 8 + tw, py + 4 }, { px - 8 - tw, py - 3, px - 8, py + 4 },
+                { px - tw / 2, py - 16, px - tw / 2 + tw, py - 9 }, { px - tw / 2, py + 9, px - tw / 2 + tw, py + 16 },
+            };
+            for (int k = 0; k < 4; k++) {
+                const box *b = &candidates[k];
+                bool free_spot = b->x0 >= ax->p0 && b->x1 <= ax->p1 && b->y0 >= ay->p1 && b->y1 <= ay->p0;
+                for (int j = 0; free_spot && j < n; j++)
+                    free_spot = !overlaps(b, &placed[j]);
+                if (free_spot) {
+                    text(cv, b->x0, b->y0, label, 1, label_color);
+                    placed[n++] = *b;
+                    break;
+                }
+            }
+        }
+    }
+    free(placed);
+    return true;
+}
+
 bool
 plot_render(const plot_desc *plot, cg_image *out, cg_error *err)
 {
@@ -271,7 +359,7 @@ plot_render(const plot_desc *plot, cg_image *out, cg_error *err)
     if (plot->xlabel)
         text(&cv, (ax.p0 + ax.p1 - text_width(plot->xlabel, 2)) / 2, h - 24, plot->xlabel, 2, black);
     if (plot->ylabel)
-        text_vertical(&cv, 8, (ay.p0 + ay.p1 + text_width(plot->ylabel, 2)) / 2, plot->ylabel, 2, black);
+        draw_text(&cv, 8, (ay.p0 + ay.p1 + text_width(plot->ylabel, 2)) / 2, plot->ylabel, 2, true, black);
 
     for (int s = 0; s < plot->series_count; s++) {
         const plot_series *ser = &plot->series[s];
@@ -299,14 +387,14 @@ plot_render(const plot_desc *plot, cg_image *out, cg_error *err)
             if (!usable(ser->x[i], plot->logx) || !usable(ser->y[i], plot->logy))
                 continue;
             int px = axis_pixel(&ax, ser->x[i]), py = axis_pixel(&ay, ser->y[i]);
-            if (ser->ring) {
+            if (ser->ring)
                 ring(&cv, px, py, 8, ser->color);
-            } else {
-                fill_rect(&cv, px - 4, py - 4, px + 4, py + 4, black);
-                fill_rect(&cv, px - 3, py - 3, px + 3, py + 3, ser->color);
-            }
+            else
+                marker(&cv, ser->markers ? ser->markers[i] : PLOT_SQUARE, px, py, ser->color);
         }
     }
+    if (!place_labels(&cv, plot, &ax, &ay, err))
+        return false;
     /* Legend, top right inside the plot area. */
     int ly = ay.p1 + 8;
     for (int s = 0; s < plot->series_count; s++) {
@@ -319,7 +407,7 @@ plot_render(const plot_desc *plot, cg_image *out, cg_error *err)
         if (ser->ring)
             ring(&cv, lx + 8, ly + 7, 6, ser->color);
         else
-            fill_rect(&cv, lx + 4, ly + 3, lx + 12, ly + 11, ser->color);
+            marker(&cv, ser->markers && ser->count ? ser->markers[0] : PLOT_SQUARE, lx + 8, ly + 7, ser->color);
         text(&cv, lx + 22, ly, ser->name, 2, black);
         ly += 20;
     }

@@ -1,9 +1,10 @@
-/* apps/conegraph/plot.h: scatter and line plots drawn in C into a cg_image (for bench).
+/* apps/conegraph/bench/plot.h: scatter and line plots drawn in C into a cg_image (for bench).
  *
- * Declares: plot_series, plot_desc, plot_render, plot_write_png.
+ * Declares: plot_marker, plot_series, plot_desc, plot_render, plot_write_png.
  *
  * No plotting dependency: axes, decade ticks, a 5x7 bitmap font (upper-case letters,
- * digits and a little punctuation; lower case is drawn as upper case), markers and lines.
+ * digits and a little punctuation; lower case is drawn as upper case), markers of six
+ * shapes, point labels and lines.
  */
 #ifndef CONEGRAPH_PLOT_H
 #define CONEGRAPH_PLOT_H
@@ -13,6 +14,17 @@
 #include "cg/error.h"
 #include "cg/image.h"
 
+/* Marker shapes, each filled with the series colour inside a black outline. */
+typedef enum plot_marker {
+    PLOT_SQUARE,
+    PLOT_CIRCLE,
+    PLOT_TRIANGLE,
+    PLOT_DIAMOND,
+    PLOT_CROSS,
+    PLOT_PLUS,
+    PLOT_MARKER_COUNT
+} plot_marker;
+
 typedef struct plot_series {
     const char *name;       /* legend text */
     float color[3];         /* sRGB 0..1 */
@@ -20,6 +32,8 @@ typedef struct plot_series {
     int count;
     bool line;              /* join the points in x order */
     bool ring;              /* draw rings (a highlighted subset, such as a Pareto front) */
+    const plot_marker *markers;     /* per point; NULL: squares */
+    const char *const *labels;      /* per point, written beside it (NULL or "" for none); NULL: none */
 } plot_series;
 
 typedef struct plot_desc {

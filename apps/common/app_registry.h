@@ -1,4 +1,4 @@
-/* apps/conegraph/app_registry.h: the pass registry every command uses: the built-in passes,
+/* apps/common/app_registry.h: the pass registry every app uses: the built-in passes,
  * then the plugins of $CONEGRAPH_PLUGIN_PATH, then those named with --plugin.
  *
  * Declares: app_registry_create.

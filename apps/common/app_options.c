@@ -1,0 +1,102 @@
+/* The command-line options shared by the apps: see app_options.h. */
+#include "app_options.h"
+
+#include <string.h>
+
+#include "app_common.h"
+
+bool
+app_wants_help(int argc, char **argv)
+{
+    for (int i = 1; i < argc; i++)
+        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h"))
+            return true;
+    return false;
+}
+
+/* Appends to a repeatable option's list. */
+static int
+append(const char *tool, const char *name, const char *value, const char **list, int *count)
+{
+    if (*count == APP_MAX_LIST)
+        return app_usage_error(tool, "%s: too many of this option", name);
+    list[(*count)++] = value;
+    return 0;
+}
+
+/* One of the common options: 0 taken, 2 bad value, -1 not a common option this app takes. */
+static int
+common_option(const char *tool, unsigned accepted, const char *a, const char *v, app_options *o)
+{
+    long n;
+    if ((accepted & APP_OPT_GRAPH) && !strcmp(a, "--graph"))
+        o->graph = v;
+    else if ((accepted & APP_OPT_CAMERA) && !strcmp(a, "--camera"))
+        o->camera = v;
+    else if ((accepted & APP_OPT_SET) && !strcmp(a, "--set"))
+        return append(tool, a, v, o->sets, &o->set_count);
+    else if ((accepted & APP_OPT_PLUGIN) && !strcmp(a, "--plugin"))
+        return append(tool, a, v, o->plugins, &o->plugin_count);
+    else if ((accepted & APP_OPT_SIZE) && !strcmp(a, "--size")) {
+        if (!app_parse_size(v, &o->width, &o->height))
+            return app_usage_error(tool, "--size wants WxH with 1..65536 pixels each, not '%s'", v);
+    } else if ((accepted & APP_OPT_FRAMES) && !strcmp(a, "--frames")) {
+        if (!app_parse_int(v, 1, 1000000, &n))
+            return app_usage_error(tool, "--frames wants a count from 1 to 1000000, not '%s'", v);
+        o->frames = (int)n;
+    } else if ((accepted & APP_OPT_TIMING) && !strcmp(a, "--timing")) {
+        if (!app_parse_timing(v, &o->timing))
+            return app_usage_error(tool, "--timing wants sync, queries or none, not '%s'", v);
+        o->timing_given = true;
+    } else if ((accepted & APP_OPT_CONTEXT) && !strcmp(a, "--context")) {
+        if (!cg_context_backend_parse(v, &o->backend))
+            return app_usage_error(tool, "--context wants egl, osmesa, glfw or auto, not '%s'", v);
+    } else if ((accepted & APP_OPT_MAX_GPU_MEMORY) && !strcmp(a, "--max-gpu-memory")) {
+        if (!app_parse_bytes(v, &o->max_gpu_memory))
+            return app_usage_error(tool, "--max-gpu-memory wants a positive byte count (suffix K, M or G), "
+                                   "not '%s'", v);
+    } else {
+        return -1;
+    }
+    return 0;
+}
+
+int
+app_parse_options(const char *tool, int argc, char **argv, unsigned accepted, app_options *o,
+                  app_own_option_fn own, void *user)
+{
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        if (a[0] != '-' || a[1] == '\0') {
+            if (o->scene)
+                return app_usage_error(tool, "one scene only; '%s' is a second one", a);
+            o->scene = a;
+            continue;
+        }
+        if (i + 1 == argc)
+            return app_usage_error(tool, "%s needs a value", a);
+        const char *v = argv[++i];
+        int code = common_option(tool, accepted, a, v, o);
+        if (code < 0 && own)
+            code = own(user, a, v);
+        if (code < 0)
+            return app_usage_error(tool, "unknown option '%s'", a);
+        if (code)
+            return code;
+    }
+    return 0;
+}
+
+app_session_desc
+app_options_session(const app_options *o)
+{
+    return (app_session_desc){ .scene = o->scene, .camera = o->camera, .plugins = o->plugins,
+                               .plugin_count = o->plugin_count, .width = o->width, .height = o->height,
+                               .compile = { .max_gpu_memory = o->max_gpu_memory } };
+}
+
+app_graph_desc
+app_options_graph(const app_options *o)
+{
+    return (app_graph_desc){ .graph = o->graph, .sets = o->sets, .set_count = o->set_count };
+}

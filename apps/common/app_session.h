@@ -1,0 +1,142 @@
+/* apps/common/app_session.h: one graph run on one scene, the sequence every app goes through,
+ * written once: load the scene and pick its camera; make the pass registry (built-in passes,
+ * then plugins); load a graph file, apply --set overrides, mark the resources to read back as
+ * outputs; compile without GL, so that every bad-input error is found before the scene goes
+ * to the GPU; make the GL context and upload the scene; compile again with GL (the context's
+ * texture limits) and prepare; run frames with timing; check for GL errors; read outputs back
+ * into images; tear everything down, on every path.
+ *
+ * Declares: app_session_desc, app_graph_desc, app_session, app_run_desc, app_frame_stats,
+ *           app_session_open, app_session_load_graph, app_session_check, app_session_start_gl,
+ *           app_session_compile, app_session_mark_output, app_session_run, app_session_check_gl, app_session_read_image,
+ *           app_session_write_image, app_session_stop_gl, app_session_close,
+ *           app_frame_stats_pass_median, app_frame_stats_free.
+ *
+ * Order: open, load_graph, check (no GL), start_gl, compile, run, read or write images,
+ * close. A graph may be loaded again (bench: one setting after another) and compiled again
+ * after its parameters, the view or the size changed (the demo); stop_gl gives up the context
+ * and the GPU scene while the CPU scene stays (bench: one context per scene at a time).
+ *
+ * Errors: every function that can fail returns false and fills err, its message prefixed with
+ * where it failed ("scene: ...", "graph: ...", "GL context: ..."); the status gives the exit
+ * code (2: bad scene, camera, plugin, graph, parameter, size or budget; 1: a failure while
+ * running), which app_fail prints and returns. After a failure the session is still in a
+ * state app_session_close tears down.
+ */
+#ifndef CONEGRAPH_APP_SESSION_H
+#define CONEGRAPH_APP_SESSION_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "cg/error.h"
+#include "cg/fg.h"
+#include "cg/gl.h"
+#include "cg/gpu_scene.h"
+#include "cg/image.h"
+#include "cg/scene.h"
+
+typedef struct app_session_desc {
+    const char *scene;              /* a .gltf/.glb file or builtin:NAME[?key=value&...] */
+    const char *camera;             /* name or index; NULL: the first (framed from the bounds if none) */
+    const char *const *plugins;     /* loaded after those of $CONEGRAPH_PLUGIN_PATH */
+    int plugin_count;
+    int width, height;              /* output image size */
+    fg_compile_options compile;     /* memory budget, texture limits, pooling */
+} app_session_desc;
+
+typedef struct app_graph_desc {
+    const char *graph;              /* as given on a command line: app_resolve_graph finds it */
+    const char *const *sets;        /* "pass.param=value", applied in order */
+    int set_count;
+    /* The output read back or shown: the graph's output named *.IMAGE ("hdr", "ldr");
+     * a graph without one is bad input. NULL: none. */
+    const char *image;
+    /* More resources ("pass.output") read back as images: marked as outputs so that they are
+     * kept (never pooled away) until the read-back. */
+    const char *const *reads;
+    int read_count;
+} app_graph_desc;
+
+typedef struct app_session {
+    const char *scene_source;       /* as in the desc */
+    cg_scene scene;                 /* an app may change its lights (then cg_gpu_scene_update_lights) */
+    int camera;                     /* scene camera index, -1: framed from the bounds */
+    fg_registry *registry;
+    fg_graph *graph;                /* the loaded graph; NULL before app_session_load_graph */
+    char graph_path[4096];          /* the file it came from */
+    const char *image_source;       /* the graph's output named *.IMAGE; NULL without one */
+    const char *const *reads;       /* the desc's read-backs, checked after each compile */
+    int read_count;
+    /* Scene, GPU scene, view, size and index of the frames: an app may change the view and
+     * the size, then compile again. */
+    fg_frame frame;
+    fg_compile_options compile;
+    cg_context *ctx;                /* NULL before app_session_start_gl */
+    cg_gpu_scene gpu;
+    bool scene_loaded, uploaded;
+} app_session;
+
+/* Loads the scene, selects the camera, makes the registry and frames the view at the desc's
+ * size. On failure what was made is freed again. */
+bool app_session_open(app_session *s, const app_session_desc *desc, cg_error *err);
+/* Replaces the session's graph (if any) by the file with its overrides and read-backs marked. */
+bool app_session_load_graph(app_session *s, const app_graph_desc *desc, cg_error *err);
+/* Compiles without GL (the GPU scene left out even when there is one) and checks that the
+ * image output and every read-back are textures this scene produces: bad input, found before
+ * anything goes to the GPU. */
+bool app_session_check(app_session *s, cg_error *err);
+/* Makes the GL context and uploads the scene. */
+bool app_session_start_gl(app_session *s, const cg_context_desc *context, cg_error *err);
+/* Compiles with GL for the current frame (view, size) and prepares; the read-backs checked
+ * again. Again after a parameter change, a new view or a new size. */
+bool app_session_compile(app_session *s, cg_error *err);
+
+/* Marks `source` as a graph output, so that it is kept and not pooled away before a read-back
+ * or a blit; *added: it was not one before (the graph must then be compiled again). */
+bool app_session_mark_output(app_session *s, const char *source, bool *added, cg_error *err);
+
+typedef struct app_run_desc {
+    int warmup;                     /* untimed frames first (shader JIT, caches) */
+    int frames;                     /* timed frames, at least 1 */
+    fg_timing_mode timing;
+    /* Called after each timed frame (0-based) with its time; NULL for none. */
+    void (*on_frame)(void *user, int frame, int frames, double ms);
+    void *user;
+} app_run_desc;
+
+typedef struct app_frame_stats {
+    int frames, pass_count;
+    double *frame_ms;               /* [frames]: execute to glFinish, wall clock, in frame order */
+    double *pass_ms;                /* [pass_count][frames]: fg_pass_milliseconds, passes in file order
+                                     * (-1: not measured, as for a culled pass) */
+    double *pass_sum_ms;            /* [frames]: the sum of the measured passes of each frame */
+    double median_frame_ms;
+    double median_pass_sum_ms;
+} app_frame_stats;
+
+/* Runs warmup + frames frames (frame.index from 0), glFinish after each, then checks for GL
+ * errors. *stats is filled (free it with app_frame_stats_free) when this returns true. */
+bool app_session_run(app_session *s, const app_run_desc *run, app_frame_stats *stats, cg_error *err);
+/* Median over the timed frames of pass `pass` (file order); NAN when never measured. */
+double app_frame_stats_pass_median(const app_frame_stats *stats, int pass);
+void app_frame_stats_free(app_frame_stats *stats);
+
+/* Fails with CG_ERR_GL when the context has reported any GL error since it was made. */
+bool app_session_check_gl(const app_session *s, cg_error *err);
+
+/* Reads a texture resource into a top-to-bottom float image: 2D as is, 3D and array layers
+ * stacked top to bottom (layer 0 first); depth formats land in RGB. srgb_encoded: the texels
+ * hold sRGB-encoded values (an ldr output), decoded here so that the image is linear. */
+bool app_session_read_image(const app_session *s, const char *source, bool srgb_encoded, cg_image *out,
+                            cg_error *err);
+/* Reads `source` and writes it to `path` (.exr with exr_type samples, or .png), atomically. */
+bool app_session_write_image(const app_session *s, const char *source, bool srgb_encoded, const char *path,
+                             cg_image_exr_type exr_type, cg_error *err);
+
+/* Destroys the graph, the GPU scene and the context; the scene and registry stay. */
+void app_session_stop_gl(app_session *s);
+/* Frees everything; safe on a session that failed to open (zeroed by app_session_open). */
+void app_session_close(app_session *s);
+
+#endif

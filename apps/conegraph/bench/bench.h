@@ -1,0 +1,209 @@
+/* apps/conegraph/bench/bench.h: `conegraph bench`, split by job; cmd_bench.c runs them in order.
+ *
+ * Declares: the limits BENCH_MAX_*; bench_vary, bench_setting, bench_config (what to measure);
+ *           bench_run (one combination of a setting); bench_scene (a scene with its session and
+ *           reference); bench_row, bench_rows (one measured line of the table);
+ *   sweep.c      bench_parse_args, bench_expand_runs, bench_run_assignments, bench_validate:
+ *                flags and sweep file into a config, its runs, and every run compiled (without
+ *                GL) on every scene before anything renders or any file is made;
+ *   reference.c  bench_reference, bench_path_tracer, bench_hash_text: the path-traced reference
+ *                (cached), its direct part, and the path tracer timed at each sample count
+ *                (cg/pt_render.h);
+ *   measure.c    bench_measure_run: one run on one scene through the app session: timings,
+ *                GI memory, errors against the reference;
+ *   analysis.c   bench_analyse: the equal-error speed-up over the path tracer and the Pareto fronts;
+ *   write.c      bench_write_tables, bench_write_plots, bench_write_run_images,
+ *                bench_write_reference_image, bench_slug: CSV, Markdown, PNG plots and images;
+ *   shard.c      bench_in_shard, bench_scene_in_shard, bench_shard_run_count, bench_fingerprint,
+ *                bench_write_json, bench_merge: --shard K/N (a job array's share of the work),
+ *                bench.json (every row at full precision) and --merge of shards' bench.json.
+ *
+ * Units of work, for sharding: per scene, the path tracer's timings, then each run, numbered
+ * scene by scene; shard K of N takes the units whose number is K-1 modulo N (so consecutive
+ * runs, which tend to cost alike, spread over the shards).
+ */
+#ifndef CONEGRAPH_BENCH_H
+#define CONEGRAPH_BENCH_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "app_session.h"
+#include "cg/error.h"
+#include "cg/gl.h"
+#include "cg/image.h"
+#include "cg/metrics.h"
+#include "cg/pt_render.h"
+
+#define BENCH_MAX_SCENES 16
+#define BENCH_MAX_SETTINGS 64
+#define BENCH_MAX_SETS 16
+#define BENCH_MAX_VARY 4
+#define BENCH_MAX_VALUES 16
+#define BENCH_MAX_SPP 16
+#define BENCH_MAX_RUNS 4096     /* runs per scene, over all settings and their combinations */
+#define BENCH_MAX_SHARDS 4096
+#define BENCH_TEXT 256
+
+typedef struct bench_vary {
+    char param[BENCH_TEXT];                 /* pass.param */
+    char values[BENCH_MAX_VALUES][64];
+    int count;
+} bench_vary;
+
+typedef struct bench_setting {
+    char graph[BENCH_TEXT];
+    char sets[BENCH_MAX_SETS][BENCH_TEXT];  /* pass.param=value, fixed for this setting */
+    int set_count;
+    bench_vary vary[BENCH_MAX_VARY];        /* every combination is one run */
+    int vary_count;
+} bench_setting;
+
+typedef struct bench_config {
+    char scenes[BENCH_MAX_SCENES][BENCH_TEXT];
+    int scene_count;
+    int width, height;
+    char camera[BENCH_TEXT];
+    int frames, warmup;
+    int ref_spp, ref_bounces, ref_seed;
+    int pt_spp[BENCH_MAX_SPP];
+    int pt_count;
+    bench_setting settings[BENCH_MAX_SETTINGS];
+    int setting_count;
+    char out_dir[BENCH_TEXT];
+    char cache_dir[BENCH_TEXT];
+    cg_context_backend backend;
+    bool images;
+    int shard, shard_count;                 /* --shard K/N, K from 1; 1/1 without */
+    const char *merge[BENCH_MAX_SHARDS];    /* --merge DIR...: shards' output directories */
+    int merge_count;
+} bench_config;
+
+/* One combination of one setting's varied values: a line of the table per scene. */
+typedef struct bench_run {
+    int index;                              /* in the list of runs, from 0 */
+    int setting;                            /* index into bench_config.settings */
+    int choice[BENCH_MAX_VARY];             /* the value of each vary */
+    int combo;                              /* which combination of its setting, from 0: its plot marker */
+    char params[1024];                      /* fixed, then varied assignments: the table's "parameters" */
+    char label[256];                        /* the varied values only ("cones=6"): the plot label */
+} bench_run;
+
+typedef struct bench_scene {
+    const char *source;
+    app_session session;                    /* scene, camera and view at the bench size, registry,
+                                             * graph, context */
+    pt_scene *pts;
+    double bvh_ms;                          /* NAN until measured (a shard may skip the scene) */
+    cg_image ref, ref_direct, ref_indirect;
+} bench_scene;
+
+typedef struct bench_row {
+    int scene;
+    bool is_pt;
+    int spp;                                /* path tracer rows */
+    int run;                                /* graph rows: which run (-1: a path tracer row) */
+    int setting;                            /* graph rows: which setting */
+    int combo;                              /* graph rows: which combination of the setting;
+                                             * path tracer rows: which --pt-spp */
+    char graph[BENCH_TEXT];
+    char params[1024];
+    char label[256];
+    char pass_ms[1024];
+    double ms;              /* median over frames of the sum of the passes' times, or path tracer wall time */
+    size_t gi_bytes, peak_bytes;
+    cg_metrics full, indirect;
+    double pt_equal_ms;     /* path tracer time at the same relMSE (estimated) */
+    double speedup;
+    bool pareto_time, pareto_memory;
+} bench_row;
+
+typedef struct bench_rows {
+    bench_row *rows;
+    int count, capacity;
+} bench_rows;
+
+/* sweep.c ------------------------------------------------------------------------------------ */
+
+/* Flags and the --sweep file into *c. Returns 0, or 2 after printing what is wrong. */
+int bench_parse_args(int argc, char **argv, bench_config *c);
+/* Every combination of every setting, in order (settings, then the last vary fastest). *runs
+ * is allocated here. Returns 0, 1 (out of memory) or 2 (more than BENCH_MAX_RUNS). */
+int bench_expand_runs(const bench_config *c, bench_run **runs, int *run_count);
+/* The run's "pass.param=value" assignments, fixed then varied, as --set would carry them:
+ * sets[i] points into buf or into the config. Returns the count. */
+int bench_run_assignments(const bench_config *c, const bench_run *run,
+                          char buf[BENCH_MAX_VARY][2 * BENCH_TEXT], const char *sets[BENCH_MAX_SETS + BENCH_MAX_VARY]);
+/* Opens every scene's session (scenes[i].session, to be closed by the caller) and compiles
+ * every run on every scene without GL: bad scenes, graphs, parameters and outputs found
+ * before anything renders. Returns 0, or the exit code after printing the error. */
+int bench_validate(const bench_config *c, const bench_run *runs, int run_count, bench_scene *scenes);
+
+/* reference.c -------------------------------------------------------------------------------- */
+
+/* The BVH, the reference, its direct part (0 bounces) and their difference (the indirect part). */
+bool bench_reference(const bench_config *c, bench_scene *bs, cg_error *err);
+/* The path tracer at each --pt-spp, timed, compared with the reference: one row each. */
+bool bench_path_tracer(const bench_config *c, bench_scene *bs, int scene_index, bench_rows *rows, cg_error *err);
+
+/* FNV-1a of a text: cache keys, the sweep's fingerprint. */
+uint64_t bench_hash_text(const char *text);
+
+/* measure.c ---------------------------------------------------------------------------------- */
+
+/* A new row at the end of rows (zeroed; speed-up fields NAN), or NULL when out of memory. */
+bench_row *bench_row_add(bench_rows *rows, cg_error *err);
+/* Metrics of `test` against the reference: full image, and the indirect part. */
+bool bench_measure_errors(const bench_scene *bs, const cg_image *test, bench_row *row, cg_error *err);
+/* Runs `run` on the scene's session (its GL started): one row; with --images, its image and
+ * error map are written. */
+bool bench_measure_run(const bench_config *c, bench_scene *bs, int scene_index, const bench_run *run,
+                       bench_rows *rows, cg_error *err);
+
+/* analysis.c --------------------------------------------------------------------------------- */
+
+/* Fills pt_equal_ms, speedup and the Pareto flags of the scene's graph rows. */
+void bench_analyse(bench_rows *rows, int scene);
+/* Path tracer time to reach relMSE `e` on the scene: log-log interpolation between the measured
+ * sample counts, the 1/N law beyond them, at least 1 spp. NAN without path tracer rows. */
+double bench_pt_time_for_error(const bench_rows *rows, int scene, double e);
+
+/* write.c ------------------------------------------------------------------------------------ */
+
+/* "builtin:openworld?triangles=10000" -> "builtin-openworld-triangles-10000". */
+void bench_slug(const char *text, char *out, size_t size);
+/* OUT/bench.csv and OUT/bench.md (atomically); the Markdown tables also to stdout. */
+bool bench_write_tables(const bench_config *c, const bench_rows *rows, const bench_scene *scenes,
+                        int scene_count, cg_error *err);
+/* OUT/SCENE-time.png and OUT/SCENE-memory.png. */
+bool bench_write_plots(const bench_config *c, const bench_rows *rows, const bench_scene *scenes, int scene,
+                       cg_error *err);
+/* OUT/SCENE-reference.png. */
+bool bench_write_reference_image(const bench_config *c, const bench_scene *bs, cg_error *err);
+/* OUT/SCENE-GRAPH-PARAMS.png and its error heat map OUT/SCENE-GRAPH-PARAMS-error.png. */
+bool bench_write_run_images(const bench_config *c, const bench_scene *bs, const bench_row *row,
+                            const cg_image *image, cg_error *err);
+
+/* shard.c ------------------------------------------------------------------------------------ */
+
+/* Whether this shard measures run `run` (-1: the path tracer's timings) of scene `scene`. */
+bool bench_in_shard(const bench_config *c, int run_count, int scene, int run);
+/* Whether it measures anything of the scene (then it needs the scene's reference). */
+bool bench_scene_in_shard(const bench_config *c, int run_count, int scene);
+/* How many runs (path tracer timings left out) this shard measures over all scenes. */
+int bench_shard_run_count(const bench_config *c, int run_count);
+/* 16 hex digits naming what a sweep measures (scenes, size, camera, frames, reference, path
+ * tracer counts, settings), not where it writes: shards of one sweep share it. */
+void bench_fingerprint(const bench_config *c, char out[17]);
+/* OUT/bench.json: the sweep's fingerprint, the shard, the scenes, the renderer and every row at
+ * full precision (non-finite figures as null), written atomically. */
+bool bench_write_json(const bench_config *c, const bench_rows *rows, const bench_scene *scenes,
+                      const char *renderer, cg_error *err);
+/* Reads DIR/bench.json of each --merge directory: they must be shards 1..N of this sweep, each
+ * once, together holding every unit. Fills rows (in the order one unsharded run gives), each
+ * scene's bvh_ms and the renderer. Returns 0, or 2 after printing what is wrong. */
+int bench_merge(const bench_config *c, int run_count, bench_rows *rows, bench_scene *scenes, char *renderer,
+                size_t renderer_size);
+
+#endif

@@ -1,0 +1,237 @@
+/* bench: the writers: tables (CSV, Markdown), plots (PNG, apps/conegraph/bench/plot.c) and
+ * images (each run's image and error heat map, the reference): see bench.h. */
+#include <ctype.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bench.h"
+#include "cg/fs.h"
+#include "plot.h"
+
+void
+bench_slug(const char *text, char *out, size_t size)
+{
+    size_t n = 0;
+    for (const char *s = text; *s && n + 1 < size; s++)
+        out[n++] = isalnum((unsigned char)*s) || *s == '.' ? *s : '-';
+    out[n] = '\0';
+}
+
+static void
+csv_field(FILE *fp, const char *text)
+{
+    fputc('"', fp);
+    for (const char *s = text; *s; s++) {
+        if (*s == '"')
+            fputc('"', fp);
+        fputc(*s, fp);
+    }
+    fputc('"', fp);
+}
+
+static bool
+write_csv(const bench_config *c, const bench_rows *rows, const bench_scene *scenes, cg_error *err)
+{
+    char path[4096];
+    snprintf(path, sizeof path, "%s/bench.csv", c->out_dir);
+    cg_atomic_file f;
+    if (!cg_atomic_open(&f, path, err))
+        return false;
+    fprintf(f.fp, "scene,width,height,method,params,ms,pass_ms,gi_bytes,peak_bytes,rmse,relmse,ssim,max_error,"
+                  "lum_ratio,nonfinite,indirect_rmse,indirect_relmse,indirect_ssim,indirect_lum_ratio,"
+                  "pt_equal_error_ms,speedup,pareto_time,pareto_memory\n");
+    for (int i = 0; i < rows->count; i++) {
+        const bench_row *r = &rows->rows[i];
+        csv_field(f.fp, scenes[r->scene].source);
+        fprintf(f.fp, ",%d,%d,", c->width, c->height);
+        csv_field(f.fp, r->graph);
+        fputc(',', f.fp);
+        csv_field(f.fp, r->params);
+        fprintf(f.fp, ",%.3f,", r->ms);
+        csv_field(f.fp, r->pass_ms);
+        fprintf(f.fp, ",%zu,%zu,%.6g,%.6g,%.6f,%.6g,%.6f,%zu,%.6g,%.6g,%.6f,%.6f,%.3f,%.3f,%d,%d\n", r->gi_bytes,
+                r->peak_bytes, r->full.rmse, r->full.rel_mse, r->full.ssim, r->full.max_error,
+                r->full.mean_luminance_ratio, r->full.nonfinite_pixels, r->indirect.rmse, r->indirect.rel_mse,
+                r->indirect.ssim, r->indirect.mean_luminance_ratio, r->pt_equal_ms, r->speedup,
+                !r->is_pt && r->pareto_time, !r->is_pt && r->pareto_memory);
+    }
+    return cg_atomic_commit(&f, err);
+}
+
+static void
+write_markdown_table(FILE *fp, const bench_config *c, const bench_rows *rows, const bench_scene *scenes, int s)
+{
+    fprintf(fp, "### %s, %dx%d\n\n", scenes[s].source, c->width, c->height);
+    fprintf(fp, "Reference: path_trace, %d spp, %d bounce(s), seed %d (BVH build %.0f ms). "
+                "Times: median of %d frames after %d warm-up, synchronous. "
+                "P: on the Pareto front of relMSE against time (t) or GI memory (m).\n\n",
+            c->ref_spp, c->ref_bounces, c->ref_seed, scenes[s].bvh_ms, c->frames, c->warmup);
+    fprintf(fp, "| method | parameters | ms | GI MiB | relMSE | RMSE | SSIM | lum. ratio | indirect relMSE | "
+                "indirect lum. ratio | PT ms at equal relMSE | speed-up | P | per pass (ms) |\n");
+    fprintf(fp, "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|\n");
+    for (int i = 0; i < rows->count; i++) {
+        const bench_row *r = &rows->rows[i];
+        if (r->scene != s)
+            continue;
+        char pareto[8] = "";
+        if (!r->is_pt)
+            snprintf(pareto, sizeof pareto, "%s%s", r->pareto_time ? "t" : "", r->pareto_memory ? "m" : "");
+        char equal[32] = "", speed[32] = "";
+        if (!r->is_pt && isfinite(r->pt_equal_ms)) {
+            snprintf(equal, sizeof equal, "%.0f", r->pt_equal_ms);
+            snprintf(speed, sizeof speed, "%.1fx", r->speedup);
+        }
+        fprintf(fp, "| %s | %s | %.1f | %.1f | %.5f | %.5f | %.4f | %.3f | %.5f | %.3f | %s | %s | %s | %s |\n",
+                r->graph, r->params[0] ? r->params : "-", r->ms, (double)r->gi_bytes / 1048576.0, r->full.rel_mse,
+                r->full.rmse, r->full.ssim, r->full.mean_luminance_ratio, r->indirect.rel_mse,
+                r->indirect.mean_luminance_ratio, equal, speed, pareto, r->pass_ms);
+    }
+    fprintf(fp, "\n");
+}
+
+static bool
+write_markdown(const bench_config *c, const bench_rows *rows, const bench_scene *scenes, int scene_count,
+               cg_error *err)
+{
+    char path[4096];
+    snprintf(path, sizeof path, "%s/bench.md", c->out_dir);
+    cg_atomic_file f;
+    if (!cg_atomic_open(&f, path, err))
+        return false;
+    for (int s = 0; s < scene_count; s++) {
+        write_markdown_table(f.fp, c, rows, scenes, s);
+        write_markdown_table(stdout, c, rows, scenes, s);
+    }
+    return cg_atomic_commit(&f, err);
+}
+
+bool
+bench_write_tables(const bench_config *c, const bench_rows *rows, const bench_scene *scenes, int scene_count,
+                   cg_error *err)
+{
+    return write_csv(c, rows, scenes, err) && write_markdown(c, rows, scenes, scene_count, err);
+}
+
+/* The legend of a setting: its graph, its fixed assignments and what it varies
+ * ("vct.json by cones"); the points carry the varied values. */
+static void
+setting_legend(const bench_setting *s, char *out, size_t size)
+{
+    size_t len = (size_t)snprintf(out, size, "%s", s->graph);
+    for (int i = 0; i < s->set_count && len < size; i++)
+        len += (size_t)snprintf(out + len, size - len, " %s", s->sets[i]);
+    for (int v = 0; v < s->vary_count && len < size; v++) {
+        const char *dot = strrchr(s->vary[v].param, '.');
+        len += (size_t)snprintf(out + len, size - len, "%s%s", v ? "/" : " by ", dot ? dot + 1 : s->vary[v].param);
+    }
+}
+
+/* Ten colours that stay apart (Tableau 10), sRGB. */
+static const float palette[10][3] = {
+    { 0.12f, 0.47f, 0.71f }, { 1.0f, 0.5f, 0.05f }, { 0.17f, 0.63f, 0.17f }, { 0.84f, 0.15f, 0.16f },
+    { 0.58f, 0.4f, 0.74f }, { 0.55f, 0.34f, 0.29f }, { 0.89f, 0.47f, 0.76f }, { 0.5f, 0.5f, 0.5f },
+    { 0.74f, 0.74f, 0.13f }, { 0.09f, 0.75f, 0.81f },
+};
+
+/* Per scene: relMSE against time (one series per setting, a marker per combination of its
+ * varied values and a label naming them; the path tracer's curve; the Pareto front) and
+ * against GI memory. */
+bool
+bench_write_plots(const bench_config *c, const bench_rows *rows, const bench_scene *scenes, int s, cg_error *err)
+{
+    int n = rows->count;
+    size_t points = (size_t)(n > 0 ? n : 1);
+    double *buf = malloc(sizeof(double) * points * 6);
+    plot_marker *markers = malloc(sizeof *markers * points);
+    const char **labels = malloc(sizeof *labels * points);
+    plot_series *series = calloc((size_t)BENCH_MAX_SETTINGS + 2, sizeof *series);
+    char (*legends)[512] = calloc((size_t)BENCH_MAX_SETTINGS, sizeof *legends);
+    bool ok = buf && markers && labels && series && legends;
+    if (!ok)
+        cg_fail(err, CG_ERR_OUT_OF_MEMORY, "bench plots");
+    for (int kind = 0; kind < 2 && ok; kind++) {
+        bool time_axis = kind == 0;
+        double *x = buf, *y = buf + n, *px = buf + 2 * n, *py = buf + 3 * n, *fx = buf + 4 * n, *fy = buf + 5 * n;
+        int used = 0, series_count = 0, pn = 0, fn = 0;
+        for (int k = 0; k < c->setting_count; k++) {
+            int start = used;
+            for (int i = 0; i < n; i++) {
+                const bench_row *r = &rows->rows[i];
+                if (r->scene != s || r->is_pt || r->setting != k)
+                    continue;
+                x[used] = time_axis ? r->ms : (double)r->gi_bytes / 1048576.0;
+                y[used] = r->full.rel_mse;
+                markers[used] = (plot_marker)(r->combo % PLOT_MARKER_COUNT);
+                labels[used++] = r->label;
+            }
+            if (used == start)
+                continue;
+            setting_legend(&c->settings[k], legends[k], sizeof legends[k]);
+            series[series_count++] = (plot_series){ .name = legends[k], .x = x + start, .y = y + start,
+                                                    .count = used - start, .markers = markers + start,
+                                                    .labels = labels + start };
+            memcpy(series[series_count - 1].color, palette[k % 10], sizeof palette[0]);
+        }
+        for (int i = 0; i < n; i++) {
+            const bench_row *r = &rows->rows[i];
+            if (r->scene != s)
+                continue;
+            if (r->is_pt && time_axis) {
+                px[pn] = r->ms;
+                py[pn++] = r->full.rel_mse;
+            }
+            if (!r->is_pt && (time_axis ? r->pareto_time : r->pareto_memory)) {
+                fx[fn] = time_axis ? r->ms : (double)r->gi_bytes / 1048576.0;
+                fy[fn++] = r->full.rel_mse;
+            }
+        }
+        if (pn > 0)
+            series[series_count++] = (plot_series){ .name = "path tracer (spp sweep)", .color = { 0.45f, 0.45f, 0.45f },
+                                                    .x = px, .y = py, .count = pn, .line = true };
+        series[series_count++] = (plot_series){ .name = "Pareto front", .color = { 0.85f, 0.1f, 0.1f }, .x = fx,
+                                                .y = fy, .count = fn, .line = true, .ring = true };
+        char title[512], path[4096], scene_slug[BENCH_TEXT];
+        snprintf(title, sizeof title, "%s %dx%d: relMSE vs %s", scenes[s].source, c->width, c->height,
+                 time_axis ? "time" : "GI memory");
+        bench_slug(scenes[s].source, scene_slug, sizeof scene_slug);
+        snprintf(path, sizeof path, "%s/%s-%s.png", c->out_dir, scene_slug, time_axis ? "time" : "memory");
+        plot_desc plot = { .title = title, .xlabel = time_axis ? "time per frame (ms)" : "GI memory (MiB)",
+                           .ylabel = "relMSE", .logx = time_axis, .logy = true, .series = series,
+                           .series_count = series_count };
+        ok = plot_write_png(&plot, path, err);
+    }
+    free(legends);
+    free(series);
+    free(labels);
+    free(markers);
+    free(buf);
+    return ok;
+}
+
+bool
+bench_write_reference_image(const bench_config *c, const bench_scene *bs, cg_error *err)
+{
+    char path[4096], scene_slug[BENCH_TEXT];
+    bench_slug(bs->source, scene_slug, sizeof scene_slug);
+    snprintf(path, sizeof path, "%s/%s-reference.png", c->out_dir, scene_slug);
+    return cg_image_write(path, &bs->ref, CG_EXR_HALF, err);
+}
+
+bool
+bench_write_run_images(const bench_config *c, const bench_scene *bs, const bench_row *row, const cg_image *image,
+                       cg_error *err)
+{
+    char name[2048], path[4096], scene_slug[BENCH_TEXT], params_slug[512];
+    bench_slug(bs->source, scene_slug, sizeof scene_slug);
+    snprintf(name, sizeof name, "%s%s%s", row->graph, row->params[0] ? " " : "", row->params);
+    bench_slug(name, params_slug, sizeof params_slug);
+    snprintf(path, sizeof path, "%s/%s-%s.png", c->out_dir, scene_slug, params_slug);
+    cg_image heat = { 0 };
+    bool ok = cg_image_write(path, image, CG_EXR_HALF, err);
+    snprintf(path, sizeof path, "%s/%s-%s-error.png", c->out_dir, scene_slug, params_slug);
+    ok = ok && cg_metrics_heatmap(image, &bs->ref, 1.0, &heat, err) && cg_image_write(path, &heat, CG_EXR_HALF, err);
+    cg_image_free(&heat);
+    return ok;
+}
