@@ -1,7 +1,7 @@
 /* glTF loading: good scenes written here (a triangle with and without 8/16/32-bit indices,
  * strips and fans, a node hierarchy, lights and cameras, materials and textures, a .glb,
- * height-field classification) and a malformed corpus written here, where each defect
- * gives its named error, a message naming the file, and no crash. */
+ * height-field classification) and the malformed corpus of tests/data/gltf/malformed,
+ * where each defect gives its named error, a message naming the file, and no crash. */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -62,8 +62,17 @@ write_mesh_file(const char *name, const mesh_file *m)
     size_t pos_at = blob_add(&b, m->positions, 12 * (size_t)m->vertex_count);
     snprintf(views, sizeof views, "{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":%d}", pos_at,
              12 * m->vertex_count);
+    /* glTF asks POSITION for exact bounds (as float). */
+    float lo[3] = { INFINITY, INFINITY, INFINITY }, hi[3] = { -INFINITY, -INFINITY, -INFINITY };
+    for (int v = 0; v < m->vertex_count; v++)
+        for (int k = 0; k < 3; k++) {
+            lo[k] = fminf(lo[k], m->positions[3 * v + k]);
+            hi[k] = fmaxf(hi[k], m->positions[3 * v + k]);
+        }
     snprintf(accessors, sizeof accessors,
-             "{\"bufferView\":0,\"componentType\":5126,\"count\":%d,\"type\":\"VEC3\"}", m->vertex_count);
+             "{\"bufferView\":0,\"componentType\":5126,\"count\":%d,\"type\":\"VEC3\","
+             "\"min\":[%.9g,%.9g,%.9g],\"max\":[%.9g,%.9g,%.9g]}",
+             m->vertex_count, lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]);
     snprintf(attributes, sizeof attributes, "\"POSITION\":0");
     int next = 1;
     char indices[64] = "";
@@ -449,6 +458,8 @@ write_glb(const char *name, bool image_past_end)
     size_t pos_at = blob_add(&b, triangle, sizeof triangle);
     uint16_t idx[3] = { 0, 1, 2 };
     size_t idx_at = blob_add(&b, idx, sizeof idx);
+    static const float uv[6] = { 0, 0, 1, 0, 0, 1 };
+    size_t uv_at = blob_add(&b, uv, sizeof uv);
     size_t png_at = blob_add(&b, png, png_size);
     free(png);
     while (b.size % 4)
@@ -459,14 +470,17 @@ write_glb(const char *name, bool image_past_end)
     snprintf(json, sizeof json,
              "{\"asset\":{\"version\":\"2.0\"},\"buffers\":[{\"byteLength\":%zu}],"
              "\"bufferViews\":[{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":36},"
-             "{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":6},{\"buffer\":0,\"byteOffset\":%zu,%s}],"
-             "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":3,\"type\":\"VEC3\"},"
-             "{\"bufferView\":1,\"componentType\":5123,\"count\":3,\"type\":\"SCALAR\"}],"
+             "{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":6},{\"buffer\":0,\"byteOffset\":%zu,%s},"
+             "{\"buffer\":0,\"byteOffset\":%zu,\"byteLength\":24}],"
+             "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":3,\"type\":\"VEC3\","
+             "\"min\":[0,0,0],\"max\":[1,1,0]},"
+             "{\"bufferView\":1,\"componentType\":5123,\"count\":3,\"type\":\"SCALAR\"},"
+             "{\"bufferView\":3,\"componentType\":5126,\"count\":3,\"type\":\"VEC2\"}],"
              "\"images\":[{\"bufferView\":2,\"mimeType\":\"image/png\"}],\"textures\":[{\"source\":0}],"
              "\"materials\":[{\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":0}}}],"
-             "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"indices\":1,\"material\":0}]}],"
+             "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0,\"TEXCOORD_0\":2},\"indices\":1,\"material\":0}]}],"
              "\"nodes\":[{\"mesh\":0}],\"scenes\":[{\"nodes\":[0]}],\"scene\":0}",
-             b.size, pos_at, idx_at, png_at, image_view);
+             b.size, pos_at, idx_at, png_at, image_view, uv_at);
     size_t json_len = strlen(json);
     while (json_len % 4)
         json[json_len++] = ' ';
@@ -500,7 +514,7 @@ binary_gltf(void **state)
     assert_cg_status(cg_scene_load(write_glb("badimage.glb", true), &s, &err), &err,
                      CG_ERR_GLTF_BUFFER);
     assert_non_null(strstr(err.message, "badimage.glb"));
-    assert_non_null(strstr(err.message, "image 0"));
+    assert_non_null(strstr(err.message, "bufferViews[2]"));
 }
 
 static void
@@ -546,8 +560,8 @@ static const char sparse_json[] =
     "{\"buffer\":0,\"byteOffset\":36,\"byteLength\":1},{\"buffer\":0,\"byteOffset\":40,\"byteLength\":12},"
     "{\"buffer\":0,\"byteOffset\":52,\"byteLength\":4},{\"buffer\":0,\"byteOffset\":56,\"byteLength\":24}],"
     "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":3,\"type\":\"VEC3\","
-    "\"sparse\":{\"count\":1,\"indices\":{\"bufferView\":1,\"componentType\":5121},\"values\":{\"bufferView\":2}}},"
-    "{\"componentType\":5126,\"count\":3,\"type\":\"VEC3\","
+    "\"min\":[0,0,0],\"max\":[1,1,0],\"sparse\":{\"count\":1,\"indices\":{\"bufferView\":1,\"componentType\":5121},\"values\":{\"bufferView\":2}}},"
+    "{\"componentType\":5126,\"count\":3,\"type\":\"VEC3\",\"min\":[0,0,0],\"max\":[1,1,0],"
     "\"sparse\":{\"count\":2,\"indices\":{\"bufferView\":3,\"componentType\":5123},\"values\":{\"bufferView\":4}}}],"
     "\"meshes\":[{\"name\":\"over_view\",\"primitives\":[{\"attributes\":{\"POSITION\":0}}]},"
     "{\"name\":\"over_zeros\",\"primitives\":[{\"attributes\":{\"POSITION\":1}}]}],"
@@ -573,33 +587,7 @@ sparse_accessors(void **state)
         assert_memory_equal(s.meshes[m].positions, triangle, sizeof triangle);
     cg_scene_free(&s);
 
-    const struct {
-        const char *name, *from, *to;
-        cg_status expected;
-    } bad[] = {
-        { "sparse_range.gltf", "\"byteOffset\":52,\"byteLength\":4}", "\"byteOffset\":36,\"byteLength\":4}",
-          CG_ERR_GLTF_INDEX_RANGE }, /* indices 2, 0: the second is not above the first */
-        { "sparse_values.gltf", "\"byteOffset\":40,\"byteLength\":12}", "\"byteOffset\":40,\"byteLength\":8}",
-          CG_ERR_GLTF_BUFFER },
-        { "sparse_count.gltf", "\"sparse\":{\"count\":2", "\"sparse\":{\"count\":4", CG_ERR_GLTF_ACCESSOR },
-        { "sparse_float_indices.gltf", "\"componentType\":5121}", "\"componentType\":5126}", CG_ERR_GLTF_ACCESSOR },
-    };
-    cg_error err = { 0 };
-    for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
-        const char *at = strstr(sparse_json, bad[i].from);
-        assert_non_null(at);
-        char json[4096];
-        snprintf(json, sizeof json, "%.*s%s%s", (int)(at - sparse_json), sparse_json, bad[i].to,
-                 at + strlen(bad[i].from));
-        cg_error_clear(&err);
-        if (cg_scene_load(write_text(bad[i].name, json), &s, &err))
-            fail_msg("%s loaded", bad[i].name);
-        if (err.status != bad[i].expected)
-            fail_msg("%s: %s (%s); expected %s", bad[i].name, cg_status_name(err.status), err.message,
-                     cg_status_name(bad[i].expected));
-        assert_non_null(strstr(err.message, "sparse"));
-        printf("# %s: %s\n", cg_status_name(err.status), strrchr(err.message, '/') + 1);
-    }
+    /* Broken sparse accessors are in the malformed corpus (tests/data/gltf/malformed). */
 }
 
 /* ------------------------------------------------------------------ the malformed corpus */
@@ -610,7 +598,8 @@ static const char base_json[] =
     "\"buffers\":[{\"uri\":\"base.bin\",\"byteLength\":44}],"
     "\"bufferViews\":[{\"buffer\":0,\"byteOffset\":0,\"byteLength\":36},"
     "{\"buffer\":0,\"byteOffset\":36,\"byteLength\":6}],"
-    "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":3,\"type\":\"VEC3\"},"
+    "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":3,\"type\":\"VEC3\","
+    "\"min\":[0,0,0],\"max\":[1,1,0]},"
     "{\"bufferView\":1,\"componentType\":5123,\"count\":3,\"type\":\"SCALAR\"}],"
     "\"meshes\":[{\"name\":\"roof\",\"primitives\":[{\"attributes\":{\"POSITION\":0},\"indices\":1}]}],"
     "\"nodes\":[{\"mesh\":0}],\"scenes\":[{\"nodes\":[0]}],\"scene\":0}";
@@ -628,13 +617,6 @@ write_base_bin(const char *name, float poison, uint16_t last_index, size_t size)
     cg_test_write_file(name, bin, size);
 }
 
-typedef struct bad_case {
-    const char *name;   /* file name; its .bin is base.bin unless the case rewrites it */
-    const char *from, *to;
-    cg_status expected;
-    const char *message_part; /* besides the file name, the message must name this */
-} bad_case;
-
 static void
 good_base_loads(void **state)
 {
@@ -646,118 +628,81 @@ good_base_loads(void **state)
     cg_scene_free(&s);
 }
 
+/* The malformed corpus: files in tests/data/gltf/malformed, listed in its expected.txt with
+ * the status each must give and a part of the message (test gltf_validator runs the Khronos
+ * glTF-Validator over the same files). Every file must be refused with that status, a message
+ * naming the file and that part, and an empty scene; all mismatches are listed before the
+ * test fails. */
 static void
 malformed_corpus(void **state)
 {
     (void)state;
-    write_base_bin("base.bin", 0, 2, 44);
-    write_base_bin("short.bin", 0, 2, 20);
-    write_base_bin("nan.bin", NAN, 2, 44);
-    write_base_bin("inf.bin", INFINITY, 2, 44);
-    write_base_bin("range.bin", 0, 812, 44);
-    const bad_case cases[] = {
-        { "missing_buffer.gltf", "base.bin", "nothere.bin", CG_ERR_GLTF_BUFFER, "nothere.bin" },
-        { "short_buffer.gltf", "base.bin", "short.bin", CG_ERR_GLTF_BUFFER, "short.bin" },
-        { "view_past_buffer.gltf", "\"byteOffset\":36,\"byteLength\":6", "\"byteOffset\":40,\"byteLength\":6",
-          CG_ERR_GLTF_BUFFER, "bufferView 1" },
-        { "view_no_buffer.gltf", "{\"buffer\":0,\"byteOffset\":0", "{\"buffer\":3,\"byteOffset\":0",
-          CG_ERR_GLTF_BUFFER, "buffer 3" },
-        { "accessor_past_view.gltf", "\"count\":3,\"type\":\"VEC3\"", "\"count\":30,\"type\":\"VEC3\"",
-          CG_ERR_GLTF_BUFFER, "accessor 0" },
-        { "position_vec2.gltf", "\"type\":\"VEC3\"", "\"type\":\"VEC2\"", CG_ERR_GLTF_ACCESSOR, "POSITION" },
-        { "position_bytes.gltf", "\"componentType\":5126", "\"componentType\":5121", CG_ERR_GLTF_ACCESSOR,
-          "POSITION" },
-        { "index_float.gltf", "\"componentType\":5123", "\"componentType\":5126", CG_ERR_GLTF_ACCESSOR,
-          "indices" },
-        { "index_vec2.gltf", "\"type\":\"SCALAR\"", "\"type\":\"VEC2\"", CG_ERR_GLTF_ACCESSOR, "indices" },
-        { "index_count.gltf", "\"count\":3,\"type\":\"SCALAR\"", "\"count\":2,\"type\":\"SCALAR\"",
-          CG_ERR_GLTF_ACCESSOR, "multiple of 3" },
-        { "no_such_accessor.gltf", "\"POSITION\":0", "\"POSITION\":7", CG_ERR_GLTF_ACCESSOR, "accessor 7" },
-        { "stride_short.gltf", "\"byteOffset\":0,\"byteLength\":36}", "\"byteOffset\":0,\"byteLength\":36,\"byteStride\":4}",
-          CG_ERR_GLTF_ACCESSOR, "byteStride" },
-        { "no_position.gltf", "\"POSITION\":0", "\"NORMAL\":0", CG_ERR_GLTF_ACCESSOR, "POSITION" },
-        { "index_range.gltf", "base.bin", "range.bin", CG_ERR_GLTF_INDEX_RANGE,
-          "mesh 'roof' primitive 0: index 812 out of range (accessor 0 has 3 vertices)" },
-        { "nan.gltf", "base.bin", "nan.bin", CG_ERR_GLTF_NONFINITE, "vertex 1" },
-        { "inf.gltf", "base.bin", "inf.bin", CG_ERR_GLTF_NONFINITE, "mesh 'roof'" },
-        { "cycle.gltf", "\"nodes\":[{\"mesh\":0}]", "\"nodes\":[{\"mesh\":0,\"children\":[1]},{\"children\":[2]},{\"children\":[1]}]",
-          CG_ERR_GLTF_NODE_CYCLE, "node 2" },
-        { "self_cycle.gltf", "\"nodes\":[{\"mesh\":0}]", "\"nodes\":[{\"mesh\":0,\"name\":\"loop\",\"children\":[0]}]",
-          CG_ERR_GLTF_NODE_CYCLE, "'loop'" },
-        { "bad_child.gltf", "\"nodes\":[{\"mesh\":0}]", "\"nodes\":[{\"mesh\":0,\"children\":[5]}]",
-          CG_ERR_GLTF_INDEX_RANGE, "child 5" },
-        { "bad_mesh.gltf", "\"nodes\":[{\"mesh\":0}]", "\"nodes\":[{\"mesh\":4}]", CG_ERR_GLTF_INDEX_RANGE,
-          "mesh 4" },
-        { "bad_scene_node.gltf", "\"scenes\":[{\"nodes\":[0]}]", "\"scenes\":[{\"nodes\":[9]}]",
-          CG_ERR_GLTF_INDEX_RANGE, "node 9" },
-        { "bad_material.gltf", "\"indices\":1}", "\"indices\":1,\"material\":3}", CG_ERR_GLTF_INDEX_RANGE,
-          "material 3" },
-        { "points_only.gltf", "\"indices\":1}", "\"indices\":1,\"mode\":0}", CG_ERR_GLTF_NO_TRIANGLES, "no triangles" },
-        { "lines_only.gltf", "\"indices\":1}", "\"indices\":1,\"mode\":1}", CG_ERR_GLTF_NO_TRIANGLES, "no triangles" },
-        { "empty_scene.gltf", "\"scenes\":[{\"nodes\":[0]}]", "\"scenes\":[{\"nodes\":[]}]",
-          CG_ERR_GLTF_NO_TRIANGLES, "no triangles" },
-        { "draco.gltf", "\"asset\":{\"version\":\"2.0\"},",
-          "\"asset\":{\"version\":\"2.0\"},\"extensionsUsed\":[\"KHR_draco_mesh_compression\"],"
-          "\"extensionsRequired\":[\"KHR_draco_mesh_compression\"],",
-          CG_ERR_GLTF_EXTENSION, "KHR_draco_mesh_compression" },
-        { "no_asset.gltf", "\"asset\":{\"version\":\"2.0\"},", "", CG_ERR_GLTF_PARSE, "asset" },
-        { "truncated.gltf", "\"nodes\":[{\"mesh\":0}]", "\"nodes\":[{\"mesh\":0}", CG_ERR_GLTF_PARSE, "" },
-    };
-    cg_error err = { 0 };
-    cg_scene s;
-    for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
-        const bad_case *c = &cases[i];
-        const char *at = strstr(base_json, c->from);
-        assert_non_null(at);
-        char json[8192];
-        snprintf(json, sizeof json, "%.*s%s%s", (int)(at - base_json), base_json, c->to, at + strlen(c->from));
-        const char *path = write_text(c->name, json);
-        cg_error_clear(&err);
-        if (cg_scene_load(path, &s, &err))
-            fail_msg("%s loaded; expected %s", c->name, cg_status_name(c->expected));
-        if (err.status != c->expected)
-            fail_msg("%s: %s (%s); expected %s", c->name, cg_status_name(err.status), err.message,
-                     cg_status_name(c->expected));
-        if (!strstr(err.message, c->name) || !strstr(err.message, c->message_part))
-            fail_msg("%s: message '%s' should name the file and '%s'", c->name, err.message, c->message_part);
+    const char *data = getenv("CONEGRAPH_TEST_DATA");
+    assert_non_null(data);
+    char dir[4096], manifest[4200];
+    snprintf(dir, sizeof dir, "%s/gltf/malformed", data);
+    snprintf(manifest, sizeof manifest, "%s/expected.txt", dir);
+    FILE *fp = fopen(manifest, "r");
+    assert_non_null(fp);
+    char line[1024];
+    int count = 0, wrong = 0;
+    while (fgets(line, sizeof line, fp)) {
+        line[strcspn(line, "\n")] = '\0';
+        if (line[0] == '#' || line[0] == '\0')
+            continue;
+        char name[256], status[64];
+        int used = 0;
+        assert_int_equal(sscanf(line, "%255s %63s %n", name, status, &used), 2);
+        const char *part = line + used;
+        char path[4500];
+        snprintf(path, sizeof path, "%s/%s", dir, name);
+        cg_scene s;
+        cg_error err = { 0 };
+        count++;
+        if (cg_scene_load(path, &s, &err)) {
+            printf("# %s loaded; expected %s\n", name, status);
+            cg_scene_free(&s);
+            wrong++;
+            continue;
+        }
+        if (strcmp(cg_status_name(err.status), status) || !strstr(err.message, name) || !strstr(err.message, part)) {
+            printf("# %s: %s (%s); expected %s naming the file and '%s'\n", name, cg_status_name(err.status),
+                   err.message, status, part);
+            wrong++;
+            continue;
+        }
         printf("# %s: %s\n", cg_status_name(err.status), strrchr(err.message, '/') + 1);
         assert_int_equal(s.mesh_count, 0);
         assert_null(s.meshes);
     }
+    fclose(fp);
+    printf("# %d malformed files refused as expected, %d not\n", count - wrong, wrong);
+    assert_true(count >= 70);
+    assert_int_equal(wrong, 0);
+}
+
+/* A URI naming a device is refused before it is read (/dev/zero would never end). Not in the
+ * malformed corpus: the validator would read it for ever. tinygltf joins URIs to the file's
+ * directory, so the device is reached upwards from there (".." at / stays at /). */
+static void
+buffer_from_a_device_is_refused(void **state)
+{
+    (void)state;
+    const char *path = write_text("device.gltf", "{\"asset\":{\"version\":\"2.0\"},\"buffers\":[{\"uri\":"
+                                                 "\"../../../../../../../../../../../../dev/zero\",\"byteLength\":4}]}");
+    cg_error err = { 0 };
+    cg_scene s;
+    assert_cg_status(cg_scene_load(path, &s, &err), &err, CG_ERR_GLTF_BUFFER);
+    assert_non_null(strstr(err.message, "device.gltf"));
+    assert_non_null(strstr(err.message, "not a regular file"));
 }
 
 static void
-not_gltf_at_all(void **state)
+missing_file(void **state)
 {
     (void)state;
-    const struct {
-        const char *name;
-        const char *data;
-        size_t size;
-    } files[] = {
-        { "hello.gltf", "hello world\n", 0 },
-        { "empty.gltf", "", 0 },
-        { "array.gltf", "[1, 2, 3]", 0 },
-        { "object.gltf", "{}", 0 },
-        { "broken.gltf", "{\"asset\": {\"version\": ", 0 },
-        { "image.glb", "\x89PNG\r\n\x1a\n\0\0\0\rIHDR", 16 },
-        { "header_only.glb", "glTF\x02\0\0\0\x0c\0\0\0", 12 },
-        { "liar.glb", "glTF\x02\0\0\0\xff\xff\0\0{\"asset\":1}", 23 },
-    };
     cg_error err = { 0 };
     cg_scene s;
-    for (size_t i = 0; i < sizeof files / sizeof *files; i++) {
-        /* size 0: the text's strlen (0 for the empty file). */
-        const char *path = cg_test_write_file(files[i].name, files[i].data, files[i].size);
-        cg_error_clear(&err);
-        if (cg_scene_load(path, &s, &err))
-            fail_msg("%s loaded", files[i].name);
-        if (err.status != CG_ERR_GLTF_PARSE)
-            fail_msg("%s: %s (%s); expected CG_ERR_GLTF_PARSE", files[i].name, cg_status_name(err.status),
-                     err.message);
-        assert_non_null(strstr(err.message, files[i].name));
-        printf("# %s: %s\n", cg_status_name(err.status), strrchr(err.message, '/') + 1);
-    }
     char missing[4200];
     snprintf(missing, sizeof missing, "%s/nothing_here.gltf", cg_test_tmpdir());
     assert_cg_status(cg_scene_load(missing, &s, &err), &err, CG_ERR_FILE_NOT_FOUND);
@@ -779,7 +724,8 @@ main(void)
         cmocka_unit_test(sparse_accessors),
         cmocka_unit_test(good_base_loads),
         cmocka_unit_test(malformed_corpus),
-        cmocka_unit_test(not_gltf_at_all),
+        cmocka_unit_test(buffer_from_a_device_is_refused),
+        cmocka_unit_test(missing_file),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

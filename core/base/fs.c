@@ -1,6 +1,8 @@
 #include "cg/fs.h"
 
+#include <dirent.h>
 #include <errno.h>
+#include <signal.h>
 #include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
@@ -45,6 +47,53 @@ cg_read_file(const char *path, char **data, size_t *size, cg_error *err)
     return true;
 }
 
+/* Removes the temporaries of `path` that a killed run left behind: ".NAME.tmp-PID-N.EXT"
+ * beside it whose PID names no running process. A live process's temporary (a concurrent
+ * run writing the same output) is left alone; a PID reused since by another process only
+ * keeps a stale file until a later run. */
+static void
+remove_stale_temporaries(const char *path)
+{
+    const char *slash = strrchr(path, '/');
+    char dir[4096];
+    if (slash && snprintf(dir, sizeof dir, "%.*s", slash == path ? 1 : (int)(slash - path), path) >= (int)sizeof dir)
+        return;
+    if (!slash)
+        strcpy(dir, ".");
+    const char *base = slash ? slash + 1 : path;
+    const char *dot = strrchr(base, '.');
+    const char *ext = dot ? dot : "";
+    char prefix[1024];
+    if (snprintf(prefix, sizeof prefix, ".%.*s.tmp-", dot ? (int)(dot - base) : (int)strlen(base), base) >=
+        (int)sizeof prefix)
+        return;
+    DIR *d = opendir(dir);
+    if (!d)
+        return;
+    size_t plen = strlen(prefix), elen = strlen(ext);
+    struct dirent *e;
+    while ((e = readdir(d))) {
+        const char *name = e->d_name;
+        size_t len = strlen(name);
+        if (len <= plen + elen || strncmp(name, prefix, plen) || strcmp(name + len - elen, ext))
+            continue;
+        char *end;
+        long pid = strtol(name + plen, &end, 10);
+        if (end == name + plen || *end != '-' || pid <= 0 || pid == (long)getpid())
+            continue;
+        char *end2;
+        strtoul(end + 1, &end2, 10);
+        if (end2 == end + 1 || end2 != name + len - elen)
+            continue;
+        if (kill((pid_t)pid, 0) == 0 || errno != ESRCH)
+            continue; /* running (or not ours to signal): maybe still writing */
+        char stale[4096 + 256];
+        snprintf(stale, sizeof stale, "%s/%s", dir, name);
+        unlink(stale);
+    }
+    closedir(d);
+}
+
 bool
 cg_temp_path_for(const char *path, char *out, size_t out_size)
 {
@@ -57,7 +106,10 @@ cg_temp_path_for(const char *path, char *out, size_t out_size)
     int n = snprintf(out, out_size, "%.*s.%.*s.tmp-%ld-%u%s", dir_len, path,
                      dot ? (int)(dot - base) : (int)strlen(base), base,
                      (long)getpid(), atomic_fetch_add(&counter, 1u), dot ? dot : "");
-    return n > 0 && (size_t)n < out_size;
+    if (n <= 0 || (size_t)n >= out_size)
+        return false;
+    remove_stale_temporaries(path);
+    return true;
 }
 
 bool

@@ -5,8 +5,10 @@
 // bufferView and buffer, every vertex index against the vertex count) because malformed
 // files must give a named error, never a crash. tinygltf is a shared library (Debian's
 // libtinygltf): TINYGLTF_IMPLEMENTATION is not defined here.
+#include <jansson.h>
 #include <tiny_gltf.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <cmath>
@@ -18,6 +20,8 @@
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include <sys/stat.h>
 
 extern "C" {
 #include "cg/error.h"
@@ -43,6 +47,7 @@ struct loader {
     std::vector<bool> mesh_done;
     std::vector<int> texture_map;         // glTF texture -> cg texture or -1
     std::vector<int> explicit_kind;       // per cg mesh: -1 none, else a cg_mesh_kind
+    std::map<int, std::string> image_problem; // image -> why its data cannot be used
 };
 
 std::string
@@ -83,22 +88,56 @@ classify_tinygltf_error(const std::string &e)
     return CG_ERR_GLTF_PARSE;
 }
 
+// What an image's bytes are: PNG and JPEG are the formats glTF 2.0 allows without an
+// extension (tinygltf's stb_image would also take BMP, GIF, ...). Empty when acceptable.
+std::string
+image_format_problem(const tinygltf::Image &image, const unsigned char *bytes, size_t size)
+{
+    bool png = size >= 8 && std::memcmp(bytes, "\x89PNG\r\n\x1a\n", 8) == 0;
+    bool jpeg = size >= 3 && std::memcmp(bytes, "\xFF\xD8\xFF", 3) == 0;
+    if (!png && !jpeg)
+        return "is neither PNG nor JPEG";
+    const std::string &mime = image.mimeType;
+    if ((png && mime == "image/jpeg") || (jpeg && mime == "image/png"))
+        return std::string("is ") + (png ? "PNG" : "JPEG") + " but its mimeType says " + mime;
+    return std::string();
+}
+
 // Images in a bufferView are decoded after loading, once the bufferView is known to lie in
 // its buffer (tinygltf would hand the decoder an unchecked pointer). Images from a URI
-// arrive with their bytes and are decoded at once by tinygltf's own stb_image loader.
+// arrive with their bytes and are decoded at once by tinygltf's own stb_image loader; what
+// goes wrong is kept for convert_textures, which refuses an image a texture uses.
 bool
 deferred_image_loader(tinygltf::Image *image, const int index, std::string *err, std::string *warn,
-                      int req_width, int req_height, const unsigned char *bytes, int size, void *)
+                      int req_width, int req_height, const unsigned char *bytes, int size, void *user)
 {
     if (image->bufferView >= 0)
         return true;
-    if (!tinygltf::LoadImageData(image, index, err, warn, req_width, req_height, bytes, size, nullptr)) {
-        // A texture that cannot be decoded is dropped with a warning, not fatal.
-        if (warn)
-            *warn += "image " + std::to_string(index) + " could not be decoded; ";
+    loader *L = (loader *)user;
+    std::string problem = image_format_problem(*image, bytes, size > 0 ? (size_t)size : 0);
+    if (problem.empty() &&
+        !tinygltf::LoadImageData(image, index, err, warn, req_width, req_height, bytes, size, nullptr))
+        problem = "cannot be decoded";
+    if (!problem.empty()) {
+        L->image_problem[index] = problem;
         image->image.clear();
     }
     return true;
+}
+
+// Buffers and images a file names by URI are read only from regular files of at most 4 GiB
+// (the loader's limit for the file itself): a URI naming a device, a FIFO or /proc would
+// otherwise block the loader or have it allocate whatever size the kernel reports.
+bool
+read_regular_file(std::vector<unsigned char> *out, std::string *err, const std::string &path, void *user)
+{
+    struct stat st;
+    if (stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode) || st.st_size > (off_t)0xFFFFFFFFu) {
+        if (err)
+            *err += "File not found or not a regular file of at most 4 GiB: " + path + "\n";
+        return false;
+    }
+    return tinygltf::ReadWholeFile(out, err, path, user);
 }
 
 size_t
@@ -204,6 +243,16 @@ struct accessor_view {
             return v;
         }
         }
+    }
+
+    // The stored value, integers not normalized (what accessor.min and max describe).
+    double raw(size_t i, int c) const
+    {
+        if (!base || component_type == TINYGLTF_COMPONENT_TYPE_FLOAT)
+            return component(i, c);
+        accessor_view plain = *this;
+        plain.normalized = false;
+        return plain.component(i, c);
     }
 
     uint32_t index(size_t i) const
@@ -363,6 +412,47 @@ view_accessor(loader &L, int index, const std::string &what, std::initializer_li
     return !a.sparse.isSparse || apply_sparse(L, label, a, elem, out);
 }
 
+// glTF-Validator's data checks on an accessor conegraph reads (ACCESSOR_INVALID_FLOAT,
+// ACCESSOR_MIN_MISMATCH, ACCESSOR_MAX_MISMATCH): no NaN or infinity, and declared min and
+// max equal to the elements' smallest and largest (compared as single-precision floats for
+// FLOAT, as the stored integers otherwise). `element` names an element ("vertex").
+bool
+check_accessor_data(loader &L, const std::string &what, int index, const char *element, const accessor_view &v)
+{
+    const tinygltf::Accessor &a = L.model.accessors[(size_t)index];
+    int n = v.components;
+    std::vector<double> lo((size_t)n, INFINITY), hi((size_t)n, -INFINITY);
+    for (size_t i = 0; i < v.count; i++)
+        for (int c = 0; c < n; c++) {
+            double x = v.raw(i, c);
+            if (!std::isfinite(x))
+                return fail(L, CG_ERR_GLTF_NONFINITE,
+                            what + ": " + element + " " + std::to_string(i) + " component " + std::to_string(c) +
+                                " is NaN or infinite (accessor " + std::to_string(index) + ")");
+            lo[(size_t)c] = std::fmin(lo[(size_t)c], x);
+            hi[(size_t)c] = std::fmax(hi[(size_t)c], x);
+        }
+    const std::pair<const char *, const std::vector<double> *> bounds[] = { { "min", &a.minValues },
+                                                                            { "max", &a.maxValues } };
+    for (const auto &b : bounds) {
+        if (b.second->size() != (size_t)n)
+            continue; // absent (the JSON check made sure a present one has n values)
+        const std::vector<double> &actual = b.first[1] == 'i' ? lo : hi;
+        for (int c = 0; c < n; c++) {
+            double declared = (*b.second)[(size_t)c];
+            if (a.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT)
+                declared = (double)(float)declared;
+            if (declared != actual[(size_t)c]) {
+                char msg[256];
+                std::snprintf(msg, sizeof msg, ": accessors[%d].%s[%d] is %.9g, but the %s element's is %.9g", index,
+                              b.first, c, declared, b.first[1] == 'i' ? "smallest" : "largest", actual[(size_t)c]);
+                return fail(L, CG_ERR_GLTF_ACCESSOR, what + msg);
+            }
+        }
+    }
+    return true;
+}
+
 // Triangle list from a primitive's (possibly implicit) index sequence and mode.
 bool
 triangulate(loader &L, const std::string &what, int mode, const std::vector<uint32_t> &seq,
@@ -412,20 +502,33 @@ add_primitive(loader &L, int mesh_index, int prim_index, std::vector<int> *out)
         return fail(L, CG_ERR_GLTF_ACCESSOR, what + ": no POSITION attribute");
     accessor_view pos, nrm, uv, idx;
     if (!view_accessor(L, pos_it->second, what + " POSITION", { TINYGLTF_TYPE_VEC3 },
-                       { TINYGLTF_COMPONENT_TYPE_FLOAT }, &pos))
+                       { TINYGLTF_COMPONENT_TYPE_FLOAT }, &pos) ||
+        !check_accessor_data(L, what + " POSITION", pos_it->second, "vertex", pos))
         return false;
     size_t nv = pos.count;
     auto nrm_it = prim.attributes.find("NORMAL");
     bool has_normals = nrm_it != prim.attributes.end();
-    if (has_normals && !view_accessor(L, nrm_it->second, what + " NORMAL", { TINYGLTF_TYPE_VEC3 },
-                                      { TINYGLTF_COMPONENT_TYPE_FLOAT }, &nrm))
+    if (has_normals && (!view_accessor(L, nrm_it->second, what + " NORMAL", { TINYGLTF_TYPE_VEC3 },
+                                       { TINYGLTF_COMPONENT_TYPE_FLOAT }, &nrm) ||
+                        !check_accessor_data(L, what + " NORMAL", nrm_it->second, "vertex", nrm)))
         return false;
+    // glTF 2.0, 3.7.2.1: normals are unit vectors (to the validator's tolerance, 0.00674).
+    for (size_t v = 0; has_normals && v < nrm.count; v++) {
+        double x = nrm.component(v, 0), y = nrm.component(v, 1), z = nrm.component(v, 2);
+        double len = std::sqrt(x * x + y * y + z * z);
+        if (std::fabs(len - 1) > 0.00674)
+            return fail(L, CG_ERR_GLTF_ACCESSOR,
+                        what + " NORMAL: vertex " + std::to_string(v) + " has a normal of length " +
+                            std::to_string(len) + ", not a unit vector (accessor " + std::to_string(nrm_it->second) +
+                            ")");
+    }
     auto uv_it = prim.attributes.find("TEXCOORD_0");
     bool has_uv = uv_it != prim.attributes.end();
-    if (has_uv && !view_accessor(L, uv_it->second, what + " TEXCOORD_0", { TINYGLTF_TYPE_VEC2 },
+    if (has_uv && (!view_accessor(L, uv_it->second, what + " TEXCOORD_0", { TINYGLTF_TYPE_VEC2 },
                                  { TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
                                    TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT },
-                                 &uv))
+                                 &uv) ||
+                  !check_accessor_data(L, what + " TEXCOORD_0", uv_it->second, "vertex", uv)))
         return false;
     if (has_uv && uv.component_type != TINYGLTF_COMPONENT_TYPE_FLOAT && !uv.normalized)
         return fail(L, CG_ERR_GLTF_ACCESSOR,
@@ -441,11 +544,20 @@ add_primitive(loader &L, int mesh_index, int prim_index, std::vector<int> *out)
         if (!view_accessor(L, prim.indices, what + " indices", { TINYGLTF_TYPE_SCALAR },
                            { TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
                              TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT },
-                           &idx))
+                           &idx) ||
+            !check_accessor_data(L, what + " indices", prim.indices, "index", idx))
             return false;
+        uint32_t restart = idx.component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE    ? 0xFFu
+                           : idx.component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ? 0xFFFFu
+                                                                                           : 0xFFFFFFFFu;
         seq.resize(idx.count);
         for (size_t i = 0; i < idx.count; i++) {
             seq[i] = idx.index(i);
+            if (seq[i] == restart)
+                return fail(L, CG_ERR_GLTF_INDEX_RANGE,
+                            what + ": index " + std::to_string(seq[i]) + " at position " + std::to_string(i) +
+                                " is the primitive restart value, which glTF does not allow (accessor " +
+                                std::to_string(prim.indices) + ")");
             if (seq[i] >= nv)
                 return fail(L, CG_ERR_GLTF_INDEX_RANGE,
                             what + ": index " + std::to_string(seq[i]) + " out of range (accessor " +
@@ -658,6 +770,23 @@ check_node_graph(loader &L)
             }
         }
     }
+    // A node has one parent at most, and the nodes a scene lists are roots (glTF 2.0, 3.5.1).
+    std::vector<int> parent(nodes.size(), -1);
+    for (size_t n = 0; n < nodes.size(); n++)
+        for (int c : nodes[n].children) {
+            if (parent[(size_t)c] >= 0)
+                return fail(L, CG_ERR_GLTF_SCHEMA,
+                            node_label(L, c) + " is a child of both nodes[" + std::to_string(parent[(size_t)c]) +
+                                "] and nodes[" + std::to_string(n) + "] (a node has one parent at most)");
+            parent[(size_t)c] = (int)n;
+        }
+    for (size_t s = 0; s < L.model.scenes.size(); s++)
+        for (int n : L.model.scenes[s].nodes)
+            if (parent[(size_t)n] >= 0)
+                return fail(L, CG_ERR_GLTF_SCHEMA,
+                            "scenes[" + std::to_string(s) + "].nodes lists " + node_label(L, n) +
+                                ", which is a child of nodes[" + std::to_string(parent[(size_t)n]) +
+                                "] (a scene lists root nodes only)");
     return true;
 }
 
@@ -848,18 +977,28 @@ convert_image(loader &L, size_t image_index, cg_texture *t)
             bv.byteOffset > (1ull << 40) || bv.byteOffset + bv.byteLength > M.buffers[(size_t)bv.buffer].data.size())
             return fail(L, CG_ERR_GLTF_BUFFER, what + ": bufferView " + std::to_string(img.bufferView) +
                                                    " runs past the end of its buffer");
+        if (bv.byteStride)
+            return fail(L, CG_ERR_GLTF_BUFFER, what + ": bufferView " + std::to_string(img.bufferView) +
+                                                   " holds an image and must not have a byteStride");
         std::string e, w;
         const unsigned char *bytes = M.buffers[(size_t)bv.buffer].data.data() + bv.byteOffset;
-        if (!tinygltf::LoadImageData(&img, (int)image_index, &e, &w, 0, 0, bytes, (int)bv.byteLength, nullptr))
+        std::string problem = image_format_problem(img, bytes, bv.byteLength);
+        if (problem.empty() &&
+            !tinygltf::LoadImageData(&img, (int)image_index, &e, &w, 0, 0, bytes, (int)bv.byteLength, nullptr))
+            problem = "cannot be decoded";
+        if (!problem.empty()) {
+            L.image_problem[(int)image_index] = problem;
             img.image.clear();
+        }
     }
+    auto problem = L.image_problem.find((int)image_index);
+    if (problem != L.image_problem.end())
+        return fail(L, CG_ERR_IMAGE_FORMAT, what + " " + problem->second);
     int bytes_per = img.bits == 16 ? 2 : 1;
     if (img.image.empty() || img.width <= 0 || img.height <= 0 || img.component < 1 || img.component > 4 ||
         (img.bits != 8 && img.bits != 16) ||
-        img.image.size() < (size_t)img.width * img.height * img.component * bytes_per) {
-        cg_log_warn("%s: %s could not be decoded; its texture is ignored", L.path.c_str(), what.c_str());
-        return true;
-    }
+        img.image.size() < (size_t)img.width * img.height * img.component * bytes_per)
+        return fail(L, CG_ERR_IMAGE_FORMAT, what + " cannot be decoded");
     size_t w = (size_t)img.width, h = (size_t)img.height;
     uint8_t *rgba = (uint8_t *)std::malloc(w * h * 4);
     if (!rgba)
@@ -889,8 +1028,8 @@ convert_textures(loader &L)
     std::vector<int> image_texture(L.model.images.size(), -2); // -2 not yet converted
     for (size_t i = 0; i < L.model.textures.size(); i++) {
         int src = L.model.textures[i].source;
-        if (src < 0 || (size_t)src >= L.model.images.size()) {
-            cg_log_warn("%s: texture %zu has no image conegraph can read; ignored", L.path.c_str(), i);
+        if (src < 0) { // glTF allows a texture whose image comes from an extension only
+            cg_log_warn("%s: texture %zu has no source image conegraph can read; ignored", L.path.c_str(), i);
             continue;
         }
         if (image_texture[(size_t)src] == -2) {
@@ -914,6 +1053,176 @@ convert_textures(loader &L)
         }
         L.texture_map[i] = image_texture[(size_t)src];
     }
+    return true;
+}
+
+// How the mesh primitives use the model's accessors and bufferViews, checked as the
+// validator checks them, for every mesh (whether a node uses it or not): attribute formats
+// (glTF 2.0, 3.7.2.1), equal attribute counts, alignment, one use per accessor and per
+// bufferView, strides where they are needed or forbidden, POSITION bounds, and a
+// TEXCOORD_n for every texture a primitive's material samples with texCoord n.
+enum use_kind { USE_NONE, USE_VERTEX, USE_INDEX };
+
+bool
+attribute_format_ok(const std::string &name, const tinygltf::Accessor &a)
+{
+    bool f = a.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT;
+    bool unorm = a.normalized && (a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                                  a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
+    auto starts = [&](const char *prefix) { return name.compare(0, std::strlen(prefix), prefix) == 0; };
+    if (name == "POSITION" || name == "NORMAL")
+        return f && a.type == TINYGLTF_TYPE_VEC3;
+    if (name == "TANGENT")
+        return f && a.type == TINYGLTF_TYPE_VEC4;
+    if (starts("TEXCOORD_"))
+        return (f || unorm) && a.type == TINYGLTF_TYPE_VEC2;
+    if (starts("COLOR_"))
+        return (f || unorm) && (a.type == TINYGLTF_TYPE_VEC3 || a.type == TINYGLTF_TYPE_VEC4);
+    if (starts("JOINTS_"))
+        return !a.normalized && a.type == TINYGLTF_TYPE_VEC4 &&
+               (a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
+    if (starts("WEIGHTS_"))
+        return (f || unorm) && a.type == TINYGLTF_TYPE_VEC4;
+    return true; // application-specific (_NAME): any format but UNSIGNED_INT, checked by the caller
+}
+
+bool
+check_model(loader &L)
+{
+    const tinygltf::Model &M = L.model;
+    for (size_t i = 0; i < M.accessors.size(); i++) {
+        const tinygltf::Accessor &a = M.accessors[i];
+        if (a.bufferView < 0)
+            continue;
+        std::string what = "accessors[" + std::to_string(i) + "]";
+        const tinygltf::BufferView &bv = M.bufferViews[(size_t)a.bufferView];
+        size_t size = component_size(a.componentType), elem = size * (size_t)component_count(a.type);
+        size_t stride = bv.byteStride ? bv.byteStride : elem;
+        if (a.byteOffset % size || (bv.byteOffset + a.byteOffset) % size)
+            return fail(L, CG_ERR_GLTF_ACCESSOR,
+                        what + ": byteOffset " + std::to_string(a.byteOffset) + " in bufferView " +
+                            std::to_string(a.bufferView) + " (at byte " + std::to_string(bv.byteOffset) +
+                            ") is not aligned to its " + std::to_string(size) + "-byte components");
+        if (stride < elem)
+            return fail(L, CG_ERR_GLTF_ACCESSOR,
+                        what + ": byteStride " + std::to_string(stride) + " of bufferView " +
+                            std::to_string(a.bufferView) + " is shorter than an element (" + std::to_string(elem) +
+                            " bytes)");
+        if ((uint64_t)a.byteOffset + (uint64_t)stride * (a.count - 1) + elem > bv.byteLength)
+            return fail(L, CG_ERR_GLTF_BUFFER,
+                        what + ": " + std::to_string(a.count) + " elements from byte " + std::to_string(a.byteOffset) +
+                            " need more than the " + std::to_string(bv.byteLength) + " bytes of bufferView " +
+                            std::to_string(a.bufferView));
+    }
+    std::vector<int> accessor_use(M.accessors.size(), USE_NONE), view_use(M.bufferViews.size(), USE_NONE);
+    std::vector<std::vector<int>> view_vertex_accessors(M.bufferViews.size());
+    auto use = [&](const std::string &what, int accessor, use_kind kind) {
+        const char *names[] = { "", "vertex attribute", "indices" };
+        int &u = accessor_use[(size_t)accessor];
+        if (u != USE_NONE && u != kind)
+            return fail(L, CG_ERR_GLTF_ACCESSOR,
+                        what + ": accessors[" + std::to_string(accessor) + "] is used as " + names[u] +
+                            " elsewhere, and cannot also be " + names[kind]);
+        u = kind;
+        int view = M.accessors[(size_t)accessor].bufferView;
+        if (view < 0)
+            return true;
+        const tinygltf::BufferView &bv = M.bufferViews[(size_t)view];
+        int &vu = view_use[(size_t)view];
+        int declared = bv.target == TINYGLTF_TARGET_ARRAY_BUFFER           ? USE_VERTEX
+                       : bv.target == TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER ? USE_INDEX
+                                                                           : USE_NONE;
+        if ((vu != USE_NONE && vu != kind) || (declared != USE_NONE && declared != kind))
+            return fail(L, CG_ERR_GLTF_BUFFER,
+                        what + ": bufferView " + std::to_string(view) + " holds " +
+                            names[declared != USE_NONE ? declared : vu] + " data and cannot also hold " + names[kind]);
+        vu = kind;
+        if (kind == USE_INDEX && bv.byteStride)
+            return fail(L, CG_ERR_GLTF_BUFFER,
+                        what + ": bufferView " + std::to_string(view) + " holds indices and must not have a byteStride");
+        if (kind == USE_VERTEX) {
+            const tinygltf::Accessor &a = M.accessors[(size_t)accessor];
+            if ((bv.byteOffset + a.byteOffset) % 4)
+                return fail(L, CG_ERR_GLTF_ACCESSOR,
+                            what + ": accessors[" + std::to_string(accessor) +
+                                "] starts at a byte that is not a multiple of 4 (vertex data must be 4-byte aligned)");
+            auto &list = view_vertex_accessors[(size_t)view];
+            if (std::find(list.begin(), list.end(), accessor) == list.end())
+                list.push_back(accessor);
+            if (list.size() > 1 && !bv.byteStride)
+                return fail(L, CG_ERR_GLTF_BUFFER,
+                            what + ": bufferView " + std::to_string(view) + " holds accessors " +
+                                std::to_string(list[0]) + " and " + std::to_string(accessor) +
+                                " of vertex data, so it needs a byteStride");
+        }
+        return true;
+    };
+    for (size_t m = 0; m < M.meshes.size(); m++)
+        for (size_t p = 0; p < M.meshes[m].primitives.size(); p++) {
+            const tinygltf::Primitive &prim = M.meshes[m].primitives[p];
+            std::string what = "meshes[" + std::to_string(m) + "].primitives[" + std::to_string(p) + "]";
+            size_t count = 0;
+            std::string first;
+            for (const auto &attr : prim.attributes) {
+                const tinygltf::Accessor &a = M.accessors[(size_t)attr.second];
+                std::string here = what + ".attributes." + attr.first;
+                if (a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT || !attribute_format_ok(attr.first, a))
+                    return fail(L, CG_ERR_GLTF_ACCESSOR,
+                                here + ": accessors[" + std::to_string(attr.second) + "] is " + type_name(a.type) +
+                                    " of " + (a.normalized ? "normalized " : "") +
+                                    component_type_name(a.componentType) +
+                                    ", not a format glTF allows for this attribute (glTF 2.0, 3.7.2.1)");
+                if (!first.empty() && a.count != count)
+                    return fail(L, CG_ERR_GLTF_ACCESSOR,
+                                what + ": attribute counts differ (" + first + " has " + std::to_string(count) + ", " +
+                                    attr.first + " " + std::to_string(a.count) + ")");
+                if (first.empty())
+                    first = attr.first, count = a.count;
+                if (attr.first == "POSITION" && (a.minValues.size() != 3 || a.maxValues.size() != 3))
+                    return fail(L, CG_ERR_GLTF_ACCESSOR,
+                                here + ": accessors[" + std::to_string(attr.second) +
+                                    "] must declare min and max (glTF 2.0, 3.7.2.1)");
+                if (!use(here, attr.second, USE_VERTEX))
+                    return false;
+            }
+            if (prim.indices >= 0) {
+                const tinygltf::Accessor &a = M.accessors[(size_t)prim.indices];
+                if (a.type != TINYGLTF_TYPE_SCALAR || a.normalized ||
+                    (a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+                     a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+                     a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT))
+                    return fail(L, CG_ERR_GLTF_ACCESSOR,
+                                what + ".indices: accessors[" + std::to_string(prim.indices) + "] is " +
+                                    type_name(a.type) + " of " + component_type_name(a.componentType) +
+                                    "; expected SCALAR of UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT");
+                if (!use(what + ".indices", prim.indices, USE_INDEX))
+                    return false;
+            }
+            if (prim.material >= 0) {
+                const tinygltf::Material &mat = M.materials[(size_t)prim.material];
+                const std::pair<const char *, const tinygltf::TextureInfo *> infos[] = {
+                    { "pbrMetallicRoughness.baseColorTexture", &mat.pbrMetallicRoughness.baseColorTexture },
+                    { "pbrMetallicRoughness.metallicRoughnessTexture",
+                      &mat.pbrMetallicRoughness.metallicRoughnessTexture },
+                    { "emissiveTexture", &mat.emissiveTexture },
+                };
+                std::vector<std::pair<std::string, int>> uses;
+                for (const auto &info : infos)
+                    if (info.second->index >= 0)
+                        uses.push_back({ info.first, info.second->texCoord });
+                if (mat.normalTexture.index >= 0)
+                    uses.push_back({ "normalTexture", mat.normalTexture.texCoord });
+                if (mat.occlusionTexture.index >= 0)
+                    uses.push_back({ "occlusionTexture", mat.occlusionTexture.texCoord });
+                for (const auto &u : uses)
+                    if (!prim.attributes.count("TEXCOORD_" + std::to_string(u.second)))
+                        return fail(L, CG_ERR_GLTF_ACCESSOR,
+                                    what + ": materials[" + std::to_string(prim.material) + "]." + u.first +
+                                        " samples TEXCOORD_" + std::to_string(u.second) +
+                                        ", which the primitive does not have");
+            }
+        }
     return true;
 }
 
@@ -960,6 +1269,64 @@ scene_roots(loader &L, std::vector<int> *roots)
     return true;
 }
 
+uint32_t
+le32(const unsigned char *p)
+{
+    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
+}
+
+// The GLB container (glTF 2.0, 4.4): a 12-byte header (magic, version 2, total length),
+// a JSON chunk, then at most one BIN chunk, each chunk's length a multiple of 4. Checked as
+// the validator checks it; unknown chunk types after those are skipped, as it allows.
+bool
+check_glb(loader &L, const unsigned char *data, size_t size, const char **json, size_t *json_size,
+          long long *bin_size)
+{
+    if (size < 12)
+        return fail(L, CG_ERR_GLTF_PARSE, "GLB header cut short (" + std::to_string(size) + " of 12 bytes)");
+    uint32_t version = le32(data + 4), length = le32(data + 8);
+    if (version == 1)
+        return fail(L, CG_ERR_GLTF_VERSION, "GLB version 1 (binary glTF 1.0) is not supported (conegraph reads glTF 2.0)");
+    if (version != 2)
+        return fail(L, CG_ERR_GLTF_PARSE, "GLB version " + std::to_string(version) + " (expected 2)");
+    if (length != size)
+        return fail(L, CG_ERR_GLTF_PARSE, "GLB header says " + std::to_string(length) + " bytes, the file has " +
+                                              std::to_string(size));
+    *json = nullptr;
+    *bin_size = 0;
+    size_t at = 12;
+    for (int chunk = 0; at < size; chunk++) {
+        if (size - at < 8)
+            return fail(L, CG_ERR_GLTF_PARSE, "GLB chunk " + std::to_string(chunk) + ": header cut short");
+        uint32_t chunk_length = le32(data + at), type = le32(data + at + 4);
+        std::string what = "GLB chunk " + std::to_string(chunk);
+        if (chunk_length % 4)
+            return fail(L, CG_ERR_GLTF_PARSE, what + ": length " + std::to_string(chunk_length) + " is not a multiple of 4");
+        if (chunk_length > size - at - 8)
+            return fail(L, CG_ERR_GLTF_PARSE, what + ": length " + std::to_string(chunk_length) + " runs past the end of the file");
+        const uint32_t json_type = 0x4E4F534Au, bin_type = 0x004E4942u;
+        if (chunk == 0 && type != json_type)
+            return fail(L, CG_ERR_GLTF_PARSE, what + ": the first chunk must be JSON");
+        if ((type == json_type || type == bin_type) && chunk_length == 0)
+            return fail(L, CG_ERR_GLTF_PARSE, what + ": empty chunk");
+        if (type == json_type && chunk > 0)
+            return fail(L, CG_ERR_GLTF_PARSE, what + ": a second JSON chunk");
+        if (type == bin_type) {
+            if (chunk != 1)
+                return fail(L, CG_ERR_GLTF_PARSE, what + ": the BIN chunk must be the second chunk");
+            *bin_size = chunk_length;
+        }
+        if (type == json_type) {
+            *json = (const char *)data + at + 8;
+            *json_size = chunk_length;
+        }
+        at += 8 + (size_t)chunk_length;
+    }
+    if (!*json)
+        return fail(L, CG_ERR_GLTF_PARSE, "GLB without a JSON chunk");
+    return true;
+}
+
 bool
 load(loader &L)
 {
@@ -968,8 +1335,8 @@ load(loader &L)
     if (!cg_read_file(L.path.c_str(), &data, &size, L.err))
         return false;
     bool binary = size >= 4 && std::memcmp(data, "glTF", 4) == 0;
-    // JSON glTF starts with '{' after white space (and perhaps a UTF-8 byte order mark,
-    // which the JSON parser skips itself).
+    // JSON glTF starts with '{' after white space (a UTF-8 byte order mark is refused by
+    // cg_gltf_check_json with its own message).
     size_t first = size >= 3 && std::memcmp(data, "\xEF\xBB\xBF", 3) == 0 ? 3 : 0;
     while (first < size && std::strchr(" \t\r\n", data[first]))
         first++;
@@ -981,12 +1348,26 @@ load(loader &L)
         std::free(data);
         return fail(L, CG_ERR_GLTF_PARSE, "file larger than 4 GiB");
     }
+    // The JSON is checked before tinygltf sees it (gltf_check.c): tinygltf would take a
+    // mistyped field for an absent one and give up on a required extension with an
+    // unrelated message.
+    const char *json = data;
+    size_t json_size = size;
+    long long bin_size = -1;
+    if ((binary && !check_glb(L, (const unsigned char *)data, size, &json, &json_size, &bin_size)) ||
+        !cg_gltf_check_json(L.path.c_str(), json, json_size, bin_size, L.err)) {
+        std::free(data);
+        return false;
+    }
     std::string base_dir = ".";
     size_t slash = L.path.find_last_of('/');
     if (slash != std::string::npos)
         base_dir = slash == 0 ? "/" : L.path.substr(0, slash);
     tinygltf::TinyGLTF gltf;
-    gltf.SetImageLoader(deferred_image_loader, nullptr);
+    gltf.SetImageLoader(deferred_image_loader, &L);
+    tinygltf::FsCallbacks fs = { &tinygltf::FileExists, &tinygltf::ExpandFilePath, &read_regular_file,
+                                 &tinygltf::WriteWholeFile, nullptr };
+    gltf.SetFsCallbacks(fs);
     std::string terr, twarn;
     bool ok;
     try {
@@ -1007,7 +1388,7 @@ load(loader &L)
     L.mesh_map.assign(L.model.meshes.size(), {});
     L.mesh_done.assign(L.model.meshes.size(), false);
     std::vector<int> roots;
-    return check_extensions(L) && convert_textures(L) && convert_materials(L) && check_node_graph(L) &&
+    return check_extensions(L) && check_model(L) && convert_textures(L) && convert_materials(L) && check_node_graph(L) &&
            scene_roots(L, &roots) && visit_nodes(L, roots);
 }
 
@@ -1226,6 +1607,62 @@ ends_with(const std::string &s, const char *suffix)
     return true;
 }
 
+// tinygltf writes "zfar": 0 for a perspective camera without a far plane, where glTF asks
+// for the member to be left out (and validators reject 0): the JSON tinygltf wrote is
+// edited here, through jansson, before it goes to the file.
+bool
+drop_infinite_zfar(std::string *json_text, bool pretty)
+{
+    json_error_t jerr;
+    json_t *root = json_loadb(json_text->data(), json_text->size(), 0, &jerr);
+    if (!root)
+        return false;
+    json_t *cameras = json_object_get(root, "cameras");
+    for (size_t i = 0; i < json_array_size(cameras); i++) {
+        json_t *p = json_object_get(json_array_get(cameras, i), "perspective");
+        json_t *zfar = json_object_get(p, "zfar");
+        if (zfar && json_number_value(zfar) == 0)
+            json_object_del(p, "zfar");
+    }
+    char *text = json_dumps(root, (pretty ? JSON_INDENT(2) : JSON_COMPACT) | JSON_REAL_PRECISION(17));
+    json_decref(root);
+    if (!text)
+        return false;
+    *json_text = text;
+    std::free(text);
+    return true;
+}
+
+// The same for a .glb from tinygltf: its JSON chunk edited, the container rebuilt.
+bool
+drop_infinite_zfar_glb(std::string *glb)
+{
+    const unsigned char *p = (const unsigned char *)glb->data();
+    if (glb->size() < 20)
+        return false;
+    uint32_t json_length = le32(p + 12);
+    if (json_length > glb->size() - 20)
+        return false;
+    std::string json(glb->data() + 20, json_length), rest(glb->data() + 20 + json_length, glb->size() - 20 - json_length);
+    if (!drop_infinite_zfar(&json, false))
+        return false;
+    while (json.size() % 4)
+        json += ' ';
+    auto put32 = [](std::string &s, uint32_t v) {
+        for (int i = 0; i < 4; i++)
+            s += (char)(v >> (8 * i) & 0xFF);
+    };
+    std::string out = "glTF";
+    put32(out, 2);
+    put32(out, (uint32_t)(12 + 8 + json.size() + rest.size()));
+    put32(out, (uint32_t)json.size());
+    put32(out, 0x4E4F534Au);
+    out += json;
+    out += rest;
+    *glb = std::move(out);
+    return true;
+}
+
 } // namespace
 
 extern "C" bool
@@ -1235,10 +1672,7 @@ cg_scene_export_gltf(const cg_scene *scene, const char *path, cg_error *err)
     bool binary = ends_with(out, ".glb");
     if (!binary && !ends_with(out, ".gltf"))
         return cg_fail(err, CG_ERR_USAGE, "%s: the output must end in .gltf or .glb", path);
-    char temp[4096];
-    if (!cg_temp_path_for(path, temp, sizeof temp))
-        return cg_fail(err, CG_ERR_IO, "%s: path too long", path);
-    bool ok = false;
+    std::string bytes;
     try {
         tinygltf::Model M;
         M.asset.version = "2.0";
@@ -1254,19 +1688,27 @@ cg_scene_export_gltf(const cg_scene *scene, const char *path, cg_error *err)
         if (uses_strength)
             M.extensionsUsed.push_back("KHR_materials_emissive_strength");
         tinygltf::TinyGLTF gltf;
-        ok = gltf.WriteGltfSceneToFile(&M, temp, true, true, !binary, binary);
-        if (!ok)
-            cg_fail(err, CG_ERR_IO, "%s: writing the glTF failed", path);
+        std::ostringstream stream;
+        if (!gltf.WriteGltfSceneToStream(&M, stream, !binary, binary))
+            return cg_fail(err, CG_ERR_IO, "%s: writing the glTF failed", path);
+        bytes = stream.str();
+        if (!(binary ? drop_infinite_zfar_glb(&bytes) : drop_infinite_zfar(&bytes, true)))
+            return cg_fail(err, CG_ERR_IO, "%s: tinygltf wrote a glTF that cannot be read back", path);
     } catch (const std::bad_alloc &) {
-        ok = cg_fail(err, CG_ERR_OUT_OF_MEMORY, "%s: out of memory writing the glTF", path);
+        return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "%s: out of memory writing the glTF", path);
     } catch (const std::exception &e) {
-        ok = cg_fail(err, CG_ERR_IO, "%s: %s", path, e.what());
+        return cg_fail(err, CG_ERR_IO, "%s: %s", path, e.what());
     }
-    if (ok && std::rename(temp, path) != 0)
-        ok = cg_fail(err, CG_ERR_IO, "%s: cannot rename %s into place: %s", path, temp, std::strerror(errno));
-    if (!ok)
-        std::remove(temp);
-    return ok;
+    // Written to a temporary file beside the target and renamed into place (cg/fs.h).
+    cg_atomic_file f;
+    if (!cg_atomic_open(&f, path, err))
+        return false;
+    if (std::fwrite(bytes.data(), 1, bytes.size(), f.fp) != bytes.size()) {
+        int e = errno;
+        cg_atomic_abort(&f);
+        return cg_fail(err, CG_ERR_IO, "%s: write failed: %s", path, std::strerror(e));
+    }
+    return cg_atomic_commit(&f, err);
 }
 
 extern "C" bool

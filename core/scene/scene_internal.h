@@ -4,7 +4,7 @@
  * Declares: cg_scene_add_material, cg_scene_add_mesh, cg_scene_add_instance,
  *           cg_scene_add_light, cg_scene_add_camera, cg_scene_add_texture,
  *           cg_mesh_compute_bounds, cg_mesh_generate_normals, cg_scene_classify_mesh,
- *           cg_builtin_scene_load, cg_gltf_load, cg_copy_name.
+ *           cg_builtin_scene_load, cg_gltf_load, cg_gltf_check_json, cg_copy_name.
  */
 #ifndef CG_SCENE_INTERNAL_H
 #define CG_SCENE_INTERNAL_H
@@ -53,6 +53,15 @@ bool cg_builtin_scene_load(const char *name, const char *query, cg_scene *out, c
 /* Loads a .gltf or .glb file (the adapter decides by magic). Mesh kinds come from the
  * "conegraph_kind" extra when present, else from cg_scene_mesh_is_heightfield. */
 bool cg_gltf_load(const char *path, cg_scene *out, cg_error *err);
+
+/* Checks the JSON of a glTF file (a .gltf, or a .glb's JSON chunk) as the Khronos
+ * glTF-Validator would, before tinygltf reads it (gltf_check.c): JSON types, required
+ * fields, ranges, enumerations, index references, asset.version (2.x; glTF 1.0 named as
+ * such), extensionsRequired, buffers without uri. `glb_bin` is the size of a .glb's BIN chunk
+ * (0 when it has none), -1 for a .gltf. `file` names the file in messages, which give the
+ * JSON path of the field: CG_ERR_GLTF_PARSE, _VERSION, _SCHEMA, _INDEX_RANGE, _BUFFER or
+ * _EXTENSION. */
+bool cg_gltf_check_json(const char *file, const char *json, size_t size, long long glb_bin, cg_error *err);
 
 #ifdef __cplusplus
 }

@@ -22,6 +22,8 @@
     X(CG_ERR_SCENE_UNKNOWN,        2, "unknown scene name")                         \
     X(CG_ERR_SCENE_PARAM,          2, "bad built-in scene parameter")               \
     X(CG_ERR_GLTF_PARSE,           2, "not a valid glTF file")                      \
+    X(CG_ERR_GLTF_VERSION,         2, "unsupported glTF version")                   \
+    X(CG_ERR_GLTF_SCHEMA,          2, "glTF field missing, of the wrong type or against the specification") \
     X(CG_ERR_GLTF_BUFFER,          2, "glTF buffer missing or too short")           \
     X(CG_ERR_GLTF_ACCESSOR,        2, "glTF accessor of the wrong type or count")   \
     X(CG_ERR_GLTF_INDEX_RANGE,     2, "glTF index out of range")                    \

@@ -4,7 +4,8 @@
  *           cg_temp_path_for.
  *
  * Outputs are written to a temporary file beside the target and renamed into place,
- * so that a failure never leaves a partial or clobbered file.
+ * so that a failure never leaves a partial or clobbered file; the next write of the same
+ * target removes temporaries a killed run left.
  */
 #ifndef CG_FS_H
 #define CG_FS_H
@@ -18,7 +19,9 @@
 /* Reads a whole file, NUL-terminated; the caller frees *data. */
 bool cg_read_file(const char *path, char **data, size_t *size, cg_error *err);
 
-/* "DIR/.NAME.tmp-PID-N" beside `path`, for libraries that write by path (OIIO, tinygltf). */
+/* "DIR/.NAME.tmp-PID-N.EXT" beside `path`, for libraries that write by path (OIIO). It also
+ * removes the temporaries of `path` that a killed run left behind (their PID no longer runs),
+ * so that a `kill -9` during a write leaves litter only until the next write of that output. */
 bool cg_temp_path_for(const char *path, char *out, size_t out_size);
 
 typedef struct cg_atomic_file {
