@@ -449,6 +449,7 @@ demo_view_resource(demo *d, const char *source)
         return;
     snprintf(d->view_source, sizeof d->view_source, "%s", source);
     d->view_fresh = true;
+    d->view_notice[0] = '\0';
     printf("view: %s\n", *source ? source : "none");
     fflush(stdout);
 }

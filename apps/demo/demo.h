@@ -98,6 +98,7 @@ typedef struct demo {
     demo_view view;
     char view_source[256];      /* the viewer's resource, "pass.output"; "" for none */
     bool view_fresh;            /* chosen since the last draw: its settings start from the defaults */
+    char view_notice[2048];     /* why the last fit failed; "" when it did not */
     demo_view_settings view_settings;
     /* A slider or drag held: its value until let go, when it is set (one compile per drag). */
     int editing_pass, editing_param;

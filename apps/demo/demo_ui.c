@@ -346,6 +346,19 @@ int_slider(const char *label, int *value, int max)
         *value = (int)lround(v);
 }
 
+/* A fit that cannot read the level back leaves the mapping as it was and says why. */
+static void
+fit(demo *d, GLuint texture, const fg_resource_desc *desc, demo_view_class cls)
+{
+    cg_error why = { 0 };
+    if (!demo_view_fit(texture, desc, cls, &d->view_settings, &why)) {
+        fprintf(stderr, "conegraph-demo: viewer: %s\n", why.message);
+        snprintf(d->view_notice, sizeof d->view_notice, "%s", why.message);
+    } else {
+        d->view_notice[0] = '\0';
+    }
+}
+
 /* The settings, the picture and what it is of. */
 static bool
 view_resource(demo *d, cg_error *err)
@@ -368,8 +381,8 @@ view_resource(demo *d, cg_error *err)
         d->view_fresh = false;
         demo_view_defaults(texture, desc, cls, s);
         /* Depth and integers have no range of their own to show: fit them to what is there. */
-        if (cls != DEMO_VIEW_COLOUR && !demo_view_fit(texture, desc, cls, s, err))
-            return false;
+        if (cls != DEMO_VIEW_COLOUR)
+            fit(d, texture, desc, cls);
     }
     /* Two controls a line, so that the picture keeps most of the window. */
     float width = ui_available_width() * 0.3f;
@@ -416,8 +429,7 @@ view_resource(demo *d, cg_error *err)
     if (cls != DEMO_VIEW_DEPTH)
         ui_same_line();
     if (ui_small_button("Fit"))
-        if (!demo_view_fit(texture, desc, cls, s, err))
-            return false;
+        fit(d, texture, desc, cls);
     ui_tooltip(cls == DEMO_VIEW_COLOUR ? "The exposure that makes the largest value shown white."
                                        : "Black and white at the smallest and largest value shown.");
     if (!demo_view_draw(&d->view, texture, desc, cls, s, err))
@@ -470,6 +482,8 @@ viewer_panel(demo *d, float height, cg_error *err)
         ui_tooltip("Any texture of the compiled graph; kept (never pooled) once chosen.");
         if (d->view_source[0])
             ok = view_resource(d, err);
+        if (d->view_source[0] && d->view_notice[0])
+            ui_text_wrapped("Fit: %s", d->view_notice);
     }
     ui_window_end();
     return ok;

@@ -1,6 +1,7 @@
 /* The resource viewer's drawing: see demo_view.h. */
 #include "demo_view.h"
 
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -177,10 +178,13 @@ demo_view_fit(GLuint texture, const fg_resource_desc *desc, demo_view_class cls,
     clamp_settings(desc, s, &w, &h);
     int components = cls == DEMO_VIEW_DEPTH ? 1 : 4;
     size_t count = (size_t)w * (size_t)h * (size_t)components;
-    /* Floats, uints and ints are all 4 bytes: one buffer for any class. */
+    /* Floats, uints and ints are all 4 bytes: one buffer for any class. GL takes its size as
+     * a GLsizei. */
+    if (count > INT_MAX / 4)
+        return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "a %dx%d level is too large to read back at once", w, h);
     void *texels = malloc(count * 4);
     if (!texels)
-        return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "viewer: %dx%d texels", w, h);
+        return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "out of memory for %dx%d texels", w, h);
     GLenum format = cls == DEMO_VIEW_DEPTH ? GL_DEPTH_COMPONENT
                   : cls == DEMO_VIEW_COLOUR ? GL_RGBA : GL_RGBA_INTEGER;
     GLenum type = cls == DEMO_VIEW_UINT ? GL_UNSIGNED_INT : cls == DEMO_VIEW_INT ? GL_INT : GL_FLOAT;

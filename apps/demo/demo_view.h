@@ -66,7 +66,8 @@ void demo_view_level_size(const fg_resource_desc *desc, int level, int *width, i
 /* Reads the shown level and slice back (the settings clamped to the resource first) and fits
  * the mapping to the values of the shown channels: a colour's exposure so that its largest
  * finite value is white, depth's and integers' lo and hi to their smallest and largest
- * (kept when nothing is finite). False when out of memory. */
+ * (kept when nothing is finite). False, the settings kept, when the level cannot be read
+ * back (out of memory, or more than 2 GiB). */
 bool demo_view_fit(GLuint texture, const fg_resource_desc *desc, demo_view_class cls, demo_view_settings *settings,
                    cg_error *err);
 /* Draws `texture` (described by `desc`, of class cls) into view->shown, resized to the level

@@ -320,7 +320,7 @@ combo_item(void *data, int index, const char **text)
 bool
 ui_combo(const char *label, int *current, const char *const *items, int count)
 {
-    return ImGui::Combo(label, current, combo_item, const_cast<char **>(items), count);
+    return ImGui::Combo(label, current, combo_item, const_cast<void *>(static_cast<const void *>(items)), count);
 }
 
 bool
