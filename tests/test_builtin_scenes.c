@@ -294,6 +294,78 @@ furnace_scales(void **state)
     check_furnace("builtin:furnace?heightfield=1&scale=1e4&albedo=0.5&radiance=2", 1e4, 0.5f, 2, true);
 }
 
+/* The cosine between the sun's travel direction and the normal of the first triangle of mesh `m`
+ * (world space): negative where the sun lights the side the normal points to. */
+static double
+sun_against_normal(const cg_scene *s, int instance)
+{
+    const cg_mesh *m = &s->meshes[s->instances[instance].mesh];
+    double p[3][3], n[3];
+    for (int v = 0; v < 3; v++)
+        world_point(s, instance, m->indices[v], p[v]);
+    triangle_normal(p[0], p[1], p[2], n);
+    const float *d = s->lights[0].direction;
+    return d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
+}
+
+/* The unit scenes of the GI tests: their sun lights what their truths assume, and turning a scene
+ * (yaw, tilt) turns everything together, so that the physics stays the same. */
+static void
+unit_scenes(void **state)
+{
+    (void)state;
+    static const char *const names[] = { "plates", "wallfloor", "thinwall", "boxplane", "terrain" };
+    for (size_t i = 0; i < sizeof names / sizeof *names; i++) {
+        char plain[64], turned[96];
+        snprintf(plain, sizeof plain, "builtin:%s", names[i]);
+        snprintf(turned, sizeof turned, "builtin:%s?yaw=30&tilt=20", names[i]);
+        cg_scene a, b;
+        cg_error err = { 0 };
+        assert_cg_ok(cg_scene_load(plain, &a, &err), &err);
+        assert_cg_ok(cg_scene_load(turned, &b, &err), &err);
+        assert_int_equal(a.light_count, 1);
+        assert_int_equal(a.lights[0].type, CG_LIGHT_DIRECTIONAL);
+        assert_int_equal(a.camera_count, 1);
+        assert_int_equal(cg_scene_triangle_count(&a), cg_scene_triangle_count(&b));
+        assert_int_equal(a.instance_count, b.instance_count);
+        for (int k = 0; k < a.instance_count; k++)
+            assert_float_equal(sun_against_normal(&a, k), sun_against_normal(&b, k), 1e-5);
+        /* The turned scene is not axis-aligned any more: its bounds grew. */
+        double va = 1, vb = 1;
+        for (int k = 0; k < 3; k++) {
+            va *= a.bounds_max[k] - a.bounds_min[k] + 1e-3;
+            vb *= b.bounds_max[k] - b.bounds_min[k] + 1e-3;
+        }
+        assert_true(vb > va);
+        cg_scene_free(&a);
+        cg_scene_free(&b);
+    }
+    cg_scene s;
+    cg_error err = { 0 };
+    /* plates: the source (the second half of the mesh, normal -y) is lit from below, the
+     * receiver's top (normal +y) is not. */
+    assert_cg_ok(cg_scene_load("builtin:plates?h=0.5", &s, &err), &err);
+    const cg_mesh *plates = &s.meshes[s.instances[0].mesh];
+    assert_true(plates->normals[1] > 0.99f && plates->normals[3 * (plates->vertex_count - 1) + 1] < -0.99f);
+    assert_true(s.lights[0].direction[1] > 0.3f);
+    cg_scene_free(&s);
+    /* wallfloor with an emitting wall and no sun: lit by the wall alone. */
+    assert_cg_ok(cg_scene_load("builtin:wallfloor?E=0&emit=2", &s, &err), &err);
+    assert_int_equal(s.light_count, 0);
+    const cg_mesh *wall = find_mesh(&s, "wall"), *floor_ = find_mesh(&s, "floor");
+    assert_non_null(wall);
+    assert_non_null(floor_);
+    assert_float_equal(s.materials[wall->material].emissive_strength, 2.0, 1e-6);
+    assert_float_equal(s.materials[floor_->material].emissive_strength *
+                       s.materials[floor_->material].emissive[0], 0.0, 0.0);
+    cg_scene_free(&s);
+    /* terrain: A = 0 is flat. */
+    assert_cg_ok(cg_scene_load("builtin:terrain?A=0&n=8", &s, &err), &err);
+    assert_float_equal(s.bounds_max[1] - s.bounds_min[1], 0.0, 0.0);
+    assert_int_equal(cg_scene_triangle_count(&s), 2 * 8 * 8);
+    cg_scene_free(&s);
+}
+
 static void
 bad_names_and_parameters(void **state)
 {
@@ -315,6 +387,10 @@ bad_names_and_parameters(void **state)
         "builtin:furnace?albedo=1.5",        "builtin:furnace?scale=0",
         "builtin:furnace?radiance=nan",      "builtin:furnace?scale=-1",
         "builtin:furnace?heightfield=2",     "builtin:furnace?heightfield=0.5",
+        "builtin:plates?h=0",                "builtin:wallfloor?gamma=90",
+        "builtin:thinwall?back=2",           "builtin:thinwall?view=2",
+        "builtin:boxplane?L=1",              "builtin:terrain?n=1",
+        "builtin:terrain?tilt=91",           "builtin:plates?albedo=1.1",
     };
     for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
         cg_error_clear(&err);
@@ -450,6 +526,7 @@ main(void)
         cmocka_unit_test(openworld_has_heightfield_complex_and_space_under),
         cmocka_unit_test(cornell_box),
         cmocka_unit_test(furnace_scales),
+        cmocka_unit_test(unit_scenes),
         cmocka_unit_test(bad_names_and_parameters),
         cmocka_unit_test(export_then_load_back),
         cmocka_unit_test(export_failures_leave_nothing),

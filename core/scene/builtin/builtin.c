@@ -10,6 +10,11 @@ static const cg_builtin_scene *const builtin_scenes[] = {
     &cg_builtin_openworld,
     &cg_builtin_cornell,
     &cg_builtin_furnace,
+    &cg_builtin_plates,
+    &cg_builtin_wallfloor,
+    &cg_builtin_thinwall,
+    &cg_builtin_boxplane,
+    &cg_builtin_terrain,
 };
 #define BUILTIN_COUNT (sizeof builtin_scenes / sizeof builtin_scenes[0])
 

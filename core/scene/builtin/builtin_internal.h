@@ -5,7 +5,9 @@
  *           bs_rng_range, bs_value_noise, bs_fbm, mesh_builder, mb_vertex, mb_triangle,
  *           mb_flat_triangle, mb_quad, mb_box, mb_free, mb_commit, bs_identity, bs_unit_cube,
  *           bs_trs_matrix, bs_add_material, bs_look_at_world, bs_add_perspective_camera,
- *           bs_normalize3, BS_PI, and one cg_builtin_scene per scene file.
+ *           bs_normalize3, BS_PI, the unit scenes' bs_unit_frame, bs_unit_frame_make, bs_unit_sun,
+ *           bs_unit_camera, bs_unit_material, bs_rect_grid, BS_UNIT_PARAMS, and one cg_builtin_scene
+ *           per scene file.
  *
  * A scene is one file defining a cg_builtin_scene; builtin.c lists them. Every scene is a
  * pure function of its parameters (no global state), so the same query gives a
@@ -34,6 +36,11 @@ typedef struct cg_builtin_scene {
 extern const cg_builtin_scene cg_builtin_openworld;
 extern const cg_builtin_scene cg_builtin_cornell;
 extern const cg_builtin_scene cg_builtin_furnace;
+extern const cg_builtin_scene cg_builtin_plates;
+extern const cg_builtin_scene cg_builtin_wallfloor;
+extern const cg_builtin_scene cg_builtin_thinwall;
+extern const cg_builtin_scene cg_builtin_boxplane;
+extern const cg_builtin_scene cg_builtin_terrain;
 
 /* ---------------------------------------------------------------- query parameters */
 
@@ -102,5 +109,31 @@ void bs_look_at_world(const double eye[3], const double target[3], float world[1
 bool bs_add_perspective_camera(cg_scene *scene, const char *name, const double eye[3], const double target[3],
                                float yfov, float znear, float zfar, cg_error *err);
 void bs_normalize3(float v[3]);
+
+/* ---------------------------------------------------------------- unit scenes (unit.c)
+ *
+ * Small scenes with known answers for the GI accuracy tests (docs/vct.md). Each takes yaw=DEG and
+ * tilt=DEG: the whole scene (geometry, sun, camera) turned about +y by yaw, then about +z by tilt,
+ * so that the physics stays the same and only its orientation against the voxel axes changes; and
+ * albedo=A, every surface's. The first three entries of a unit scene's bs_param table. */
+#define BS_UNIT_PARAMS                                                                            \
+    { "yaw", -360, 360, 0, false, 0, false }, { "tilt", -90, 90, 0, false, 0, false },            \
+    { "albedo", 0, 1, 0.8, false, 0, false }
+
+typedef struct bs_unit_frame {
+    double r[3][3]; /* rotation, row-major: world = r * local */
+    float m[16];    /* the same as a column-major instance matrix */
+} bs_unit_frame;
+
+void bs_unit_frame_make(bs_unit_frame *f, double yaw_deg, double tilt_deg);
+/* A white directional light of irradiance E travelling along local `dir`; none when E = 0. */
+bool bs_unit_sun(cg_scene *scene, const bs_unit_frame *f, const double dir[3], double irradiance, cg_error *err);
+/* A perspective camera "view" at local `eye` looking at local `at`, local +y up. */
+bool bs_unit_camera(cg_scene *scene, const bs_unit_frame *f, const double eye[3], const double at[3], float yfov,
+                    float znear, float zfar, cg_error *err);
+/* A grey material of `albedo` emitting radiance `emission` (0: none). */
+int bs_unit_material(cg_scene *scene, const char *name, double albedo, double emission, cg_error *err);
+/* The rectangle with corner c and edges u, v (counter-clockwise seen from u x v) as n x n quads. */
+void bs_rect_grid(mesh_builder *b, const double c[3], const double u[3], const double v[3], int n);
 
 #endif
