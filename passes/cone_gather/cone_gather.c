@@ -1,13 +1,16 @@
 /* passes/cone_gather: indirect light by voxel cone tracing through a mipped 3D lightmap
  * (VCT paper 3.2; hybrid eq. 3-4 and 8 for the weights and the level of detail).
  *
- * Inputs: position, normal (G-buffer), volume (a mip3d'd voxelize radiance), region
- * (voxelize's block). Without a volume the pass has nothing to do and composite adapts.
+ * Inputs: position, normal (G-buffer), volume + region: a mip3d'd voxelize radiance and voxelize's
+ * block, optionally with mip3d's directional chains px .. nz; or a voxel_light pass's radiance,
+ * sides, normals and region (surface voxels, docs/vct.md). Without a volume the pass has nothing
+ * to do and composite adapts.
  * Outputs
  *   radiance    RGBA16F: rgb = sum_k W_k L_k, the incident radiance integral E_i/pi that
  *               composite multiplies by the albedo; a = ambient visibility (AO).
  *   specular    RGBA16F (param specular): radiance along the mirror cone, a = its opacity.
  *   visibility  R16F (param shadow_cone): transmittance of a cone towards one light.
+ *   reads       R32F (param count_reads): volume reads (textureLod calls) of the pixel's diffuse cones.
  */
 #include <math.h>
 #include <stdio.h>
@@ -52,15 +55,15 @@ static const fg_param_desc cone_gather_params[] = {
     { .name = "shadow_aperture", .type = FG_PARAM_FLOAT, .default_value = 10, .min = 0.1, .max = 90,
       .step = 1, .active_when = "shadow_cone",
       .doc = "shadow cone: full apex angle in degrees" },
+    { .name = "count_reads", .type = FG_PARAM_BOOL,
+      .doc = "also output 'reads': the volume reads of each pixel's diffuse cones (a cost measure that does "
+             "not depend on the machine's load)" },
 };
 
 typedef struct cone_gather_state {
     cgp_gather gather;      /* its block: CG_CONE_GATHER_BLOCK */
-    bool specular, shadow_cone, anisotropic;
+    bool specular, shadow_cone, count_reads;
 } cone_gather_state;
-
-/* mip3d's directional chains (anisotropic = true), texture units CG_UNIT_ANISO + 0..5. */
-static const char *const direction_names[6] = {"px", "nx", "py", "ny", "pz", "nz"};
 
 static bool
 cone_gather_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
@@ -68,27 +71,13 @@ cone_gather_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
     const fg_resource_desc *position =
         fg_declare_input(decl, "position", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, true);
     fg_declare_input(decl, "normal", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, true);
-    const fg_resource_desc *volume = fg_declare_input(decl, "volume", FG_TEXTURE_3D, FG_ACCESS_SAMPLED, false);
-    const fg_resource_desc *region = fg_declare_input(decl, "region", FG_BUFFER, FG_ACCESS_UNIFORM, false);
-    int directions = 0;
-    for (int d = 0; d < 6; d++)
-        directions += fg_declare_input(decl, direction_names[d], FG_TEXTURE_3D, FG_ACCESS_SAMPLED, false) != NULL;
-    if (directions != 0 && directions != 6)
-        return cg_fail(err, CG_ERR_GRAPH_MISSING_INPUT,
-                       "pass '%s': the anisotropic inputs px nx py ny pz nz go together (a mip3d pass's "
-                       "outputs with anisotropic = true); %d of 6 are present", fg_pass_name(pass), directions);
+    const fg_resource_desc *volume, *region;
+    if (!cgp_gather_declare_volume(pass, decl, &volume, &region, err))
+        return false;
     if (!volume) {
         fg_declare_nothing_to_do(decl, "no 3D lightmap (input 'volume' absent)");
         return true;
     }
-    if (!region)
-        return cg_fail(err, CG_ERR_GRAPH_MISSING_INPUT,
-                       "pass '%s': input 'volume' needs input 'region' (a voxelize pass's output 'region')",
-                       fg_pass_name(pass));
-    if (region->buffer_bytes < sizeof(cg_volume_block))
-        return cg_fail(err, CG_ERR_GRAPH_INCOMPATIBLE,
-                       "pass '%s': input 'region' holds %zu bytes; a voxelize 'region' holds %zu",
-                       fg_pass_name(pass), region->buffer_bytes, sizeof(cg_volume_block));
     if (!position)
         return true;
     fg_resource_desc out = cgp_image_like(pass, position, GL_RGBA16F);
@@ -99,6 +88,10 @@ cone_gather_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
         out.format = GL_R16F;
         fg_declare_output(decl, "visibility", &out, FG_ACCESS_IMAGE_STORE);
     }
+    if (fg_param_bool(pass, "count_reads")) {
+        out.format = GL_R32F;
+        fg_declare_output(decl, "reads", &out, FG_ACCESS_IMAGE_STORE);
+    }
     return true;
 }
 
@@ -107,11 +100,10 @@ cone_gather_prepare(fg_pass *pass, cone_gather_state *s, cg_error *err)
 {
     s->specular = fg_param_bool(pass, "specular");
     s->shadow_cone = fg_param_bool(pass, "shadow_cone");
-    s->anisotropic = fg_resource(pass, "px") != NULL;
+    s->count_reads = fg_param_bool(pass, "count_reads");
     char defines[128];
     snprintf(defines, sizeof defines, "%s%s%s", s->specular ? "#define SPECULAR\n" : "",
-             s->shadow_cone ? "#define SHADOW_CONE\n" : "",
-             s->anisotropic ? "#define CG_CONE_ANISOTROPIC\n" : "");
+             s->shadow_cone ? "#define SHADOW_CONE\n" : "", s->count_reads ? "#define CG_CONE_COUNT_READS\n" : "");
     return cgp_gather_prepare(s, pass, &s->gather, "cone_gather/cone_gather.comp", defines,
                               sizeof(cg_cone_gather_block), err);
 }
@@ -138,17 +130,13 @@ cone_gather_execute(fg_pass *pass, cone_gather_state *s, cg_error *err)
     cgp_gather_begin(pass, &s->gather, &block, sizeof block, fg_texture(pass, "volume"), fg_buffer(pass, "region"));
     if (frame->gpu_scene)
         cg_gpu_scene_bind_lights(frame->gpu_scene);
-    for (int d = 0; s->anisotropic && d < 6; d++) {
-        glBindTextureUnit(CG_UNIT_ANISO + (GLuint)d, fg_texture(pass, direction_names[d]));
-        glBindSampler(CG_UNIT_ANISO + (GLuint)d, s->gather.volume_sampler);
-    }
     if (s->specular)
         glBindImageTexture(1, fg_texture(pass, "specular"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     if (s->shadow_cone)
         glBindImageTexture(2, fg_texture(pass, "visibility"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
+    if (s->count_reads)
+        glBindImageTexture(3, fg_texture(pass, "reads"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
     cgp_gather_end(pass);
-    for (int d = 0; s->anisotropic && d < 6; d++)
-        glBindSampler(CG_UNIT_ANISO + (GLuint)d, 0);
     return true;
 }
 

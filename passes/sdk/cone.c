@@ -6,6 +6,7 @@
 
 #include <math.h>
 #include <stddef.h>
+#include <stdio.h>
 
 static const int cone_set_sizes[] = { CGP_CONE_SET_SIZES };
 
@@ -127,6 +128,23 @@ cgp_cone_set_of_pass(const fg_pass *pass, cgp_cone_set *out, cg_error *err)
 }
 
 void
+cgp_cone_block_fill_march(const cgp_cone_set *set, double step, double start_offset, double max_distance,
+                          double lod_bias, cg_cone_set_block *out)
+{
+    *out = (cg_cone_set_block){
+        .count = {set->count, 0, 0, 0},
+        .march = {(float)step, (float)start_offset, (float)max_distance, (float)lod_bias},
+    };
+    for (int k = 0; k < set->count; k++) {
+        const cgp_cone *c = &set->cones[k];
+        for (int i = 0; i < 3; i++)
+            out->cones[k][i] = c->direction[i];
+        out->cones[k][3] = c->weight;
+        out->apertures[k][0] = (float)tan(c->half_angle);
+    }
+}
+
+void
 cgp_cone_block_fill(const fg_pass *pass, const cgp_cone_set *set, cg_cone_set_block *out)
 {
     double aperture = fg_param_float(pass, "aperture");
@@ -152,11 +170,92 @@ cgp_cone_upload(const fg_pass *pass, const cgp_cone_set *set, GLuint buffer)
     cgp_uniform_upload(buffer, CG_BINDING_CONES, &block, sizeof block);
 }
 
+static const char *const direction_names[6] = {"px", "nx", "py", "ny", "pz", "nz"};
+static const char *const surface_names[2] = {"sides", "normals"};
+
+bool
+cgp_gather_declare_volume(fg_pass *pass, fg_declare *decl, const fg_resource_desc **volume,
+                          const fg_resource_desc **region, cg_error *err)
+{
+    *volume = fg_declare_input(decl, "volume", FG_TEXTURE_3D, FG_ACCESS_SAMPLED, false);
+    *region = fg_declare_input(decl, "region", FG_BUFFER, FG_ACCESS_UNIFORM, false);
+    int directions = 0, surface = 0;
+    for (int d = 0; d < 6; d++)
+        directions += fg_declare_input(decl, direction_names[d], FG_TEXTURE_3D, FG_ACCESS_SAMPLED, false) != NULL;
+    for (int d = 0; d < 2; d++)
+        surface += fg_declare_input(decl, surface_names[d], FG_TEXTURE_3D, FG_ACCESS_SAMPLED, false) != NULL;
+    if (directions != 0 && directions != 6)
+        return cg_fail(err, CG_ERR_GRAPH_MISSING_INPUT,
+                       "pass '%s': the anisotropic inputs px nx py ny pz nz go together (a mip3d pass's "
+                       "outputs with anisotropic = true); %d of 6 are present", fg_pass_name(pass), directions);
+    if (surface == 1)
+        return cg_fail(err, CG_ERR_GRAPH_MISSING_INPUT,
+                       "pass '%s': the surface inputs 'sides' and 'normals' go together (a voxel_light pass's "
+                       "outputs, with its 'radiance' as 'volume')", fg_pass_name(pass));
+    if (directions && surface)
+        return cg_fail(err, CG_ERR_GRAPH_MISSING_INPUT,
+                       "pass '%s': the anisotropic inputs px .. nz and the surface inputs sides, normals belong to "
+                       "two different volumes; connect one", fg_pass_name(pass));
+    if ((directions || surface) && !*volume)
+        return cg_fail(err, CG_ERR_GRAPH_MISSING_INPUT, "pass '%s': input '%s' needs input 'volume'",
+                       fg_pass_name(pass), directions ? "px" : "sides");
+    if (*volume && !*region)
+        return cg_fail(err, CG_ERR_GRAPH_MISSING_INPUT,
+                       "pass '%s': input 'volume' needs input 'region' (a voxelize or voxel_light pass's output "
+                       "'region')", fg_pass_name(pass));
+    if (*region && (*region)->buffer_bytes < sizeof(cg_volume_block))
+        return cg_fail(err, CG_ERR_GRAPH_INCOMPATIBLE,
+                       "pass '%s': input 'region' holds %zu bytes; a voxelize 'region' holds %zu",
+                       fg_pass_name(pass), (*region)->buffer_bytes, sizeof(cg_volume_block));
+    return true;
+}
+
+cgp_volume_model
+cgp_gather_volume_model(const fg_pass *pass)
+{
+    if (fg_resource(pass, "px"))
+        return CGP_VOLUME_ANISOTROPIC;
+    if (fg_resource(pass, "sides"))
+        return CGP_VOLUME_SURFACE;
+    return CGP_VOLUME_RADIANCE;
+}
+
+const char *
+cgp_gather_volume_define(cgp_volume_model model)
+{
+    switch (model) {
+    case CGP_VOLUME_ANISOTROPIC: return "#define CG_CONE_ANISOTROPIC\n";
+    case CGP_VOLUME_SURFACE: return "#define CG_CONE_SURFACE\n";
+    case CGP_VOLUME_RADIANCE: break;
+    }
+    return "";
+}
+
+void
+cgp_gather_bind_volume(const fg_pass *pass, cgp_volume_model model, GLuint sampler, bool unbind)
+{
+    if (model == CGP_VOLUME_ANISOTROPIC)
+        for (int d = 0; d < 6; d++) {
+            glBindTextureUnit(CG_UNIT_ANISO + (GLuint)d, unbind ? 0 : fg_texture(pass, direction_names[d]));
+            glBindSampler(CG_UNIT_ANISO + (GLuint)d, unbind ? 0 : sampler);
+        }
+    if (model == CGP_VOLUME_SURFACE) {
+        static const GLuint units[2] = {CG_UNIT_SIDES, CG_UNIT_NORMALS};
+        for (int d = 0; d < 2; d++) {
+            glBindTextureUnit(units[d], unbind ? 0 : fg_texture(pass, surface_names[d]));
+            glBindSampler(units[d], unbind ? 0 : sampler);
+        }
+    }
+}
+
 bool
 cgp_gather_prepare(void *state, const fg_pass *pass, cgp_gather *g, const char *shader, const char *defines,
                    size_t gather_bytes, cg_error *err)
 {
-    if (!cgp_cone_set_of_pass(pass, &g->set, err) || !cgp_compute_program(state, shader, defines, &g->program, err))
+    g->model = cgp_gather_volume_model(pass);
+    char all[1024];
+    snprintf(all, sizeof all, "%s%s", defines ? defines : "", cgp_gather_volume_define(g->model));
+    if (!cgp_cone_set_of_pass(pass, &g->set, err) || !cgp_compute_program(state, shader, all, &g->program, err))
         return false;
     g->volume_sampler = cgp_sampler_volume(state);
     g->cone_block = cgp_uniform_buffer(state, sizeof(cg_cone_set_block));
@@ -174,6 +273,8 @@ cgp_gather_begin(const fg_pass *pass, const cgp_gather *g, const void *block, si
     glBindBufferBase(GL_UNIFORM_BUFFER, CG_BINDING_VOLUME, region);
     glBindTextureUnit(CG_UNIT_VOLUME, volume);
     glBindSampler(CG_UNIT_VOLUME, g->volume_sampler);
+    if (volume)
+        cgp_gather_bind_volume(pass, g->model, g->volume_sampler, false);
     glBindTextureUnit(CG_UNIT_POSITION, fg_texture(pass, "position"));
     glBindTextureUnit(CG_UNIT_NORMAL, fg_texture(pass, "normal"));
     glBindImageTexture(0, fg_texture(pass, "radiance"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
@@ -185,6 +286,7 @@ cgp_gather_end(const fg_pass *pass)
     const fg_resource_desc *out = fg_resource(pass, "radiance");
     cgp_dispatch_2d(out->width, out->height);
     glBindSampler(CG_UNIT_VOLUME, 0);
+    cgp_gather_bind_volume(pass, cgp_gather_volume_model(pass), 0, true);
     glUseProgram(0);
 }
 

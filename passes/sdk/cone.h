@@ -2,8 +2,9 @@
  *
  * Declares: CGP_CONE_MAX, CGP_CONE_SET_SIZES, cgp_cone, cgp_cone_set, cgp_cone_set_make,
  *           cgp_cone_set_sizes, cgp_cone_set_valid_size, cgp_cone_frame, cgp_cone_set_of_pass,
- *           cgp_cone_block_fill, cgp_cone_upload, cgp_gather, cgp_gather_prepare, cgp_gather_begin,
- *           cgp_gather_end.
+ *           cgp_cone_block_fill, cgp_cone_block_fill_march, cgp_cone_upload, cgp_volume_model,
+ *           cgp_gather_declare_volume, cgp_gather_volume_model, cgp_gather_volume_define, cgp_gather,
+ *           cgp_gather_prepare, cgp_gather_begin, cgp_gather_bind_volume, cgp_gather_end.
  *
  * Shared by every cone tracer (the VCT gather and the hybrid tracer), so it lives in the
  * pass SDK; core knows nothing of cones.
@@ -66,8 +67,32 @@ void cgp_cone_frame(const float n[3], float t[3], float b[3]);
 bool cgp_cone_set_of_pass(const fg_pass *pass, cgp_cone_set *out, cg_error *err);
 /* The block of a set and the pass's march parameters. */
 void cgp_cone_block_fill(const fg_pass *pass, const cgp_cone_set *set, cg_cone_set_block *out);
+/* The same with the march given: step (fraction of the diameter), start offset (voxels), max
+ * distance (m, 0: the volume's diagonal), lod bias; each cone its own aperture. */
+void cgp_cone_block_fill_march(const cgp_cone_set *set, double step, double start_offset, double max_distance,
+                               double lod_bias, cg_cone_set_block *out);
 /* Fills the block and uploads it to `buffer` (cgp_uniform_buffer of its size), bound at CG_BINDING_CONES. */
 void cgp_cone_upload(const fg_pass *pass, const cgp_cone_set *set, GLuint buffer);
+
+/* The 3D lightmap a gather reads, by what is connected beside its `volume`
+ * (shaders/common/cone_trace.glsl): */
+typedef enum cgp_volume_model {
+    CGP_VOLUME_RADIANCE,     /* voxelize's radiance model through mip3d: `volume` alone */
+    CGP_VOLUME_ANISOTROPIC,  /* the same with mip3d's directional chains `px nx py ny pz nz` */
+    CGP_VOLUME_SURFACE       /* voxel_light's surface voxels: `volume` (its radiance), `sides`, `normals` */
+} cgp_volume_model;
+
+/* Declares a gather's optional 3D lightmap: the inputs `volume` and `region` (a voxelize or
+ * voxel_light pass's block), and with them the six directional chains or `sides` and `normals`.
+ * *volume and *region are the inputs' descriptors, NULL when absent. Fails
+ * (CG_ERR_GRAPH_MISSING_INPUT) when some of a model's inputs are connected and not the others, or
+ * both models' are, and when `volume` comes without `region`; CG_ERR_GRAPH_INCOMPATIBLE when
+ * `region` is smaller than a CG_VOLUME_BLOCK. */
+bool cgp_gather_declare_volume(fg_pass *pass, fg_declare *decl, const fg_resource_desc **volume,
+                               const fg_resource_desc **region, cg_error *err);
+/* The model of a compiled pass's inputs, and the shader define it needs ("" for the radiance model). */
+cgp_volume_model cgp_gather_volume_model(const fg_pass *pass);
+const char *cgp_gather_volume_define(cgp_volume_model model);
 
 /* What every cone gather's state holds, and its frame around the dispatch: the G-buffer inputs
  * `position` and `normal` at CG_UNIT_POSITION and CG_UNIT_NORMAL, the 3D lightmap at
@@ -75,20 +100,26 @@ void cgp_cone_upload(const fg_pass *pass, const cgp_cone_set *set, GLuint buffer
  * block at CG_BINDING_GATHER, and the output image `radiance` (RGBA16F) at image unit 0. */
 typedef struct cgp_gather {
     cgp_cone_set set;
+    cgp_volume_model model;
     GLuint program;
     GLuint volume_sampler;
     GLuint cone_block;      /* CG_CONE_SET_BLOCK */
     GLuint gather_block;    /* the pass's block */
 } cgp_gather;
 
-/* In prepare(): the cone set of the parameter `cones`, the compute program `shader` with
- * `defines`, the sampler and the blocks (`gather_bytes` for the pass's), owned by `state`. */
+/* In prepare(): the cone set of the parameter `cones`, the volume model of the inputs, the compute
+ * program `shader` with `defines` (and the model's), the sampler and the blocks (`gather_bytes` for
+ * the pass's), owned by `state`. */
 bool cgp_gather_prepare(void *state, const fg_pass *pass, cgp_gather *g, const char *shader, const char *defines,
                         size_t gather_bytes, cg_error *err);
 /* In execute(): uses the program, uploads the cone set and the pass's block (`gather_bytes` at
- * `block`), binds the G-buffer, `volume` with its `region` block (either may be 0) and `radiance`. */
+ * `block`), binds the G-buffer, `volume` with its `region` block (either may be 0), the model's
+ * other volumes (cgp_gather_bind_volume) and `radiance`. */
 void cgp_gather_begin(const fg_pass *pass, const cgp_gather *g, const void *block, size_t gather_bytes,
                       GLuint volume, GLuint region);
+/* Binds the model's volumes beside `volume` (the directional chains at CG_UNIT_ANISO.., or `sides`
+ * and `normals` at CG_UNIT_SIDES and CG_UNIT_NORMALS) with `sampler`; with unbind, unbinds them. */
+void cgp_gather_bind_volume(const fg_pass *pass, cgp_volume_model model, GLuint sampler, bool unbind);
 /* Dispatches over `radiance` and unbinds what cgp_gather_begin bound. */
 void cgp_gather_end(const fg_pass *pass);
 

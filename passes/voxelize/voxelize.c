@@ -1,17 +1,28 @@
-/* passes/voxelize: the scene's direct light voxelized into a 3D lightmap (VCT paper 3.1).
+/* passes/voxelize: the scene voxelized into a cubic volume (VCT paper 3.1), in one of two models.
  *
- * Outputs
+ * model = radiance (the VCT paper's): the scene's direct light in a 3D lightmap.
  *   radiance      3D, resolution^3, RGBA16F or RGBA8, full mip chain declared (mip3d fills
  *                 levels 1..): premultiplied outgoing diffuse radiance (direct light, shadowed
  *                 through the optional shadow map, plus emission) and opacity in alpha.
+ * model = surface (docs/vct.md, "surface voxels"): the geometry alone, level 0, which a voxel_light
+ *   pass lights (it reads no light, so it can be kept while the light changes):
+ *   albedo        RGBA8: mean albedo of the voxel's fragments, a = 1 where a surface is.
+ *   coverage      RGBA8: per axis i, the largest |n_i| / |n|_1 of its fragments' planes, rounded up
+ *                 to the next 1/255: the coverage a path along axis i meets crossing them.
+ *   normal        RGBA8_SNORM: xyz the mean of the fragments' unit normals as authored (|N| <= 1,
+ *                 1 for one plane), w the mean of n . (x - c) / voxel over its fragments, the
+ *                 offset of their plane from the voxel's centre c, in voxels.
+ *   emission      RGBA16F: mean emitted radiance (rgb), a = 1 where a surface is.
+ * Both models:
  *   region        std140 block CG_VOLUME_BLOCK (common/blocks.h) for common/volume.glsl: where
  *                 the volume lies and how its values decode (consumers bind it at CG_BINDING_VOLUME).
- *   accumulation  3D R32UI, resolution^2 x 4 resolution: the fixed-point sums and counts of
- *                 the fragments (shaders/voxelize/voxelize.frag), transient working memory,
+ *   accumulation  3D R32UI, resolution^2 x (4 or 14) resolution: the fixed-point sums and counts
+ *                 of the fragments (shaders/voxelize/voxelize.frag), transient working memory,
  *                 declared so that the memory report counts it.
- * Inputs (optional, together): shadow (depth) and shadow_matrix (buffer) of a shadow_map pass.
+ * Inputs (optional, together, model = radiance): shadow (depth) and shadow_matrix (buffer) of a
+ * shadow_map pass.
  *
- * Cleared and rebuilt every frame, so the lightmap follows moving lights and geometry.
+ * Cleared and rebuilt every frame, so the volume follows moving lights and geometry.
  */
 #include <float.h>
 #include <math.h>
@@ -31,13 +42,25 @@
 #define FRAGMENT_HEADROOM 1024.0
 
 enum { FORMAT_RGBA8, FORMAT_RGBA16F };
+enum { MODEL_RADIANCE, MODEL_SURFACE };
+
+/* Accumulation slabs of the surface model (shaders/voxelize/voxelize.frag): count, albedo RGB,
+ * emission RGB, normal xyz, plane offset, coverage xyz. */
+#define SURFACE_SLABS 14
+/* Fragments one voxel may sum without overflowing 32 bits, surface model. */
+#define SURFACE_HEADROOM 4096.0
 enum { REGION_MESHES, REGION_SCENE, REGION_EXPLICIT };
 
 static const fg_param_desc voxelize_params[] = {
+    { .name = "model", .type = FG_PARAM_ENUM, .default_value = MODEL_RADIANCE, .choices = "radiance|surface",
+      .doc = "radiance: the direct light and opacity of each voxel, lit per fragment (VCT paper 3.1; "
+             "mip3d, cone_gather); surface: the geometry alone (albedo, mean normal and plane, per-axis "
+             "coverage, emission), lit by a voxel_light pass (docs/vct.md)" },
     { .name = "resolution", .type = FG_PARAM_INT, .default_value = 128, .min = 16, .max = 512,
       .power_of_two = true,
       .doc = "voxels per edge of the cubic volume at level 0" },
     { .name = "format", .type = FG_PARAM_ENUM, .default_value = FORMAT_RGBA16F, .choices = "rgba8|rgba16f",
+      .active_when = "model=radiance",
       .doc = "texel format: rgba8 as in the VCT paper (radiance over the volume's maximum) or rgba16f" },
     { .name = "meshes", .type = FG_PARAM_ENUM, .default_value = CG_MESHES_ALL, .choices = "all|complex|heightfield",
       .doc = "which meshes to voxelize (the hybrid method voxelizes only complex meshes)" },
@@ -71,6 +94,7 @@ static const fg_param_desc voxelize_params[] = {
 };
 
 typedef struct voxelize_state {
+    bool surface;
     GLuint program;
     GLuint resolve;
     GLuint find_max;        /* RGBA8 only: the largest radiance, for the stored scale */
@@ -139,19 +163,33 @@ voxelize_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
         fg_declare_nothing_to_do(decl, "no mesh passes the 'meshes' filter (or all are degenerate)");
         return true;
     }
-    fg_resource_desc radiance = {
-        .kind = FG_TEXTURE_3D,
-        .format = fg_param_enum(pass, "format") == FORMAT_RGBA8 ? GL_RGBA8 : GL_RGBA16F,
-        .width = resolution, .height = resolution, .depth = resolution,
-        .levels = fg_mip_levels(resolution, resolution, resolution),
-        .gi = true,
-    };
-    fg_declare_output(decl, "radiance", &radiance, FG_ACCESS_IMAGE_STORE);
+    bool surface = fg_param_enum(pass, "model") == MODEL_SURFACE;
+    if (surface) {
+        /* Level 0 only: voxel_light lights it into volumes of its own, which it mips. */
+        static const char *const names[4] = {"albedo", "coverage", "normal", "emission"};
+        static const GLenum formats[4] = {GL_RGBA8, GL_RGBA8, GL_RGBA8_SNORM, GL_RGBA16F};
+        for (int i = 0; i < 4; i++) {
+            fg_resource_desc geometry = {
+                .kind = FG_TEXTURE_3D, .format = formats[i],
+                .width = resolution, .height = resolution, .depth = resolution, .levels = 1, .gi = true,
+            };
+            fg_declare_output(decl, names[i], &geometry, FG_ACCESS_IMAGE_STORE);
+        }
+    } else {
+        fg_resource_desc radiance = {
+            .kind = FG_TEXTURE_3D,
+            .format = fg_param_enum(pass, "format") == FORMAT_RGBA8 ? GL_RGBA8 : GL_RGBA16F,
+            .width = resolution, .height = resolution, .depth = resolution,
+            .levels = fg_mip_levels(resolution, resolution, resolution),
+            .gi = true,
+        };
+        fg_declare_output(decl, "radiance", &radiance, FG_ACCESS_IMAGE_STORE);
+    }
     fg_resource_desc block = cgp_buffer_desc(sizeof(cg_volume_block));
     fg_declare_output(decl, "region", &block, FG_ACCESS_TRANSFER | FG_ACCESS_STORAGE);
     fg_resource_desc accumulation = {
         .kind = FG_TEXTURE_3D, .format = GL_R32UI,
-        .width = resolution, .height = resolution, .depth = 4 * resolution, .levels = 1,
+        .width = resolution, .height = resolution, .depth = (surface ? SURFACE_SLABS : 4) * resolution, .levels = 1,
         .gi = true,
     };
     fg_declare_output(decl, "accumulation", &accumulation, FG_ACCESS_IMAGE_STORE | FG_ACCESS_TRANSFER);
@@ -171,12 +209,19 @@ static bool
 voxelize_prepare(fg_pass *pass, voxelize_state *s, cg_error *err)
 {
     cgp_state_on_destroy(s, voxelize_cleanup);
-    s->format = fg_resource(pass, "radiance")->format;
-    char defines[64];
-    snprintf(defines, sizeof defines, "#define FORMAT %s\n", s->format == GL_RGBA8 ? "rgba8" : "rgba16f");
+    s->surface = fg_param_enum(pass, "model") == MODEL_SURFACE;
     s->max_buffer = cgp_buffer(s, sizeof(GLuint), NULL, GL_DYNAMIC_STORAGE_BIT);
     s->fbo = cgp_framebuffer(s);
     cgp_no_shadow_create(s, &s->no_shadow);
+    if (s->surface) {
+        s->format = GL_RGBA16F;
+        return cgp_graphics_program(s, "voxelize/voxelize.vert", "voxelize/voxelize.geom", "voxelize/voxelize.frag",
+                                    "#define SURFACE\n", &s->program, err) &&
+               cgp_compute_program(s, "voxelize/resolve.comp", "#define SURFACE\n", &s->resolve, err);
+    }
+    s->format = fg_resource(pass, "radiance")->format;
+    char defines[64];
+    snprintf(defines, sizeof defines, "#define FORMAT %s\n", s->format == GL_RGBA8 ? "rgba8" : "rgba16f");
     return cgp_graphics_program(s, "voxelize/voxelize.vert", "voxelize/voxelize.geom", "voxelize/voxelize.frag", NULL,
                                 &s->program, err) &&
            cgp_compute_program(s, "voxelize/resolve.comp", defines, &s->resolve, err) &&
@@ -309,14 +354,25 @@ voxelize_execute(fg_pass *pass, voxelize_state *s, cg_error *err)
      * radiance itself (so a dump of the volume reads in scene units) unless the bound nears
      * the half-float maximum (65504); RGBA8 stores radiance / (the largest radiance in the
      * volume), found on the GPU by a first resolve dispatch. A scene with no light and no
-     * emission is black. */
+     * emission is black. The surface model stores no radiance; its scale is published for the
+     * voxel_light pass that lights it, whose volumes hold up to 3 x the radiance (premultiplied by
+     * the coverage sum) plus its bounces: 2048 keeps that below the half-float maximum. */
     double fixed_scale = bound > 0.0 ? 4294967295.0 / (bound * FRAGMENT_HEADROOM) : 1.0;
     double radiance_scale = 1.0;
-    if (s->format != GL_RGBA8 && bound > 32768.0)
-        radiance_scale = bound / 32768.0;
+    double scale_limit = s->surface ? 2048.0 : 32768.0;
+    if (s->format != GL_RGBA8 && bound > scale_limit)
+        radiance_scale = bound / scale_limit;
+    /* Surface model: quantities in [-1, 1] (albedo, normals, offsets in voxels, coverage) at 2^32 /
+     * (2 SURFACE_HEADROOM) per unit, so that SURFACE_HEADROOM fragments sum within a signed 32-bit
+     * integer; emission per unit of the brightest emission. */
+    double emission = 0.0;
+    for (int m = 0; m < scene->material_count; m++)
+        for (int k = 0; k < 3; k++)
+            emission = fmax(emission, (double)scene->materials[m].emissive[k] * scene->materials[m].emissive_strength);
+    double unit_fixed = 2147483647.0 / SURFACE_HEADROOM;
+    double emission_fixed = emission > 0.0 ? 4294967295.0 / (emission * SURFACE_HEADROOM) : 1.0;
 
     GLuint accum = fg_texture(pass, "accumulation");
-    GLuint radiance = fg_texture(pass, "radiance");
     const GLuint zero = 0;
     glClearTexImage(accum, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
@@ -335,8 +391,11 @@ voxelize_execute(fg_pass *pass, voxelize_state *s, cg_error *err)
     glUniform4f(8, (float)region.origin[0], (float)region.origin[1], (float)region.origin[2],
                 (float)region.voxel);
     glUniform1i(9, resolution);
-    glUniform1f(10, (float)fixed_scale);
     glUniform1i(12, fg_param_bool(pass, "conservative") ? 1 : 0);
+    if (s->surface)
+        glUniform4f(13, (float)unit_fixed, (float)emission_fixed, 0.0f, 0.0f);
+    else
+        glUniform1f(10, (float)fixed_scale);
     cg_gpu_scene_bind_lights(frame->gpu_scene);
     cgp_bind_shadow(pass, &s->no_shadow, 2);
     glBindImageTexture(0, accum, 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
@@ -348,12 +407,29 @@ voxelize_execute(fg_pass *pass, voxelize_state *s, cg_error *err)
     const cg_volume_block block = {
         .origin_voxel = {(float)region.origin[0], (float)region.origin[1], (float)region.origin[2],
                          (float)region.voxel},
-        .info = {(float)resolution, (float)fg_resource(pass, "radiance")->levels, (float)radiance_scale, 0.0f},
+        .info = {(float)resolution, (float)fg_mip_levels(resolution, resolution, resolution), (float)radiance_scale,
+                 0.0f},
     };
     GLuint region_buffer = fg_buffer(pass, "region");
     glNamedBufferSubData(region_buffer, 0, sizeof block, &block);
 
     GLuint groups = (GLuint)((resolution + 3) / 4);
+    if (s->surface) {
+        static const char *const names[4] = {"albedo", "coverage", "normal", "emission"};
+        static const GLenum formats[4] = {GL_RGBA8, GL_RGBA8, GL_RGBA8_SNORM, GL_RGBA16F};
+        glUseProgram(s->resolve);
+        glUniform1i(0, resolution);
+        glUniform4f(4, (float)unit_fixed, (float)emission_fixed, 0.0f, 0.0f);
+        glBindImageTexture(0, accum, 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
+        for (int i = 0; i < 4; i++)
+            glBindImageTexture(1 + (GLuint)i, fg_texture(pass, names[i]), 0, GL_TRUE, 0, GL_WRITE_ONLY, formats[i]);
+        glDispatchCompute(groups, groups, groups);
+        for (int i = 0; i < 5; i++)
+            glBindImageTexture((GLuint)i, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
+        glUseProgram(0);
+        return true;
+    }
+    GLuint radiance = fg_texture(pass, "radiance");
     bool from_max = s->format == GL_RGBA8;
     glBindImageTexture(0, accum, 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_RESOLVE_MAX, s->max_buffer);
@@ -382,8 +458,9 @@ voxelize_execute(fg_pass *pass, voxelize_state *s, cg_error *err)
 }
 
 CGP_PASS(voxelize, CGP_PARAMS(voxelize_params),
-         "Voxelizes the outgoing diffuse radiance of the scene's direct light (shadowed through "
-         "the optional shadow map) plus emission into a cubic 3D lightmap, opacity in alpha "
-         "(VCT paper 3.1): dominant-axis projection in a geometry shader, conservative coverage "
-         "by triangle dilation and an exact triangle/voxel test, fragments averaged by "
-         "fixed-point atomic sums. Rebuilt every frame.");
+         "Voxelizes the scene into a cubic volume (VCT paper 3.1): model radiance, the outgoing "
+         "diffuse radiance of the direct light (shadowed through the optional shadow map) plus "
+         "emission, opacity in alpha; model surface, the geometry a voxel_light pass lights "
+         "(albedo, mean normal and plane offset, per-axis coverage, emission). Dominant-axis "
+         "projection in a geometry shader, conservative coverage by triangle dilation and an "
+         "exact triangle/voxel test, fragments averaged by fixed-point atomic sums. Rebuilt every frame.");

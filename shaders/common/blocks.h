@@ -4,7 +4,8 @@
  *
  * Provides: CG_BINDING_* and CG_UNIT_* numbers; the member lists CG_*_BLOCK(M, A); in C the
  *           structs cg_shadow_block, cg_volume_block, cg_heightmap_block, cg_hsat_info_block,
- *           cg_cone_set_block, cg_cone_gather_block, cg_hybrid_gather_block; in GLSL the
+ *           cg_cone_set_block, cg_cone_gather_block, cg_hybrid_gather_block,
+ *           cg_voxel_list_block; in GLSL the
  *           declarations CG_UNIFORM_BLOCK() and CG_STORAGE_BLOCK() that consumers write once.
  *
  * A block is a member list, CG_NAME_BLOCK(M, A), that calls M(type, name) for each member and
@@ -33,6 +34,7 @@
 #define CG_BINDING_HSAT_ROWS 6          /* hsat/sat.comp: the row sums of a level */
 #define CG_BINDING_RESOLVE_MAX 4        /* voxelize/resolve.comp: the largest radiance (RGBA8) */
 #define CG_BINDING_RESOLVE_REGION 5     /* voxelize/resolve.comp: writes the radiance scale of `region` */
+#define CG_BINDING_VOXEL_LIST 4         /* voxel_light: the occupied voxels (CG_VOXEL_LIST_BLOCK) */
 
 /* ---- uniform blocks (UBO bindings) */
 #define CG_BINDING_SHADOW 2             /* CG_SHADOW_BLOCK, a shadow_map pass's `matrix` */
@@ -48,6 +50,8 @@
 #define CG_UNIT_ANISO 3                 /* 3..8: mip3d's directional chains px nx py ny pz nz */
 #define CG_UNIT_LIGHTMAP2D 9            /* the mipped 2D lightmap */
 #define CG_UNIT_HSAT 10                 /* the HSAT tables */
+#define CG_UNIT_SIDES 11                /* surface voxels (voxel_light): w beta, w delta, -, alpha_y */
+#define CG_UNIT_NORMALS 12              /* surface voxels (voxel_light): w N, alpha_z */
 
 /* The most cones a diffuse set holds (sdk/cone.h: CGP_CONE_MAX). */
 #define CG_CONE_SET_MAX 16
@@ -94,6 +98,12 @@
     M(vec4, tan_half)     /* x: specular cone, y: shadow cone */                                  \
     M(ivec4, shadow)      /* x: index of the light the shadow cone points at */
 
+/* voxel_light's occupied voxels, std430: this header, then one uint per voxel (its level-0 index,
+ * x | y << 10 | z << 20); the header is an indirect dispatch (glDispatchComputeIndirect reads x, y,
+ * z: groups of 64 voxels) and w the voxels found; 16 bytes before the list. */
+#define CG_VOXEL_LIST_BLOCK(M, A)                                                                 \
+    M(uvec4, dispatch)    /* x groups of 64 voxels, y = z = 1, w voxels listed */
+
 /* hybrid_gather's switches; 32 bytes. */
 #define CG_HYBRID_GATHER_BLOCK(M, A)                                                              \
     M(ivec4, maps)        /* x: a 3D lightmap is bound */                                          \
@@ -128,6 +138,7 @@ CG_C_BLOCK(cg_hsat_info_block, CG_HSAT_INFO_BLOCK, 272);
 CG_C_BLOCK(cg_cone_set_block, CG_CONE_SET_BLOCK, 544);
 CG_C_BLOCK(cg_cone_gather_block, CG_CONE_GATHER_BLOCK, 48);
 CG_C_BLOCK(cg_hybrid_gather_block, CG_HYBRID_GATHER_BLOCK, 32);
+CG_C_BLOCK(cg_voxel_list_block, CG_VOXEL_LIST_BLOCK, 16);
 
 #else
 /* ---- GLSL: the declaration of a block, written once by its consumer */

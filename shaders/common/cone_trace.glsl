@@ -14,6 +14,15 @@
 // premultiplied colour (alpha_s * c_s). The march stops when a reaches CG_CONE_OPAQUE, past
 // t_max, or once the footprint has left the volume (VCT paper 3.2.1). hybrid_gather's 3D steps (its Case 1) are cg_cone_step(),
 // the very step of this march, and its gather is cg_cone_accumulate(), as cg_cone_gather_diffuse().
+//
+// Three volume models, chosen by the defines of the program (passes/sdk/cone.c):
+//   none           voxelize's radiance model through mip3d: one isotropic sample per step.
+//   CG_CONE_ANISOTROPIC  the same with mip3d's six directional chains (Crassin et al. 2011).
+//   CG_CONE_SURFACE      voxel_light's surface voxels (docs/vct.md): one-sided voxels with a mean
+//                  normal and plane, per-axis coverage; the lit side by which side of the voxel's
+//                  plane the cone's origin lies on, the cone's own plane left out, one level per
+//                  surface crossing (CgConeState). Three reads per occupied sample, one per empty one.
+// CG_CONE_COUNT_READS counts the volume reads of every march in cg_cone_reads (a cost measure).
 #ifndef CG_COMMON_CONE_TRACE_GLSL
 #define CG_COMMON_CONE_TRACE_GLSL
 
@@ -106,6 +115,27 @@ cg_cone_composite(inout vec4 acc, vec4 s)
     acc.a += (1.0 - acc.a) * alpha;
 }
 
+#ifdef CG_CONE_COUNT_READS
+float cg_cone_reads = 0.0;  // volume reads (textureLod calls) of this invocation's marches
+#define CG_CONE_READ(n) cg_cone_reads += float(n)
+#else
+#define CG_CONE_READ(n)
+#endif
+
+// What a march carries from one step to the next (cg_cone_step). With CG_CONE_SURFACE: the level
+// a surface crossing is held at, and the span of the previous step (the midpoint weights).
+struct CgConeState {
+    float held_lod;     // the level may not grow past this while the last sample read coverage
+    float prev_span;    // the previous step's span; < 0 before the first step
+    float gained;       // coverage added since the current surface crossing began
+};
+
+CgConeState
+cg_cone_state()
+{
+    return CgConeState(1e30, -1.0, 0.0);
+}
+
 #ifdef CG_CONE_ANISOTROPIC
 // Six directional chains of levels 1.. (mip3d with anisotropic = true): level k of cg_aniso_px
 // is level k + 1 as seen by a cone travelling along +x, and so on (Crassin et al. 2011).
@@ -115,6 +145,70 @@ layout(binding = CG_UNIT_ANISO + 2) uniform sampler3D cg_aniso_py;
 layout(binding = CG_UNIT_ANISO + 3) uniform sampler3D cg_aniso_ny;
 layout(binding = CG_UNIT_ANISO + 4) uniform sampler3D cg_aniso_pz;
 layout(binding = CG_UNIT_ANISO + 5) uniform sampler3D cg_aniso_nz;
+#endif
+
+#ifdef CG_CONE_SURFACE
+// voxel_light's surface voxels besides the radiance at CG_UNIT_VOLUME (passes/voxel_light):
+//   radiance (A) = (w L_lit, w)          w = alpha_x + alpha_y + alpha_z
+//   sides (B)    = (w beta, w D, 0, alpha_y)
+//   normals (C)  = (w N, alpha_z)
+// premultiplied by w, so that trilinear and mip averages of rgb over w are w-weighted means:
+// L_lit the radiance of the lit side, beta the other side's luminance as a fraction of it, N the
+// mean normal of the lit side (|N| <= 1: 1 where every facet faces one way), D its plane's constant,
+// N . (x - m) = D voxel for the points x of the plane, m the volume's centre (in level-0 voxels: the
+// interpolated N and D of a plane are its own at any point, whatever the sample's position among
+// the cells), and alpha_i the coverage a path along axis i meets crossing them, per cell of path.
+layout(binding = CG_UNIT_SIDES) uniform sampler3D cg_surface_sides;
+layout(binding = CG_UNIT_NORMALS) uniform sampler3D cg_surface_normals;
+
+// One sample of the surface voxels at level `lod` (cells `cell` wide) at world p, for a cone from
+// `origin` travelling along unit d and leaving `surface` (as in cg_cone_step). Returns premultiplied
+// (L sigma, sigma), sigma the coverage per cell of path.
+//   Coverage: sigma = sum_i |d_i| alpha_i. A plane with normal n leaves a slab of voxels |n|_1 thick
+//     along n; a path along d crosses it over |n|_1 / |n . d| voxels, meeting |d_i| |n_i| / |n|_1 per
+//     voxel from axis i: 1 in all where the signs of d_i n_i agree, more (saturated by the
+//     compositing) where they do not. A surface seen edge-on covers nothing, one across the path
+//     covers the whole cell: no solid cubes.
+//   Lit side: e = N . (origin - m) - D voxel is how far the origin lies in front of the mean
+//     plane; the cone sees the lit side's radiance on the side of the plane the lit facets face, the
+//     other side's (beta L_lit) behind it, blended over half a cell (the plane's uncertainty within
+//     one): f = 1/2 + 1/2 clamp(e / (cell / 2), -1, 1), L = L_lit (f + (1 - f) beta). The sign of
+//     N . d would ask which way the axis points instead, but a cone rising over a terrain still
+//     sees the terrain's top through the lower part of its footprint.
+//   The cone's own surface: facets coplanar with the surface the cone leaves have no projected area
+//     as seen from it, so a cell whose mean plane is that surface's (normals within about 25
+//     degrees, the origin at its own height above the cell's plane within half a cell) loses its
+//     coverage in proportion to the match (m, times the coherence |N|). This replaces the level cap
+//     of the other models, which narrows the cones near the horizon (docs/vct.md).
+// `centre`: the volume's centre m.
+vec4
+cg_cone_sample_surface(sampler3D radiance, vec3 uvw, float lod, float cell, float voxel, vec3 centre, vec3 d,
+                       vec3 origin, vec4 surface)
+{
+    vec4 a = textureLod(radiance, uvw, lod);
+    CG_CONE_READ(1);
+    if (a.a <= 0.0)
+        return vec4(0.0);   // empty: one read
+    vec4 b = textureLod(cg_surface_sides, uvw, lod);
+    vec4 c = textureLod(cg_surface_normals, uvw, lod);
+    CG_CONE_READ(2);
+    float w = a.a;
+    vec3 alpha = vec3(max(w - b.a - c.a, 0.0), b.a, c.a);
+    float cover = dot(abs(d), alpha);
+    vec3 n = c.rgb / w;
+    float coherence = length(n);
+    float plane = b.g / w * voxel;
+    float e = dot(n, origin - centre) - plane;
+    float lit = 0.5 + 0.5 * clamp(e / (0.5 * cell), -1.0, 1.0);
+    if (surface.w >= 0.0 && coherence > 0.0) {
+        float facing = abs(dot(n, surface.xyz)) / coherence;
+        float height = abs(abs(e) / coherence - surface.w);
+        float m = smoothstep(0.85, 0.95, facing) * (1.0 - smoothstep(0.5, 1.0, height / cell)) * coherence;
+        cover *= 1.0 - m;
+    }
+    vec3 l = a.rgb * mix(b.r / w, 1.0, lit) / w;
+    return vec4(l * cover, cover);
+}
 #endif
 
 // One filtered sample of the volume at level `lod` for a cone travelling along unit `d`.
@@ -132,15 +226,19 @@ cg_cone_sample(sampler3D volume, vec3 uvw, float lod, vec3 d)
     vec4 s = vec4(0.0);
     if (lod > 0.0) {
         float k = max(lod - 1.0, 0.0);
+        CG_CONE_READ(3);
         vec3 w = abs(d);
         s = w.x * (d.x >= 0.0 ? textureLod(cg_aniso_px, uvw, k) : textureLod(cg_aniso_nx, uvw, k)) +
             w.y * (d.y >= 0.0 ? textureLod(cg_aniso_py, uvw, k) : textureLod(cg_aniso_ny, uvw, k)) +
             w.z * (d.z >= 0.0 ? textureLod(cg_aniso_pz, uvw, k) : textureLod(cg_aniso_nz, uvw, k));
     }
-    if (lod < 1.0)
+    if (lod < 1.0) {
+        CG_CONE_READ(1);
         s = mix(textureLod(volume, uvw, 0.0), s, lod);
+    }
     return s;
 #else
+    CG_CONE_READ(1);
     return textureLod(volume, uvw, lod);
 #endif
 }
@@ -186,23 +284,79 @@ struct CgConeSample {
 };
 
 // One step of a cone through the 3D lightmap, the step both tracers take (cone_gather's march
-// below and hybrid_gather's Case 1): the matched level of the footprint plus the lod bias,
-// capped near the surface the cone leaves, the sample at `at.position` (the directional chains
-// with CG_CONE_ANISOTROPIC), composited by cg_cone_composite_span over its span. `surface` =
-// (unit normal of the surface the cone leaves, height of c.origin above it), or w < 0 for a
-// cone with no surface behind it. A sample reads the voxels within one voxel of its own (the
-// trilinear support), and the surface's voxels at a level with voxels s wide have centres up
+// below and hybrid_gather's Case 1), at `at.position` for a footprint `at.diameter` wide: the matched
+// level of the footprint plus the lod bias, the sample (the directional chains with
+// CG_CONE_ANISOTROPIC, the surface voxels with CG_CONE_SURFACE), composited by
+// cg_cone_composite_span over its span. `surface` = (unit normal of the surface the cone leaves,
+// height of c.origin above it), or w < 0 for a cone with no surface behind it. The sample's colour
+// is multiplied by `scale` (1 for a march that scales its sum once, v.radiance_scale for one that
+// mixes in other radiance). `state` carries what one step tells the next (cg_cone_state() before the
+// first). Returns the span: the path length the step stands for, by which the march must advance.
+//
+// The radiance models (two-sided voxels): a sample reads the voxels within one voxel of its own
+// (the trilinear support), and the surface's voxels at a level with voxels s wide have centres up
 // to s / 2 off its plane, along the normal n at most 1.5 s |n|_1 away: below that height the
 // sample would read the cone's own surface (self-occlusion and self-illumination: black
 // ceilings, bright lit floors). So the level is capped at the coarsest whole level whose
 // support stays above the plane, and the span at one voxel of that level (step 0.5), which
-// keeps cg_cone_composite_span exact. The sample's colour is multiplied by `scale` (1 for a
-// march that scales its sum once, v.radiance_scale for one that mixes in other radiance).
-// Returns the span: the path length the step stands for, by which the march must advance.
+// keeps cg_cone_composite_span exact.
+//
+// The surface model (one-sided voxels that leave their own plane out, cg_cone_sample_surface): no
+// cap. Instead each surface crossing is integrated at one level: while the previous sample read
+// coverage the level may not grow (a crossing whose level grows half-way meets two different
+// profiles of the wall, and the coverage that has no margin here, exactly 1 across a plane, falls
+// short: up to 30% at oblique angles), the steps inside are half a cell, and each sample is weighted
+// by the mean of the spans before and after it (the midpoint rule on uneven steps), so that the
+// trilinear tent, a partition of unity, sums to 1 across the crossing (docs/vct.md).
 float
-cg_cone_step(sampler3D volume, CgVolume v, CgCone c, vec4 surface, CgConeSample at, float scale, inout vec4 acc)
+cg_cone_step(sampler3D volume, CgVolume v, CgCone c, vec4 surface, CgConeSample at, float scale,
+             inout CgConeState state, inout vec4 acc)
 {
     float lod = cg_cone_level(v, at.diameter) + c.lod_bias;
+#ifdef CG_CONE_SURFACE
+    lod = min(clamp(lod, 0.0, v.levels - 1.0), state.held_lod);
+    float cell = v.voxel_size * exp2(lod);
+    float span = min(c.step_factor * min(at.diameter, 2.0 * cell), cell);
+    vec3 centre = v.origin + 0.5 * cg_volume_extent(v);
+    vec4 s = cg_cone_sample_surface(volume, cg_volume_uvw(v, at.position), lod, cell, v.voxel_size, centre,
+                                    c.direction, c.origin, surface);
+    if (s.a > 0.0)
+        span = min(span, 0.5 * cell);
+    float weight = state.prev_span < 0.0 ? span : 0.5 * (state.prev_span + span);
+    if (s.a <= 0.0) {
+        state.gained = 0.0;     // between surfaces: the next coverage starts a new crossing
+        state.prev_span = span;
+        state.held_lod = 1e30;
+        return span;
+    }
+    if (state.gained <= 0.0 && state.prev_span > 0.0) {
+        // Entering a surface: the level has grown since the previous sample, which read nothing
+        // at its finer level, but the tent of this level may begin up to a cell before this
+        // sample. Read the path behind again at this level, up to two previous spans back, so
+        // that the crossing is integrated at one level from where its tent begins.
+        float h = state.prev_span;
+        vec4 back[2];
+        for (int k = 0; k < 2; k++) {
+            vec3 q = at.position - c.direction * (h * float(k + 1));
+            back[k] = k == 0 || back[0].a > 0.0
+                          ? cg_cone_sample_surface(volume, cg_volume_uvw(v, q), lod, cell, v.voxel_size, centre,
+                                                   c.direction, c.origin, surface)
+                          : vec4(0.0);
+        }
+        for (int k = 1; k >= 0; k--)
+            if (back[k].a > 0.0) {
+                float before = acc.a;
+                cg_cone_composite_span(acc, vec4(back[k].rgb * scale, back[k].a), h, cell);
+                state.gained += acc.a - before;
+            }
+    }
+    state.prev_span = span;
+    state.held_lod = lod;
+    float before = acc.a;
+    cg_cone_composite_span(acc, vec4(s.rgb * scale, s.a), weight, cell);
+    state.gained += acc.a - before;
+    return span;
+#else
     if (surface.w >= 0.0) {
         // A fractional level blends in the next coarser level, whose support is twice as
         // deep: that one must clear the plane, hence the 1 below the bound.
@@ -215,6 +369,7 @@ cg_cone_step(sampler3D volume, CgVolume v, CgCone c, vec4 surface, CgConeSample 
     vec4 s = cg_cone_sample(volume, cg_volume_uvw(v, at.position), lod, c.direction);
     cg_cone_composite_span(acc, vec4(s.rgb * scale, s.a), span, cell);
     return span;
+#endif
 }
 
 // The VCT march of one cone from a surface (`surface` as in cg_cone_step): steps along the
@@ -227,6 +382,7 @@ cg_cone_trace_surface(sampler3D volume, CgVolume v, CgCone c, vec4 surface)
     float extent = cg_volume_extent(v);
     float t = c.t_start;
     float rise = dot(c.direction, surface.xyz);
+    CgConeState state = cg_cone_state();
     // The loop bound is a safety net against a zero step; steps grow with t, so real
     // marches end far earlier (about log(t_max / t_start) / log(1 + 2 step tan) steps).
     for (int i = 0; i < 4096 && t < c.t_max && acc.a < CG_CONE_OPAQUE; i++) {
@@ -235,7 +391,7 @@ cg_cone_trace_surface(sampler3D volume, CgVolume v, CgCone c, vec4 surface)
         float reach = 0.5 * at.diameter / extent;
         if (any(lessThan(uvw, vec3(-reach))) || any(greaterThan(uvw, vec3(1.0 + reach))))
             break;  // the whole footprint is outside the volume: nothing more to gather
-        t += cg_cone_step(volume, v, c, surface, at, 1.0, acc);
+        t += cg_cone_step(volume, v, c, surface, at, 1.0, state, acc);
     }
     acc.rgb *= v.radiance_scale;
     return acc;

@@ -20,6 +20,9 @@ layout(binding = 1, rgba16f) writeonly uniform image2D u_specular;
 #ifdef SHADOW_CONE
 layout(binding = 2, r16f) writeonly uniform image2D u_visibility;
 #endif
+#ifdef CG_CONE_COUNT_READS
+layout(binding = 3, r32f) writeonly uniform image2D u_reads;
+#endif
 
 // The cone set and march: cg_cone_set_block (common/cone_trace.glsl); the mirror and shadow cones:
 CG_UNIFORM_BLOCK(CgConeGather, cg_cone_gather_block, CG_BINDING_GATHER, CG_CONE_GATHER_BLOCK);
@@ -32,6 +35,9 @@ main()
         return;
     vec3 position, n;
     vec4 diffuse = vec4(0.0, 0.0, 0.0, 1.0);
+#ifdef CG_CONE_COUNT_READS
+    float diffuse_reads = 0.0;
+#endif
     vec4 specular = vec4(0.0);
     float visibility = 1.0;
     if (cg_gather_surface(pixel, position, n)) {
@@ -43,6 +49,9 @@ main()
         // The surface every cone leaves: no sample may read its voxels (cg_cone_trace_surface).
         vec4 surface = vec4(n, march.start_offset * v.voxel_size);
         diffuse = cg_cone_gather_diffuse(cg_gather_volume, v, origin, frame, t_max, surface.w);
+#ifdef CG_CONE_COUNT_READS
+        diffuse_reads = cg_cone_reads;    // the diffuse cones' alone
+#endif
 #ifdef SPECULAR
         vec3 view = normalize(position - cg_cone_gather_block.camera.xyz);
         CgCone mirror = CgCone(origin, reflect(view, n), cg_cone_gather_block.tan_half.x, v.voxel_size, t_max,
@@ -65,5 +74,8 @@ main()
 #endif
 #ifdef SHADOW_CONE
     imageStore(u_visibility, pixel, vec4(visibility));
+#endif
+#ifdef CG_CONE_COUNT_READS
+    imageStore(u_reads, pixel, vec4(diffuse_reads));
 #endif
 }

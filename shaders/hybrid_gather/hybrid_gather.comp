@@ -142,6 +142,7 @@ hybrid_trace(vec3 origin, vec3 dir, float tan_half, float t_start, float t_max, 
     CgCone cone = CgCone(origin, dir, tan_half, t_start, t_max, march.step, march.lod_bias);
     vec4 acc = vec4(0.0);
     float covered = 0.0;    // part of the cone's section already below the terrain
+    CgConeState state = cg_cone_state();    // what one 3D step tells the next (cg_cone_step)
     float t = t_start;
     for (int i = 0; i < 4096 && t < t_max && acc.a < CG_CONE_OPAQUE; i++) {
         // Eq. 8's diameter, never below the finest xel: log2 of zero is -inf.
@@ -160,7 +161,7 @@ hybrid_trace(vec3 origin, vec3 dir, float tan_half, float t_start, float t_max, 
                 // the span the sample stood for, so that its coverage is exact (cg_cone_step).
                 vec3 centre = 0.5 * (lo + hi);
                 CgConeSample at = CgConeSample(centre, d, surface.w + dot(centre - origin, surface.xyz));
-                dt = cg_cone_step(cg_gather_volume, v, cone, surface, at, v.radiance_scale, acc);
+                dt = cg_cone_step(cg_gather_volume, v, cone, surface, at, v.radiance_scale, state, acc);
             }
         }
         // The height field fills everything below its surface: its box reaches down without

@@ -5,6 +5,9 @@
 // where any fragment fell and 0 elsewhere (premultiplied colour: rgb = radiance there).
 // The accumulation volume stacks four R32UI slabs along z: red, green, blue sums and the
 // fragment count, each `resolution` deep.
+// SURFACE (the surface model): the geometry of each voxel from its 14 slabs (voxelize.frag):
+// means of albedo, emission, normal and plane offset over its fragments, and the coverage per
+// axis rounded up to RGBA8's next step, so that quantisation never opens a wall.
 // Defines: FORMAT (rgba16f or rgba8); FIND_MAX for the first of RGBA8's two dispatches,
 // which finds the largest radiance component so that the second stores radiance / max and
 // publishes max as the region block's radiance scale (8 bits span the scene's real range,
@@ -12,6 +15,49 @@
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 
 #include "common/blocks.h"
+
+#ifdef SURFACE
+layout(r32ui, binding = 0) readonly uniform uimage3D u_accum;
+layout(rgba8, binding = 1) writeonly uniform image3D u_albedo;
+layout(rgba8, binding = 2) writeonly uniform image3D u_coverage;
+layout(rgba8_snorm, binding = 3) writeonly uniform image3D u_normal;
+layout(rgba16f, binding = 4) writeonly uniform image3D u_emission;
+layout(location = 0) uniform int u_resolution;
+// x: fixed-point units per unit of albedo, normal, offset and coverage; y: per unit of emission.
+layout(location = 4) uniform vec4 u_surface_fixed;
+
+uint
+slab(ivec3 v, int k)
+{
+    return imageLoad(u_accum, v + ivec3(0, 0, k * u_resolution)).r;
+}
+
+void
+main()
+{
+    ivec3 v = ivec3(gl_GlobalInvocationID);
+    if (any(greaterThanEqual(v, ivec3(u_resolution))))
+        return;
+    uint count = slab(v, 0);
+    if (count == 0u) {
+        imageStore(u_albedo, v, vec4(0.0));
+        imageStore(u_coverage, v, vec4(0.0));
+        imageStore(u_normal, v, vec4(0.0));
+        imageStore(u_emission, v, vec4(0.0));
+        return;
+    }
+    float unit = float(count) * u_surface_fixed.x;
+    vec3 albedo = vec3(slab(v, 1), slab(v, 2), slab(v, 3)) / unit;
+    vec3 emission = vec3(slab(v, 4), slab(v, 5), slab(v, 6)) / (float(count) * u_surface_fixed.y);
+    vec3 normal = vec3(int(slab(v, 7)), int(slab(v, 8)), int(slab(v, 9))) / unit;
+    float offset = float(int(slab(v, 10))) / unit;
+    vec3 coverage = min(vec3(slab(v, 11), slab(v, 12), slab(v, 13)) / u_surface_fixed.x, vec3(1.0));
+    imageStore(u_albedo, v, vec4(albedo, 1.0));
+    imageStore(u_coverage, v, vec4(ceil(coverage * 255.0 - 1e-3) / 255.0, 0.0));
+    imageStore(u_normal, v, vec4(clamp(normal, -1.0, 1.0), clamp(offset, -1.0, 1.0)));
+    imageStore(u_emission, v, vec4(emission, 1.0));
+}
+#else
 
 layout(r32ui, binding = 0) readonly uniform uimage3D u_accum;
 #ifndef FIND_MAX
@@ -76,3 +122,4 @@ main()
     imageStore(u_radiance, v, vec4(l.rgb / scale, l.a));
 #endif
 }
+#endif

@@ -2,6 +2,12 @@
 // the outgoing diffuse radiance (direct light, shadowed by the shadow map when there is
 // one, plus emission: VCT paper 3.1 and 4, emissive materials) to every voxel of its pixel
 // column that the triangle touches.
+// SURFACE (the surface model, docs/vct.md): no light; each fragment adds its geometry instead,
+// to 14 slabs: count, albedo RGB, emission RGB, unit normal xyz (as authored, two's-complement
+// sums), the offset n . (x - c) / voxel of its plane from the voxel's centre c (likewise), and
+// per axis i the largest |n_i| / |n|_1 of its triangle's plane (imageAtomicMax): crossing the
+// voxels a plane touches (a slab |n|_1 voxels thick along n) along axis i, a path meets the
+// plane's coverage at the rate |n_i| / |n|_1 per voxel of path, 1 in all (docs/vct.md).
 //
 // Averaging: the sums are fixed-point integers added with imageAtomicAdd into R32UI slabs
 // (red, green, blue, count), and resolve.comp divides by the count. Integer addition is
@@ -27,6 +33,12 @@ layout(location = 6) flat in int gs_axis;
 layout(location = 9) uniform int u_resolution;
 layout(location = 10) uniform float u_fixed_scale;
 layout(location = 12) uniform bool u_conservative;
+#ifdef SURFACE
+layout(location = 8) uniform vec4 u_origin_voxel;   // as in voxelize.geom
+// x: fixed-point units per unit of albedo, normal, offset (voxels) and coverage; y: per unit of
+// emitted radiance (passes/voxelize/voxelize.c).
+layout(location = 13) uniform vec4 u_surface_fixed;
+#endif
 
 layout(binding = 2) uniform sampler2D u_shadow_map;
 layout(r32ui, binding = 0) uniform coherent uimage3D u_accum;
@@ -34,6 +46,12 @@ layout(r32ui, binding = 0) uniform coherent uimage3D u_accum;
 // Inverse of the geometry shader's swizzle: back to volume coordinates.
 ivec3
 unswizzle(ivec3 s, int axis)
+{
+    return axis == 0 ? s.zxy : axis == 1 ? s.yzx : s;
+}
+
+vec3
+unswizzle_vector(vec3 s, int axis)
 {
     return axis == 0 ? s.zxy : axis == 1 ? s.yzx : s;
 }
@@ -74,12 +92,26 @@ main()
     if (k_lo > k_hi)
         return;
 
+#ifdef SURFACE
+    vec3 normal = normalize(gs_normal);
+    vec3 albedo = clamp(cg_material_albedo(cg_material_index, gs_texcoord).rgb, 0.0, 1.0);
+    vec3 emission = max(cg_material_emissive(cg_material_index, gs_texcoord), vec3(0.0));
+    // The triangle's own plane (in volume axes) for the coverage: the voxels it touches form a
+    // slab of its geometric normal, whatever the shading normal says.
+    vec3 plane = abs(unswizzle_vector(n, gs_axis));
+    vec3 share = plane / (plane.x + plane.y + plane.z);
+    uvec3 q_albedo = uvec3(albedo * u_surface_fixed.x + 0.5);
+    uvec3 q_emission = uvec3(min(emission * u_surface_fixed.y + 0.5, vec3(4294967295.0)));
+    uvec3 q_normal = uvec3(ivec3(round(normal * u_surface_fixed.x)));
+    uvec3 q_share = uvec3(ceil(share * u_surface_fixed.x));
+#else
     uvec3 value = uvec3(min(max(outgoing_radiance(), vec3(0.0)) * u_fixed_scale + 0.5,
                             vec3(4294967295.0)));
+#endif
     int slab = u_resolution;
-    // A hair over half a voxel: a triangle lying exactly on a voxel face counts for both
-    // voxels, whatever the rounding.
-    const vec3 half_voxel = vec3(0.5 + 1e-4);
+    // Half-open voxels of the snapped coordinates (voxelize.geom, tribox.glsl): a triangle lying
+    // exactly on a voxel face belongs to the voxel above it, at every scale.
+    const vec3 half_voxel = vec3(0.5);
     for (int k = k_lo; k <= k_hi; k++) {
         ivec3 cell = ivec3(column, k);
         if (u_conservative && !tribox_overlap(vec3(cell) + 0.5, half_voxel, a, b, c))
@@ -87,9 +119,28 @@ main()
         ivec3 v = unswizzle(cell, gs_axis);
         if (any(lessThan(v, ivec3(0))) || any(greaterThanEqual(v, ivec3(u_resolution))))
             continue;
+#ifdef SURFACE
+        vec3 centre = u_origin_voxel.xyz + (vec3(v) + 0.5) * u_origin_voxel.w;
+        uint q_offset = uint(int(round(dot(normal, gs_world - centre) / u_origin_voxel.w * u_surface_fixed.x)));
+        imageAtomicAdd(u_accum, v, 1u);
+        imageAtomicAdd(u_accum, v + ivec3(0, 0, slab), q_albedo.r);
+        imageAtomicAdd(u_accum, v + ivec3(0, 0, 2 * slab), q_albedo.g);
+        imageAtomicAdd(u_accum, v + ivec3(0, 0, 3 * slab), q_albedo.b);
+        imageAtomicAdd(u_accum, v + ivec3(0, 0, 4 * slab), q_emission.r);
+        imageAtomicAdd(u_accum, v + ivec3(0, 0, 5 * slab), q_emission.g);
+        imageAtomicAdd(u_accum, v + ivec3(0, 0, 6 * slab), q_emission.b);
+        imageAtomicAdd(u_accum, v + ivec3(0, 0, 7 * slab), q_normal.x);
+        imageAtomicAdd(u_accum, v + ivec3(0, 0, 8 * slab), q_normal.y);
+        imageAtomicAdd(u_accum, v + ivec3(0, 0, 9 * slab), q_normal.z);
+        imageAtomicAdd(u_accum, v + ivec3(0, 0, 10 * slab), q_offset);
+        imageAtomicMax(u_accum, v + ivec3(0, 0, 11 * slab), q_share.x);
+        imageAtomicMax(u_accum, v + ivec3(0, 0, 12 * slab), q_share.y);
+        imageAtomicMax(u_accum, v + ivec3(0, 0, 13 * slab), q_share.z);
+#else
         imageAtomicAdd(u_accum, v, value.r);
         imageAtomicAdd(u_accum, v + ivec3(0, 0, slab), value.g);
         imageAtomicAdd(u_accum, v + ivec3(0, 0, 2 * slab), value.b);
         imageAtomicAdd(u_accum, v + ivec3(0, 0, 3 * slab), 1u);
+#endif
     }
 }

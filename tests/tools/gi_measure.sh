@@ -9,7 +9,9 @@
 #       $CACHE); prints gi-metric's energy and nrmse (tests/tools/gi_metric.c).
 #   gi_measure.sh suite GRAPH TAG [--set ...]      `indirect` over $SCENES
 #   gi_measure.sh furnace GRAPH TAG [--set ...]    builtin:furnace?albedo=0.5&radiance=2 at 64x64,
-#                                                  scales $SCALES: mean and worst pixel
+#                                                  scales $SCALES: mean and worst pixel against
+#                                                  path_trace at $FURNACE_BOUNCES (0: radiance-model
+#                                                  graphs, which gather the emission once)
 #   gi_measure.sh reads SCENE GRAPH LABEL [--set ...]  volume reads per covered pixel of the diffuse
 #                                                  cones (gather.count_reads): a deterministic cost
 # Environment: SIZE (160x90), SPP (1024), BOUNCES (1), CACHE (build/gi-cache), SCENES, SCALES.
@@ -72,7 +74,7 @@ furnace)
   for sc in ${SCALES:-1e-3 1 1e4}; do
     img=$OUT/furnace_$(name "$tag")_$sc.exr
     $C render "builtin:furnace?scale=$sc&albedo=0.5&radiance=2" --graph "$graph" --size 64x64 "$@" -o "$img" > /dev/null 2>> "$OUT/render.log"
-    echo "$tag scale $sc: $($M furnace "$img" 0.5 2)"
+    echo "$tag scale $sc: $($M furnace "$img" 0.5 2 "${FURNACE_BOUNCES:-0}")"
   done ;;
 reads)
   scene=$1 graph=$2 label=$3

@@ -8,9 +8,11 @@
  *       energy = mean Y(estimate) / mean Y(truth) (Rec. 709 Y), nrmse = rmse(estimate - truth) /
  *       rms(truth) over RGB, both over the pixels in the rectangle (default: all; x1, y1 exclusive,
  *       rows from the top as the file stores them). Prints the label, energy, nrmse and both means.
- *   gi-metric furnace IMG.exr ALBEDO RADIANCE
- *       the white furnace: every pixel should be L (1 + a) (emission seen plus one gathered
- *       bounce); prints the mean of (pixel - L) / (a L) over pixels and RGB and the worst |. - 1|.
+ *   gi-metric furnace IMG.exr ALBEDO RADIANCE [BOUNCES]
+ *       the white furnace: every pixel should be L sum_{k=0..B+1} a^k, path_trace's value at
+ *       `bounces` B (default 0: the emission seen plus one gathered reflection, what a radiance-
+ *       model graph returns); prints the mean of (pixel - L) / (L sum_{k=1..B+1} a^k) over pixels
+ *       and RGB and the worst |. - 1|.
  *   gi-metric mean IMG.exr [--rect x0 y0 x1 y1]
  *       mean red channel over the pixels whose red is above 0 (a gather's `reads` output: volume
  *       reads per covered pixel).
@@ -117,20 +119,24 @@ indirect(int argc, char **argv)
 static int
 furnace(int argc, char **argv)
 {
-    if (argc != 5) {
-        fprintf(stderr, "usage: gi-metric furnace IMG ALBEDO RADIANCE\n");
+    if (argc != 5 && argc != 6) {
+        fprintf(stderr, "usage: gi-metric furnace IMG ALBEDO RADIANCE [BOUNCES]\n");
         return 2;
     }
     cg_image a;
     load(argv[2], &a);
     double albedo = atof(argv[3]), L = atof(argv[4]), sum = 0, worst = 0, n = 0;
-    if (!(albedo > 0) || !(L > 0)) {
-        fprintf(stderr, "gi-metric: furnace needs albedo and radiance above 0\n");
+    int bounces = argc == 6 ? atoi(argv[5]) : 0;
+    if (!(albedo > 0) || !(L > 0) || bounces < 0) {
+        fprintf(stderr, "gi-metric: furnace needs albedo and radiance above 0, bounces at least 0\n");
         return 2;
     }
+    double series = 0, power = 1;
+    for (int k = 1; k <= bounces + 1; k++)
+        series += power *= albedo;
     for (size_t i = 0; i < (size_t)a.width * (size_t)a.height; i++)
         for (int c = 0; c < 3; c++) {
-            double g = (a.rgba[4 * i + (size_t)c] - L) / (albedo * L);
+            double g = (a.rgba[4 * i + (size_t)c] - L) / (series * L);
             sum += g;
             n++;
             worst = fmax(worst, fabs(g - 1));

@@ -1,0 +1,47 @@
+#version 450 core
+// voxel_light/gather.comp: one bounce at the voxels. For each occupied voxel (voxel_light_list) and
+// each side of its mean plane, the diffuse cones of the surface point on that side are traced
+// through the current volumes by the very march of the screen's gather (cg_cone_gather_diffuse,
+// common/cone_trace.glsl with CG_CONE_SURFACE), from start_offset voxels off the plane; the result,
+// E_i / pi in the volumes' units, is the G+- that inject.comp adds times the albedo. A voxel whose
+// facets face both ways (|N| < 0.1) has no side to gather on and gathers nothing.
+layout(local_size_x = 64) in;
+
+#include "common/cone_trace.glsl"
+#include "voxel_light/surface.glsl"
+
+layout(binding = CG_UNIT_VOLUME) uniform sampler3D u_radiance;
+layout(binding = 2) uniform sampler3D u_normal;     // voxelize's normal: N, delta
+
+layout(rgba16f, binding = 0) writeonly uniform image3D u_gathered_front;
+layout(rgba16f, binding = 1) writeonly uniform image3D u_gathered_back;
+
+layout(location = 3) uniform uint u_list_capacity;
+
+void
+main()
+{
+    uint index = gl_GlobalInvocationID.x;
+    if (index >= min(voxel_light_list.dispatch.w, u_list_capacity))
+        return;
+    ivec3 v = voxel_light_unpack(voxel_light_list.voxels[index]);
+    CgVolume vol = cg_volume();
+    vec4 nd = texelFetch(u_normal, v, 0);
+    float coherence = length(nd.xyz);
+    vec4 gathered[2] = vec4[2](vec4(0.0), vec4(0.0));
+    if (coherence >= 0.1) {
+        vec3 nh = nd.xyz / coherence;
+        vec3 x = voxel_light_point(vol, v, nd.xyz, nd.w);
+        CgMarch march = cg_cone_march();
+        float t_max = cg_cone_reach(vol, march.max_distance);
+        for (int side = 0; side < 2; side++) {
+            vec3 n = side == 0 ? nh : -nh;
+            vec3 origin = cg_cone_origin(vol, x, n, march.start_offset);
+            vec4 g = cg_cone_gather_diffuse(u_radiance, vol, origin, cg_tangent_frame(n), t_max,
+                                            march.start_offset * vol.voxel_size);
+            gathered[side] = vec4(g.rgb / vol.radiance_scale, 1.0);
+        }
+    }
+    imageStore(u_gathered_front, v, gathered[0]);
+    imageStore(u_gathered_back, v, gathered[1]);
+}

@@ -1,0 +1,126 @@
+#version 450 core
+// voxel_light/inject.comp: the light of each voxel of the surface model (docs/vct.md), level 0 of
+// the three volumes the cone tracers read (common/cone_trace.glsl, CG_CONE_SURFACE).
+//
+// Each side of the voxel's surface has its own radiance: the side N points to (+) and the other
+// (-). With the mean normal N (|N| <= 1) of the voxel's facets and their mean albedo rho,
+//     L+- = emission + rho / pi sum_lights E V+- max(0, +-N . l) + rho G+-
+// l towards the light, E its irradiance, V+- its visibility through the shadow map at the surface
+// point on that side (the mean of 2 x 2 points a half voxel apart across the plane, the voxel's
+// footprint on it), G+- the gathered light of a bounce (E_i / pi on that side, gather.comp), with
+// u_gathered. Lambert's law is linear in the normal, so the unnormalised mean normal gives the
+// mean of the facets' own cosines wherever every facet faces the light: exact for a plane and for a
+// corner of two lit planes (docs/vct.md measures it against lighting every fragment).
+//
+// Stored (premultiplied by w = alpha_x + alpha_y + alpha_z, radiance / the region's scale):
+//     radiance = (w L_lit, w)   sides = (w beta, w D, 0, alpha_y)   normals = (w N_lit, alpha_z)
+// the lit side being the brighter (Rec. 709 Y), N_lit the normal turned towards it, D the constant of
+// its plane N_lit . (x - m) = D voxel (m the volume's centre, in level-0 voxels), beta = Y(L_other) / Y(L_lit): the other side as a fraction of the lit side's
+// luminance (its colour the lit side's; exact for one light or symmetric emitters).
+// u_build_list: also lists the occupied voxels for the bounce gathers (voxel_light_list).
+layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
+
+// cg_tangent_frame:
+#include "common/cone_trace.glsl"
+#include "common/lights.glsl"
+#include "common/shadow.glsl"
+#include "voxel_light/surface.glsl"
+
+layout(binding = 0) uniform sampler3D u_albedo;
+layout(binding = 1) uniform sampler3D u_coverage;
+layout(binding = 2) uniform sampler3D u_normal;
+layout(binding = 3) uniform sampler3D u_emission;
+layout(binding = 4) uniform sampler3D u_gathered_front;
+layout(binding = 5) uniform sampler3D u_gathered_back;
+layout(binding = 6) uniform sampler2D u_shadow_map;
+
+layout(rgba16f, binding = 0) writeonly uniform image3D u_radiance;
+layout(rgba16f, binding = 1) writeonly uniform image3D u_sides;
+layout(rgba16f, binding = 2) writeonly uniform image3D u_normals;
+
+layout(location = 1) uniform bool u_gathered;
+layout(location = 2) uniform bool u_build_list;
+layout(location = 3) uniform uint u_list_capacity;
+
+float
+luminance(vec3 c)
+{
+    return dot(c, vec3(0.2126, 0.7152, 0.0722));
+}
+
+// Visibility of light i on the side n (unit) of the plane through x: 2 x 2 points across the
+// voxel's footprint on the plane.
+float
+visibility(int i, vec3 x, vec3 n, float voxel)
+{
+    mat3 frame = cg_tangent_frame(n);
+    float v = 0.0;
+    for (int k = 0; k < 4; k++) {
+        vec2 o = (vec2(k & 1, k >> 1) - 0.5) * 0.5 * voxel;
+        v += cg_shadow_visibility(u_shadow_map, i, x + frame[0] * o.x + frame[1] * o.y, n);
+    }
+    return 0.25 * v;
+}
+
+void
+main()
+{
+    CgVolume vol = cg_volume();
+    ivec3 v = ivec3(gl_GlobalInvocationID);
+    if (any(greaterThanEqual(v, ivec3(vol.resolution))))
+        return;
+    vec4 albedo = texelFetch(u_albedo, v, 0);
+    if (albedo.a <= 0.0) {
+        imageStore(u_radiance, v, vec4(0.0));
+        imageStore(u_sides, v, vec4(0.0));
+        imageStore(u_normals, v, vec4(0.0));
+        return;
+    }
+    if (u_build_list) {
+        uint i = atomicAdd(voxel_light_list.dispatch.w, 1u);
+        if (i < u_list_capacity)
+            voxel_light_list.voxels[i] = voxel_light_pack(v);
+        if (i % 64u == 0u)
+            atomicAdd(voxel_light_list.dispatch.x, 1u);
+    }
+    vec3 alpha = texelFetch(u_coverage, v, 0).xyz;
+    vec4 nd = texelFetch(u_normal, v, 0);
+    vec3 n = nd.xyz;
+    float coherence = length(n);
+    vec3 nh = coherence > 1e-4 ? n / coherence : vec3(0.0, 0.0, 1.0);
+    vec3 x = voxel_light_point(vol, v, nd.xyz, nd.w);
+    vec3 emission = texelFetch(u_emission, v, 0).rgb;
+    vec3 front = emission, back = emission;
+    {
+        vec3 e_front = vec3(0.0), e_back = vec3(0.0);
+        for (uint i = 0u; i < cg_light_count(); i++) {
+            CgLightSample s = cg_light_sample(cg_lights[i], x);
+            float c = dot(n, s.to_light);
+            if (c > 0.0)
+                e_front += s.irradiance * c * visibility(int(i), x, nh, vol.voxel_size);
+            else if (c < 0.0)
+                e_back += s.irradiance * -c * visibility(int(i), x, -nh, vol.voxel_size);
+        }
+        front += albedo.rgb * e_front / CG_PI;
+        back += albedo.rgb * e_back / CG_PI;
+    }
+    front /= vol.radiance_scale;
+    back /= vol.radiance_scale;
+    if (u_gathered) {
+        // Stored in the volumes' units already (gather.comp).
+        front += albedo.rgb * texelFetch(u_gathered_front, v, 0).rgb;
+        back += albedo.rgb * texelFetch(u_gathered_back, v, 0).rgb;
+    }
+    bool front_lit = luminance(front) >= luminance(back);
+    vec3 lit = front_lit ? front : back, other = front_lit ? back : front;
+    float sign = front_lit ? 1.0 : -1.0;
+    float y = luminance(lit);
+    float beta = y > 0.0 ? clamp(luminance(other) / y, 0.0, 1.0) : 1.0;
+    float w = alpha.x + alpha.y + alpha.z;
+    imageStore(u_radiance, v, vec4(w * lit, w));
+    // The plane N . (x - c) = delta voxel through the voxel's centre c, as N . (x - m) = D voxel.
+    vec3 c = vol.origin + (vec3(v) + 0.5) * vol.voxel_size, m = vol.origin + 0.5 * cg_volume_extent(vol);
+    float plane = sign * (dot(n, c - m) / vol.voxel_size + nd.w);
+    imageStore(u_sides, v, vec4(w * beta, w * plane, 0.0, alpha.y));
+    imageStore(u_normals, v, vec4(w * sign * n, alpha.z));
+}
