@@ -70,9 +70,13 @@ bad_graphs_exit_2_and_write_nothing(void **state)
     assert_non_null(strstr(out, "cycle.json:4:5: graph has a cycle: 'd' -> 'c' -> 'd'"));
     assert_int_not_equal(access(report, F_OK), 0);
 
-    snprintf(args, sizeof args, "graph '%s' builtin:cornell --max-gpu-memory 1", direct_graph);
+    snprintf(args, sizeof args, "graph '%s' builtin:cornell --max-gpu-memory 1M", direct_graph);
     assert_int_equal(run(args, out, sizeof out), 2);
     assert_non_null(strstr(out, "more than the allowed 1.00 MiB"));
+    /* One syntax with render: a number needs its unit. */
+    snprintf(args, sizeof args, "graph '%s' builtin:cornell --max-gpu-memory 1", direct_graph);
+    assert_int_equal(run(args, out, sizeof out), 2);
+    assert_non_null(strstr(out, "--max-gpu-memory wants a size with its unit"));
     snprintf(args, sizeof args, "graph '%s' builtin:no_such_scene", direct_graph);
     assert_int_equal(run(args, out, sizeof out), 2);
 }

@@ -53,8 +53,7 @@ common_option(const char *tool, unsigned accepted, const char *a, const char *v,
             return app_usage_error(tool, "--context wants egl, osmesa, glfw or auto, not '%s'", v);
     } else if ((accepted & APP_OPT_MAX_GPU_MEMORY) && !strcmp(a, "--max-gpu-memory")) {
         if (!app_parse_bytes(v, &o->max_gpu_memory))
-            return app_usage_error(tool, "--max-gpu-memory wants a positive byte count (suffix K, M or G), "
-                                   "not '%s'", v);
+            return app_usage_error(tool, "--max-gpu-memory wants " APP_BYTES_SYNTAX ", not '%s'", v);
     } else {
         return -1;
     }

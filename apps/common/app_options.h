@@ -28,7 +28,7 @@ typedef enum app_option {
     APP_OPT_FRAMES = 1 << 5,            /* --frames N, 1..1000000 */
     APP_OPT_TIMING = 1 << 6,            /* --timing sync|queries|none */
     APP_OPT_CONTEXT = 1 << 7,           /* --context egl|osmesa|glfw|auto */
-    APP_OPT_MAX_GPU_MEMORY = 1 << 8,    /* --max-gpu-memory BYTES[K|M|G] */
+    APP_OPT_MAX_GPU_MEMORY = 1 << 8,    /* --max-gpu-memory SIZE (app_parse_bytes) */
 } app_option;
 
 typedef struct app_options {

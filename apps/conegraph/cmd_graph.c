@@ -18,7 +18,7 @@ cmd_graph_usage(FILE *out)
 {
     fprintf(out,
         "usage: conegraph graph FILE [--check] [--dot] [--set PASS.PARAM=VALUE]... [--plugin PATH]...\n"
-        "                       [--size WxH] [--max-gpu-memory MIB] [--no-pool] [--report FILE]\n"
+        "                       [--size WxH] [--max-gpu-memory SIZE] [--no-pool] [--report FILE]\n"
         "                       [SCENE]\n"
         "\n"
         "Reads graph file FILE and compiles it against SCENE (a .gltf/.glb path or builtin:NAME;\n"
@@ -33,7 +33,8 @@ cmd_graph_usage(FILE *out)
         "  --set PASS.PARAM=VALUE override a parameter, validated as in a file; may be repeated\n"
         "  --plugin PATH          load a pass plugin first; may be repeated\n"
         "  --size WxH             output image size (default 1280x720)\n"
-        "  --max-gpu-memory MIB   fail when the graph needs more GPU memory than this\n"
+        "  --max-gpu-memory SIZE  fail when the graph needs more GPU memory than this: a number\n"
+        "                         with its unit, e.g. 512M or 2G (B, K, M, G, T: powers of 1024)\n"
         "  --max-texture-size N   largest 2D texture side (default 16384)\n"
         "  --max-3d-texture-size N  largest 3D texture side (default 2048)\n"
         "  --no-pool              give every transient resource its own storage\n"
@@ -69,12 +70,11 @@ cmd_graph(int argc, char **argv)
                 return 2;
             }
         } else if (!strcmp(a, "--max-gpu-memory") && has_value) {
-            if (!app_parse_int(argv[++i], 1, 1L << 30, &v)) {
-                fprintf(stderr, "conegraph graph: --max-gpu-memory %s: expected MiB, a positive integer\n",
+            if (!app_parse_bytes(argv[++i], &options.max_gpu_memory)) {
+                fprintf(stderr, "conegraph graph: --max-gpu-memory wants " APP_BYTES_SYNTAX ", not '%s'\n",
                         argv[i]);
                 return 2;
             }
-            options.max_gpu_memory = (size_t)v << 20;
         } else if ((!strcmp(a, "--max-texture-size") || !strcmp(a, "--max-3d-texture-size")) && has_value) {
             if (!app_parse_int(argv[++i], 1, 1 << 20, &v)) {
                 fprintf(stderr, "conegraph graph: %s %s: expected a positive integer\n", a, argv[i]);
