@@ -41,7 +41,8 @@ cmd_render_usage(FILE *out)
         "                          from the graph directory). A FILE without '/' that does not\n"
         "                          exist here is looked up in the graph directory too.\n"
         "  --size WxH              image size in pixels (default 1280x720)\n"
-        "  --camera NAME|INDEX     scene camera (default: the first; framed from the bounds if none)\n"
+        APP_CAMERA_USAGE
+        APP_LIGHT_USAGE
         "  --frames N              frames to run (default 1); the image is the last frame's;\n"
         "                          progress and the median frame time go to stderr\n"
         "  --report FILE           per-pass times and resource bytes as JSON (written atomically)\n"
