@@ -41,7 +41,8 @@ cmd_render_usage(FILE *out)
         "                          from the graph directory). A FILE without '/' that does not\n"
         "                          exist here is looked up in the graph directory too.\n"
         "  --size WxH              image size in pixels (default 1280x720)\n"
-        "  --camera NAME|INDEX     scene camera (default: the first; framed from the bounds if none)\n"
+        APP_CAMERA_USAGE
+        APP_LIGHT_USAGE
         "  --frames N              frames to run (default 1); the image is the last frame's;\n"
         "                          progress and the median frame time go to stderr\n"
         "  --report FILE           per-pass times and resource bytes as JSON (written atomically)\n"
@@ -51,7 +52,8 @@ cmd_render_usage(FILE *out)
         "  --plugin PATH           load a pass plugin (.so); repeatable. Directories in\n"
         "                          $CONEGRAPH_PLUGIN_PATH are loaded too\n"
         "  --context egl|osmesa|glfw  GL context (default: $CONEGRAPH_CONTEXT, else EGL, then OSMesa)\n"
-        "  --max-gpu-memory BYTES  refuse graphs needing more (suffixes K, M, G = 1024^n)\n"
+        "  --max-gpu-memory SIZE   refuse graphs needing more GPU memory: a number with its\n"
+        "                          unit, e.g. 512M or 2G (B, K, M, G, T: powers of 1024)\n"
         "  --timing sync|queries|none  per-pass timing: glFinish + CPU clock (default, right on\n"
         "                          llvmpipe), GL_TIMESTAMP queries read a frame late, or none\n"
         "\n"

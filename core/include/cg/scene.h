@@ -4,7 +4,9 @@
  *           cg_light, cg_camera_type, cg_camera, cg_sky_type, cg_sky, cg_scene, cg_scene_load,
  *           cg_scene_free, cg_scene_export_gltf, cg_scene_compute_bounds, cg_scene_triangle_count,
  *           cg_scene_builtin_names, cg_scene_validate, cg_scene_set_sky, cg_sky_parse,
- *           cg_sky_model, cg_sky_model_init, cg_sky_model_radiance.
+ *           cg_sky_model, cg_sky_model_init, cg_sky_model_radiance, cg_sky_format, cg_sky_equal,
+ *           cg_sky_is_black, cg_scene_is_lit, the CG_DEFAULT_* constants, cg_default_sun, cg_default_sky,
+ *           cg_scene_add_default_sun.
  *
  * Units and conventions (see docs/architecture.md): metres, y up, glTF 2.0.
  * Lambertian BRDF with albedo = base_color x base colour texture.
@@ -159,6 +161,32 @@ bool cg_scene_set_sky(cg_scene *scene, const cg_sky *sky, cg_error *err);
  * W/(m^2 sr)); "preetham", "preetham:T" or "preetham:T,SCALE" (defaults T 3, SCALE 1).
  * Fails with CG_ERR_USAGE naming what was expected. */
 bool cg_sky_parse(const char *text, cg_sky *out, cg_error *err);
+
+/* The sky as cg_sky_parse reads it: "none", "L" (all channels alike), "R,G,B" or
+ * "preetham:T,SCALE". */
+void cg_sky_format(const cg_sky *sky, char *out, size_t size);
+/* Whether two skies give the same radiance (the fields their type uses are equal). */
+bool cg_sky_equal(const cg_sky *a, const cg_sky *b);
+
+/* The default light (core/scene/lighting.c says why these values; docs/scenes.md): what the
+ * apps add to a scene that nothing lights, unless told not to (--no-default-light). */
+#define CG_DEFAULT_SUN_NAME "default_sun"
+#define CG_DEFAULT_SUN_IRRADIANCE 3.0f      /* W/m^2 on a surface facing it, white */
+#define CG_DEFAULT_SUN_ELEVATION_DEG 55.0   /* above the horizon (the y = 0 plane) */
+#define CG_DEFAULT_SUN_AZIMUTH_DEG 30.0     /* from +z towards +x */
+#define CG_DEFAULT_SKY_RADIANCE 0.2f        /* uniform, W/(m^2 sr) per channel */
+
+/* Whether the sky gives no light: none, a uniform radiance of 0, a Preetham scale of 0. */
+bool cg_sky_is_black(const cg_sky *sky);
+/* Whether anything lights the scene: a light, an instanced mesh whose material emits, or a sky
+ * that is not black. */
+bool cg_scene_is_lit(const cg_scene *scene);
+/* The default sun as a light, and the default sky. */
+void cg_default_sun(cg_light *out);
+void cg_default_sky(cg_sky *out);
+/* Appends the default sun to the scene's lights (last, so that lights the scene had keep their
+ * indices; a Preetham sky follows the first directional light). */
+bool cg_scene_add_default_sun(cg_scene *scene, cg_error *err);
 
 /* The sky's radiance in any direction, ready to evaluate: built once per scene. */
 typedef struct cg_sky_model {
