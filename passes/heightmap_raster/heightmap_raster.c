@@ -67,6 +67,15 @@ heightfield_bounds(const cg_scene *scene, heightmap_region *out)
         const cg_mesh *mesh = &scene->meshes[inst->mesh];
         if (mesh->kind != CG_MESH_HEIGHTFIELD || mesh->index_count == 0)
             continue;
+        if (inst->moving) {
+            /* Its box over the whole animation, so that the map stays put from frame to frame. */
+            for (int k = 0; k < 3; k++) {
+                out->lo[k] = fmin(out->lo[k], inst->motion_min[k]);
+                out->hi[k] = fmax(out->hi[k], inst->motion_max[k]);
+            }
+            any = true;
+            continue;
+        }
         for (int c = 0; c < 8; c++) {
             float corner[3] = {
                 (c & 1) ? mesh->bounds_max[0] : mesh->bounds_min[0],

@@ -78,6 +78,7 @@ typedef struct voxelize_state {
     float *light_positions;
     double *light_nearest;
     int light_cache_count;
+    uint64_t light_cache_revision; /* cg_scene.instances_revision the distances were found at */
 } voxelize_state;
 
 /* Where the volume lies: a cube. */
@@ -112,6 +113,15 @@ filtered_bounds(const cg_scene *scene, cg_mesh_filter filter, double lo[3], doub
         const cg_mesh *mesh = &scene->meshes[inst->mesh];
         if (!mesh_passes(mesh->kind, filter) || mesh->index_count == 0)
             continue;
+        any = true;
+        if (inst->moving) {
+            /* Its box over the whole animation, so that the volume stays put from frame to frame. */
+            for (int k = 0; k < 3; k++) {
+                lo[k] = fmin(lo[k], inst->motion_min[k]);
+                hi[k] = fmax(hi[k], inst->motion_max[k]);
+            }
+            continue;
+        }
         for (int c = 0; c < 8; c++) {
             float corner[3] = {
                 (c & 1) ? mesh->bounds_max[0] : mesh->bounds_min[0],
@@ -125,7 +135,6 @@ filtered_bounds(const cg_scene *scene, cg_mesh_filter filter, double lo[3], doub
                 hi[k] = fmax(hi[k], w[k]);
             }
         }
-        any = true;
     }
     return any;
 }
@@ -313,7 +322,7 @@ radiance_bound(voxelize_state *s, const cg_scene *scene, cg_mesh_filter filter, 
             albedo = fmax(albedo, mat->base_color[k]);
         }
     }
-    if (s->light_cache_count != scene->light_count) {
+    if (s->light_cache_count != scene->light_count || s->light_cache_revision != scene->instances_revision) {
         free(s->light_positions);
         free(s->light_nearest);
         s->light_positions = calloc((size_t)scene->light_count * 3 + 1, sizeof(float));
@@ -323,6 +332,7 @@ radiance_bound(voxelize_state *s, const cg_scene *scene, cg_mesh_filter filter, 
         for (int l = 0; l < scene->light_count; l++)
             s->light_nearest[l] = -1.0;
         s->light_cache_count = scene->light_count;
+        s->light_cache_revision = scene->instances_revision;
     }
     double irradiance = 0.0;
     for (int l = 0; l < scene->light_count; l++) {
