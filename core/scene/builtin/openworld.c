@@ -5,7 +5,8 @@
  * The motions are the dynamic cases the papers' methods must serve, as a glTF animation of
  * one period P (seconds, default 20), after which the scene holds its last pose:
  *   sun  the sun turns once about the vertical, keeping its elevation;
- *   one  one building (the nearest to the view's centre) sinks into the ground and rises again;
+ *   one  one building (the nearest to the view's centre) sinks into the ground, roof and all,
+ *        by half the period and rises again;
  *   all  every complex object moves: each building turns once about its vertical axis (in
  *        alternate directions), the bridge and the arch rise 3 m and come down again.
  * Without motion (the default) the scene is what it always was, bit for bit. */
@@ -158,6 +159,13 @@ building_triangles(const building *bd)
     return 10 + (bd->roof == ROOF_GABLE ? 6 : 0);
 }
 
+/* How far a gable roof's ridge rises above the walls (35 degrees pitch); 0 for a flat roof. */
+static double
+roof_rise(const building *bd)
+{
+    return bd->roof == ROOF_GABLE ? bd->hz * tan(35 * BS_PI / 180) : 0;
+}
+
 static void
 build_building(mesh_builder *walls, mesh_builder *roofs, const building *bd, double base)
 {
@@ -170,7 +178,7 @@ build_building(mesh_builder *walls, mesh_builder *roofs, const building *bd, dou
         return;
     /* Ridge along the local x axis, 35 degrees pitch. */
     double cs = cos(bd->yaw), sn = sin(bd->yaw);
-    double rise = bd->hz * tan(35 * BS_PI / 180);
+    double rise = roof_rise(bd);
     double local[6][3] = { { -bd->hx, top, -bd->hz }, { bd->hx, top, -bd->hz },
                            { bd->hx, top, bd->hz },   { -bd->hx, top, bd->hz },
                            { -bd->hx, top + rise, 0 }, { bd->hx, top + rise, 0 } };
@@ -490,7 +498,7 @@ build_openworld(cg_scene *scene, const char *query, cg_error *err)
         ok = node >= 0 &&
              commit_building(scene, &bs[moving], bases[moving], moving, m_colour[bs[moving].colour], m_roof, node,
                              err) &&
-             add_dip(&anim, node, bs[moving].height - bases[moving], period, err);
+             add_dip(&anim, node, bs[moving].height + roof_rise(&bs[moving]) - bases[moving], period, err);
     }
     /* Each building turns about the vertical through its centre: translated there, turned,
      * translated back (its vertices are in world space). */
