@@ -273,9 +273,9 @@ bounds_cover_the_animation(void **state)
     memcpy(hi, s.bounds_max, sizeof hi);
     /* The hand's cube over [0, 1] s: from x = 1 to z = -3, and the static cube at x = 10. */
     assert_true(hi[0] >= 10.5f && lo[2] <= -3.5f);
-    /* Every pose, sampled far more densely than the bounds were, lies inside: the box at every
-     * key and 16 times between them leaves at most the arc's sagitta between two samples out
-     * (about 3.5 sin^2(90/32 degrees) = 8 mm here); 1 cm allows for it. */
+    /* Every pose, sampled far more densely than the bounds were, lies inside: posed at every key
+     * and 15 times between, the union leaves at most the arc's sagitta between two samples out,
+     * 2r sin^2(a/4) for a = 90/16 degrees at r < 4 m: under 5 mm; 1 cm allows for it. */
     for (int i = 0; i <= 400; i++) {
         double t = -0.5 + 2.0 * i / 400;
         cg_scene_evaluate(&s, t, NULL);

@@ -393,8 +393,9 @@ compare_float(const void *a, const void *b)
 }
 
 /* The times the bounds are sampled at: every distinct key time and, between consecutive ones,
- * up to 15 more evenly spaced (16 segments), MOTION_SAMPLES at most in all (a long animation
- * falls back to its keys, or to evenly spaced times when it has more keys than that). */
+ * up to 15 more evenly spaced (16 segments), about MOTION_SAMPLES in all (fewer between keys
+ * when there are many keys; MOTION_SAMPLES + 1 evenly spaced times when there are more distinct
+ * keys than that). */
 #define MOTION_SAMPLES 4096
 
 static double *

@@ -228,8 +228,9 @@ void cg_scene_free(cg_scene *scene);
 bool cg_scene_export_gltf(const cg_scene *scene, const char *path, cg_error *err);
 
 /* Recomputes world bounds from the instances; for an animated scene, the union over the
- * animation (sampled: every key time and 16 times between consecutive ones, 4096 at most)
- * and each moving instance's motion box; the scene is left posed at its time. */
+ * animation (sampled: posed at every key time and 15 evenly spaced times between consecutive
+ * ones, 4096 poses at most) and each moving instance's motion box; the scene is left posed at
+ * its time. Call it again after changing nodes or animations by hand. */
 void cg_scene_compute_bounds(cg_scene *scene);
 /* Triangles over all instances. */
 size_t cg_scene_triangle_count(const cg_scene *scene);
