@@ -1780,7 +1780,7 @@ export_meshes(const cg_scene *S, tinygltf::Model &M)
     }
 }
 
-// A node holding light i of M.lights (KHR_lights_punctual) at `translation` turned by `rotation`.
+// A node holding light i of M.lights (KHR_lights_punctual), with no transform of its own.
 tinygltf::Node
 light_node(int i, const char *name)
 {

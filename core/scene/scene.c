@@ -300,7 +300,10 @@ cg_scene_compute_bounds(cg_scene *scene)
 {
     bool any = false;
     double lo[3] = { 0, 0, 0 }, hi[3] = { 0, 0, 0 };
-    bool animated = cg_scene_is_animated(scene);
+    /* The moving instances' boxes over the animation; without them (no instance moves, or no
+     * memory for the sampling) every instance counts with its current box. */
+    double mlo[3] = { INFINITY, INFINITY, INFINITY }, mhi[3] = { -INFINITY, -INFINITY, -INFINITY };
+    bool animated = cg_scene_is_animated(scene) && cg_scene_motion_bounds(scene, mlo, mhi);
     for (int i = 0; i < scene->instance_count; i++) {
         cg_instance *inst = &scene->instances[i];
         if (inst->mesh < 0 || inst->mesh >= scene->mesh_count)
@@ -329,13 +332,9 @@ cg_scene_compute_bounds(cg_scene *scene)
         }
     }
     if (animated) {
-        double mlo[3] = { INFINITY, INFINITY, INFINITY }, mhi[3] = { -INFINITY, -INFINITY, -INFINITY };
-        if (cg_scene_motion_bounds(scene, mlo, mhi)) {
-            for (int k = 0; k < 3; k++) {
-                lo[k] = any ? fmin(lo[k], mlo[k]) : mlo[k];
-                hi[k] = any ? fmax(hi[k], mhi[k]) : mhi[k];
-            }
-            any = true;
+        for (int k = 0; k < 3; k++) {
+            lo[k] = any ? fmin(lo[k], mlo[k]) : mlo[k];
+            hi[k] = any ? fmax(hi[k], mhi[k]) : mhi[k];
         }
     }
     for (int k = 0; k < 3; k++) {

@@ -87,8 +87,8 @@ bool cg_gltf_load(const char *path, cg_scene *out, cg_error *err);
  * fields, ranges, enumerations, index references, asset.version (2.x; glTF 1.0 named as
  * such), extensionsRequired, buffers without uri. `glb_bin` is the size of a .glb's BIN chunk
  * (0 when it has none), -1 for a .gltf. `file` names the file in messages, which give the
- * JSON path of the field: CG_ERR_GLTF_PARSE, _VERSION, _SCHEMA, _INDEX_RANGE, _BUFFER or
- * _EXTENSION. */
+ * JSON path of the field: CG_ERR_GLTF_PARSE, _VERSION, _SCHEMA, _INDEX_RANGE, _BUFFER,
+ * _ACCESSOR (an animation sampler's accessors) or _EXTENSION. */
 bool cg_gltf_check_json(const char *file, const char *json, size_t size, long long glb_bin, cg_error *err);
 
 #ifdef __cplusplus
