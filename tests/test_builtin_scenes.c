@@ -232,7 +232,7 @@ cornell_box(void **state)
 }
 
 static void
-check_furnace(const char *source, double scale, float albedo, float radiance)
+check_furnace(const char *source, double scale, float albedo, float radiance, bool heightfield)
 {
     cg_scene s;
     cg_error err = { 0 };
@@ -247,9 +247,15 @@ check_furnace(const char *source, double scale, float albedo, float radiance)
     for (int k = 0; k < 3; k++)
         assert_true(fabsf(s.cameras[0].world[12 + k]) < scale / 4);
     assert_true(s.cameras[0].znear < scale / 4);
-    size_t triangles = 0;
+    size_t triangles = 0, heightfield_triangles = 0;
     for (int i = 0; i < s.instance_count; i++) {
         const cg_mesh *m = &s.meshes[s.instances[i].mesh];
+        if (m->kind == CG_MESH_HEIGHTFIELD) {
+            /* The floor, y = -S/2, facing up. */
+            heightfield_triangles += m->index_count / 3;
+            assert_true(fabs(m->bounds_min[1] + scale / 2) <= 1e-6 * scale);
+            assert_true(fabs(m->bounds_max[1] + scale / 2) <= 1e-6 * scale);
+        }
         const cg_material *mat = &s.materials[m->material];
         for (int c = 0; c < 3; c++) {
             assert_float_equal(mat->base_color[c], albedo, 0);
@@ -273,6 +279,7 @@ check_furnace(const char *source, double scale, float albedo, float radiance)
     }
     /* Closed: the six faces of the cube, two triangles each, cover its whole surface. */
     assert_int_equal(triangles, 12);
+    assert_int_equal(heightfield_triangles, heightfield ? 2 : 0);
     cg_scene_free(&s);
 }
 
@@ -280,9 +287,11 @@ static void
 furnace_scales(void **state)
 {
     (void)state;
-    check_furnace("builtin:furnace", 1, 0.5f, 1);
-    check_furnace("builtin:furnace?scale=1e-3&albedo=0.8&radiance=2", 1e-3, 0.8f, 2);
-    check_furnace("builtin:furnace?scale=1e4&albedo=1&radiance=0.25", 1e4, 1, 0.25f);
+    check_furnace("builtin:furnace", 1, 0.5f, 1, false);
+    check_furnace("builtin:furnace?scale=1e-3&albedo=0.8&radiance=2", 1e-3, 0.8f, 2, false);
+    check_furnace("builtin:furnace?scale=1e4&albedo=1&radiance=0.25", 1e4, 1, 0.25f, false);
+    check_furnace("builtin:furnace?heightfield=0", 1, 0.5f, 1, false);
+    check_furnace("builtin:furnace?heightfield=1&scale=1e4&albedo=0.5&radiance=2", 1e4, 0.5f, 2, true);
 }
 
 static void
@@ -305,6 +314,7 @@ bad_names_and_parameters(void **state)
         "builtin:openworld?&",               "builtin:cornell?size=2",
         "builtin:furnace?albedo=1.5",        "builtin:furnace?scale=0",
         "builtin:furnace?radiance=nan",      "builtin:furnace?scale=-1",
+        "builtin:furnace?heightfield=2",     "builtin:furnace?heightfield=0.5",
     };
     for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
         cg_error_clear(&err);

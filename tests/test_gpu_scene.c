@@ -83,9 +83,8 @@ test_filters_bytes_and_draw(void **state)
     assert_true(cg_gpu_scene_has(&gpu, CG_MESHES_COMPLEX));
     assert_false(cg_gpu_scene_has(&gpu, CG_MESHES_HEIGHTFIELD));
     /* Two quads (4 vertices x 32 bytes + 6 indices x 4), one material (64), a 4x4 texture with
-     * its mips (64 + 16 + 4 texels x 4 bytes), the white texture (4), the no-shadow fallback
-     * (a CgShadow block and a 1x1 depth texture), no lights (16-byte header). */
-    size_t expected = 2 * (4 * 32 + 6 * 4) + 64 + (16 + 4 + 1) * 4 + 4 + CG_SHADOW_BLOCK_BYTES + 4 + 16;
+     * its mips (64 + 16 + 4 texels x 4 bytes), the white texture (4), no lights (16-byte header). */
+    size_t expected = 2 * (4 * 32 + 6 * 4) + 64 + (16 + 4 + 1) * 4 + 4 + 16;
     assert_int_equal(gpu.bytes, expected);
 
     GLuint program;

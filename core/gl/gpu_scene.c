@@ -230,18 +230,6 @@ cg_gpu_scene_upload(const cg_scene *scene, cg_gpu_scene *out, cg_error *err)
     glTextureSubImage2D(out->white_texture, 0, 0, 0, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, white);
     out->bytes += 4;
 
-    /* The fallback for passes whose shadow input is absent: light index -1 in the block
-     * (CgShadow.cg_shadow_frustum.x, float 36) and a map at the far plane. */
-    float block[CG_SHADOW_BLOCK_BYTES / 4] = { 0 };
-    block[36] = -1.0f;
-    glCreateBuffers(1, &out->no_shadow_block);
-    glNamedBufferStorage(out->no_shadow_block, sizeof block, block, 0);
-    glCreateTextures(GL_TEXTURE_2D, 1, &out->no_shadow_map);
-    glTextureStorage2D(out->no_shadow_map, 1, GL_DEPTH_COMPONENT32F, 1, 1);
-    const float far_depth = 1.0f;
-    glClearTexImage(out->no_shadow_map, 0, GL_DEPTH_COMPONENT, GL_FLOAT, &far_depth);
-    out->bytes += sizeof block + 4;
-
     if (!write_lights(out, true, err)) {
         cg_gpu_scene_destroy(out);
         return false;
@@ -268,8 +256,6 @@ cg_gpu_scene_destroy(cg_gpu_scene *gpu)
     glDeleteBuffers(1, &gpu->material_buffer);
     glDeleteBuffers(1, &gpu->light_buffer);
     glDeleteTextures(1, &gpu->white_texture);
-    glDeleteBuffers(1, &gpu->no_shadow_block);
-    glDeleteTextures(1, &gpu->no_shadow_map);
     free(gpu->meshes);
     free(gpu->textures);
     memset(gpu, 0, sizeof *gpu);
@@ -384,12 +370,4 @@ cg_gpu_scene_update_lights(cg_gpu_scene *gpu, cg_error *err)
                        "gpu scene: light count changed since upload (buffer %lld bytes, need %zu)",
                        (long long)size, expected);
     return write_lights(gpu, false, err);
-}
-
-void
-cg_gpu_scene_bind_shadow(const cg_gpu_scene *gpu, GLuint shadow_map, GLuint shadow_block, GLuint texture_unit)
-{
-    bool shadowed = shadow_map != 0 && shadow_block != 0;
-    glBindBufferBase(GL_UNIFORM_BUFFER, CG_BINDING_SHADOW, shadowed ? shadow_block : gpu->no_shadow_block);
-    glBindTextureUnit(texture_unit, shadowed ? shadow_map : gpu->no_shadow_map);
 }

@@ -9,6 +9,7 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "sdk/pass.h"
 #include "cg/fg.h"
 #include "cg/shader.h"
 
@@ -35,7 +36,6 @@ same_size(const fg_resource_desc *a, const fg_resource_desc *b)
 static bool
 composite_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
 {
-    const fg_frame *frame = fg_pass_frame(pass);
     const fg_resource_desc *direct =
         fg_declare_input(decl, "direct", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, true);
     const fg_resource_desc *inputs[3] = {
@@ -54,12 +54,7 @@ composite_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
                            "pass '%s': input '%s' is %dx%d, input 'direct' %dx%d; composite reads "
                            "them pixel for pixel", fg_pass_name(pass), names[i], inputs[i]->width,
                            inputs[i]->height, direct->width, direct->height);
-    fg_resource_desc out = {
-        .kind = FG_TEXTURE_2D, .format = GL_RGBA32F,
-        .width = direct ? direct->width : frame->width,
-        .height = direct ? direct->height : frame->height,
-        .depth = 1, .levels = 1,
-    };
+    fg_resource_desc out = cgp_image_like(pass, direct, GL_RGBA32F);
     fg_declare_output(decl, "hdr", &out, FG_ACCESS_IMAGE_STORE);
     out.format = GL_RGBA8;
     fg_declare_output(decl, "ldr", &out, FG_ACCESS_IMAGE_STORE);
@@ -67,25 +62,16 @@ composite_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
 }
 
 static bool
-composite_prepare(fg_pass *pass, void **state, cg_error *err)
+composite_prepare(fg_pass *pass, composite_state *st, cg_error *err)
 {
     (void)pass;
-    composite_state *st = calloc(1, sizeof *st);
-    if (!st)
-        return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "composite: state");
-    if (!cg_program_compute("composite/composite.comp", NULL, &st->program, err)) {
-        free(st);
-        return false;
-    }
-    *state = st;
-    return true;
+    return cgp_compute_program(st, "composite/composite.comp", NULL, &st->program, err);
 }
 
 static bool
-composite_execute(fg_pass *pass, void *state, cg_error *err)
+composite_execute(fg_pass *pass, composite_state *st, cg_error *err)
 {
     (void)err;
-    composite_state *st = state;
     const fg_resource_desc *out = fg_resource(pass, "hdr");
     GLuint direct = fg_texture(pass, "direct");
     bool has_indirect = fg_input_present(pass, "indirect");
@@ -103,41 +89,13 @@ composite_execute(fg_pass *pass, void *state, cg_error *err)
     glUniform1i(3, fg_param_enum(pass, "tonemap"));
     glBindImageTexture(0, fg_texture(pass, "hdr"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     glBindImageTexture(1, fg_texture(pass, "ldr"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
-    glDispatchCompute((GLuint)(out->width + 7) / 8, (GLuint)(out->height + 7) / 8, 1);
+    cgp_dispatch_2d(out->width, out->height);
     glUseProgram(0);
     return true;
 }
 
-static void
-composite_destroy(void *state)
-{
-    composite_state *st = state;
-    if (!st)
-        return;
-    glDeleteProgram(st->program);
-    free(st);
-}
-
-static const fg_pass_type composite_type = {
-    .abi_version = FG_ABI_VERSION,
-    .name = "composite",
-    .doc = "The final image: hdr = direct + albedo x indirect + emissive, linear radiance "
-           "(RGBA32F); ldr = hdr x 2^exposure, tonemapped and sRGB-encoded (RGBA8). The optional "
-           "indirect input holds the gathered incident radiance integral over pi, so that "
-           "outgoing = albedo x indirect.",
-    .params = composite_params,
-    .param_count = (int)(sizeof composite_params / sizeof composite_params[0]),
-    .declare = composite_declare,
-    .prepare = composite_prepare,
-    .execute = composite_execute,
-    .destroy = composite_destroy,
-};
-
-bool
-cg_pass_register_composite(fg_registry *registry, uint32_t host_abi, cg_error *err)
-{
-    if (host_abi != FG_ABI_VERSION)
-        return cg_fail(err, CG_ERR_PLUGIN_ABI, "pass composite: built for frame-graph ABI %u, host has %u",
-                       FG_ABI_VERSION, host_abi);
-    return fg_registry_add(registry, &composite_type, err);
-}
+CGP_PASS(composite, CGP_PARAMS(composite_params),
+         "The final image: hdr = direct + albedo x indirect + emissive, linear radiance "
+         "(RGBA32F); ldr = hdr x 2^exposure, tonemapped and sRGB-encoded (RGBA8). The optional "
+         "indirect input holds the gathered incident radiance integral over pi, so that "
+         "outgoing = albedo x indirect.");

@@ -13,12 +13,13 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "sdk/blocks.h"
+#include "sdk/pass.h"
+#include "sdk/sampler.h"
 #include "sdk/cone.h"
 #include "cg/fg.h"
 #include "cg/gpu_scene.h"
 #include "cg/shader.h"
-
-#define REGION_BYTES 32
 
 static const fg_param_desc cone_gather_params[] = {
     { .name = "cones", .type = FG_PARAM_INT, .default_value = 6, .min = 1, .max = 16,
@@ -54,13 +55,11 @@ static const fg_param_desc cone_gather_params[] = {
 };
 
 typedef struct cone_gather_state {
-    GLuint program;
-    GLuint sampler;
-    cgp_cone_set set;
+    cgp_gather gather;      /* its block: CG_CONE_GATHER_BLOCK */
     bool specular, shadow_cone, anisotropic;
 } cone_gather_state;
 
-/* mip3d's directional chains (anisotropic = true), texture units 3..8 (CG_CONE_ANISO_BINDING). */
+/* mip3d's directional chains (anisotropic = true), texture units CG_UNIT_ANISO + 0..5. */
 static const char *const direction_names[6] = {"px", "nx", "py", "ny", "pz", "nz"};
 
 static bool
@@ -86,16 +85,13 @@ cone_gather_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
         return cg_fail(err, CG_ERR_GRAPH_MISSING_INPUT,
                        "pass '%s': input 'volume' needs input 'region' (a voxelize pass's output 'region')",
                        fg_pass_name(pass));
-    if (region->buffer_bytes < REGION_BYTES)
+    if (region->buffer_bytes < sizeof(cg_volume_block))
         return cg_fail(err, CG_ERR_GRAPH_INCOMPATIBLE,
-                       "pass '%s': input 'region' holds %zu bytes; a voxelize 'region' holds %d",
-                       fg_pass_name(pass), region->buffer_bytes, REGION_BYTES);
+                       "pass '%s': input 'region' holds %zu bytes; a voxelize 'region' holds %zu",
+                       fg_pass_name(pass), region->buffer_bytes, sizeof(cg_volume_block));
     if (!position)
         return true;
-    fg_resource_desc out = {
-        .kind = FG_TEXTURE_2D, .format = GL_RGBA16F,
-        .width = position->width, .height = position->height, .depth = 1, .levels = 1,
-    };
+    fg_resource_desc out = cgp_image_like(pass, position, GL_RGBA16F);
     fg_declare_output(decl, "radiance", &out, FG_ACCESS_IMAGE_STORE);
     if (fg_param_bool(pass, "specular"))
         fg_declare_output(decl, "specular", &out, FG_ACCESS_IMAGE_STORE);
@@ -107,16 +103,8 @@ cone_gather_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
 }
 
 static bool
-cone_gather_prepare(fg_pass *pass, void **state, cg_error *err)
+cone_gather_prepare(fg_pass *pass, cone_gather_state *s, cg_error *err)
 {
-    cone_gather_state *s = calloc(1, sizeof *s);
-    if (!s)
-        return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "pass '%s': out of memory", fg_pass_name(pass));
-    if (!cgp_cone_set_make(fg_param_int(pass, "cones"), &s->set)) {
-        free(s);
-        return cg_fail(err, CG_ERR_GRAPH_PARAM_RANGE, "pass '%s': no cone set of %d cones",
-                       fg_pass_name(pass), fg_param_int(pass, "cones"));
-    }
     s->specular = fg_param_bool(pass, "specular");
     s->shadow_cone = fg_param_bool(pass, "shadow_cone");
     s->anisotropic = fg_resource(pass, "px") != NULL;
@@ -124,21 +112,8 @@ cone_gather_prepare(fg_pass *pass, void **state, cg_error *err)
     snprintf(defines, sizeof defines, "%s%s%s", s->specular ? "#define SPECULAR\n" : "",
              s->shadow_cone ? "#define SHADOW_CONE\n" : "",
              s->anisotropic ? "#define CG_CONE_ANISOTROPIC\n" : "");
-    if (!cg_program_compute("cone_gather/cone_gather.comp", defines, &s->program, err)) {
-        free(s);
-        return false;
-    }
-    /* Trilinear within and between levels; outside the volume reads as empty space. */
-    glCreateSamplers(1, &s->sampler);
-    glSamplerParameteri(s->sampler, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-    glSamplerParameteri(s->sampler, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glSamplerParameteri(s->sampler, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_BORDER);
-    glSamplerParameteri(s->sampler, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_BORDER);
-    glSamplerParameteri(s->sampler, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_BORDER);
-    const float border[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-    glSamplerParameterfv(s->sampler, GL_TEXTURE_BORDER_COLOR, border);
-    *state = s;
-    return true;
+    return cgp_gather_prepare(s, pass, &s->gather, "cone_gather/cone_gather.comp", defines,
+                              sizeof(cg_cone_gather_block), err);
 }
 
 static double
@@ -148,96 +123,38 @@ tan_half_degrees(double full_degrees)
 }
 
 static bool
-cone_gather_execute(fg_pass *pass, void *state, cg_error *err)
+cone_gather_execute(fg_pass *pass, cone_gather_state *s, cg_error *err)
 {
     (void)err;
-    cone_gather_state *s = state;
     const fg_frame *frame = fg_pass_frame(pass);
-    const fg_resource_desc *out = fg_resource(pass, "radiance");
-    double aperture = fg_param_float(pass, "aperture");
-
-    glUseProgram(s->program);
-    float cones[CGP_CONE_MAX][4], tan_half[CGP_CONE_MAX];
-    for (int k = 0; k < s->set.count; k++) {
-        const cgp_cone *c = &s->set.cones[k];
-        cones[k][0] = c->direction[0];
-        cones[k][1] = c->direction[1];
-        cones[k][2] = c->direction[2];
-        cones[k][3] = c->weight;
-        tan_half[k] = (float)(aperture > 0.0 ? tan_half_degrees(aperture) : tan(c->half_angle));
-    }
-    glUniform4fv(0, s->set.count, &cones[0][0]);
-    glUniform1fv(16, s->set.count, tan_half);
-    glUniform1i(32, s->set.count);
-    glUniform1f(33, fg_param_float(pass, "step"));
-    glUniform1f(34, fg_param_float(pass, "start_offset"));
-    glUniform1f(35, fg_param_float(pass, "max_distance"));
-    glUniform3fv(36, 1, frame->view.position);
     double roughness = fg_param_float(pass, "roughness");
-    glUniform1f(37, (float)fmax(roughness * roughness, 0.01));
-    glUniform1i(38, fg_param_int(pass, "shadow_light"));
-    glUniform1f(39, (float)tan_half_degrees(fg_param_float(pass, "shadow_aperture")));
-    glUniform1f(40, fg_param_float(pass, "lod_bias"));
+    const cg_cone_gather_block block = {
+        .camera = {frame->view.position[0], frame->view.position[1], frame->view.position[2], 0.0f},
+        .tan_half = {(float)fmax(roughness * roughness, 0.01),
+                     (float)tan_half_degrees(fg_param_float(pass, "shadow_aperture"))},
+        .shadow = {fg_param_int(pass, "shadow_light")},
+    };
 
+    cgp_gather_begin(pass, &s->gather, &block, sizeof block, fg_texture(pass, "volume"), fg_buffer(pass, "region"));
     if (frame->gpu_scene)
         cg_gpu_scene_bind_lights(frame->gpu_scene);
-    glBindBufferBase(GL_UNIFORM_BUFFER, 3 /* CG_BINDING_VOLUME, common/volume.glsl */,
-                     fg_buffer(pass, "region"));
-    glBindTextureUnit(0, fg_texture(pass, "volume"));
-    glBindSampler(0, s->sampler);
-    if (s->anisotropic)
-        for (int d = 0; d < 6; d++) {
-            glBindTextureUnit(3 + (GLuint)d, fg_texture(pass, direction_names[d]));
-            glBindSampler(3 + (GLuint)d, s->sampler);
-        }
-    glBindTextureUnit(1, fg_texture(pass, "position"));
-    glBindTextureUnit(2, fg_texture(pass, "normal"));
-    glBindImageTexture(0, fg_texture(pass, "radiance"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    for (int d = 0; s->anisotropic && d < 6; d++) {
+        glBindTextureUnit(CG_UNIT_ANISO + (GLuint)d, fg_texture(pass, direction_names[d]));
+        glBindSampler(CG_UNIT_ANISO + (GLuint)d, s->gather.volume_sampler);
+    }
     if (s->specular)
         glBindImageTexture(1, fg_texture(pass, "specular"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     if (s->shadow_cone)
         glBindImageTexture(2, fg_texture(pass, "visibility"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
-    glDispatchCompute((GLuint)(out->width + 7) / 8, (GLuint)(out->height + 7) / 8, 1);
-    glBindSampler(0, 0);
-    if (s->anisotropic)
-        for (int d = 0; d < 6; d++)
-            glBindSampler(3 + (GLuint)d, 0);
-    glUseProgram(0);
+    cgp_gather_end(pass);
+    for (int d = 0; s->anisotropic && d < 6; d++)
+        glBindSampler(CG_UNIT_ANISO + (GLuint)d, 0);
     return true;
 }
 
-static void
-cone_gather_destroy(void *state)
-{
-    cone_gather_state *s = state;
-    if (!s)
-        return;
-    glDeleteProgram(s->program);
-    glDeleteSamplers(1, &s->sampler);
-    free(s);
-}
-
-static const fg_pass_type cone_gather_type = {
-    .abi_version = FG_ABI_VERSION,
-    .name = "cone_gather",
-    .doc = "Indirect diffuse light by voxel cone tracing (VCT paper 3.2.1): 1, 6, 9 or 16 cones "
-           "around the normal, weighted by their share of the cosine lobe (hybrid eq. 3-4), each "
-           "accumulated front to back through the mip level of its diameter (hybrid eq. 8). "
-           "Output: the incident radiance integral E/pi (composite multiplies by the albedo) and "
-           "ambient visibility; optional specular cone (3.2.2) and shadow cone (3.2.3).",
-    .params = cone_gather_params,
-    .param_count = (int)(sizeof cone_gather_params / sizeof cone_gather_params[0]),
-    .declare = cone_gather_declare,
-    .prepare = cone_gather_prepare,
-    .execute = cone_gather_execute,
-    .destroy = cone_gather_destroy,
-};
-
-bool
-cg_pass_register_cone_gather(fg_registry *registry, uint32_t host_abi, cg_error *err)
-{
-    if (host_abi != FG_ABI_VERSION)
-        return cg_fail(err, CG_ERR_PLUGIN_ABI, "pass cone_gather: built for frame-graph ABI %u, host has %u",
-                       FG_ABI_VERSION, host_abi);
-    return fg_registry_add(registry, &cone_gather_type, err);
-}
+CGP_PASS(cone_gather, CGP_PARAMS(cone_gather_params),
+         "Indirect diffuse light by voxel cone tracing (VCT paper 3.2.1): 1, 6, 9 or 16 cones "
+         "around the normal, weighted by their share of the cosine lobe (hybrid eq. 3-4), each "
+         "accumulated front to back through the mip level of its diameter (hybrid eq. 8). "
+         "Output: the incident radiance integral E/pi (composite multiplies by the albedo) and "
+         "ambient visibility; optional specular cone (3.2.2) and shadow cone (3.2.3).");

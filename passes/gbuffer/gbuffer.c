@@ -13,6 +13,7 @@
  */
 #include <stdlib.h>
 
+#include "sdk/pass.h"
 #include "cg/fg.h"
 #include "cg/gpu_scene.h"
 #include "cg/shader.h"
@@ -30,11 +31,7 @@ static bool
 gbuffer_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
 {
     (void)err;
-    const fg_frame *frame = fg_pass_frame(pass);
-    fg_resource_desc desc = {
-        .kind = FG_TEXTURE_2D, .format = GL_DEPTH_COMPONENT32F,
-        .width = frame->width, .height = frame->height, .depth = 1, .levels = 1,
-    };
+    fg_resource_desc desc = cgp_image_like(pass, NULL, GL_DEPTH_COMPONENT32F);
     fg_declare_output(decl, "depth", &desc, FG_ACCESS_ATTACHMENT);
     for (int i = 0; i < COLOR_OUTPUTS; i++) {
         desc.format = color_formats[i];
@@ -44,30 +41,20 @@ gbuffer_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
 }
 
 static bool
-gbuffer_prepare(fg_pass *pass, void **state, cg_error *err)
+gbuffer_prepare(fg_pass *pass, gbuffer_state *st, cg_error *err)
 {
     (void)pass;
-    gbuffer_state *st = calloc(1, sizeof *st);
-    if (!st)
-        return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "gbuffer: state");
-    if (!cg_program_graphics("gbuffer/gbuffer.vert", NULL, "gbuffer/gbuffer.frag", NULL,
-                             &st->program, err)) {
-        free(st);
-        return false;
-    }
-    glCreateFramebuffers(1, &st->fbo);
+    st->fbo = cgp_framebuffer(st);
     static const GLenum draw_buffers[COLOR_OUTPUTS] = {
         GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3,
     };
     glNamedFramebufferDrawBuffers(st->fbo, COLOR_OUTPUTS, draw_buffers);
-    *state = st;
-    return true;
+    return cgp_graphics_program(st, "gbuffer/gbuffer.vert", NULL, "gbuffer/gbuffer.frag", NULL, &st->program, err);
 }
 
 static bool
-gbuffer_execute(fg_pass *pass, void *state, cg_error *err)
+gbuffer_execute(fg_pass *pass, gbuffer_state *st, cg_error *err)
 {
-    gbuffer_state *st = state;
     const fg_frame *frame = fg_pass_frame(pass);
     /* Pooled storage may hand this pass other textures from frame to frame: attach each time. */
     glNamedFramebufferTexture(st->fbo, GL_DEPTH_ATTACHMENT, fg_texture(pass, "depth"), 0);
@@ -100,36 +87,7 @@ gbuffer_execute(fg_pass *pass, void *state, cg_error *err)
     return true;
 }
 
-static void
-gbuffer_destroy(void *state)
-{
-    gbuffer_state *st = state;
-    if (!st)
-        return;
-    glDeleteProgram(st->program);
-    glDeleteFramebuffers(1, &st->fbo);
-    free(st);
-}
-
-static const fg_pass_type gbuffer_type = {
-    .abi_version = FG_ABI_VERSION,
-    .name = "gbuffer",
-    .doc = "The visible surface of each pixel of the output image: depth, world position "
-           "(w = 1 where covered), world normal facing the camera, linear albedo and emitted "
-           "radiance. Deferred shading's G-buffer; the VCT paper's cones start from it.",
-    .params = NULL,
-    .param_count = 0,
-    .declare = gbuffer_declare,
-    .prepare = gbuffer_prepare,
-    .execute = gbuffer_execute,
-    .destroy = gbuffer_destroy,
-};
-
-bool
-cg_pass_register_gbuffer(fg_registry *registry, uint32_t host_abi, cg_error *err)
-{
-    if (host_abi != FG_ABI_VERSION)
-        return cg_fail(err, CG_ERR_PLUGIN_ABI, "pass gbuffer: built for frame-graph ABI %u, host has %u",
-                       FG_ABI_VERSION, host_abi);
-    return fg_registry_add(registry, &gbuffer_type, err);
-}
+CGP_PASS(gbuffer, CGP_NO_PARAMS,
+         "The visible surface of each pixel of the output image: depth, world position "
+         "(w = 1 where covered), world normal facing the camera, linear albedo and emitted "
+         "radiance. Deferred shading's G-buffer; the VCT paper's cones start from it.");

@@ -10,7 +10,8 @@
  *          level l's normalised height x, x^p and (1 - x)^p as doubles (two texels per
  *          entry), each minus its level mean (Hensley 2005). fp32 tables were measured
  *          2.6 m off in the mean height of small rectangles at 2048^2 (docs/hybrid.md).
- *   info   272-byte std430 block: mode, p, levels, and the per-level means.
+ *   info   std430 block CG_HSAT_INFO_BLOCK (common/blocks.h): mode, p, levels, and the
+ *          per-level means.
  *
  * Why three modes: eq. 14 (power_mean) under-estimates the maximum by up to N^(-1/p) over N
  * texels, so a skip test built on it can skip terrain that is there; x^p also flushes to zero
@@ -21,12 +22,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "sdk/blocks.h"
+#include "sdk/pass.h"
 #include "cg/fg.h"
 #include "cg/shader.h"
-
-#define REGION_BYTES 48
-#define INFO_BYTES (16 + 16 * 16)
-#define MAX_LEVELS 16
 
 enum { MODE_PYRAMID, MODE_PNORM, MODE_POWER_MEAN };
 
@@ -58,14 +57,14 @@ hsat_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
         return cg_fail(err, CG_ERR_GRAPH_INCOMPATIBLE,
                        "pass '%s': input 'lightmap' must be RGBA16F or RGBA32F (a heightmap_raster lightmap)",
                        fg_pass_name(pass));
-    if (lightmap->width != lightmap->height || lightmap->levels > MAX_LEVELS)
+    if (lightmap->width != lightmap->height || lightmap->levels > CG_HSAT_MAX_LEVELS)
         return cg_fail(err, CG_ERR_GRAPH_INCOMPATIBLE,
                        "pass '%s': input 'lightmap' must be square with at most %d levels, got %dx%d, %d levels",
-                       fg_pass_name(pass), MAX_LEVELS, lightmap->width, lightmap->height, lightmap->levels);
-    if (region->buffer_bytes < REGION_BYTES)
+                       fg_pass_name(pass), CG_HSAT_MAX_LEVELS, lightmap->width, lightmap->height, lightmap->levels);
+    if (region->buffer_bytes < sizeof(cg_heightmap_block))
         return cg_fail(err, CG_ERR_GRAPH_INCOMPATIBLE,
-                       "pass '%s': input 'region' holds %zu bytes; a heightmap_raster 'region' holds %d",
-                       fg_pass_name(pass), region->buffer_bytes, REGION_BYTES);
+                       "pass '%s': input 'region' holds %zu bytes; a heightmap_raster 'region' holds %zu",
+                       fg_pass_name(pass), region->buffer_bytes, sizeof(cg_heightmap_block));
     bool pyramid = fg_param_enum(pass, "mode") == MODE_PYRAMID;
     fg_resource_desc table = {
         .kind = FG_TEXTURE_2D, .format = pyramid ? GL_RG32UI : GL_RGBA32UI,
@@ -73,33 +72,15 @@ hsat_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
         .levels = lightmap->levels, .gi = true,
     };
     fg_declare_output(decl, "table", &table, FG_ACCESS_IMAGE_STORE | FG_ACCESS_IMAGE_LOAD);
-    fg_resource_desc info = {.kind = FG_BUFFER, .depth = 1, .levels = 1, .buffer_bytes = INFO_BYTES, .gi = true};
+    fg_resource_desc info = cgp_buffer_desc(sizeof(cg_hsat_info_block));
+    info.gi = true;
     fg_declare_output(decl, "info", &info, FG_ACCESS_TRANSFER | FG_ACCESS_STORAGE);
     return true;
 }
 
-static void
-hsat_destroy(void *state)
-{
-    hsat_state *s = state;
-    if (!s)
-        return;
-    glDeleteProgram(s->first);
-    glDeleteProgram(s->next);
-    glDeleteProgram(s->row_sums);
-    glDeleteProgram(s->mean);
-    glDeleteProgram(s->rows);
-    glDeleteProgram(s->columns);
-    glDeleteBuffers(1, &s->row_buffer);
-    free(s);
-}
-
 static bool
-hsat_prepare(fg_pass *pass, void **state, cg_error *err)
+hsat_prepare(fg_pass *pass, hsat_state *s, cg_error *err)
 {
-    hsat_state *s = calloc(1, sizeof *s);
-    if (!s)
-        return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "pass '%s': out of memory", fg_pass_name(pass));
     s->mode = fg_param_enum(pass, "mode");
     s->lightmap_format = fg_resource(pass, "lightmap")->format;
     const char *format = s->lightmap_format == GL_RGBA16F ? "rgba16f" : "rgba32f";
@@ -107,44 +88,36 @@ hsat_prepare(fg_pass *pass, void **state, cg_error *err)
     bool ok = true;
     if (s->mode == MODE_PYRAMID) {
         snprintf(defines, sizeof defines, "#define LIGHTMAP_FORMAT %s\n#define FIRST\n", format);
-        ok = cg_program_compute("hsat/pyramid.comp", defines, &s->first, err) &&
-             cg_program_compute("hsat/pyramid.comp", "#define LIGHTMAP_FORMAT rgba32f\n", &s->next, err);
+        ok = cgp_compute_program(s, "hsat/pyramid.comp", defines, &s->first, err) &&
+             cgp_compute_program(s, "hsat/pyramid.comp", "#define LIGHTMAP_FORMAT rgba32f\n", &s->next, err);
     } else {
         static const char *const stages[4] = {"ROW_SUMS", "MEAN", "ROWS", "COLUMNS"};
         GLuint *programs[4] = {&s->row_sums, &s->mean, &s->rows, &s->columns};
         for (int i = 0; i < 4 && ok; i++) {
             snprintf(defines, sizeof defines, "#define LIGHTMAP_FORMAT %s\n#define %s\n", format, stages[i]);
-            ok = cg_program_compute("hsat/sat.comp", defines, programs[i], err);
+            ok = cgp_compute_program(s, "hsat/sat.comp", defines, programs[i], err);
         }
         if (ok) {
             int size = fg_resource(pass, "lightmap")->width;
-            glCreateBuffers(1, &s->row_buffer);
-            glNamedBufferStorage(s->row_buffer, (GLsizeiptr)size * 4 * sizeof(double), NULL, 0);
+            s->row_buffer = cgp_buffer(s, (size_t)size * 4 * sizeof(double), NULL, 0);
         }
     }
-    if (!ok) {
-        hsat_destroy(s);
-        return false;
-    }
-    *state = s;
-    return true;
+    return ok;
 }
 
 static bool
-hsat_execute(fg_pass *pass, void *state, cg_error *err)
+hsat_execute(fg_pass *pass, hsat_state *s, cg_error *err)
 {
     (void)err;
-    hsat_state *s = state;
     const fg_resource_desc *lightmap_desc = fg_resource(pass, "lightmap");
     GLuint lightmap = fg_texture(pass, "lightmap");
     GLuint table = fg_texture(pass, "table");
     GLuint info = fg_buffer(pass, "info");
     int levels = lightmap_desc->levels;
     float p = fg_param_float(pass, "p");
-    const float params[4] = {(float)s->mode, p, (float)levels, 0.0f};
-    const float zero = 0.0f;
-    glClearNamedBufferData(info, GL_R32F, GL_RED, GL_FLOAT, &zero);
-    glNamedBufferSubData(info, 0, sizeof params, params);
+    /* The means are zero until the SAT stages write them (the pyramid has none). */
+    const cg_hsat_info_block block = {.params = {(float)s->mode, p, (float)levels, 0.0f}};
+    glNamedBufferSubData(info, 0, sizeof block, &block);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
 
     if (s->mode == MODE_PYRAMID) {
@@ -166,9 +139,9 @@ hsat_execute(fg_pass *pass, void *state, cg_error *err)
         return true;
     }
 
-    glBindBufferBase(GL_UNIFORM_BUFFER, 4 /* CG_BINDING_HEIGHTMAP */, fg_buffer(pass, "region"));
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, info);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, s->row_buffer);
+    glBindBufferBase(GL_UNIFORM_BUFFER, CG_BINDING_HEIGHTMAP, fg_buffer(pass, "region"));
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_HSAT, info);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_HSAT_ROWS, s->row_buffer);
     const GLuint stages[4] = {s->row_sums, s->mean, s->rows, s->columns};
     const GLbitfield after[4] = {GL_SHADER_STORAGE_BARRIER_BIT, GL_SHADER_STORAGE_BARRIER_BIT,
                                  GL_SHADER_IMAGE_ACCESS_BARRIER_BIT, GL_SHADER_IMAGE_ACCESS_BARRIER_BIT};
@@ -187,33 +160,15 @@ hsat_execute(fg_pass *pass, void *state, cg_error *err)
     }
     glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_ONLY, s->lightmap_format);
     glBindImageTexture(1, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32UI);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, 0);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, 0);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_HSAT, 0);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_HSAT_ROWS, 0);
     glUseProgram(0);
     return true;
 }
 
-static const fg_pass_type hsat_type = {
-    .abi_version = FG_ABI_VERSION,
-    .name = "hsat",
-    .doc = "Per-level min/max height tables of a mipped 2D lightmap (hybrid paper VI.A, HSAT, "
-           "eq. 13-14): the lowest and highest terrain under any rectangle in constant time. "
-           "Default: an exact min/max pyramid (conservative); or summed-area tables of x^p read "
-           "as the un-normalised p-norm (an upper bound) or as eq. 14's power mean (the paper's, "
-           "which under-estimates). SAT entries are stored minus the level mean (Hensley 2005).",
-    .params = hsat_params,
-    .param_count = (int)(sizeof hsat_params / sizeof hsat_params[0]),
-    .declare = hsat_declare,
-    .prepare = hsat_prepare,
-    .execute = hsat_execute,
-    .destroy = hsat_destroy,
-};
-
-bool
-cg_pass_register_hsat(fg_registry *registry, uint32_t host_abi, cg_error *err)
-{
-    if (host_abi != FG_ABI_VERSION)
-        return cg_fail(err, CG_ERR_PLUGIN_ABI, "pass hsat: built for frame-graph ABI %u, host has %u",
-                       FG_ABI_VERSION, host_abi);
-    return fg_registry_add(registry, &hsat_type, err);
-}
+CGP_PASS(hsat, CGP_PARAMS(hsat_params),
+         "Per-level min/max height tables of a mipped 2D lightmap (hybrid paper VI.A, HSAT, "
+         "eq. 13-14): the lowest and highest terrain under any rectangle in constant time. "
+         "Default: an exact min/max pyramid (conservative); or summed-area tables of x^p read "
+         "as the un-normalised p-norm (an upper bound) or as eq. 14's power mean (the paper's, "
+         "which under-estimates). SAT entries are stored minus the level mean (Hensley 2005).");

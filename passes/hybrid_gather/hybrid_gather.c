@@ -1,11 +1,12 @@
 /* passes/hybrid_gather: indirect light by hybrid cone tracing (hybrid paper VI, eq. 8-17)
  * through a 3D lightmap of the complex meshes and a 2D lightmap of the height-field meshes.
  *
- * A separate pass rather than a mode of cone_gather: the VCT gather stays as it is (its
- * author was still changing it), both share shaders/common/cone_trace.glsl and the cone
- * sets of passes/sdk/cone.c, and each shader reads as one method. Without the 2D branch
- * (a scene with no height field, where the graph culls heightmap_raster, mip2d and hsat)
- * the shader compiles without HAS_2D and runs the very VCT march of cone_gather.
+ * A separate pass rather than a mode of cone_gather, each shader reading as one method, but
+ * no copy of it: both take the 3D steps of shaders/common/cone_trace.glsl (cg_cone_step, here
+ * at the sample position of eq. 15) and share the pass SDK's cgp_gather (cone set, blocks,
+ * bindings). Without the 2D branch (a scene with no height field, where the graph culls
+ * heightmap_raster, mip2d and hsat) the shader compiles without HAS_2D and runs the very VCT
+ * gather of cone_gather.
  *
  * Inputs: position, normal (G-buffer, required); volume + region (mip3d'd voxelize radiance
  * and its block); lightmap + region2d (mip2d'd heightmap_raster lightmap and its block) and
@@ -14,19 +15,16 @@
  * Output: radiance, RGBA16F: rgb = sum_k W_k L_k (E_i / pi, composite multiplies by the
  * albedo), a = ambient visibility. The same convention as cone_gather.
  */
-#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
-#include <string.h>
 
+#include "sdk/blocks.h"
+#include "sdk/pass.h"
+#include "sdk/sampler.h"
 #include "sdk/cone.h"
 #include "cg/fg.h"
 #include "cg/gpu_scene.h"
 #include "cg/shader.h"
-
-#define VOLUME_BYTES 32
-#define HEIGHTMAP_BYTES 48
-#define HSAT_INFO_BYTES 272
 
 enum { CUBE_EQ11, CUBE_EQ10 };
 enum { OCCLUSION_EQ16, OCCLUSION_EQ17 };
@@ -44,7 +42,8 @@ static const fg_param_desc hybrid_gather_params[] = {
       .doc = "xels the cone origin is moved along the normal (the coarser of voxel and 2D texel)" },
     { .name = "lod_bias", .type = FG_PARAM_FLOAT, .default_value = -2, .min = -4, .max = 4,
       .step = 0.25,
-      .doc = "added to the mip levels of hybrid eq. 8 (as cone_gather)" },
+      .doc = "added to the 3D lightmap's matched level (one below hybrid eq. 8, as cone_gather) and to the 2D "
+             "lightmap's eq. 8" },
     { .name = "max_distance", .type = FG_PARAM_FLOAT, .min = 0, .max = 1e9,
       .doc = "metres a cone travels at most; 0: the maps' diagonal" },
     { .name = "cube", .type = FG_PARAM_ENUM, .default_value = CUBE_EQ11, .choices = "eq11|eq10",
@@ -58,10 +57,9 @@ static const fg_param_desc hybrid_gather_params[] = {
 };
 
 typedef struct hybrid_gather_state {
-    GLuint program;
-    GLuint volume_sampler, map_sampler, table_sampler;
+    cgp_gather gather;      /* its block: CG_HYBRID_GATHER_BLOCK */
+    GLuint map_sampler, table_sampler;
     GLuint empty_block;     /* bound where a map is absent, so no block is left unbound */
-    cgp_cone_set set;
     bool has_2d, has_3d;
 } hybrid_gather_state;
 
@@ -94,10 +92,11 @@ hybrid_gather_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
         return cg_fail(err, CG_ERR_GRAPH_MISSING_INPUT,
                        "pass '%s': input 'lightmap2d' needs 'region2d' (heightmap_raster's 'region'), "
                        "'hsat' and 'hsat_info' (an hsat pass's 'table' and 'info')", fg_pass_name(pass));
-    if (region && !check_buffer(pass, region, "region", VOLUME_BYTES, "a voxelize 'region'", err))
+    if (region && !check_buffer(pass, region, "region", sizeof(cg_volume_block), "a voxelize 'region'", err))
         return false;
-    if (lightmap && (!check_buffer(pass, region2d, "region2d", HEIGHTMAP_BYTES, "a heightmap_raster 'region'", err) ||
-                     !check_buffer(pass, hsat_info, "hsat_info", HSAT_INFO_BYTES, "an hsat 'info'", err)))
+    if (lightmap &&
+        (!check_buffer(pass, region2d, "region2d", sizeof(cg_heightmap_block), "a heightmap_raster 'region'", err) ||
+         !check_buffer(pass, hsat_info, "hsat_info", sizeof(cg_hsat_info_block), "an hsat 'info'", err)))
         return false;
     if (lightmap && hsat && hsat->levels < lightmap->levels)
         return cg_fail(err, CG_ERR_GRAPH_INCOMPATIBLE,
@@ -109,150 +108,56 @@ hybrid_gather_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
     }
     if (!position)
         return true;
-    fg_resource_desc out = {
-        .kind = FG_TEXTURE_2D, .format = GL_RGBA16F,
-        .width = position->width, .height = position->height, .depth = 1, .levels = 1,
-    };
+    fg_resource_desc out = cgp_image_like(pass, position, GL_RGBA16F);
     fg_declare_output(decl, "radiance", &out, FG_ACCESS_IMAGE_STORE);
     return true;
 }
 
-static void
-hybrid_gather_destroy(void *state)
-{
-    hybrid_gather_state *s = state;
-    if (!s)
-        return;
-    glDeleteProgram(s->program);
-    glDeleteSamplers(1, &s->volume_sampler);
-    glDeleteSamplers(1, &s->map_sampler);
-    glDeleteSamplers(1, &s->table_sampler);
-    glDeleteBuffers(1, &s->empty_block);
-    free(s);
-}
-
 static bool
-hybrid_gather_prepare(fg_pass *pass, void **state, cg_error *err)
+hybrid_gather_prepare(fg_pass *pass, hybrid_gather_state *s, cg_error *err)
 {
-    hybrid_gather_state *s = calloc(1, sizeof *s);
-    if (!s)
-        return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "pass '%s': out of memory", fg_pass_name(pass));
-    if (!cgp_cone_set_make(fg_param_int(pass, "cones"), &s->set)) {
-        free(s);
-        return cg_fail(err, CG_ERR_GRAPH_PARAM_RANGE, "pass '%s': no cone set of %d cones",
-                       fg_pass_name(pass), fg_param_int(pass, "cones"));
-    }
     s->has_3d = fg_input_present(pass, "volume");
     s->has_2d = fg_input_present(pass, "lightmap2d");
-    if (!cg_program_compute("hybrid_gather/hybrid_gather.comp", s->has_2d ? "#define HAS_2D\n" : NULL,
-                            &s->program, err)) {
-        hybrid_gather_destroy(s);
-        return false;
-    }
-    /* Trilinear within and between levels; outside the volume reads as empty space. */
-    glCreateSamplers(1, &s->volume_sampler);
-    glSamplerParameteri(s->volume_sampler, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-    glSamplerParameteri(s->volume_sampler, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glSamplerParameteri(s->volume_sampler, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_BORDER);
-    glSamplerParameteri(s->volume_sampler, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_BORDER);
-    glSamplerParameteri(s->volume_sampler, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_BORDER);
-    const float border[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-    glSamplerParameterfv(s->volume_sampler, GL_TEXTURE_BORDER_COLOR, border);
-    /* The 2D lightmap: trilinear, edges clamped (the terrain's border continues outward in
-     * the cube-centre sample; the DDA reads only texels inside). */
-    glCreateSamplers(1, &s->map_sampler);
-    glSamplerParameteri(s->map_sampler, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-    glSamplerParameteri(s->map_sampler, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glSamplerParameteri(s->map_sampler, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glSamplerParameteri(s->map_sampler, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    /* The HSAT tables are integer textures: complete only with nearest filtering. */
-    glCreateSamplers(1, &s->table_sampler);
-    glSamplerParameteri(s->table_sampler, GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
-    glSamplerParameteri(s->table_sampler, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glCreateBuffers(1, &s->empty_block);
-    glNamedBufferStorage(s->empty_block, HSAT_INFO_BYTES, NULL, GL_DYNAMIC_STORAGE_BIT);
-    const unsigned zero = 0;
-    glClearNamedBufferData(s->empty_block, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-    *state = s;
-    return true;
+    /* The cube-centre sample (dda = false) reads the 2D lightmap filtered; the DDA and HSAT fetch. */
+    s->map_sampler = cgp_sampler_lightmap2d(s);
+    s->table_sampler = cgp_sampler_table(s);
+    static const cg_hsat_info_block zero;
+    s->empty_block = cgp_buffer(s, sizeof zero, &zero, 0);
+    return cgp_gather_prepare(s, pass, &s->gather, "hybrid_gather/hybrid_gather.comp",
+                              s->has_2d ? "#define HAS_2D\n" : NULL, sizeof(cg_hybrid_gather_block), err);
 }
 
 static bool
-hybrid_gather_execute(fg_pass *pass, void *state, cg_error *err)
+hybrid_gather_execute(fg_pass *pass, hybrid_gather_state *s, cg_error *err)
 {
     (void)err;
-    hybrid_gather_state *s = state;
-    const fg_resource_desc *out = fg_resource(pass, "radiance");
-    double aperture = fg_param_float(pass, "aperture");
+    const cg_hybrid_gather_block block = {
+        .maps = {s->has_3d},
+        .switches = {fg_param_enum(pass, "cube") == CUBE_EQ11, fg_param_enum(pass, "occlusion"),
+                     fg_param_bool(pass, "dda"), fg_param_bool(pass, "skip")},
+    };
 
-    glUseProgram(s->program);
-    float cones[CGP_CONE_MAX][4], tan_half[CGP_CONE_MAX];
-    for (int k = 0; k < s->set.count; k++) {
-        const cgp_cone *c = &s->set.cones[k];
-        memcpy(cones[k], c->direction, sizeof c->direction);
-        cones[k][3] = c->weight;
-        tan_half[k] = (float)(aperture > 0.0 ? tan(0.5 * aperture * M_PI / 180.0) : tan(c->half_angle));
-    }
-    glUniform4fv(0, s->set.count, &cones[0][0]);
-    glUniform1fv(16, s->set.count, tan_half);
-    glUniform1i(32, s->set.count);
-    glUniform1f(33, fg_param_float(pass, "step"));
-    glUniform1f(34, fg_param_float(pass, "start_offset"));
-    glUniform1f(35, fg_param_float(pass, "max_distance"));
-    glUniform1f(40, fg_param_float(pass, "lod_bias"));
-    if (s->has_2d) {
-        glUniform1i(41, s->has_3d ? 1 : 0);
-        glUniform1i(42, fg_param_enum(pass, "cube") == CUBE_EQ11 ? 1 : 0);
-        glUniform1i(43, fg_param_enum(pass, "occlusion"));
-        glUniform1i(44, fg_param_bool(pass, "dda") ? 1 : 0);
-        glUniform1i(45, fg_param_bool(pass, "skip") ? 1 : 0);
-    }
-    glBindBufferBase(GL_UNIFORM_BUFFER, 3 /* CG_BINDING_VOLUME */,
+    cgp_gather_begin(pass, &s->gather, &block, sizeof block, s->has_3d ? fg_texture(pass, "volume") : 0,
                      s->has_3d ? fg_buffer(pass, "region") : s->empty_block);
-    glBindBufferBase(GL_UNIFORM_BUFFER, 4 /* CG_BINDING_HEIGHTMAP */,
-                     s->has_2d ? fg_buffer(pass, "region2d") : s->empty_block);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5 /* CG_BINDING_HSAT */,
+    glBindBufferBase(GL_UNIFORM_BUFFER, CG_BINDING_HEIGHTMAP, s->has_2d ? fg_buffer(pass, "region2d") : s->empty_block);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_HSAT,
                      s->has_2d ? fg_buffer(pass, "hsat_info") : s->empty_block);
-    glBindTextureUnit(0, s->has_3d ? fg_texture(pass, "volume") : 0);
-    glBindSampler(0, s->volume_sampler);
-    glBindTextureUnit(1, fg_texture(pass, "position"));
-    glBindTextureUnit(2, fg_texture(pass, "normal"));
-    glBindTextureUnit(3, s->has_2d ? fg_texture(pass, "lightmap2d") : 0);
-    glBindSampler(3, s->map_sampler);
-    glBindTextureUnit(4, s->has_2d ? fg_texture(pass, "hsat") : 0);
-    glBindSampler(4, s->table_sampler);
-    glBindImageTexture(0, fg_texture(pass, "radiance"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    glDispatchCompute((GLuint)(out->width + 7) / 8, (GLuint)(out->height + 7) / 8, 1);
-    glBindSampler(0, 0);
-    glBindSampler(3, 0);
-    glBindSampler(4, 0);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, 0);
-    glUseProgram(0);
+    glBindTextureUnit(CG_UNIT_LIGHTMAP2D, s->has_2d ? fg_texture(pass, "lightmap2d") : 0);
+    glBindSampler(CG_UNIT_LIGHTMAP2D, s->map_sampler);
+    glBindTextureUnit(CG_UNIT_HSAT, s->has_2d ? fg_texture(pass, "hsat") : 0);
+    glBindSampler(CG_UNIT_HSAT, s->table_sampler);
+    cgp_gather_end(pass);
+    glBindSampler(CG_UNIT_LIGHTMAP2D, 0);
+    glBindSampler(CG_UNIT_HSAT, 0);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_HSAT, 0);
     return true;
 }
 
-static const fg_pass_type hybrid_gather_type = {
-    .abi_version = FG_ABI_VERSION,
-    .name = "hybrid_gather",
-    .doc = "Indirect diffuse light by hybrid cone tracing (hybrid paper VI): per step an "
-           "axis-aligned fitting cube (eq. 10-11) tested against the 3D lightmap's box (eq. 12) "
-           "and the terrain's height range from HSAT (eq. 13-14, empty space skipped), the 3D "
-           "lightmap sampled at the intersection's centre (eq. 15) at the level of eq. 8, the 2D "
-           "lightmap walked by a DDA, occlusion by eq. 16 or 17. Cone weights integrate the "
-           "cosine lobe to 1. Without a 2D lightmap: the VCT march of cone_gather.",
-    .params = hybrid_gather_params,
-    .param_count = (int)(sizeof hybrid_gather_params / sizeof hybrid_gather_params[0]),
-    .declare = hybrid_gather_declare,
-    .prepare = hybrid_gather_prepare,
-    .execute = hybrid_gather_execute,
-    .destroy = hybrid_gather_destroy,
-};
-
-bool
-cg_pass_register_hybrid_gather(fg_registry *registry, uint32_t host_abi, cg_error *err)
-{
-    if (host_abi != FG_ABI_VERSION)
-        return cg_fail(err, CG_ERR_PLUGIN_ABI, "pass hybrid_gather: built for frame-graph ABI %u, host has %u",
-                       FG_ABI_VERSION, host_abi);
-    return fg_registry_add(registry, &hybrid_gather_type, err);
-}
+CGP_PASS(hybrid_gather, CGP_PARAMS(hybrid_gather_params),
+         "Indirect diffuse light by hybrid cone tracing (hybrid paper VI): per step an "
+         "axis-aligned fitting cube (eq. 10-11) tested against the 3D lightmap's box (eq. 12) "
+         "and the terrain's height range from HSAT (eq. 13-14, empty space skipped), the 3D "
+         "lightmap sampled at the intersection's centre (eq. 15) by cone_gather's step (matched "
+         "level of eq. 8, surface cap, coverage compositing), the 2D lightmap walked by a DDA, "
+         "occlusion by eq. 16 or 17. Cone weights integrate the cosine lobe to 1. Without a 2D "
+         "lightmap: the VCT march of cone_gather.");

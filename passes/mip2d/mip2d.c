@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "sdk/pass.h"
 #include "cg/fg.h"
 #include "cg/shader.h"
 
@@ -40,27 +41,18 @@ mip2d_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
 }
 
 static bool
-mip2d_prepare(fg_pass *pass, void **state, cg_error *err)
+mip2d_prepare(fg_pass *pass, mip2d_state *s, cg_error *err)
 {
-    mip2d_state *s = calloc(1, sizeof *s);
-    if (!s)
-        return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "pass '%s': out of memory", fg_pass_name(pass));
     s->format = fg_resource(pass, "lightmap")->format;
     char defines[64];
     snprintf(defines, sizeof defines, "#define FORMAT %s\n", s->format == GL_RGBA16F ? "rgba16f" : "rgba32f");
-    if (!cg_program_compute("mip2d/downsample.comp", defines, &s->program, err)) {
-        free(s);
-        return false;
-    }
-    *state = s;
-    return true;
+    return cgp_compute_program(s, "mip2d/downsample.comp", defines, &s->program, err);
 }
 
 static bool
-mip2d_execute(fg_pass *pass, void *state, cg_error *err)
+mip2d_execute(fg_pass *pass, mip2d_state *s, cg_error *err)
 {
     (void)err;
-    mip2d_state *s = state;
     const fg_resource_desc *desc = fg_resource(pass, "lightmap");
     GLuint tex = fg_texture(pass, "lightmap");
     glUseProgram(s->program);
@@ -79,35 +71,7 @@ mip2d_execute(fg_pass *pass, void *state, cg_error *err)
     return true;
 }
 
-static void
-mip2d_destroy(void *state)
-{
-    mip2d_state *s = state;
-    if (!s)
-        return;
-    glDeleteProgram(s->program);
-    free(s);
-}
-
-static const fg_pass_type mip2d_type = {
-    .abi_version = FG_ABI_VERSION,
-    .name = "mip2d",
-    .doc = "Mip chain of a 2D lightmap (hybrid paper V.B) by a 2x2 box filter, one compute dispatch "
-           "per level, in place: mean radiance in rgb, mean height in alpha (the paper's filtered "
-           "geometry; per-level height extremes come from hsat).",
-    .params = NULL,
-    .param_count = 0,
-    .declare = mip2d_declare,
-    .prepare = mip2d_prepare,
-    .execute = mip2d_execute,
-    .destroy = mip2d_destroy,
-};
-
-bool
-cg_pass_register_mip2d(fg_registry *registry, uint32_t host_abi, cg_error *err)
-{
-    if (host_abi != FG_ABI_VERSION)
-        return cg_fail(err, CG_ERR_PLUGIN_ABI, "pass mip2d: built for frame-graph ABI %u, host has %u",
-                       FG_ABI_VERSION, host_abi);
-    return fg_registry_add(registry, &mip2d_type, err);
-}
+CGP_PASS(mip2d, CGP_NO_PARAMS,
+         "Mip chain of a 2D lightmap (hybrid paper V.B) by a 2x2 box filter, one compute dispatch "
+         "per level, in place: mean radiance in rgb, mean height in alpha (the paper's filtered "
+         "geometry; per-level height extremes come from hsat).");

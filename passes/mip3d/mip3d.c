@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "sdk/pass.h"
 #include "cg/fg.h"
 #include "cg/shader.h"
 
@@ -62,12 +63,9 @@ mip3d_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
 }
 
 static bool
-mip3d_prepare(fg_pass *pass, void **state, cg_error *err)
+mip3d_prepare(fg_pass *pass, mip3d_state *s, cg_error *err)
 {
     const fg_resource_desc *desc = fg_resource(pass, "volume");
-    mip3d_state *s = calloc(1, sizeof *s);
-    if (!s)
-        return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "pass '%s': out of memory", fg_pass_name(pass));
     s->format = desc->format;
     char defines[128];
     snprintf(defines, sizeof defines, "#define FORMAT %s\n#define %s\n",
@@ -76,21 +74,15 @@ mip3d_prepare(fg_pass *pass, void **state, cg_error *err)
     s->anisotropic = fg_param_bool(pass, "anisotropic");
     char format_define[64];
     snprintf(format_define, sizeof format_define, "#define FORMAT %s\n", s->format == GL_RGBA8 ? "rgba8" : "rgba16f");
-    if (!cg_program_compute("mip3d/downsample.comp", defines, &s->program, err) ||
-        (s->anisotropic && !cg_program_compute("mip3d/directional.comp", format_define, &s->directional, err))) {
-        glDeleteProgram(s->program);
-        free(s);
-        return false;
-    }
-    *state = s;
-    return true;
+    return cgp_compute_program(s, "mip3d/downsample.comp", defines, &s->program, err) &&
+                            (!s->anisotropic ||
+                             cgp_compute_program(s, "mip3d/directional.comp", format_define, &s->directional, err));
 }
 
 static bool
-mip3d_execute(fg_pass *pass, void *state, cg_error *err)
+mip3d_execute(fg_pass *pass, mip3d_state *s, cg_error *err)
 {
     (void)err;
-    mip3d_state *s = state;
     const fg_resource_desc *desc = fg_resource(pass, "volume");
     GLuint tex = fg_texture(pass, "volume");
     glUseProgram(s->program);
@@ -131,35 +123,6 @@ mip3d_execute(fg_pass *pass, void *state, cg_error *err)
     return true;
 }
 
-static void
-mip3d_destroy(void *state)
-{
-    mip3d_state *s = state;
-    if (!s)
-        return;
-    glDeleteProgram(s->program);
-    glDeleteProgram(s->directional);
-    free(s);
-}
-
-static const fg_pass_type mip3d_type = {
-    .abi_version = FG_ABI_VERSION,
-    .name = "mip3d",
-    .doc = "Filtered mip chain of a 3D lightmap by a 2x2x2 box filter, one compute dispatch per "
-           "level, in place (VCT paper 3.1). Opacity by the max or the average of the children.",
-    .params = mip3d_params,
-    .param_count = (int)(sizeof mip3d_params / sizeof mip3d_params[0]),
-    .declare = mip3d_declare,
-    .prepare = mip3d_prepare,
-    .execute = mip3d_execute,
-    .destroy = mip3d_destroy,
-};
-
-bool
-cg_pass_register_mip3d(fg_registry *registry, uint32_t host_abi, cg_error *err)
-{
-    if (host_abi != FG_ABI_VERSION)
-        return cg_fail(err, CG_ERR_PLUGIN_ABI, "pass mip3d: built for ABI %u, host has %u",
-                       FG_ABI_VERSION, host_abi);
-    return fg_registry_add(registry, &mip3d_type, err);
-}
+CGP_PASS(mip3d, CGP_PARAMS(mip3d_params),
+         "Filtered mip chain of a 3D lightmap by a 2x2x2 box filter, one compute dispatch per "
+         "level, in place (VCT paper 3.1). Opacity by the max or the average of the children.");

@@ -12,6 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "sdk/pass.h"
 #include "cg/fg.h"
 #include "cg/log.h"
 #include "cg/pt_render.h"
@@ -54,16 +55,8 @@ static bool
 path_trace_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
 {
     (void)err;
-    const fg_frame *frame = fg_pass_frame(pass);
-    fg_resource_desc out = {
-        .kind = FG_TEXTURE_2D,
-        .format = GL_RGBA32F,
-        .width = frame->width,
-        .height = frame->height,
-        .depth = 1,
-        .levels = 1,
-        .persistent = true, /* holds the cached trace between frames */
-    };
+    fg_resource_desc out = cgp_image_like(pass, NULL, GL_RGBA32F);
+    out.persistent = true; /* holds the cached trace between frames */
     fg_declare_output(decl, "radiance", &out, FG_ACCESS_TRANSFER);
     if (fg_param_bool(pass, "parts"))
         for (int p = 0; p < PT_PART_COUNT; p++)
@@ -71,14 +64,23 @@ path_trace_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
     return true;
 }
 
-static bool
-path_trace_prepare(fg_pass *pass, void **state, cg_error *err)
+/* What the state holds: the Embree scene and the last images (no GL objects). */
+static void
+path_trace_cleanup(void *state)
 {
+    path_trace_state *st = state;
+    pt_scene_destroy(st->pts);
+    free(st->rgba);
+    for (int p = 0; p < PT_PART_COUNT; p++)
+        free(st->parts[p]);
+}
+
+static bool
+path_trace_prepare(fg_pass *pass, path_trace_state *st, cg_error *err)
+{
+    (void)err;
     (void)pass;
-    path_trace_state *st = calloc(1, sizeof *st);
-    if (!st)
-        return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "path_trace: state");
-    *state = st;
+    cgp_state_on_destroy(st, path_trace_cleanup);
     return true;
 }
 
@@ -120,9 +122,8 @@ upload(fg_pass *pass, const char *output, const float *rgba, int w, int h)
 }
 
 static bool
-path_trace_execute(fg_pass *pass, void *state, cg_error *err)
+path_trace_execute(fg_pass *pass, path_trace_state *st, cg_error *err)
 {
-    path_trace_state *st = state;
     const fg_frame *frame = fg_pass_frame(pass);
     pt_settings settings = settings_of(pass);
     if (st->scene != frame->scene || st->revision != frame->scene->revision) {
@@ -189,41 +190,9 @@ path_trace_execute(fg_pass *pass, void *state, cg_error *err)
     return true;
 }
 
-static void
-path_trace_destroy(void *state)
-{
-    path_trace_state *st = state;
-    if (!st)
-        return;
-    pt_scene_destroy(st->pts);
-    free(st->rgba);
-    for (int p = 0; p < PT_PART_COUNT; p++)
-        free(st->parts[p]);
-    free(st);
-}
-
-static const fg_pass_type path_trace_type = {
-    .abi_version = FG_ABI_VERSION,
-    .name = "path_trace",
-    .doc = "CPU path-traced reference on Embree 3: Lambertian materials with base colour "
-           "textures, emissive surfaces, directional/point/spot lights by next-event estimation "
-           "with hard shadows, cosine-sampled diffuse bounces; camera rays through the pixel "
-           "centres of the raster passes' view. Output `radiance`: linear RGBA32F. Bit-identical "
-           "for a seed whatever the thread count (counter-based random numbers per pixel and sample).",
-    .params = path_trace_params,
-    .param_count = (int)(sizeof path_trace_params / sizeof path_trace_params[0]),
-    .side_effect = false,
-    .declare = path_trace_declare,
-    .prepare = path_trace_prepare,
-    .execute = path_trace_execute,
-    .destroy = path_trace_destroy,
-};
-
-bool
-cg_pass_register_path_trace(fg_registry *registry, uint32_t host_abi, cg_error *err)
-{
-    if (host_abi != FG_ABI_VERSION)
-        return cg_fail(err, CG_ERR_PLUGIN_ABI, "pass path_trace: built for frame-graph ABI %u, host has %u",
-                       FG_ABI_VERSION, host_abi);
-    return fg_registry_add(registry, &path_trace_type, err);
-}
+CGP_PASS(path_trace, CGP_PARAMS(path_trace_params),
+         "CPU path-traced reference on Embree 3: Lambertian materials with base colour "
+         "textures, emissive surfaces, directional/point/spot lights by next-event estimation "
+         "with hard shadows, cosine-sampled diffuse bounces; camera rays through the pixel "
+         "centres of the raster passes' view. Output `radiance`: linear RGBA32F. Bit-identical "
+         "for a seed whatever the thread count (counter-based random numbers per pixel and sample).");

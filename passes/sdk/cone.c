@@ -1,6 +1,9 @@
 /* Diffuse cone sets; see sdk/cone.h and docs/vct.md for the weight derivation. */
 #include "sdk/cone.h"
 
+#include "sdk/pass.h"
+#include "sdk/sampler.h"
+
 #include <math.h>
 #include <stddef.h>
 
@@ -111,6 +114,78 @@ cgp_cone_set_make(int count, cgp_cone_set *out)
         }
     }
     return true;
+}
+
+bool
+cgp_cone_set_of_pass(const fg_pass *pass, cgp_cone_set *out, cg_error *err)
+{
+    int count = fg_param_int(pass, "cones");
+    if (!cgp_cone_set_make(count, out))
+        return cg_fail(err, CG_ERR_GRAPH_PARAM_RANGE, "pass '%s': no cone set of %d cones (1, 6, 9 or 16)",
+                       fg_pass_name(pass), count);
+    return true;
+}
+
+void
+cgp_cone_block_fill(const fg_pass *pass, const cgp_cone_set *set, cg_cone_set_block *out)
+{
+    double aperture = fg_param_float(pass, "aperture");
+    *out = (cg_cone_set_block){
+        .count = {set->count, 0, 0, 0},
+        .march = {fg_param_float(pass, "step"), fg_param_float(pass, "start_offset"),
+                  fg_param_float(pass, "max_distance"), fg_param_float(pass, "lod_bias")},
+    };
+    for (int k = 0; k < set->count; k++) {
+        const cgp_cone *c = &set->cones[k];
+        for (int i = 0; i < 3; i++)
+            out->cones[k][i] = c->direction[i];
+        out->cones[k][3] = c->weight;
+        out->apertures[k][0] = (float)(aperture > 0.0 ? tan(0.5 * aperture * M_PI / 180.0) : tan(c->half_angle));
+    }
+}
+
+void
+cgp_cone_upload(const fg_pass *pass, const cgp_cone_set *set, GLuint buffer)
+{
+    cg_cone_set_block block;
+    cgp_cone_block_fill(pass, set, &block);
+    cgp_uniform_upload(buffer, CG_BINDING_CONES, &block, sizeof block);
+}
+
+bool
+cgp_gather_prepare(void *state, const fg_pass *pass, cgp_gather *g, const char *shader, const char *defines,
+                   size_t gather_bytes, cg_error *err)
+{
+    if (!cgp_cone_set_of_pass(pass, &g->set, err) || !cgp_compute_program(state, shader, defines, &g->program, err))
+        return false;
+    g->volume_sampler = cgp_sampler_volume(state);
+    g->cone_block = cgp_uniform_buffer(state, sizeof(cg_cone_set_block));
+    g->gather_block = cgp_uniform_buffer(state, gather_bytes);
+    return true;
+}
+
+void
+cgp_gather_begin(const fg_pass *pass, const cgp_gather *g, const void *block, size_t gather_bytes, GLuint volume,
+                 GLuint region)
+{
+    glUseProgram(g->program);
+    cgp_cone_upload(pass, &g->set, g->cone_block);
+    cgp_uniform_upload(g->gather_block, CG_BINDING_GATHER, block, gather_bytes);
+    glBindBufferBase(GL_UNIFORM_BUFFER, CG_BINDING_VOLUME, region);
+    glBindTextureUnit(CG_UNIT_VOLUME, volume);
+    glBindSampler(CG_UNIT_VOLUME, g->volume_sampler);
+    glBindTextureUnit(CG_UNIT_POSITION, fg_texture(pass, "position"));
+    glBindTextureUnit(CG_UNIT_NORMAL, fg_texture(pass, "normal"));
+    glBindImageTexture(0, fg_texture(pass, "radiance"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+}
+
+void
+cgp_gather_end(const fg_pass *pass)
+{
+    const fg_resource_desc *out = fg_resource(pass, "radiance");
+    cgp_dispatch_2d(out->width, out->height);
+    glBindSampler(CG_UNIT_VOLUME, 0);
+    glUseProgram(0);
 }
 
 void

@@ -1,7 +1,9 @@
 /* sdk/cone.h (pass SDK): diffuse cone sets for cone tracing: directions, apertures and weights.
  *
- * Declares: CGP_CONE_MAX, CGP_CONE_SET_SIZES, cgp_cone, cgp_cone_set, cgp_cone_set_make, cgp_cone_set_sizes,
- *           cgp_cone_set_valid_size, cgp_cone_frame.
+ * Declares: CGP_CONE_MAX, CGP_CONE_SET_SIZES, cgp_cone, cgp_cone_set, cgp_cone_set_make,
+ *           cgp_cone_set_sizes, cgp_cone_set_valid_size, cgp_cone_frame, cgp_cone_set_of_pass,
+ *           cgp_cone_block_fill, cgp_cone_upload, cgp_gather, cgp_gather_prepare, cgp_gather_begin,
+ *           cgp_gather_end.
  *
  * Shared by every cone tracer (the VCT gather and the hybrid tracer), so it lives in the
  * pass SDK; core knows nothing of cones.
@@ -19,7 +21,11 @@
 
 #include <stdbool.h>
 
-#define CGP_CONE_MAX 16
+#include "cg/error.h"
+#include "cg/fg.h"
+#include "sdk/blocks.h"
+
+#define CGP_CONE_MAX CG_CONE_SET_MAX
 /* The sizes of the sets cgp_cone_set_make makes, as a list for parameter tables:
  * `.allowed = FG_PARAM_VALUES(CGP_CONE_SET_SIZES)`. */
 #define CGP_CONE_SET_SIZES 1, 6, 9, 16
@@ -50,5 +56,40 @@ bool cgp_cone_set_make(int count, cgp_cone_set *out);
 /* Orthonormal tangent frame (t, b, n) for a unit normal n, continuous and free of NaN
  * for every n, the axes included (Duff et al. 2017, "Building an orthonormal basis, revisited"). */
 void cgp_cone_frame(const float n[3], float t[3], float b[3]);
+
+/* What every cone gather shares (cone_gather, hybrid_gather and a plugin that wants the same):
+ * the parameter `cones` (a set size) and the march parameters `aperture` (full apex angle in
+ * degrees, 0: each cone's own), `step`, `start_offset`, `max_distance` and `lod_bias`, which
+ * shaders/common/cone_trace.glsl reads from CG_CONE_SET_BLOCK. */
+
+/* The set of the pass's parameter `cones`; CG_ERR_GRAPH_PARAM_RANGE for a size not offered. */
+bool cgp_cone_set_of_pass(const fg_pass *pass, cgp_cone_set *out, cg_error *err);
+/* The block of a set and the pass's march parameters. */
+void cgp_cone_block_fill(const fg_pass *pass, const cgp_cone_set *set, cg_cone_set_block *out);
+/* Fills the block and uploads it to `buffer` (cgp_uniform_buffer of its size), bound at CG_BINDING_CONES. */
+void cgp_cone_upload(const fg_pass *pass, const cgp_cone_set *set, GLuint buffer);
+
+/* What every cone gather's state holds, and its frame around the dispatch: the G-buffer inputs
+ * `position` and `normal` at CG_UNIT_POSITION and CG_UNIT_NORMAL, the 3D lightmap at
+ * CG_UNIT_VOLUME (trilinear, zero outside), the cone set at CG_BINDING_CONES and the pass's own
+ * block at CG_BINDING_GATHER, and the output image `radiance` (RGBA16F) at image unit 0. */
+typedef struct cgp_gather {
+    cgp_cone_set set;
+    GLuint program;
+    GLuint volume_sampler;
+    GLuint cone_block;      /* CG_CONE_SET_BLOCK */
+    GLuint gather_block;    /* the pass's block */
+} cgp_gather;
+
+/* In prepare(): the cone set of the parameter `cones`, the compute program `shader` with
+ * `defines`, the sampler and the blocks (`gather_bytes` for the pass's), owned by `state`. */
+bool cgp_gather_prepare(void *state, const fg_pass *pass, cgp_gather *g, const char *shader, const char *defines,
+                        size_t gather_bytes, cg_error *err);
+/* In execute(): uses the program, uploads the cone set and the pass's block (`gather_bytes` at
+ * `block`), binds the G-buffer, `volume` with its `region` block (either may be 0) and `radiance`. */
+void cgp_gather_begin(const fg_pass *pass, const cgp_gather *g, const void *block, size_t gather_bytes,
+                      GLuint volume, GLuint region);
+/* Dispatches over `radiance` and unbinds what cgp_gather_begin bound. */
+void cgp_gather_end(const fg_pass *pass);
 
 #endif

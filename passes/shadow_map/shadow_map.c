@@ -12,6 +12,8 @@
 
 #include <cglm/cglm.h>
 
+#include "sdk/blocks.h"
+#include "sdk/pass.h"
 #include "cg/fg.h"
 #include "cg/gpu_scene.h"
 #include "cg/shader.h"
@@ -38,23 +40,11 @@ static const fg_param_desc shadow_params[] = {
       .doc = "percentage-closer filtering of the lookup: 1, 3x3 or 5x5 depth comparisons" },
 };
 
-/* std140 block CgShadow in shaders/common/shadow.glsl. */
-typedef struct shadow_block {
-    float view[16];
-    float view_proj[16];
-    float params[4];    /* constant bias, slope bias, filter radius, resolution */
-    float frustum[4];   /* light index, orthographic, near, far */
-    float light[4];     /* towards the light (orthographic) or light position */
-    float texel[4];     /* xy: texel world size along light x and y, or per metre of distance */
-} shadow_block;
-
-_Static_assert(sizeof(shadow_block) == CG_SHADOW_BLOCK_BYTES, "CgShadow is 192 bytes in std140");
-
-typedef struct shadow_state {
+typedef struct shadow_map_state {
     GLuint program;
     GLuint fbo;
     GLuint staging;
-} shadow_state;
+} shadow_map_state;
 
 /* The light this instance serves: the `light` parameter, or the first directional or spot
  * light. Returns false with an error for an index the scene does not have or a point light;
@@ -93,7 +83,7 @@ spot_fov(const cg_light *light)
 }
 
 static bool
-shadow_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
+shadow_map_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
 {
     const fg_frame *frame = fg_pass_frame(pass);
     if (frame->scene) {
@@ -112,37 +102,23 @@ shadow_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
         }
     }
     int resolution = fg_param_int(pass, "resolution");
-    fg_resource_desc depth = {
-        .kind = FG_TEXTURE_2D, .format = GL_DEPTH_COMPONENT32F,
-        .width = resolution, .height = resolution, .depth = 1, .levels = 1,
-    };
+    fg_resource_desc depth = cgp_image_2d(GL_DEPTH_COMPONENT32F, resolution, resolution);
     fg_declare_output(decl, "depth", &depth, FG_ACCESS_ATTACHMENT);
-    fg_resource_desc matrix = {
-        .kind = FG_BUFFER, .format = 0, .width = 0, .height = 0, .depth = 1, .levels = 1,
-        .buffer_bytes = sizeof(shadow_block),
-    };
+    fg_resource_desc matrix = cgp_buffer_desc(sizeof(cg_shadow_block));
     fg_declare_output(decl, "matrix", &matrix, FG_ACCESS_TRANSFER);
     return true;
 }
 
 static bool
-shadow_prepare(fg_pass *pass, void **state, cg_error *err)
+shadow_map_prepare(fg_pass *pass, shadow_map_state *st, cg_error *err)
 {
     (void)pass;
-    shadow_state *st = calloc(1, sizeof *st);
-    if (!st)
-        return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "shadow_map: state");
-    if (!cg_program_graphics("shadow_map/depth.vert", NULL, NULL, NULL, &st->program, err)) {
-        free(st);
-        return false;
-    }
-    glCreateFramebuffers(1, &st->fbo);
+    st->fbo = cgp_framebuffer(st);
     glNamedFramebufferDrawBuffer(st->fbo, GL_NONE);
     glNamedFramebufferReadBuffer(st->fbo, GL_NONE);
-    glCreateBuffers(1, &st->staging);
-    glNamedBufferStorage(st->staging, sizeof(shadow_block), NULL, GL_DYNAMIC_STORAGE_BIT);
-    *state = st;
-    return true;
+    /* The block is written here and copied into the graph's buffer `matrix`. */
+    st->staging = cgp_buffer(st, sizeof(cg_shadow_block), NULL, GL_DYNAMIC_STORAGE_BIT);
+    return cgp_graphics_program(st, "shadow_map/depth.vert", NULL, NULL, NULL, &st->program, err);
 }
 
 static void
@@ -163,9 +139,22 @@ bounds_corner(const cg_scene *scene, int i, vec3 out)
     out[2] = (i & 4) ? scene->bounds_max[2] : scene->bounds_min[2];
 }
 
+/* The light's view, its projection and depth range into the block. */
+static void
+store_view(mat4 view, mat4 proj, bool orthographic, float znear, float zfar, cg_shadow_block *b)
+{
+    mat4 view_proj;
+    glm_mat4_mul(proj, view, view_proj);
+    memcpy(b->view, view, sizeof b->view);
+    memcpy(b->view_proj, view_proj, sizeof b->view_proj);
+    b->frustum[1] = orthographic ? 1.0f : 0.0f;
+    b->frustum[2] = znear;
+    b->frustum[3] = zfar;
+}
+
 /* Orthographic projection along the light that just holds the scene bounds. */
 static void
-fit_directional(const cg_scene *scene, const cg_light *light, int resolution, shadow_block *b)
+fit_directional(const cg_scene *scene, const cg_light *light, int resolution, cg_shadow_block *b)
 {
     vec3 dir, up, center, eye, extent;
     glm_vec3_normalize_to((float *)light->direction, dir);
@@ -177,7 +166,7 @@ fit_directional(const cg_scene *scene, const cg_light *light, int resolution, sh
     float radius = diagonal > 0.0f ? 0.5f * diagonal : 1.0f;
     glm_vec3_scale(dir, -radius, eye);
     glm_vec3_add(center, eye, eye);
-    mat4 view, proj, view_proj;
+    mat4 view, proj;
     glm_lookat(eye, center, up, view);
 
     vec3 lo = { INFINITY, INFINITY, INFINITY }, hi = { -INFINITY, -INFINITY, -INFINITY };
@@ -194,13 +183,8 @@ fit_directional(const cg_scene *scene, const cg_light *light, int resolution, sh
     float bottom = lo[1] - margin, top = hi[1] + margin;
     float znear = -hi[2] - margin, zfar = -lo[2] + margin;
     glm_ortho(left, right, bottom, top, znear, zfar, proj);
-    glm_mat4_mul(proj, view, view_proj);
 
-    memcpy(b->view, view, sizeof b->view);
-    memcpy(b->view_proj, view_proj, sizeof b->view_proj);
-    b->frustum[1] = 1.0f;
-    b->frustum[2] = znear;
-    b->frustum[3] = zfar;
+    store_view(view, proj, true, znear, zfar, b);
     glm_vec3_negate_to(dir, b->light);
     b->texel[0] = (right - left) / (float)resolution;
     b->texel[1] = (top - bottom) / (float)resolution;
@@ -209,7 +193,7 @@ fit_directional(const cg_scene *scene, const cg_light *light, int resolution, sh
 /* Perspective projection from the spot light covering its outer cone and reaching the
  * farthest corner of the scene bounds. */
 static void
-fit_spot(const cg_scene *scene, const cg_light *light, int resolution, shadow_block *b)
+fit_spot(const cg_scene *scene, const cg_light *light, int resolution, cg_shadow_block *b)
 {
     vec3 dir, up, eye, target;
     glm_vec3_normalize_to((float *)light->direction, dir);
@@ -226,24 +210,18 @@ fit_spot(const cg_scene *scene, const cg_light *light, int resolution, shadow_bl
     /* fp32 depth linearised in shadow.glsl keeps ~1e-4 relative precision at far/near = 1e4. */
     float znear = zfar * 1e-4f;
     float fov = spot_fov(light);
-    mat4 view, proj, view_proj;
+    mat4 view, proj;
     glm_lookat(eye, target, up, view);
     glm_perspective(fov, 1.0f, znear, zfar, proj);
-    glm_mat4_mul(proj, view, view_proj);
 
-    memcpy(b->view, view, sizeof b->view);
-    memcpy(b->view_proj, view_proj, sizeof b->view_proj);
-    b->frustum[1] = 0.0f;
-    b->frustum[2] = znear;
-    b->frustum[3] = zfar;
+    store_view(view, proj, false, znear, zfar, b);
     glm_vec3_copy(eye, b->light);
     b->texel[0] = b->texel[1] = 2.0f * tanf(0.5f * fov) / (float)resolution;
 }
 
 static bool
-shadow_execute(fg_pass *pass, void *state, cg_error *err)
+shadow_map_execute(fg_pass *pass, shadow_map_state *st, cg_error *err)
 {
-    shadow_state *st = state;
     const fg_frame *frame = fg_pass_frame(pass);
     int index;
     if (!pick_light(pass, frame->scene, &index, err))
@@ -254,7 +232,7 @@ shadow_execute(fg_pass *pass, void *state, cg_error *err)
     int resolution = fg_param_int(pass, "resolution");
     static const int filter_radius[] = { [FILTER_NONE] = 0, [FILTER_PCF3] = 1, [FILTER_PCF5] = 2 };
 
-    shadow_block block;
+    cg_shadow_block block;
     memset(&block, 0, sizeof block);
     if (light->type == CG_LIGHT_DIRECTIONAL)
         fit_directional(frame->scene, light, resolution, &block);
@@ -289,38 +267,8 @@ shadow_execute(fg_pass *pass, void *state, cg_error *err)
     return true;
 }
 
-static void
-shadow_destroy(void *state)
-{
-    shadow_state *st = state;
-    if (!st)
-        return;
-    glDeleteProgram(st->program);
-    glDeleteFramebuffers(1, &st->fbo);
-    glDeleteBuffers(1, &st->staging);
-    free(st);
-}
-
-static const fg_pass_type shadow_map_type = {
-    .abi_version = FG_ABI_VERSION,
-    .name = "shadow_map",
-    .doc = "Depth map of the scene from one directional light (orthographic, fitted to the "
-           "scene bounds) or spot light (perspective over the outer cone), and the matrices "
-           "and bias of its lookup (shaders/common/shadow.glsl) in the buffer `matrix`. "
-           "Point lights are unshadowed. Nothing to do without a directional or spot light.",
-    .params = shadow_params,
-    .param_count = (int)(sizeof shadow_params / sizeof shadow_params[0]),
-    .declare = shadow_declare,
-    .prepare = shadow_prepare,
-    .execute = shadow_execute,
-    .destroy = shadow_destroy,
-};
-
-bool
-cg_pass_register_shadow_map(fg_registry *registry, uint32_t host_abi, cg_error *err)
-{
-    if (host_abi != FG_ABI_VERSION)
-        return cg_fail(err, CG_ERR_PLUGIN_ABI, "pass shadow_map: built for frame-graph ABI %u, host has %u",
-                       FG_ABI_VERSION, host_abi);
-    return fg_registry_add(registry, &shadow_map_type, err);
-}
+CGP_PASS(shadow_map, CGP_PARAMS(shadow_params),
+         "Depth map of the scene from one directional light (orthographic, fitted to the "
+         "scene bounds) or spot light (perspective over the outer cone), and the matrices "
+         "and bias of its lookup (shaders/common/shadow.glsl) in the buffer `matrix`. "
+         "Point lights are unshadowed. Nothing to do without a directional or spot light.");

@@ -4,8 +4,8 @@
  *   radiance      3D, resolution^3, RGBA16F or RGBA8, full mip chain declared (mip3d fills
  *                 levels 1..): premultiplied outgoing diffuse radiance (direct light, shadowed
  *                 through the optional shadow map, plus emission) and opacity in alpha.
- *   region        32-byte std140 block for shaders/common/volume.glsl: where the volume lies
- *                 and how its values decode (consumers bind it at CG_BINDING_VOLUME).
+ *   region        std140 block CG_VOLUME_BLOCK (common/blocks.h) for common/volume.glsl: where
+ *                 the volume lies and how its values decode (consumers bind it at CG_BINDING_VOLUME).
  *   accumulation  3D R32UI, resolution^2 x 4 resolution: the fixed-point sums and counts of
  *                 the fragments (shaders/voxelize/voxelize.frag), transient working memory,
  *                 declared so that the memory report counts it.
@@ -19,11 +19,14 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "sdk/blocks.h"
+#include "sdk/pass.h"
+#include "sdk/scene.h"
+#include "sdk/shadow.h"
 #include "cg/fg.h"
 #include "cg/gpu_scene.h"
 #include "cg/shader.h"
 
-#define REGION_BYTES 32
 /* Fragments of the brightest radiance that one voxel can sum without overflowing 32 bits. */
 #define FRAGMENT_HEADROOM 1024.0
 
@@ -73,6 +76,7 @@ typedef struct voxelize_state {
     GLuint find_max;        /* RGBA8 only: the largest radiance, for the stored scale */
     GLuint max_buffer;
     GLuint fbo;
+    cgp_no_shadow no_shadow;
     GLenum format;
     /* Nearest-surface distance per point/spot light, recomputed when a light moves. */
     float *light_positions;
@@ -87,58 +91,6 @@ typedef struct voxel_region {
     double voxel;
 } voxel_region;
 
-static bool
-mesh_passes(cg_mesh_kind kind, cg_mesh_filter filter)
-{
-    return filter == CG_MESHES_ALL || (filter == CG_MESHES_COMPLEX && kind == CG_MESH_COMPLEX) ||
-           (filter == CG_MESHES_HEIGHTFIELD && kind == CG_MESH_HEIGHTFIELD);
-}
-
-static void
-transform_point(const float m[16], const float p[3], double out[3])
-{
-    for (int r = 0; r < 3; r++)
-        out[r] = m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r];
-}
-
-/* World bounds of the instances whose mesh passes the filter; false when there is none. */
-static bool
-filtered_bounds(const cg_scene *scene, cg_mesh_filter filter, double lo[3], double hi[3])
-{
-    bool any = false;
-    for (int k = 0; k < 3; k++)
-        lo[k] = DBL_MAX, hi[k] = -DBL_MAX;
-    for (int i = 0; i < scene->instance_count; i++) {
-        const cg_instance *inst = &scene->instances[i];
-        const cg_mesh *mesh = &scene->meshes[inst->mesh];
-        if (!mesh_passes(mesh->kind, filter) || mesh->index_count == 0)
-            continue;
-        any = true;
-        if (inst->moving) {
-            /* Its box over the whole animation, so that the volume stays put from frame to frame. */
-            for (int k = 0; k < 3; k++) {
-                lo[k] = fmin(lo[k], inst->motion_min[k]);
-                hi[k] = fmax(hi[k], inst->motion_max[k]);
-            }
-            continue;
-        }
-        for (int c = 0; c < 8; c++) {
-            float corner[3] = {
-                (c & 1) ? mesh->bounds_max[0] : mesh->bounds_min[0],
-                (c & 2) ? mesh->bounds_max[1] : mesh->bounds_min[1],
-                (c & 4) ? mesh->bounds_max[2] : mesh->bounds_min[2],
-            };
-            double w[3];
-            transform_point(inst->world, corner, w);
-            for (int k = 0; k < 3; k++) {
-                lo[k] = fmin(lo[k], w[k]);
-                hi[k] = fmax(hi[k], w[k]);
-            }
-        }
-    }
-    return any;
-}
-
 /* The cube the volume covers; false when there is nothing to voxelize. The parameters met
  * their table (max_* > min_*, padding below a quarter of the resolution) before declare(). */
 static bool
@@ -149,7 +101,7 @@ voxelize_region(const fg_pass *pass, const cg_scene *scene, voxel_region *out)
     int resolution = fg_param_int(pass, "resolution");
     double padding = fg_param_float(pass, "padding");
     double lo[3], hi[3];
-    bool has = filtered_bounds(scene, filter, lo, hi);
+    bool has = cgp_mesh_bounds(scene, filter, lo, hi);
     if (mode == REGION_SCENE) {
         for (int k = 0; k < 3; k++)
             lo[k] = scene->bounds_min[k], hi[k] = scene->bounds_max[k];
@@ -180,19 +132,8 @@ voxelize_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
 {
     const fg_frame *frame = fg_pass_frame(pass);
     int resolution = fg_param_int(pass, "resolution");
-    const fg_resource_desc *shadow = fg_declare_input(decl, "shadow", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, false);
-    const fg_resource_desc *matrix = fg_declare_input(decl, "shadow_matrix", FG_BUFFER, FG_ACCESS_UNIFORM, false);
-    if (!shadow != !matrix)
-        return cg_fail(err, CG_ERR_GRAPH_MISSING_INPUT,
-                       "pass '%s': inputs 'shadow' and 'shadow_matrix' go together (a shadow_map "
-                       "pass's outputs 'depth' and 'matrix'); only one is present", fg_pass_name(pass));
-    if (shadow && shadow->format != GL_DEPTH_COMPONENT32F)
-        return cg_fail(err, CG_ERR_GRAPH_INCOMPATIBLE,
-                       "pass '%s': input 'shadow' must be a GL_DEPTH_COMPONENT32F shadow map", fg_pass_name(pass));
-    if (matrix && matrix->buffer_bytes < CG_SHADOW_BLOCK_BYTES)
-        return cg_fail(err, CG_ERR_GRAPH_INCOMPATIBLE,
-                       "pass '%s': input 'shadow_matrix' holds %zu bytes, a shadow_map 'matrix' %d",
-                       fg_pass_name(pass), matrix->buffer_bytes, CG_SHADOW_BLOCK_BYTES);
+    if (!cgp_declare_shadow_inputs(pass, decl, err))
+        return false;
 
     voxel_region region;
     if (!voxelize_region(pass, frame->scene, &region)) {
@@ -207,7 +148,7 @@ voxelize_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
         .gi = true,
     };
     fg_declare_output(decl, "radiance", &radiance, FG_ACCESS_IMAGE_STORE);
-    fg_resource_desc block = {.kind = FG_BUFFER, .depth = 1, .levels = 1, .buffer_bytes = REGION_BYTES};
+    fg_resource_desc block = cgp_buffer_desc(sizeof(cg_volume_block));
     fg_declare_output(decl, "region", &block, FG_ACCESS_TRANSFER | FG_ACCESS_STORAGE);
     fg_resource_desc accumulation = {
         .kind = FG_TEXTURE_3D, .format = GL_R32UI,
@@ -218,30 +159,30 @@ voxelize_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
     return true;
 }
 
-static bool
-voxelize_prepare(fg_pass *pass, void **state, cg_error *err)
+/* What the state holds beside its GL objects: the light cache of radiance_bound(). */
+static void
+voxelize_cleanup(void *state)
 {
-    voxelize_state *s = calloc(1, sizeof *s);
-    if (!s)
-        return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "pass '%s': out of memory", fg_pass_name(pass));
+    voxelize_state *s = state;
+    free(s->light_positions);
+    free(s->light_nearest);
+}
+
+static bool
+voxelize_prepare(fg_pass *pass, voxelize_state *s, cg_error *err)
+{
+    cgp_state_on_destroy(s, voxelize_cleanup);
     s->format = fg_resource(pass, "radiance")->format;
     char defines[64];
     snprintf(defines, sizeof defines, "#define FORMAT %s\n", s->format == GL_RGBA8 ? "rgba8" : "rgba16f");
-    if (!cg_program_graphics("voxelize/voxelize.vert", "voxelize/voxelize.geom", "voxelize/voxelize.frag",
-                             NULL, &s->program, err) ||
-        !cg_program_compute("voxelize/resolve.comp", defines, &s->resolve, err) ||
-        (s->format == GL_RGBA8 &&
-         !cg_program_compute("voxelize/resolve.comp", "#define FORMAT rgba8\n#define FIND_MAX\n", &s->find_max, err))) {
-        glDeleteProgram(s->program);
-        glDeleteProgram(s->resolve);
-        free(s);
-        return false;
-    }
-    glCreateBuffers(1, &s->max_buffer);
-    glNamedBufferStorage(s->max_buffer, sizeof(GLuint), NULL, GL_DYNAMIC_STORAGE_BIT);
-    glCreateFramebuffers(1, &s->fbo);
-    *state = s;
-    return true;
+    s->max_buffer = cgp_buffer(s, sizeof(GLuint), NULL, GL_DYNAMIC_STORAGE_BIT);
+    s->fbo = cgp_framebuffer(s);
+    cgp_no_shadow_create(s, &s->no_shadow);
+    return cgp_graphics_program(s, "voxelize/voxelize.vert", "voxelize/voxelize.geom", "voxelize/voxelize.frag", NULL,
+                                &s->program, err) &&
+           cgp_compute_program(s, "voxelize/resolve.comp", defines, &s->resolve, err) &&
+           (s->format != GL_RGBA8 || cgp_compute_program(s, "voxelize/resolve.comp",
+                                                         "#define FORMAT rgba8\n#define FIND_MAX\n", &s->find_max, err));
 }
 
 /* Squared distance from p to triangle abc (Ericson, Real-Time Collision Detection 5.1.5). */
@@ -293,12 +234,12 @@ nearest_surface(const cg_scene *scene, cg_mesh_filter filter, const float light[
     for (int i = 0; i < scene->instance_count; i++) {
         const cg_instance *inst = &scene->instances[i];
         const cg_mesh *mesh = &scene->meshes[inst->mesh];
-        if (!mesh_passes(mesh->kind, filter))
+        if (!cgp_mesh_passes(mesh->kind, filter))
             continue;
         for (uint32_t t = 0; t + 2 < mesh->index_count; t += 3) {
             double v[3][3];
             for (int j = 0; j < 3; j++)
-                transform_point(inst->world, &mesh->positions[3 * mesh->indices[t + j]], v[j]);
+                cgp_transform_point(inst->world, &mesh->positions[3 * mesh->indices[t + j]], v[j]);
             double d2 = point_triangle_dist2(p, v[0], v[1], v[2]);
             if (d2 < best)
                 best = d2;
@@ -354,9 +295,8 @@ radiance_bound(voxelize_state *s, const cg_scene *scene, cg_mesh_filter filter, 
 }
 
 static bool
-voxelize_execute(fg_pass *pass, void *state, cg_error *err)
+voxelize_execute(fg_pass *pass, voxelize_state *s, cg_error *err)
 {
-    voxelize_state *s = state;
     const fg_frame *frame = fg_pass_frame(pass);
     const cg_scene *scene = frame->scene;
     cg_mesh_filter filter = (cg_mesh_filter)fg_param_enum(pass, "meshes");
@@ -400,25 +340,26 @@ voxelize_execute(fg_pass *pass, void *state, cg_error *err)
     glUniform1f(10, (float)fixed_scale);
     glUniform1i(12, fg_param_bool(pass, "conservative") ? 1 : 0);
     cg_gpu_scene_bind_lights(frame->gpu_scene);
-    cg_gpu_scene_bind_shadow(frame->gpu_scene, fg_texture(pass, "shadow"), fg_buffer(pass, "shadow_matrix"), 2);
+    cgp_bind_shadow(pass, &s->no_shadow, 2);
     glBindImageTexture(0, accum, 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
     cg_gpu_scene_draw(frame->gpu_scene, filter);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
 
-    const float block[REGION_BYTES / 4] = {
-        (float)region.origin[0], (float)region.origin[1], (float)region.origin[2], (float)region.voxel,
-        (float)resolution, (float)fg_resource(pass, "radiance")->levels, (float)radiance_scale, 0.0f,
+    const cg_volume_block block = {
+        .origin_voxel = {(float)region.origin[0], (float)region.origin[1], (float)region.origin[2],
+                         (float)region.voxel},
+        .info = {(float)resolution, (float)fg_resource(pass, "radiance")->levels, (float)radiance_scale, 0.0f},
     };
     GLuint region_buffer = fg_buffer(pass, "region");
-    glNamedBufferSubData(region_buffer, 0, sizeof block, block);
+    glNamedBufferSubData(region_buffer, 0, sizeof block, &block);
 
     GLuint groups = (GLuint)((resolution + 3) / 4);
     bool from_max = s->format == GL_RGBA8;
     glBindImageTexture(0, accum, 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, s->max_buffer);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, region_buffer);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_RESOLVE_MAX, s->max_buffer);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_RESOLVE_REGION, region_buffer);
     if (from_max) {
         glClearNamedBufferData(s->max_buffer, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
         glUseProgram(s->find_max);
@@ -436,49 +377,15 @@ voxelize_execute(fg_pass *pass, void *state, cg_error *err)
     glDispatchCompute(groups, groups, groups);
     glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
     glBindImageTexture(1, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, s->format);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, 0);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, 0);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_RESOLVE_MAX, 0);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_RESOLVE_REGION, 0);
     glUseProgram(0);
     return true;
 }
 
-static void
-voxelize_destroy(void *state)
-{
-    voxelize_state *s = state;
-    if (!s)
-        return;
-    glDeleteProgram(s->program);
-    glDeleteProgram(s->resolve);
-    glDeleteProgram(s->find_max);
-    glDeleteBuffers(1, &s->max_buffer);
-    glDeleteFramebuffers(1, &s->fbo);
-    free(s->light_positions);
-    free(s->light_nearest);
-    free(s);
-}
-
-static const fg_pass_type voxelize_type = {
-    .abi_version = FG_ABI_VERSION,
-    .name = "voxelize",
-    .doc = "Voxelizes the outgoing diffuse radiance of the scene's direct light (shadowed through "
-           "the optional shadow map) plus emission into a cubic 3D lightmap, opacity in alpha "
-           "(VCT paper 3.1): dominant-axis projection in a geometry shader, conservative coverage "
-           "by triangle dilation and an exact triangle/voxel test, fragments averaged by "
-           "fixed-point atomic sums. Rebuilt every frame.",
-    .params = voxelize_params,
-    .param_count = (int)(sizeof voxelize_params / sizeof voxelize_params[0]),
-    .declare = voxelize_declare,
-    .prepare = voxelize_prepare,
-    .execute = voxelize_execute,
-    .destroy = voxelize_destroy,
-};
-
-bool
-cg_pass_register_voxelize(fg_registry *registry, uint32_t host_abi, cg_error *err)
-{
-    if (host_abi != FG_ABI_VERSION)
-        return cg_fail(err, CG_ERR_PLUGIN_ABI, "pass voxelize: built for frame-graph ABI %u, host has %u",
-                       FG_ABI_VERSION, host_abi);
-    return fg_registry_add(registry, &voxelize_type, err);
-}
+CGP_PASS(voxelize, CGP_PARAMS(voxelize_params),
+         "Voxelizes the outgoing diffuse radiance of the scene's direct light (shadowed through "
+         "the optional shadow map) plus emission into a cubic 3D lightmap, opacity in alpha "
+         "(VCT paper 3.1): dominant-axis projection in a geometry shader, conservative coverage "
+         "by triangle dilation and an exact triangle/voxel test, fragments averaged by "
+         "fixed-point atomic sums. Rebuilt every frame.");

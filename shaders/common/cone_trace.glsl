@@ -1,23 +1,72 @@
 // common/cone_trace.glsl: one cone marched front to back through a mipped 3D lightmap.
 //
-// Provides: CgCone, cg_cone_trace(), cg_cone_lod(), cg_cone_origin(), cg_cone_reach(),
-//           cg_cone_gather_diffuse(), cg_tangent_frame().
-// Requires: common/volume.glsl.
+// Provides: CgCone, CgMarch, cg_cone_set_block, cg_cone_march(), cg_cone_count(), cg_cone_direction(),
+//           cg_cone_tan_half(), cg_cone_accumulate(), cg_cone_trace(), cg_cone_lod(), cg_cone_origin(),
+//           cg_cone_reach(), CgConeSample, cg_cone_composite(), cg_cone_composite_span(), cg_cone_step(),
+//           cg_cone_trace_surface(), cg_cone_gather_diffuse(), cg_tangent_frame().
 //
 // VCT paper 3.2 (after Crassin et al. 2011): the cone's footprint at distance t has the
 // diameter d = 2 t tan(half angle); the sample is read from the mip level whose voxels
-// are d wide (hybrid eq. 8: Lv = log2(d / voxel size)) and composited front to back,
-//     c += (1 - a) * alpha_s * c_s,   a += (1 - a) * alpha_s,
-// where the volume stores premultiplied colour (alpha_s * c_s), so it is added as read.
-// The march stops when a reaches CG_CONE_OPAQUE, past t_max, or once the footprint has
-// left the volume (VCT paper 3.2.1). The hybrid tracer reuses cg_cone_lod() and the
-// compositing step through cg_cone_composite().
+// are about d wide (hybrid eq. 8: Lv = log2(d / voxel size); cg_cone_level: one finer) and
+// composited front to back; the paper's rule is c += (1 - a) * alpha_s * c_s,
+// a += (1 - a) * alpha_s (cg_cone_composite), the march adds coverage over the path length a
+// sample stands for instead (cg_cone_composite_span, exact for walls). The volume stores
+// premultiplied colour (alpha_s * c_s). The march stops when a reaches CG_CONE_OPAQUE, past
+// t_max, or once the footprint has left the volume (VCT paper 3.2.1). hybrid_gather's 3D steps (its Case 1) are cg_cone_step(),
+// the very step of this march, and its gather is cg_cone_accumulate(), as cg_cone_gather_diffuse().
 #ifndef CG_COMMON_CONE_TRACE_GLSL
 #define CG_COMMON_CONE_TRACE_GLSL
 
+#include "common/blocks.h"
 #include "common/volume.glsl"
 
 #define CG_CONE_OPAQUE 0.999
+
+// The gather's diffuse cone set and march parameters (cgp_cone_upload, passes/sdk/cone.c).
+CG_UNIFORM_BLOCK(CgConeSet, cg_cone_set_block, CG_BINDING_CONES, CG_CONE_SET_BLOCK);
+
+struct CgMarch {
+    float step;         // sample spacing as a fraction of the footprint diameter
+    float start_offset; // xels the cone origins are moved along the normal
+    float max_distance; // world; <= 0: the maps' diagonal
+    float lod_bias;     // added to the level of eq. 8
+};
+
+CgMarch
+cg_cone_march()
+{
+    vec4 m = cg_cone_set_block.march;
+    return CgMarch(m.x, m.y, m.z, m.w);
+}
+
+int
+cg_cone_count()
+{
+    return cg_cone_set_block.count.x;
+}
+
+// Cone k of the set for a point with tangent frame `frame`: its world direction and tan of its half angle.
+vec3
+cg_cone_direction(mat3 frame, int k)
+{
+    return normalize(frame * cg_cone_set_block.cones[k].xyz);
+}
+
+float
+cg_cone_tan_half(int k)
+{
+    return cg_cone_set_block.apertures[k].x;
+}
+
+// Adds what cone k gathered, `traced` = (radiance, coverage), to the diffuse sum of a point:
+// rgb += W_k L_k, a += W_k (1 - a_k) (hybrid eq. 3-4; the ambient visibility of VCT paper 3.2.3).
+void
+cg_cone_accumulate(inout vec4 diffuse, int k, vec4 traced)
+{
+    float w = cg_cone_set_block.cones[k].w;
+    diffuse.rgb += w * traced.rgb;
+    diffuse.a += w * (1.0 - traced.a);
+}
 
 struct CgCone {
     vec3 origin;        // world; already moved off the surface by the caller
@@ -60,13 +109,12 @@ cg_cone_composite(inout vec4 acc, vec4 s)
 #ifdef CG_CONE_ANISOTROPIC
 // Six directional chains of levels 1.. (mip3d with anisotropic = true): level k of cg_aniso_px
 // is level k + 1 as seen by a cone travelling along +x, and so on (Crassin et al. 2011).
-#define CG_CONE_ANISO_BINDING 3
-layout(binding = CG_CONE_ANISO_BINDING + 0) uniform sampler3D cg_aniso_px;
-layout(binding = CG_CONE_ANISO_BINDING + 1) uniform sampler3D cg_aniso_nx;
-layout(binding = CG_CONE_ANISO_BINDING + 2) uniform sampler3D cg_aniso_py;
-layout(binding = CG_CONE_ANISO_BINDING + 3) uniform sampler3D cg_aniso_ny;
-layout(binding = CG_CONE_ANISO_BINDING + 4) uniform sampler3D cg_aniso_pz;
-layout(binding = CG_CONE_ANISO_BINDING + 5) uniform sampler3D cg_aniso_nz;
+layout(binding = CG_UNIT_ANISO + 0) uniform sampler3D cg_aniso_px;
+layout(binding = CG_UNIT_ANISO + 1) uniform sampler3D cg_aniso_nx;
+layout(binding = CG_UNIT_ANISO + 2) uniform sampler3D cg_aniso_py;
+layout(binding = CG_UNIT_ANISO + 3) uniform sampler3D cg_aniso_ny;
+layout(binding = CG_UNIT_ANISO + 4) uniform sampler3D cg_aniso_pz;
+layout(binding = CG_UNIT_ANISO + 5) uniform sampler3D cg_aniso_nz;
 #endif
 
 // One filtered sample of the volume at level `lod` for a cone travelling along unit `d`.
@@ -129,46 +177,65 @@ cg_cone_composite_span(inout vec4 acc, vec4 s, float span, float cell)
     acc.a += w;
 }
 
-// The march from a surface: `surface` = (unit normal of the surface the cone leaves, height
-// of c.origin above that surface), or w < 0 for a cone with no surface behind it. A sample
-// reads the voxels within one voxel of its own (the trilinear support), and the surface's
-// voxels at a level with voxels s wide have centres up to s / 2 off its plane, along the
-// normal n at most 1.5 s |n|_1 away: below that height the sample would read the cone's own
-// surface (self-occlusion and self-illumination: black ceilings, bright lit floors). So the
-// level is capped at the coarsest whole level whose support stays above the plane, and the
-// step at one voxel of that level (step 0.5), which keeps cg_cone_composite_span exact.
+// Where one step of a cone samples the 3D lightmap (cg_cone_step).
+struct CgConeSample {
+    vec3 position;  // world position of the sample: on the axis at t (VCT), or the centre of
+                    // the fitting cube's intersection with the volume (hybrid eq. 15)
+    float diameter; // the footprint's diameter there, never below the finest xel
+    float height;   // the sample's height above the surface the cone leaves (see `surface`)
+};
+
+// One step of a cone through the 3D lightmap, the step both tracers take (cone_gather's march
+// below and hybrid_gather's Case 1): the matched level of the footprint plus the lod bias,
+// capped near the surface the cone leaves, the sample at `at.position` (the directional chains
+// with CG_CONE_ANISOTROPIC), composited by cg_cone_composite_span over its span. `surface` =
+// (unit normal of the surface the cone leaves, height of c.origin above it), or w < 0 for a
+// cone with no surface behind it. A sample reads the voxels within one voxel of its own (the
+// trilinear support), and the surface's voxels at a level with voxels s wide have centres up
+// to s / 2 off its plane, along the normal n at most 1.5 s |n|_1 away: below that height the
+// sample would read the cone's own surface (self-occlusion and self-illumination: black
+// ceilings, bright lit floors). So the level is capped at the coarsest whole level whose
+// support stays above the plane, and the span at one voxel of that level (step 0.5), which
+// keeps cg_cone_composite_span exact. The sample's colour is multiplied by `scale` (1 for a
+// march that scales its sum once, v.radiance_scale for one that mixes in other radiance).
+// Returns the span: the path length the step stands for, by which the march must advance.
+float
+cg_cone_step(sampler3D volume, CgVolume v, CgCone c, vec4 surface, CgConeSample at, float scale, inout vec4 acc)
+{
+    float lod = cg_cone_level(v, at.diameter) + c.lod_bias;
+    if (surface.w >= 0.0) {
+        // A fractional level blends in the next coarser level, whose support is twice as
+        // deep: that one must clear the plane, hence the 1 below the bound.
+        float support = 1.5 * (abs(surface.x) + abs(surface.y) + abs(surface.z));
+        lod = min(lod, log2(max(at.height, 1e-30) / (support * v.voxel_size)) - 1.0);
+    }
+    lod = clamp(lod, 0.0, v.levels - 1.0);
+    float cell = v.voxel_size * exp2(lod);
+    float span = c.step_factor * min(at.diameter, 2.0 * cell);
+    vec4 s = cg_cone_sample(volume, cg_volume_uvw(v, at.position), lod, c.direction);
+    cg_cone_composite_span(acc, vec4(s.rgb * scale, s.a), span, cell);
+    return span;
+}
+
+// The VCT march of one cone from a surface (`surface` as in cg_cone_step): steps along the
+// axis until the cone is opaque, past c.t_max, or its whole footprint has left the volume.
 // Returns the gathered radiance (rgb, already scaled to radiance) and the cone's coverage (a).
 vec4
 cg_cone_trace_surface(sampler3D volume, CgVolume v, CgCone c, vec4 surface)
 {
     vec4 acc = vec4(0.0);
     float extent = cg_volume_extent(v);
-    float top = v.levels - 1.0;
     float t = c.t_start;
-    float support = 1.5 * (abs(surface.x) + abs(surface.y) + abs(surface.z));
     float rise = dot(c.direction, surface.xyz);
     // The loop bound is a safety net against a zero step; steps grow with t, so real
     // marches end far earlier (about log(t_max / t_start) / log(1 + 2 step tan) steps).
     for (int i = 0; i < 4096 && t < c.t_max && acc.a < CG_CONE_OPAQUE; i++) {
-        float diameter = cg_cone_diameter(c, v, t);
-        vec3 p = c.origin + c.direction * t;
-        vec3 uvw = cg_volume_uvw(v, p);
-        float reach = 0.5 * diameter / extent;
+        CgConeSample at = CgConeSample(c.origin + c.direction * t, cg_cone_diameter(c, v, t), surface.w + t * rise);
+        vec3 uvw = cg_volume_uvw(v, at.position);
+        float reach = 0.5 * at.diameter / extent;
         if (any(lessThan(uvw, vec3(-reach))) || any(greaterThan(uvw, vec3(1.0 + reach))))
             break;  // the whole footprint is outside the volume: nothing more to gather
-        float lod = cg_cone_level(v, diameter) + c.lod_bias;
-        if (surface.w >= 0.0) {
-            // A fractional level blends in the next coarser level, whose support is twice
-            // as deep: that one must clear the plane, hence the 1 below the bound.
-            float height = surface.w + t * rise;
-            lod = min(lod, log2(max(height, 1e-30) / (support * v.voxel_size)) - 1.0);
-        }
-        lod = clamp(lod, 0.0, top);
-        float cell = v.voxel_size * exp2(lod);
-        float span = c.step_factor * min(diameter, 2.0 * cell);
-        vec4 s = cg_cone_sample(volume, uvw, lod, c.direction);
-        cg_cone_composite_span(acc, s, span, cell);
-        t += span;
+        t += cg_cone_step(volume, v, c, surface, at, 1.0, acc);
     }
     acc.rgb *= v.radiance_scale;
     return acc;
@@ -196,26 +263,21 @@ cg_cone_reach(CgVolume v, float max_distance)
     return max_distance > 0.0 ? max_distance : cg_volume_extent(v) * sqrt(3.0);
 }
 
-#define CG_CONE_SET_MAX 16
-
-// The diffuse gather of one surface point (VCT paper 3.2.1; hybrid eq. 3-4): cones[k] = (tangent-
-// space direction, weight W_k), frame = the point's tangent frame. Returns sum_k W_k L_k (rgb)
-// and the ambient visibility sum_k W_k (1 - a_k) (a). cone_gather and hybrid_gather (without a
-// 2D lightmap) both call this, so that they agree bit for bit. `height`: the origin's height
-// above the surface (start_offset voxels), which cg_cone_trace_surface keeps every sample off.
+// The diffuse gather of one surface point (VCT paper 3.2.1; hybrid eq. 3-4) with the cone set
+// of cg_cone_set_block, frame = the point's tangent frame. Returns sum_k W_k L_k (rgb) and the
+// ambient visibility sum_k W_k (1 - a_k) (a). cone_gather and hybrid_gather (without a 2D
+// lightmap) both call this, so that they agree bit for bit. `height`: the origin's height above
+// the surface (start_offset voxels), which cg_cone_trace_surface keeps every sample off.
 vec4
-cg_cone_gather_diffuse(sampler3D volume, CgVolume v, vec3 origin, mat3 frame, vec4 cones[CG_CONE_SET_MAX],
-                       float tan_half[CG_CONE_SET_MAX], int count, float t_max, float step, float lod_bias,
-                       float height)
+cg_cone_gather_diffuse(sampler3D volume, CgVolume v, vec3 origin, mat3 frame, float t_max, float height)
 {
+    CgMarch march = cg_cone_march();
     vec4 surface = vec4(frame[2], height);
     vec4 diffuse = vec4(0.0);
-    for (int k = 0; k < count; k++) {
-        CgCone cone = CgCone(origin, normalize(frame * cones[k].xyz), tan_half[k], v.voxel_size, t_max,
-                             step, lod_bias);
-        vec4 r = cg_cone_trace_surface(volume, v, cone, surface);
-        diffuse.rgb += cones[k].w * r.rgb;
-        diffuse.a += cones[k].w * (1.0 - r.a);
+    for (int k = 0; k < cg_cone_count(); k++) {
+        CgCone cone = CgCone(origin, cg_cone_direction(frame, k), cg_cone_tan_half(k), v.voxel_size, t_max,
+                             march.step, march.lod_bias);
+        cg_cone_accumulate(diffuse, k, cg_cone_trace_surface(volume, v, cone, surface));
     }
     return diffuse;
 }

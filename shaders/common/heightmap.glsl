@@ -2,9 +2,8 @@
 // as the heightmap_raster pass publishes it (its `region` output, a std140 uniform block
 // at CG_BINDING_HEIGHTMAP).
 //
-// Provides: CG_BINDING_HEIGHTMAP, CgHeightmap, cg_heightmap(), cg_heightmap_uv(),
-//           cg_heightmap_xel().
-// The C side is passes/heightmap_raster/heightmap_raster.c (region_block); keep the two in step.
+// Provides: CgHeightmap, cg_heightmap(), cg_heightmap_uv(), cg_heightmap_xel().
+// The block's layout, CG_HEIGHTMAP_BLOCK, is common/blocks.h's, the one the C side writes.
 //
 // The lightmap covers the height-field meshes' xz bounds [origin, origin + texel * resolution]
 // with resolution x resolution texels (texel row j at z = origin.y + (j + 0.5) texel.y);
@@ -13,8 +12,7 @@
 #ifndef CG_COMMON_HEIGHTMAP_GLSL
 #define CG_COMMON_HEIGHTMAP_GLSL
 
-// UBO bindings 0..3 belong to the scene, lights, shadow map and 3D lightmap.
-#define CG_BINDING_HEIGHTMAP 4
+#include "common/blocks.h"
 
 struct CgHeightmap {
     vec2 origin;        // world xz of the map's minimum corner
@@ -24,16 +22,13 @@ struct CgHeightmap {
     float y_min, y_max; // range of the heights stored (the meshes' y bounds)
 };
 
-layout(std140, binding = CG_BINDING_HEIGHTMAP) uniform CgHeightmapBlock {
-    vec4 cg_heightmap_origin_texel; // xy origin (x, z), zw texel size (x, z)
-    vec4 cg_heightmap_info;         // x resolution, y levels, z y_min, w y_max
-};
+CG_UNIFORM_BLOCK(CgHeightmapBlock, cg_heightmap_block, CG_BINDING_HEIGHTMAP, CG_HEIGHTMAP_BLOCK);
 
 CgHeightmap
 cg_heightmap()
 {
-    return CgHeightmap(cg_heightmap_origin_texel.xy, cg_heightmap_origin_texel.zw,
-                       cg_heightmap_info.x, cg_heightmap_info.y, cg_heightmap_info.z, cg_heightmap_info.w);
+    vec4 a = cg_heightmap_block.origin_texel, b = cg_heightmap_block.info;
+    return CgHeightmap(a.xy, a.zw, b.x, b.y, b.z, b.w);
 }
 
 // Hybrid eq. 9 for the 2D lightmap: a world position's normalised map coordinates

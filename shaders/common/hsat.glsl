@@ -1,10 +1,11 @@
 // common/hsat.glsl: the lowest and highest height of a height field over an axis-aligned
 // rectangle in constant time, from the tables of the hsat pass (hybrid paper VI.A, eq. 13-14).
 //
-// Provides: CG_BINDING_HSAT, CG_HSAT_PYRAMID, CG_HSAT_PNORM, CG_HSAT_POWER_MEAN,
+// Provides: CG_HSAT_PYRAMID, CG_HSAT_PNORM, CG_HSAT_POWER_MEAN,
 //           cg_hsat_mode(), cg_hsat_range().
 // Requires: common/heightmap.glsl.
-// The C side is passes/hsat/hsat.c; keep the info layout in step.
+// The info block's layout, CG_HSAT_INFO_BLOCK, is common/blocks.h's (hsat/sat.comp and
+// passes/hsat/hsat.c write it).
 //
 // Modes (the hsat pass's `mode` parameter, stored in the info buffer):
 //   pyramid     RG32UI mip chain (float bits): level L holds the exact min (r) and max (g) of the level-0
@@ -25,20 +26,18 @@
 #ifndef CG_COMMON_HSAT_GLSL
 #define CG_COMMON_HSAT_GLSL
 
-#define CG_BINDING_HSAT 5
+#include "common/blocks.h"
+
 #define CG_HSAT_PYRAMID 0
 #define CG_HSAT_PNORM 1
 #define CG_HSAT_POWER_MEAN 2
 
-layout(std430, binding = CG_BINDING_HSAT) readonly buffer CgHsatInfo {
-    vec4 cg_hsat_params;      // x mode, y p, z levels, w unused
-    vec4 cg_hsat_means[16];   // per level: means of x, x^p, (1 - x)^p subtracted from the tables
-};
+CG_STORAGE_BLOCK(readonly, CgHsatInfo, cg_hsat_info, CG_BINDING_HSAT, CG_HSAT_INFO_BLOCK);
 
 int
 cg_hsat_mode()
 {
-    return int(cg_hsat_params.x);
+    return int(cg_hsat_info.params.x);
 }
 
 // Inclusive texel rectangle of level `level` (size n) under the world rectangle [lo, hi];
@@ -80,9 +79,9 @@ cg_hsat_sum(usampler2D table, ivec4 r, int level, out vec3 rounding)
     dvec3 c = cg_hsat_fetch(table, ivec2(r.x - 1, r.w), level);          // S_lt
     dvec3 d = cg_hsat_fetch(table, ivec2(r.z, r.y - 1), level);          // S_rb
     double count = double((r.z - r.x + 1) * (r.w - r.y + 1));
-    dvec3 mean = dvec3(cg_hsat_means[level].xyz);
+    dvec3 mean = dvec3(cg_hsat_info.means[level].xyz);
     dvec3 magnitude = abs(a) + abs(b) + abs(c) + abs(d) + count * abs(mean);
-    double n = double(max(int(cg_heightmap_info.x) >> level, 1));
+    double n = double(max(int(cg_heightmap_block.info.x) >> level, 1));
     rounding = vec3(magnitude * (2.0 * n + 4.0) * 1.1102230246251565e-16);
     return vec3((a + b - c - d) + count * mean);
 }
@@ -99,20 +98,20 @@ cg_hsat_range(usampler2D table, CgHeightmap m, vec2 lo, vec2 hi, int level)
         if (!cg_hsat_texels(m, lo, hi, 0, r))
             return vec2(1.0, 0.0);
         int span = max(r.z - r.x, r.w - r.y) + 1;
-        int top = int(cg_hsat_params.z) - 1;
+        int top = int(cg_hsat_info.params.z) - 1;
         int L = min(span > 1 ? findMSB(span - 1) + 1 : 0, top);
         ivec4 q = r >> L;
         vec2 t00 = uintBitsToFloat(texelFetch(table, q.xy, L).rg), t10 = uintBitsToFloat(texelFetch(table, q.zy, L).rg);
         vec2 t01 = uintBitsToFloat(texelFetch(table, q.xw, L).rg), t11 = uintBitsToFloat(texelFetch(table, q.zw, L).rg);
         return vec2(min(min(t00.x, t10.x), min(t01.x, t11.x)), max(max(t00.y, t10.y), max(t01.y, t11.y)));
     }
-    level = clamp(level, 0, int(cg_hsat_params.z) - 1);
+    level = clamp(level, 0, int(cg_hsat_info.params.z) - 1);
     if (!cg_hsat_texels(m, lo, hi, level, r))
         return vec2(1.0, 0.0);
     vec3 rounding;
     vec3 sum = cg_hsat_sum(table, r, level, rounding);
     float count = float((r.z - r.x + 1) * (r.w - r.y + 1));
-    float p = cg_hsat_params.y;
+    float p = cg_hsat_info.params.y;
     float hi_p, lo_p;
     if (mode == CG_HSAT_POWER_MEAN) {
         // Eq. 14 as written: the power mean.
@@ -142,7 +141,7 @@ cg_hsat_mean(usampler2D table, CgHeightmap m, vec2 lo, vec2 hi, int level)
         vec2 r = cg_hsat_range(table, m, lo, hi, level);
         return 0.5 * (r.x + r.y);
     }
-    level = clamp(level, 0, int(cg_hsat_params.z) - 1);
+    level = clamp(level, 0, int(cg_hsat_info.params.z) - 1);
     ivec4 r;
     if (!cg_hsat_texels(m, lo, hi, level, r))
         return m.y_min;

@@ -1,8 +1,9 @@
 // common/shadow.glsl: shadow-map lookup for one light, as written by the shadow_map pass.
 //
 // The shadow_map pass writes a depth texture (GL_DEPTH_COMPONENT32F, window depth of
-// the light's projection) and a 192-byte std140 block `matrix`, bound here at uniform
-// binding 2. A program that has no shadow map binds a block whose light index is -1.
+// the light's projection) and the std140 block `matrix` (CG_SHADOW_BLOCK of common/blocks.h,
+// 192 bytes), bound here at CG_BINDING_SHADOW. A program that has no shadow map binds the
+// pass SDK's fallback (cgp_bind_shadow), whose light index is -1.
 // Bias (docs/passes.md): the receiver is moved towards the light by
 //   texel * (constant + slope * min(tan(theta), 10))
 // where texel is the world size of one shadow-map texel at the receiver and theta the
@@ -11,21 +12,16 @@
 #ifndef CG_SHADOW_GLSL
 #define CG_SHADOW_GLSL
 
-layout(std140, binding = 2) uniform CgShadow {
-    mat4 cg_shadow_view;        // world -> light view (looks down -z)
-    mat4 cg_shadow_view_proj;   // world -> light clip
-    vec4 cg_shadow_params;      // x constant bias, y slope bias (texels), z filter radius (texels), w resolution
-    vec4 cg_shadow_frustum;     // x light index (-1 = no shadow map), y 1 orthographic / 0 perspective, z near, w far
-    vec4 cg_shadow_light;       // xyz: direction towards the light (orthographic) or light position (perspective)
-    vec4 cg_shadow_texel;       // xy: texel world size along light x, y (orthographic) or per metre of distance (perspective)
-};
+#include "common/blocks.h"
+
+CG_UNIFORM_BLOCK(CgShadow, cg_shadow_block, CG_BINDING_SHADOW, CG_SHADOW_BLOCK);
 
 // Distance along the light's view axis stored in a texel of window depth d.
 float
 cg_shadow_linear_depth(float d)
 {
-    float n = cg_shadow_frustum.z, f = cg_shadow_frustum.w;
-    if (cg_shadow_frustum.y > 0.5)
+    float n = cg_shadow_block.frustum.z, f = cg_shadow_block.frustum.w;
+    if (cg_shadow_block.frustum.y > 0.5)
         return n + d * (f - n);
     float z_ndc = 2.0 * d - 1.0;
     return 2.0 * n * f / ((f + n) - z_ndc * (f - n));
@@ -37,33 +33,33 @@ cg_shadow_linear_depth(float d)
 float
 cg_shadow_visibility(sampler2D shadow_map, int light_index, vec3 p, vec3 n)
 {
-    if (light_index != int(cg_shadow_frustum.x))
+    if (light_index != int(cg_shadow_block.frustum.x))
         return 1.0;
-    vec4 clip = cg_shadow_view_proj * vec4(p, 1.0);
+    vec4 clip = cg_shadow_block.view_proj * vec4(p, 1.0);
     if (clip.w <= 0.0)
         return 1.0;
     vec3 ndc = clip.xyz / clip.w;
     if (any(greaterThan(abs(ndc.xy), vec2(1.0))))
         return 1.0;
-    float dist = -(cg_shadow_view * vec4(p, 1.0)).z;
-    bool ortho = cg_shadow_frustum.y > 0.5;
-    vec3 to_light = ortho ? cg_shadow_light.xyz : normalize(cg_shadow_light.xyz - p);
+    float dist = -(cg_shadow_block.view * vec4(p, 1.0)).z;
+    bool ortho = cg_shadow_block.frustum.y > 0.5;
+    vec3 to_light = ortho ? cg_shadow_block.light.xyz : normalize(cg_shadow_block.light.xyz - p);
     float cos_theta = clamp(abs(dot(n, to_light)), 1e-3, 1.0);
     float tan_theta = min(sqrt(1.0 - cos_theta * cos_theta) / cos_theta, 10.0);
-    vec2 texel2 = ortho ? cg_shadow_texel.xy : cg_shadow_texel.xy * dist;
+    vec2 texel2 = ortho ? cg_shadow_block.texel.xy : cg_shadow_block.texel.xy * dist;
     float texel = max(texel2.x, texel2.y);
-    float receiver = dist - texel * (cg_shadow_params.x + cg_shadow_params.y * tan_theta);
+    float receiver = dist - texel * (cg_shadow_block.params.x + cg_shadow_block.params.y * tan_theta);
 
     // Receiver-plane depth (Isidoro 2006, "Shadow mapping: GPU-based tips and techniques"):
     // each tap compares against the receiver's plane continued to that texel's centre, so
     // that filters over sloped receivers do not self-shadow. The change of depth is capped
     // at 10 times the lateral offset, like the slope bias.
-    vec3 pv = (cg_shadow_view * vec4(p, 1.0)).xyz;
-    vec3 nv = mat3(cg_shadow_view) * n;
+    vec3 pv = (cg_shadow_block.view * vec4(p, 1.0)).xyz;
+    vec3 nv = mat3(cg_shadow_block.view) * n;
     float plane = dot(nv, pv);
     float nz = nv.z >= 0.0 ? max(nv.z, 1e-4) : min(nv.z, -1e-4);
-    int resolution = int(cg_shadow_params.w);
-    int radius = int(cg_shadow_params.z);
+    int resolution = int(cg_shadow_block.params.w);
+    int radius = int(cg_shadow_block.params.z);
     vec2 st = (ndc.xy * 0.5 + 0.5) * float(resolution);
     ivec2 center = ivec2(floor(st));
     float lit = 0.0;
@@ -80,7 +76,7 @@ cg_shadow_visibility(sampler2D shadow_map, int light_index, vec3 p, vec3 n)
                 // The ray through the tap's texel centre, q = s (u, v, -1) at depth s, meets
                 // the plane n.q = n.p at s = n.p / n.(u, v, -1). A ray nearly parallel to
                 // the plane gives a huge delta, which the cap below bounds.
-                vec3 ray = vec3(pv.xy / dist + offset_texels * cg_shadow_texel.xy, -1.0);
+                vec3 ray = vec3(pv.xy / dist + offset_texels * cg_shadow_block.texel.xy, -1.0);
                 float along = dot(nv, ray);
                 delta = abs(along) > 1e-6 ? plane / along - dist : 0.0;
             }

@@ -1,13 +1,12 @@
 // common/volume.glsl: where a 3D lightmap lies in the world, as the voxelize pass
 // publishes it (its `region` output, a std140 uniform block at CG_BINDING_VOLUME).
 //
-// Provides: CG_BINDING_VOLUME, CgVolume, cg_volume(), cg_volume_uvw(), cg_volume_extent().
-// The C side is passes/voxelize/voxelize.c (struct volume_region); keep the two in step.
+// Provides: CgVolume, cg_volume(), cg_volume_uvw(), cg_volume_extent().
+// The block's layout, CG_VOLUME_BLOCK, is common/blocks.h's, the one the C side writes.
 #ifndef CG_COMMON_VOLUME_GLSL
 #define CG_COMMON_VOLUME_GLSL
 
-// UBO bindings 0..2 belong to the scene, lights and shadow map (cg/gpu_scene.h).
-#define CG_BINDING_VOLUME 3
+#include "common/blocks.h"
 
 struct CgVolume {
     vec3 origin;          // world position of the volume's minimum corner
@@ -17,16 +16,13 @@ struct CgVolume {
     float radiance_scale; // stored RGB x radiance_scale = radiance (1 for RGBA16F)
 };
 
-layout(std140, binding = CG_BINDING_VOLUME) uniform CgVolumeBlock {
-    vec4 cg_volume_origin_voxel;  // xyz origin, w voxel size
-    vec4 cg_volume_info;          // x resolution, y levels, z radiance scale, w unused
-};
+CG_UNIFORM_BLOCK(CgVolumeBlock, cg_volume_block, CG_BINDING_VOLUME, CG_VOLUME_BLOCK);
 
 CgVolume
 cg_volume()
 {
-    return CgVolume(cg_volume_origin_voxel.xyz, cg_volume_origin_voxel.w,
-                    cg_volume_info.x, cg_volume_info.y, cg_volume_info.z);
+    return CgVolume(cg_volume_block.origin_voxel.xyz, cg_volume_block.origin_voxel.w,
+                    cg_volume_block.info.x, cg_volume_block.info.y, cg_volume_block.info.z);
 }
 
 float

@@ -24,11 +24,9 @@ layout(local_size_x = 64) in;
 layout(LIGHTMAP_FORMAT, binding = 0) readonly uniform image2D u_lightmap;  // this level
 layout(rgba32ui, binding = 1) uniform uimage2D u_table;                    // this level
 
-layout(std430, binding = 5) buffer HsatInfo {
-    vec4 info_params;
-    vec4 info_means[16];
-};
-layout(std430, binding = 6) buffer HsatRows {
+// The info block that common/hsat.glsl reads, written here (the means).
+CG_STORAGE_BLOCK(, CgHsatInfo, cg_hsat_info, CG_BINDING_HSAT, CG_HSAT_INFO_BLOCK);
+layout(std430, binding = CG_BINDING_HSAT_ROWS) buffer HsatRows {
     dvec4 u_rows[];
 };
 
@@ -70,7 +68,7 @@ main()
     dvec3 total = dvec3(0.0);
     for (int j = 0; j < u_size; j++)
         total += u_rows[j].xyz;
-    info_means[u_level] = vec4(vec3(total / (double(u_size) * double(u_size))), 0.0);
+    cg_hsat_info.means[u_level] = vec4(vec3(total / (double(u_size) * double(u_size))), 0.0);
 #else
     if (k >= u_size)
         return;
@@ -81,7 +79,7 @@ main()
     u_rows[k] = dvec4(sum, 0.0);
 #elif defined(ROWS)
     // The float mean the readers add back, so that table + count x mean is the sum.
-    dvec3 mean = dvec3(info_means[u_level].xyz);
+    dvec3 mean = dvec3(cg_hsat_info.means[u_level].xyz);
     dvec3 sum = dvec3(0.0);
     for (int i = 0; i < u_size; i++) {
         sum += dvec3(texel_value(ivec2(i, k))) - mean;

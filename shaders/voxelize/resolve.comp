@@ -11,6 +11,8 @@
 // not a loose bound).
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
 
+#include "common/blocks.h"
+
 layout(r32ui, binding = 0) readonly uniform uimage3D u_accum;
 #ifndef FIND_MAX
 layout(FORMAT, binding = 1) writeonly uniform image3D u_radiance;
@@ -25,9 +27,9 @@ layout(location = 2) uniform float u_radiance_scale;
 layout(location = 3) uniform bool u_scale_from_max;
 
 // x: float bits of the largest radiance component (positive floats order as their bits).
-layout(std430, binding = 4) buffer ResolveMax { uint max_bits; };
-// The region block of common/volume.glsl as floats: [6] is the radiance scale.
-layout(std430, binding = 5) buffer Region { float region[8]; };
+layout(std430, binding = CG_BINDING_RESOLVE_MAX) buffer ResolveMax { uint max_bits; };
+// The region block of common/volume.glsl, bound as storage to write its radiance scale.
+CG_STORAGE_BLOCK(, CgVolumeRegion, cg_volume_region, CG_BINDING_RESOLVE_REGION, CG_VOLUME_BLOCK);
 
 shared uint group_max;
 
@@ -66,7 +68,7 @@ main()
         float m = uintBitsToFloat(max_bits);
         scale = m > 0.0 ? m : 1.0;
         if (gl_GlobalInvocationID == uvec3(0))
-            region[6] = scale;
+            cg_volume_region.info.z = scale;
     }
     if (!inside)
         return;

@@ -5,8 +5,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "cg/error.h"
-#include "cg/fg.h"
+#include "sdk/pass.h"
 
 static const fg_param_desc params[] = {
     { .name = "red", .type = FG_PARAM_INT, .default_value = 200, .min = 0, .max = 255,
@@ -48,19 +47,9 @@ static const fg_pass_type fill_type = {
     .name = "demo_test_fill",
     .doc = "Test pass for the demo: fills an RGBA8 'ldr' output with given 8-bit levels and "
            "provokes a GL error on a chosen frame.",
-    .params = params,
-    .param_count = (int)(sizeof params / sizeof params[0]),
+    CGP_PARAMS(params),
     .declare = declare,
     .execute = execute,
 };
 
-bool conegraph_plugin_register(fg_registry *registry, uint32_t host_abi, cg_error *err);
-
-bool
-conegraph_plugin_register(fg_registry *registry, uint32_t host_abi, cg_error *err)
-{
-    if (host_abi != FG_ABI_VERSION)
-        return cg_fail(err, CG_ERR_PLUGIN_ABI, "demo_test_plugin was built for frame-graph ABI %u, not %u",
-                       (unsigned)FG_ABI_VERSION, (unsigned)host_abi);
-    return fg_registry_add(registry, &fill_type, err);
-}
+CGP_PLUGIN(&fill_type);

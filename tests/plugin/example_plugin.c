@@ -3,12 +3,12 @@
  *
  * It registers `example_fill`, which fills a 2D RGBA16F output with a colour. Built a second
  * time with EXAMPLE_PLUGIN_ABI set to another value, it stands for a plugin built against an
- * older or newer cg/fg.h, which the host must refuse with CG_ERR_PLUGIN_ABI. */
+ * older or newer cg/fg.h, which the host must refuse with CG_ERR_PLUGIN_ABI. It uses the pass SDK
+ * (sdk/pass.h) as the built-in passes do; docs/architecture.md walks through it. */
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "cg/error.h"
-#include "cg/fg.h"
+#include "sdk/pass.h"
 
 #ifndef EXAMPLE_PLUGIN_ABI
 #define EXAMPLE_PLUGIN_ABI FG_ABI_VERSION
@@ -34,13 +34,9 @@ fill_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
 {
     (void)err;
     const fg_frame *frame = fg_pass_frame(pass);
-    fg_resource_desc desc = { 0 };
-    desc.kind = FG_TEXTURE_2D;
-    desc.format = GL_RGBA16F;
-    desc.width = fg_param_int(pass, "width") ? fg_param_int(pass, "width") : frame->width;
-    desc.height = fg_param_int(pass, "height") ? fg_param_int(pass, "height") : frame->height;
-    desc.depth = 1;
-    desc.levels = 1;
+    int width = fg_param_int(pass, "width"), height = fg_param_int(pass, "height");
+    /* A single-level 2D texture (sdk/pass.h); 0 means the output image's size. */
+    fg_resource_desc desc = cgp_image_2d(GL_RGBA16F, width ? width : frame->width, height ? height : frame->height);
     fg_declare_output(decl, "color", &desc, FG_ACCESS_TRANSFER);
     return true;
 }
@@ -61,21 +57,11 @@ static const fg_pass_type fill_type = {
     .name = "example_fill",
     .doc = "Example plugin pass: fills a 2D RGBA16F output ('color') with a constant colour "
            "(glClearTexImage). Shows how a pass module outside the tree is built and loaded.",
-    .params = fill_params,
-    .param_count = (int)(sizeof fill_params / sizeof fill_params[0]),
+    CGP_PARAMS(fill_params),
     .declare = fill_declare,
     .execute = fill_execute,
 };
 
-bool conegraph_plugin_register(fg_registry *registry, uint32_t host_abi, cg_error *err);
-
-bool
-conegraph_plugin_register(fg_registry *registry, uint32_t host_abi, cg_error *err)
-{
-    if (host_abi != EXAMPLE_PLUGIN_ABI)
-        return cg_fail(err, CG_ERR_PLUGIN_ABI,
-                       "example_plugin was built for frame-graph ABI %u, but the host has ABI %u; "
-                       "rebuild it against the host's cg/fg.h", (unsigned)EXAMPLE_PLUGIN_ABI,
-                       (unsigned)host_abi);
-    return fg_registry_add(registry, &fill_type, err);
-}
+/* conegraph_plugin_register(): refuses a host of another ABI (the bad-ABI build above), then
+ * registers fill_type. */
+CGP_PLUGIN(&fill_type);

@@ -39,8 +39,10 @@
 
 /* Bumped whenever fg_pass_type or any function a pass calls changes incompatibly.
  * 2: fg_param_desc gained its constraints (allowed values, power of two, step hints,
- *    dependencies between parameters). */
-#define FG_ABI_VERSION 2u
+ *    dependencies between parameters).
+ * 3: cg_gpu_scene lost its no-shadow fallback and cg_gpu_scene_bind_shadow (now the pass SDK's,
+ *    sdk/shadow.h). */
+#define FG_ABI_VERSION 3u
 
 /* ---------------------------------------------------------------- parameters */
 

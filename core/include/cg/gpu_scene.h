@@ -1,9 +1,8 @@
 /* cg/gpu_scene.h: a cg_scene uploaded to GL buffers and textures, and the one way passes draw it.
  *
  * Declares: cg_gpu_scene, cg_gpu_scene_upload, cg_gpu_scene_destroy, cg_gpu_scene_draw,
- *           cg_mesh_filter, CG_BINDING_MATERIALS, CG_BINDING_LIGHTS, CG_BINDING_SHADOW,
- *           cg_gpu_scene_bind_lights, cg_gpu_scene_update_lights, CG_SHADOW_BLOCK_BYTES,
- *           cg_gpu_scene_bind_shadow.
+ *           cg_mesh_filter, CG_BINDING_MATERIALS, CG_BINDING_LIGHTS,
+ *           cg_gpu_scene_bind_lights, cg_gpu_scene_update_lights.
  *
  * Shader interface (shaders/common/scene.glsl): vertex attributes 0 = position,
  * 1 = normal, 2 = texcoord; uniform location 0 = mat4 model, 1 = mat3 normal matrix,
@@ -14,8 +13,8 @@
  *
  * Lights (shaders/common/lights.glsl): SSBO binding 1 = a uvec4 header (x = light count)
  * followed by a std430 array of struct CgLight, one per cg_scene light in scene order,
- * so every pass that lights the scene binds the very same data. Binding 2 is kept for
- * the shadow-map uniform block (shaders/common/shadow.glsl).
+ * so every pass that lights the scene binds the very same data. Passes number their own
+ * bindings (shadow maps, lightmaps) in shaders/common/blocks.h, which repeats these two.
  */
 #ifndef CG_GPU_SCENE_H
 #define CG_GPU_SCENE_H
@@ -27,12 +26,9 @@
 #include "cg/error.h"
 #include "cg/scene.h"
 
-#define CG_BINDING_MATERIALS 0  /* SSBO */
-#define CG_BINDING_LIGHTS 1     /* SSBO */
-#define CG_BINDING_SHADOW 2     /* UBO */
-
-/* The std140 block CgShadow of shaders/common/shadow.glsl (written by the shadow_map pass). */
-#define CG_SHADOW_BLOCK_BYTES 192
+/* SSBO bindings; shaders/common/blocks.h has the same (a C file seeing both checks it). */
+#define CG_BINDING_MATERIALS 0
+#define CG_BINDING_LIGHTS 1
 
 typedef enum cg_mesh_filter {
     CG_MESHES_ALL,
@@ -55,8 +51,6 @@ typedef struct cg_gpu_scene {
     GLuint *textures;       /* one per cg_scene texture */
     GLuint white_texture;
     GLuint light_buffer;    /* SSBO, header + std430 array of struct CgLight in lights.glsl */
-    GLuint no_shadow_block; /* CgShadow with light index -1: no light is shadowed */
-    GLuint no_shadow_map;   /* 1x1 depth texture at the far plane */
     size_t bytes;           /* GPU memory held by the buffers and textures */
 } cg_gpu_scene;
 
@@ -75,12 +69,6 @@ void cg_gpu_scene_bind_lights(const cg_gpu_scene *gpu);
 /* Re-uploads the lights from gpu->scene (same light count as at upload), e.g. after the
  * demo moved the sun. Fails with CG_ERR_USAGE when the count changed. */
 bool cg_gpu_scene_update_lights(cg_gpu_scene *gpu, cg_error *err);
-
-/* Binds a shadow map at `texture_unit` and its CgShadow block at CG_BINDING_SHADOW for
- * shaders/common/shadow.glsl; with shadow_map 0 (an absent optional input) binds a block
- * that shadows no light, so one shader serves both cases. */
-void cg_gpu_scene_bind_shadow(const cg_gpu_scene *gpu, GLuint shadow_map, GLuint shadow_block,
-                              GLuint texture_unit);
 
 /* True when some mesh passes the filter ("model only what a scene requires"). */
 bool cg_gpu_scene_has(const cg_gpu_scene *gpu, cg_mesh_filter filter);

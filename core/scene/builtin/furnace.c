@@ -1,5 +1,6 @@
 /* builtin:furnace: a closed box, normals inward, uniform albedo and emitted radiance, camera
- * inside. ?scale=S&albedo=A&radiance=L. */
+ * inside. ?scale=S&albedo=A&radiance=L&heightfield=H; with H = 1 the floor is a mesh of its own
+ * of kind height field, so that the hybrid graphs trace it through their 2D lightmap. */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -16,8 +17,9 @@ build_furnace(cg_scene *scene, const char *query, cg_error *err)
         { "scale", 1e-6, 1e7, 1, false, 0, false, NULL },
         { "albedo", 0, 1, 0.5, false, 0, false, NULL },
         { "radiance", 0, 1e6, 1, false, 0, false, NULL },
+        { "heightfield", 0, 1, 0, true, 0, false, NULL },
     };
-    if (!bs_parse_params("furnace", query, p, 3, err))
+    if (!bs_parse_params("furnace", query, p, 4, err))
         return false;
     if (!(p[0].value > 0))
         return cg_fail(err, CG_ERR_SCENE_PARAM, "builtin:furnace: scale must be > 0");
@@ -44,8 +46,14 @@ build_furnace(cg_scene *scene, const char *query, cg_error *err)
     mb_quad(&b, v[5], v[7], v[3], v[1]); /* x = +s, facing -x */
     mb_quad(&b, v[0], v[2], v[6], v[4]); /* x = -s, facing +x */
     mb_quad(&b, v[2], v[3], v[7], v[6]); /* y = +s, facing -y */
-    mb_quad(&b, v[0], v[4], v[5], v[1]); /* y = -s, facing +y */
-    if (!mb_commit(scene, &b, "furnace_box", mat, CG_MESH_COMPLEX, bs_identity, err))
+    bool heightfield = p[3].count == 1;
+    mesh_builder floor = { 0 };
+    mb_quad(heightfield ? &floor : &b, v[0], v[4], v[5], v[1]); /* y = -s, facing +y */
+    if (!mb_commit(scene, &b, "furnace_box", mat, CG_MESH_COMPLEX, bs_identity, err)) {
+        mb_free(&floor);
+        return false;
+    }
+    if (heightfield && !mb_commit(scene, &floor, "furnace_floor", mat, CG_MESH_HEIGHTFIELD, bs_identity, err))
         return false;
     double eye[3] = { 0, 0, 0 }, at[3] = { 0, 0, -s };
     return bs_add_perspective_camera(scene, "inside", eye, at, 1.2f, (float)(s * 1e-2), (float)(s * 4), err);
@@ -55,6 +63,7 @@ const cg_builtin_scene cg_builtin_furnace = {
     .name = "furnace",
     .doc = "closed box with inward normals for energy tests: every surface has albedo A and emits "
     "radiance L, camera at the centre; ?scale=S (metres, 1e-6..1e7, default 1)&albedo=A "
-    "(0..1, default 0.5)&radiance=L (0..1e6, default 1)",
+    "(0..1, default 0.5)&radiance=L (0..1e6, default 1)&heightfield=H (0 or 1, default 0: the floor "
+    "a height-field mesh of its own, for the hybrid graphs' 2D lightmap)",
     .build = build_furnace,
 };

@@ -1,0 +1,179 @@
+/* The pass SDK's registration, state and descriptor helpers (sdk/pass.h). */
+#include "sdk/pass.h"
+
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "cg/shader.h"
+
+static void
+cgp_state_destroy_object(cgp_gl_kind kind, GLuint name)
+{
+    switch (kind) {
+    case CGP_GL_PROGRAM: glDeleteProgram(name); break;
+    case CGP_GL_BUFFER: glDeleteBuffers(1, &name); break;
+    case CGP_GL_SAMPLER: glDeleteSamplers(1, &name); break;
+    case CGP_GL_FRAMEBUFFER: glDeleteFramebuffers(1, &name); break;
+    case CGP_GL_TEXTURE: glDeleteTextures(1, &name); break;
+    }
+}
+
+bool
+cgp_register_passes(fg_registry *registry, uint32_t host_abi, const fg_pass_type *const *types, int count,
+                    cg_error *err)
+{
+    for (int i = 0; i < count; i++) {
+        const fg_pass_type *type = types[i];
+        if (type->abi_version != host_abi)
+            return cg_fail(err, CG_ERR_PLUGIN_ABI,
+                           "pass type '%s' was built for frame-graph ABI %u, but the host has ABI %u; "
+                           "rebuild it against the host's cg/fg.h and pass SDK",
+                           type->name ? type->name : "(unnamed)", (unsigned)type->abi_version, (unsigned)host_abi);
+    }
+    for (int i = 0; i < count; i++)
+        if (!fg_registry_add(registry, types[i], err))
+            return false;
+    return true;
+}
+
+/* Lies before the pass's bytes; the union keeps those aligned for any type. A pass owns a
+ * handful of GL objects (hsat, the most, 7), hence a fixed list. */
+#define STATE_MAX_OBJECTS 32
+
+typedef union state_header {
+    struct {
+        void (*cleanup)(void *state);
+        int count;
+        struct owned {
+            cgp_gl_kind kind;
+            GLuint name;
+        } objects[STATE_MAX_OBJECTS];
+    } h;
+    max_align_t align;
+} state_header;
+
+static state_header *
+header_of(void *state)
+{
+    return (state_header *)state - 1;
+}
+
+void *
+cgp_state_new(const fg_pass *pass, size_t bytes, cg_error *err)
+{
+    state_header *header = calloc(1, sizeof *header + bytes);
+    if (!header) {
+        cg_fail(err, CG_ERR_OUT_OF_MEMORY, "pass '%s': out of memory for its state (%zu bytes)",
+                fg_pass_name(pass), bytes);
+        return NULL;
+    }
+    return header + 1;
+}
+
+void
+cgp_state_on_destroy(void *state, void (*cleanup)(void *state))
+{
+    header_of(state)->h.cleanup = cleanup;
+}
+
+GLuint
+cgp_own(void *state, cgp_gl_kind kind, GLuint name)
+{
+    state_header *header = header_of(state);
+    if (name == 0)
+        return 0;
+    if (header->h.count == STATE_MAX_OBJECTS) {
+        /* A programming error, as asking for an undeclared parameter is (cg/fg.h). */
+        fprintf(stderr, "pass state: more than %d GL objects owned (sdk/pass.c)\n", STATE_MAX_OBJECTS);
+        abort();
+    }
+    header->h.objects[header->h.count++] = (struct owned){kind, name};
+    return name;
+}
+
+void
+cgp_state_destroy(void *state)
+{
+    if (!state)
+        return;
+    state_header *header = header_of(state);
+    if (header->h.cleanup)
+        header->h.cleanup(state);
+    for (int i = header->h.count - 1; i >= 0; i--)
+        cgp_state_destroy_object(header->h.objects[i].kind, header->h.objects[i].name);
+    free(header);
+}
+
+bool
+cgp_prepared(void **state, void *s, bool ok)
+{
+    if (ok)
+        *state = s;
+    else
+        cgp_state_destroy(s);
+    return ok;
+}
+
+bool
+cgp_compute_program(void *state, const char *shader, const char *defines, GLuint *out, cg_error *err)
+{
+    if (!cg_program_compute(shader, defines, out, err))
+        return false;
+    cgp_own(state, CGP_GL_PROGRAM, *out);
+    return true;
+}
+
+bool
+cgp_graphics_program(void *state, const char *vertex, const char *geometry, const char *fragment,
+                     const char *defines, GLuint *out, cg_error *err)
+{
+    if (!cg_program_graphics(vertex, geometry, fragment, defines, out, err))
+        return false;
+    cgp_own(state, CGP_GL_PROGRAM, *out);
+    return true;
+}
+
+GLuint
+cgp_framebuffer(void *state)
+{
+    GLuint fbo;
+    glCreateFramebuffers(1, &fbo);
+    return cgp_own(state, CGP_GL_FRAMEBUFFER, fbo);
+}
+
+GLuint
+cgp_buffer(void *state, size_t bytes, const void *data, GLbitfield flags)
+{
+    GLuint buffer;
+    glCreateBuffers(1, &buffer);
+    glNamedBufferStorage(buffer, (GLsizeiptr)bytes, data, flags);
+    return cgp_own(state, CGP_GL_BUFFER, buffer);
+}
+
+fg_resource_desc
+cgp_image_2d(GLenum format, int width, int height)
+{
+    return (fg_resource_desc){
+        .kind = FG_TEXTURE_2D, .format = format, .width = width, .height = height, .depth = 1, .levels = 1,
+    };
+}
+
+fg_resource_desc
+cgp_image_like(const fg_pass *pass, const fg_resource_desc *like, GLenum format)
+{
+    const fg_frame *frame = fg_pass_frame(pass);
+    return cgp_image_2d(format, like ? like->width : frame->width, like ? like->height : frame->height);
+}
+
+fg_resource_desc
+cgp_buffer_desc(size_t bytes)
+{
+    return (fg_resource_desc){.kind = FG_BUFFER, .depth = 1, .levels = 1, .buffer_bytes = bytes};
+}
+
+void
+cgp_dispatch_2d(int width, int height)
+{
+    glDispatchCompute((GLuint)(width + 7) / 8, (GLuint)(height + 7) / 8, 1);
+}

@@ -1,0 +1,148 @@
+/* common/blocks.h: the buffer bindings, texture units and block layouts that C and GLSL share,
+ * each written once. C includes it through the pass SDK (sdk/blocks.h); GLSL through the shader
+ * loader (#include "common/blocks.h"). C compilers define __STDC__, GLSL never does.
+ *
+ * Provides: CG_BINDING_* and CG_UNIT_* numbers; the member lists CG_*_BLOCK(M, A); in C the
+ *           structs cg_shadow_block, cg_volume_block, cg_heightmap_block, cg_hsat_info_block,
+ *           cg_cone_set_block, cg_cone_gather_block, cg_hybrid_gather_block; in GLSL the
+ *           declarations CG_UNIFORM_BLOCK() and CG_STORAGE_BLOCK() that consumers write once.
+ *
+ * A block is a member list, CG_NAME_BLOCK(M, A), that calls M(type, name) for each member and
+ * A(type, name, count) for each array. Members are vec4, ivec4, uvec4 or mat4 and arrays of them
+ * only: std140 and std430 lay those out at 16-byte strides with no padding, exactly as a C struct
+ * of float[4], int32_t[4], uint32_t[4] and float[16] members, which _Static_assert checks below.
+ * In C the list becomes a struct (CG_C_BLOCK); in GLSL a shader declares the block with
+ *     CG_UNIFORM_BLOCK(CgVolumeBlock, cg_volume_block, CG_BINDING_VOLUME, CG_VOLUME_BLOCK)
+ * and reads cg_volume_block.origin_voxel; the C struct has the name of the GLSL instance. Comments
+ * inside the lists are block comments: a line comment would swallow the continued lines.
+ *
+ * Binding namespaces: uniform blocks (UBO), storage blocks (SSBO) and texture units are three
+ * separate sets of numbers in GL, kept apart here so that a reader can tell which is which. GL 4.5
+ * guarantees 8 SSBO bindings in a program and 36 UBO bindings.
+ */
+#ifndef CG_COMMON_BLOCKS_H
+#define CG_COMMON_BLOCKS_H
+
+/* ---- storage blocks (SSBO bindings) */
+/* 0 and 1 are core's (cg/gpu_scene.h, common/scene.glsl, common/lights.glsl). */
+#define CG_BINDING_MATERIALS 0
+#define CG_BINDING_LIGHTS 1
+/* hsat's `info` (CG_HSAT_INFO_BLOCK): written by hsat/sat.comp, read by common/hsat.glsl. */
+#define CG_BINDING_HSAT 5
+/* Private to one pass's programs. */
+#define CG_BINDING_HSAT_ROWS 6          /* hsat/sat.comp: the row sums of a level */
+#define CG_BINDING_RESOLVE_MAX 4        /* voxelize/resolve.comp: the largest radiance (RGBA8) */
+#define CG_BINDING_RESOLVE_REGION 5     /* voxelize/resolve.comp: writes the radiance scale of `region` */
+
+/* ---- uniform blocks (UBO bindings) */
+#define CG_BINDING_SHADOW 2             /* CG_SHADOW_BLOCK, a shadow_map pass's `matrix` */
+#define CG_BINDING_VOLUME 3             /* CG_VOLUME_BLOCK, a voxelize pass's `region` */
+#define CG_BINDING_HEIGHTMAP 4          /* CG_HEIGHTMAP_BLOCK, a heightmap_raster pass's `region` */
+#define CG_BINDING_CONES 7              /* CG_CONE_SET_BLOCK, the cone set and march of a gather */
+#define CG_BINDING_GATHER 8             /* a gather pass's own switches (CG_*_GATHER_BLOCK) */
+
+/* ---- texture units of the gather passes (cone_gather, hybrid_gather) */
+#define CG_UNIT_VOLUME 0                /* the mipped 3D lightmap */
+#define CG_UNIT_POSITION 1              /* G-buffer world position */
+#define CG_UNIT_NORMAL 2                /* G-buffer world normal */
+#define CG_UNIT_ANISO 3                 /* 3..8: mip3d's directional chains px nx py ny pz nz */
+#define CG_UNIT_LIGHTMAP2D 9            /* the mipped 2D lightmap */
+#define CG_UNIT_HSAT 10                 /* the HSAT tables */
+
+/* The most cones a diffuse set holds (sdk/cone.h: CGP_CONE_MAX). */
+#define CG_CONE_SET_MAX 16
+/* Levels the hsat info block has means for. */
+#define CG_HSAT_MAX_LEVELS 16
+
+/* ---- block layouts */
+
+/* One shadow map's lookup (common/shadow.glsl), written by the shadow_map pass; 192 bytes. */
+#define CG_SHADOW_BLOCK(M, A)                                                                     \
+    M(mat4, view)       /* world -> light view (looks down -z) */                                \
+    M(mat4, view_proj)  /* world -> light clip */                                                \
+    M(vec4, params)     /* x constant bias, y slope bias (texels), z filter radius (texels), w resolution */ \
+    M(vec4, frustum)    /* x light index (-1: no shadow map), y 1 orthographic / 0 perspective, z near, w far */ \
+    M(vec4, light)      /* xyz: towards the light (orthographic) or the light's position */      \
+    M(vec4, texel)      /* xy: texel world size along light x, y (orthographic), or per metre of distance */
+
+/* Where a 3D lightmap lies (common/volume.glsl), a voxelize pass's `region`; 32 bytes. */
+#define CG_VOLUME_BLOCK(M, A)                                                                     \
+    M(vec4, origin_voxel) /* xyz: world position of the minimum corner; w: voxel edge at level 0 */ \
+    M(vec4, info)         /* x voxels per edge, y mip levels, z radiance scale (stored x scale = radiance) */
+
+/* Where a 2D lightmap lies (common/heightmap.glsl), a heightmap_raster pass's `region`; 32 bytes. */
+#define CG_HEIGHTMAP_BLOCK(M, A)                                                                  \
+    M(vec4, origin_texel) /* xy: world (x, z) of the minimum corner; zw: texel size along x and z */ \
+    M(vec4, info)         /* x texels per edge, y mip levels, z y_min, w y_max */
+
+/* An hsat pass's `info` (common/hsat.glsl), std430; 272 bytes. */
+#define CG_HSAT_INFO_BLOCK(M, A)                                                                  \
+    M(vec4, params)                       /* x mode, y exponent p, z levels */                    \
+    A(vec4, means, CG_HSAT_MAX_LEVELS)    /* per level: means of x, x^p, (1 - x)^p subtracted from the tables */
+
+/* A gather's diffuse cone set and march (common/cone_trace.glsl), uploaded by cgp_cone_upload; 544 bytes. */
+#define CG_CONE_SET_BLOCK(M, A)                                                                   \
+    A(vec4, cones, CG_CONE_SET_MAX)       /* xyz: tangent-space direction (z = normal), w: weight W_k */ \
+    A(vec4, apertures, CG_CONE_SET_MAX)   /* x: tan of the half apex angle */                     \
+    M(ivec4, count)                       /* x: cones in the set */                               \
+    M(vec4, march)        /* x step (fraction of the diameter), y start offset (xels), */        \
+                          /* z max distance (m; <= 0: the maps' diagonal), w lod bias */
+
+/* cone_gather's specular and shadow cones; 48 bytes. */
+#define CG_CONE_GATHER_BLOCK(M, A)                                                                \
+    M(vec4, camera)       /* xyz: the camera's world position (the specular cone's view direction) */ \
+    M(vec4, tan_half)     /* x: specular cone, y: shadow cone */                                  \
+    M(ivec4, shadow)      /* x: index of the light the shadow cone points at */
+
+/* hybrid_gather's switches; 32 bytes. */
+#define CG_HYBRID_GATHER_BLOCK(M, A)                                                              \
+    M(ivec4, maps)        /* x: a 3D lightmap is bound */                                          \
+    M(ivec4, switches)    /* x: eq. 11 (else eq. 10), y: occlusion (0 eq. 16, 1 eq. 17), z: 2D DDA, w: HSAT skipping */
+
+#ifdef __STDC__
+/* ---- C: one struct per block (sdk/blocks.h includes <stdint.h> first: the shader loader
+ * expands every #include, also under #ifdef, and knows no system headers) */
+
+typedef float cg_block_vec4[4];
+typedef int32_t cg_block_ivec4[4];
+typedef uint32_t cg_block_uvec4[4];
+typedef float cg_block_mat4[16];    /* column-major, as GLSL reads it */
+
+#define CG_C_MEMBER(type, name) cg_block_##type name;
+#define CG_C_ARRAY(type, name, count) cg_block_##type name[count];
+#define CG_C_MEMBER_BYTES(type, name) +sizeof(cg_block_##type)
+#define CG_C_ARRAY_BYTES(type, name, count) +(count) * sizeof(cg_block_##type)
+/* The struct `name` of a block; asserts its size (`bytes`, as documented) and that C added no
+ * padding, i.e. that it has the std140 / std430 layout. */
+#define CG_C_BLOCK(name, MEMBERS, bytes)                                                          \
+    typedef struct name {                                                                         \
+        MEMBERS(CG_C_MEMBER, CG_C_ARRAY)                                                          \
+    } name;                                                                                       \
+    _Static_assert(sizeof(name) == (0 MEMBERS(CG_C_MEMBER_BYTES, CG_C_ARRAY_BYTES)), #name " is padded"); \
+    _Static_assert(sizeof(name) == (bytes), #name " is " #bytes " bytes")
+
+CG_C_BLOCK(cg_shadow_block, CG_SHADOW_BLOCK, 192);
+CG_C_BLOCK(cg_volume_block, CG_VOLUME_BLOCK, 32);
+CG_C_BLOCK(cg_heightmap_block, CG_HEIGHTMAP_BLOCK, 32);
+CG_C_BLOCK(cg_hsat_info_block, CG_HSAT_INFO_BLOCK, 272);
+CG_C_BLOCK(cg_cone_set_block, CG_CONE_SET_BLOCK, 544);
+CG_C_BLOCK(cg_cone_gather_block, CG_CONE_GATHER_BLOCK, 48);
+CG_C_BLOCK(cg_hybrid_gather_block, CG_HYBRID_GATHER_BLOCK, 32);
+
+#else
+/* ---- GLSL: the declaration of a block, written once by its consumer */
+#define CG_GLSL_MEMBER(type, name) type name;
+#define CG_GLSL_ARRAY(type, name, count) type name[count];
+/* A std140 uniform block `block` at `binding_point` with the instance name `instance`. */
+#define CG_UNIFORM_BLOCK(block, instance, binding_point, MEMBERS)                                 \
+    layout(std140, binding = binding_point) uniform block {                                       \
+        MEMBERS(CG_GLSL_MEMBER, CG_GLSL_ARRAY)                                                    \
+    } instance
+/* A std430 storage block; `qualifier` is readonly for a reader, empty for a writer. */
+#define CG_STORAGE_BLOCK(qualifier, block, instance, binding_point, MEMBERS)                      \
+    layout(std430, binding = binding_point) qualifier buffer block {                              \
+        MEMBERS(CG_GLSL_MEMBER, CG_GLSL_ARRAY)                                                    \
+    } instance
+#endif
+
+#endif
