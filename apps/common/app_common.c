@@ -63,6 +63,18 @@ app_parse_int(const char *text, long min, long max, long *out)
 }
 
 bool
+app_parse_double(const char *text, double min, double max, bool open_min, double *out)
+{
+    char *end;
+    errno = 0;
+    double v = strtod(text, &end);
+    if (errno || end == text || *end || !isfinite(v) || v < min || v > max || (open_min && v <= min))
+        return false;
+    *out = v;
+    return true;
+}
+
+bool
 app_parse_size(const char *text, int *w, int *h)
 {
     char buf[64];

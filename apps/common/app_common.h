@@ -2,7 +2,7 @@
  * conegraph-demo, vct-bench) shares: finding graph files, parsing command-line values,
  * reporting errors with the exit code they stand for, a clock and a median.
  *
- * Declares: app_graph_dir, app_resolve_graph, app_parse_int, app_parse_size, app_parse_timing,
+ * Declares: app_graph_dir, app_resolve_graph, app_parse_int, app_parse_double, app_parse_size, app_parse_timing,
  *           app_parse_bytes, app_has_extension, app_usage_error, app_fail, app_error_prefix,
  *           app_make_dirs, app_now_ms, app_cpu_ms, app_median, app_compare_double.
  *
@@ -25,6 +25,8 @@ void app_resolve_graph(const char *given, char *out, size_t size);
 
 /* Decimal integer in min..max, nothing after it. */
 bool app_parse_int(const char *text, long min, long max, long *out);
+/* A finite decimal number in [min, max] ((min, max] when open_min), nothing after it. */
+bool app_parse_double(const char *text, double min, double max, bool open_min, double *out);
 /* "WxH", each 1..65536. */
 bool app_parse_size(const char *text, int *w, int *h);
 /* "sync", "queries" or "none"; false for anything else. */

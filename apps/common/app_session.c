@@ -263,6 +263,20 @@ app_session_compile(app_session *s, cg_error *err)
 }
 
 bool
+app_session_set_time(app_session *s, double t, cg_scene_changes *changes, cg_error *err)
+{
+    cg_scene_changes local;
+    cg_scene_evaluate(&s->scene, t, &local);
+    if (changes)
+        *changes = local;
+    if (local.lights && s->uploaded && !cg_gpu_scene_update_lights(&s->gpu, err))
+        return failed(err, "frame");
+    if (local.cameras && s->camera >= 0)
+        cg_view_from_scene(&s->scene, s->camera, s->frame.width, s->frame.height, &s->frame.view);
+    return true;
+}
+
+bool
 app_session_mark_output(app_session *s, const char *source, bool *added, cg_error *err)
 {
     *added = !is_output(s->graph, source);
@@ -313,6 +327,13 @@ app_session_run(app_session *s, const app_run_desc *run, app_frame_stats *stats,
     for (int f = 0; f < run->warmup + run->frames; f++) {
         s->frame.index = (uint64_t)f;
         double t0 = app_now_ms();
+        if (run->animate) {
+            int k = f < run->warmup ? 0 : f - run->warmup;
+            if (!app_session_set_time(s, run->time + k / run->fps, NULL, err)) {
+                app_frame_stats_free(stats);
+                return false;
+            }
+        }
         if (!fg_graph_execute(s->graph, &s->frame, run->timing, err)) {
             app_frame_stats_free(stats);
             return failed(err, "frame");

@@ -7,8 +7,9 @@
  * into images; tear everything down, on every path.
  *
  * Declares: app_session_desc, app_graph_desc, app_session, app_run_desc, app_frame_stats,
- *           app_light_scene, app_session_open, app_session_load_graph, app_session_check, app_session_start_gl,
- *           app_session_compile, app_session_mark_output, app_session_run, app_session_check_gl, app_session_read_image,
+ *           app_light_scene, app_session_open, app_session_load_graph, app_session_check,
+ *           app_session_start_gl, app_session_compile, app_session_mark_output, app_session_set_time,
+ *           app_session_run, app_session_check_gl, app_session_read_image,
  *           app_session_write_image, app_session_stop_gl, app_session_close,
  *           app_frame_stats_pass_median, app_frame_stats_free.
  *
@@ -20,7 +21,9 @@
  * is not the image's gets a notice of how its view was fitted.
  *
  * Order: open, load_graph, check (no GL), start_gl, compile, run, read or write images,
- * close. A graph may be loaded again (bench: one setting after another) and compiled again
+ * close. An animated scene is posed per frame by app_session_set_time (run does it when asked):
+ * the same update for every app, so that render, bench and the demo show the same frame at the
+ * same time. A graph may be loaded again (bench: one setting after another) and compiled again
  * after its parameters, the view or the size changed (the demo); stop_gl gives up the context
  * and the GPU scene while the CPU scene stays (bench: one context per scene at a time).
  *
@@ -75,7 +78,8 @@ typedef struct app_graph_desc {
 typedef struct app_session {
     const char *scene_source;       /* as in the desc */
     const char *tool;               /* for notices */
-    cg_scene scene;                 /* an app may change its lights (then cg_gpu_scene_update_lights) */
+    cg_scene scene;                 /* an app may change its lights (then cg_scene_lights_changed and
+                                     * cg_gpu_scene_update_lights); posed by app_session_set_time */
     int camera;                     /* scene camera index, -1: framed from the bounds */
     cg_view_spec view_spec;         /* the camera, moved, aimed, zoomed: what frame.view was made from */
     /* Lighting (settled by the first app_session_load_graph): the sky asked for (--sky, else
@@ -127,11 +131,22 @@ bool app_session_compile(app_session *s, cg_error *err);
  * or a blit; *added: it was not one before (the graph must then be compiled again). */
 bool app_session_mark_output(app_session *s, const char *source, bool *added, cg_error *err);
 
+/* Poses the scene at time t seconds (cg_scene_evaluate) and brings the frame up to date: the GPU
+ * scene's lights when a light changed (cg_gpu_scene_update_lights; meshes stay where they are,
+ * the passes read each instance's world matrix at every draw), and the view when the session's
+ * camera (not a view framed from the bounds) moved. *changes (may be NULL) says what changed.
+ * Works before start_gl too (the GPU scene is then brought up to date when it is uploaded). */
+bool app_session_set_time(app_session *s, double t, cg_scene_changes *changes, cg_error *err);
+
 typedef struct app_run_desc {
     int warmup;                     /* untimed frames first (shader JIT, caches) */
     int frames;                     /* timed frames, at least 1 */
     fg_timing_mode timing;
-    /* Called after each timed frame (0-based) with its time; NULL for none. */
+    /* With `animate`, timed frame k (from 0) is posed at time + k / fps by app_session_set_time
+     * before it runs, and its time includes that update; warm-up frames are posed at `time`. */
+    bool animate;
+    double time, fps;
+    /* Called after each timed frame (0-based) with its duration in ms; NULL for none. */
     void (*on_frame)(void *user, int frame, int frames, double ms);
     void *user;
 } app_run_desc;

@@ -116,6 +116,27 @@ print_scene(const cg_scene *s, int file_lights)
         printf(", at [%g %g %g] looking along [%g %g %g]\n", c->world[12], c->world[13], c->world[14],
                -c->world[8], -c->world[9], -c->world[10]);
     }
+    int channels = 0, moving = 0;
+    for (int a = 0; a < s->animation_count; a++)
+        channels += s->animations[a].channel_count;
+    for (int i = 0; i < s->instance_count; i++)
+        moving += s->instances[i].moving;
+    double start, end;
+    cg_scene_animation_range(s, &start, &end);
+    printf("animations %d", s->animation_count);
+    if (s->animation_count)
+        printf(" (%d channels on %d nodes, keys from %g to %g s; %d moving instances; bounds over the whole "
+               "animation)", channels, s->node_count, start, end, moving);
+    printf("\n");
+    static const char *const paths[] = { "translation", "rotation", "scale" };
+    static const char *const modes[] = { "LINEAR", "STEP", "CUBICSPLINE" };
+    for (int a = 0; a < s->animation_count; a++)
+        for (int c = 0; c < s->animations[a].channel_count; c++) {
+            const cg_anim_channel *ch = &s->animations[a].channels[c];
+            printf("  %d '%s' node '%s' %s %s, %d keys %g..%g s\n", a, s->animations[a].name,
+                   s->nodes[ch->node].name, paths[ch->path], modes[ch->interpolation], ch->key_count,
+                   ch->times[0], ch->times[ch->key_count - 1]);
+        }
 }
 
 int
