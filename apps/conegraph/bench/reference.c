@@ -163,7 +163,7 @@ render_reference(const bench_config *c, bench_scene *bs, cg_error *err)
 static bool
 sum_parts(const cg_image *parts, const pt_part *which, int count, cg_image *out, cg_error *err)
 {
-    if (!cg_image_alloc(out, parts[0].width, parts[0].height, err))
+    if (!cg_image_alloc(out, parts[which[0]].width, parts[which[0]].height, err))
         return false;
     size_t n = (size_t)out->width * (size_t)out->height * 4;
     for (size_t i = 0; i < n; i++) {
