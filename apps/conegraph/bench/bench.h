@@ -134,7 +134,6 @@ typedef struct bench_split {
     bool ok;                                /* false: the image is not a composite's hdr */
     char direct[BENCH_TEXT];                /* "pass.output" */
     char emissive[BENCH_TEXT];              /* "" when the composite has none */
-    bool has_indirect;                      /* the composite adds GI */
     char why[512];                          /* when !ok: what the image is */
 } bench_split;
 

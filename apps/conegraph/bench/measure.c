@@ -79,7 +79,6 @@ bench_graph_split(const app_session *s, bench_split *out)
     out->ok = true;
     snprintf(out->direct, sizeof out->direct, "%s", direct);
     snprintf(out->emissive, sizeof out->emissive, "%s", emissive ? emissive : "");
-    out->has_indirect = fg_pass_input_source(final, "indirect") != NULL;
 }
 
 /* The graph's own direct image: composite's direct + emissive, added in float as its shader

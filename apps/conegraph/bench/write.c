@@ -63,14 +63,17 @@ write_csv(const bench_config *c, const bench_rows *rows, const bench_scene *scen
     return cg_atomic_commit(&f, err);
 }
 
-/* A figure for the Markdown table, "-" when there is none. */
+/* A figure for the Markdown table: "-" when there is none (NaN), "inf" for an infinite one
+ * (an energy or nRMSE against a truth of 0). */
 static const char *
 cell(char *buf, size_t size, const char *fmt, double v)
 {
-    if (isfinite(v))
-        snprintf(buf, size, fmt, v);
-    else
+    if (isnan(v))
         snprintf(buf, size, "-");
+    else if (isinf(v))
+        snprintf(buf, size, "%sinf", v < 0 ? "-" : "");
+    else
+        snprintf(buf, size, fmt, v);
     return buf;
 }
 
