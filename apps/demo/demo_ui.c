@@ -114,19 +114,21 @@ animation(demo *d)
             ui_tooltip("Scrub the animation (it pauses): the scene is posed at this time, as "
                        "conegraph render --time poses it.");
         }
-        ui_text_disabled("keys %g..%g s, looping; %s", c->start, c->end,
-                         c->fps > 0 ? "a fixed step a frame (--fps)" : "real time");
+        if (c->fps > 0)
+            ui_text_disabled("keys %g..%g s, looping; 1/%g s a frame", c->start, c->end, c->fps);
+        else
+            ui_text_disabled("keys %g..%g s, looping; real time", c->start, c->end);
     } else {
         ui_text_disabled("no animation");
     }
     if (d->sun.any) {
-        if (ui_small_button(d->sun.moving ? "Stop the sun (L)###sun" : "Turn the sun (L)###sun"))
+        if (ui_small_button(d->sun.moving ? "Stop sun (L)###sun" : "Turn sun (L)###sun"))
             demo_sun_key(d, false);
         ui_same_line();
         if (ui_small_button("Back (Shift+L)"))
             demo_sun_key(d, true);
         ui_same_line();
-        ui_text_disabled("turned %.1f deg", d->sun.angle * 180.0 / M_PI);
+        ui_text_disabled("+%.1f deg", d->sun.angle * 180.0 / M_PI);
         ui_tooltip("L turns every directional light about world +y at 20 degrees a second, on top of "
                    "what the animation does; Shift+L puts them back where the scene has them.");
     }
