@@ -112,9 +112,11 @@ heightmap_raster_execute(fg_pass *pass, heightmap_raster_state *s, cg_error *err
     /* Depth: 0 at the top of the bounds, 1 at the bottom, with 1% slack on each side so
      * that the highest and lowest vertices are not clipped. A flat height field has no
      * extent: the slack is then 1e-6 of its height (well above a float's 6e-8 ulp, so the
-     * uniform `top` stays above it) or 1e-6 m. */
+     * uniform `top` stays above it) or of the map's width, whichever is larger: relative to
+     * the scene, not 1e-6 m. */
     double dy = region.hi[1] - region.lo[1];
-    double slack = fmax(0.01 * dy, 1e-6 * fmax(fabs(region.hi[1]), 1.0));
+    double width = fmax(region.hi[0] - region.lo[0], region.hi[2] - region.lo[2]);
+    double slack = fmax(0.01 * dy, 1e-6 * fmax(fabs(region.hi[1]), width));
     double top = region.hi[1] + slack, range = dy + 2.0 * slack;
 
     glNamedFramebufferTexture(s->fbo, GL_COLOR_ATTACHMENT0, lightmap, 0);

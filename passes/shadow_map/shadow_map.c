@@ -163,6 +163,7 @@ fit_directional(const cg_scene *scene, const cg_light *light, int resolution, cg
     glm_vec3_scale(center, 0.5f, center);
     glm_vec3_sub((float *)scene->bounds_max, (float *)scene->bounds_min, extent);
     float diagonal = glm_vec3_norm(extent);
+    /* Geometry all in one point has no size to follow and nothing to shadow: any radius serves. */
     float radius = diagonal > 0.0f ? 0.5f * diagonal : 1.0f;
     glm_vec3_scale(dir, -radius, eye);
     glm_vec3_add(center, eye, eye);
@@ -177,8 +178,10 @@ fit_directional(const cg_scene *scene, const cg_light *light, int resolution, cg
         glm_vec3_minv(lo, v, lo);
         glm_vec3_maxv(hi, v, hi);
     }
-    /* A margin so that geometry on the bounds is not clipped, nor flat scenes degenerate. */
-    float margin = fmaxf(0.01f * radius, 1e-4f);
+    /* A margin so that geometry on the bounds is not clipped, nor flat scenes degenerate: 1% of
+     * the radius, no floor in metres (a 0.1 mm floor widened the map of a millimetre scene
+     * tenfold, and its texels with it). */
+    float margin = 0.01f * radius;
     float left = lo[0] - margin, right = hi[0] + margin;
     float bottom = lo[1] - margin, top = hi[1] + margin;
     float znear = -hi[2] - margin, zfar = -lo[2] + margin;

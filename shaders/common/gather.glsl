@@ -25,7 +25,7 @@ cg_gather_pixel(out ivec2 pixel)
 }
 
 // The G-buffer's surface at `pixel`, its unit normal n; false on the background (w = 0) and for
-// a degenerate normal, which gather nothing.
+// a degenerate normal, which gather nothing (the normal is a unit vector: its 1e-12 has no unit).
 bool
 cg_gather_surface(ivec2 pixel, out vec3 position, out vec3 n)
 {
