@@ -1,4 +1,4 @@
-/* The scale sweep: builtin:furnace (with and without its height-field floor) and builtin:cornell
+/* The scale sweep: builtin:furnace (its floor a height field) and builtin:cornell
  * scaled from 1e-6 m to 1e6 m, lights scaled to give the same irradiance, through every graph of
  * graphs/ (the path-traced reference with few samples and a fixed seed) give the image of scale 1:
  * relMSE below 1e-3, no NaN or Inf. An epsilon, bias, clamp or near plane in metres rather than
