@@ -73,7 +73,7 @@ coverage(float h, float y0, float y1)
     return clamp(0.5 + (u * sqrt(1.0 - u * u) + asin(u)) / 3.14159265358979, 0.0, 1.0);
 }
 
-// The terrain in one step: rgb = radiance of the most occluding texel, a = its coverage of
+// The terrain in one step: rgb = stored radiance of the most occluding texel, a = its coverage of
 // the cube's vertical extent. The DDA walks the texels of level `level` that the cone axis
 // crosses between t0 and t1 (Amanatides and Woo 1987); at each, the cube is centred on the
 // axis height there. When one texel occludes, later ones count only where they rise higher
@@ -181,6 +181,7 @@ hybrid_trace(vec3 origin, vec3 dir, float tan_half, float t_start, float t_max, 
             }
             if (!empty) {
                 vec4 s = terrain_sample(m, origin, dir, t, t + dt, cube, lod);
+                s.rgb *= m.radiance_scale;  // the lightmap's pre-exposure (common/heightmap.glsl)
                 if (occlusion == OCCLUSION_EQ17) {
                     // Eq. 17: a = step_diameter / current_step_length wherever the cube meets the
                     // terrain, an opacity composited front to back.
