@@ -11,9 +11,9 @@
  *   depth     the depth buffer of the raster (transient working memory, counted).
  * Inputs (optional, together): shadow (depth) and shadow_matrix (buffer) of a shadow_map pass.
  *
- * Radiance range: RGBA16F stores radiance / s, s the power of two that puts a bound on the
- * height fields' radiance in [2^14, 2^15) (sdk/radiance.h), published in the region block:
- * neither 1e9 W/m^2 clips at 65504 nor 1e-6 W/m^2 sinks into denormals. RGBA32F needs none (s = 1).
+ * Radiance range: RGBA16F stores radiance / s, s = a bound on the height fields' radiance /
+ * 32768 (sdk/radiance.h), published in the region block: neither 1e9 W/m^2 clips at 65504 nor
+ * 1e-6 W/m^2 sinks into denormals. RGBA32F needs none (s = 1).
  *
  * Height precision: heights are stored as world y, not normalised. RGBA16F keeps 11
  * significant bits: on builtin:openworld (heights up to 30 m) that is 1.6 cm, but 16 m on a

@@ -125,8 +125,5 @@ cgp_half_float_scale(double bound)
 {
     if (!(bound > 0.0) || !isfinite(bound))
         return 1.0;
-    int e;
-    frexp(bound, &e);   /* bound = m 2^e, m in [0.5, 1) */
-    /* Never below float's smallest normal: the shaders divide by the scale in fp32. */
-    return ldexp(1.0, e - CGP_HALF_TOP_EXPONENT > FLT_MIN_EXP - 1 ? e - CGP_HALF_TOP_EXPONENT : FLT_MIN_EXP - 1);
+    return fmax(bound / CGP_HALF_TOP, FLT_MIN);
 }

@@ -1,7 +1,7 @@
 /* sdk/radiance.h (pass SDK): how bright the light that a pass stores can get, and the
  * pre-exposure that keeps it inside a half-float texture.
  *
- * Declares: cgp_light_distances, cgp_radiance_bound, cgp_light_distances_free, CGP_HALF_TOP_EXPONENT,
+ * Declares: cgp_light_distances, cgp_radiance_bound, cgp_light_distances_free, CGP_HALF_TOP,
  *           cgp_half_float_scale.
  *
  * voxelize (its fixed-point sums and its RGBA16F volume) and heightmap_raster (an RGBA16F 2D
@@ -36,15 +36,16 @@ bool cgp_radiance_bound(cgp_light_distances *cache, const cg_scene *scene, cg_me
 
 void cgp_light_distances_free(cgp_light_distances *cache);
 
-/* Stored values of a half-float texture stay below 2^CGP_HALF_TOP_EXPONENT = 32768, half its
- * largest finite value (65504). */
-#define CGP_HALF_TOP_EXPONENT 15
+/* Stored values of a half-float texture stay at or below CGP_HALF_TOP = 32768, half its largest
+ * finite value (65504). */
+#define CGP_HALF_TOP 32768.0
 
-/* The pre-exposure of a half-float texture whose radiance never exceeds `bound`: the power of two
- * s with bound / s in [2^14, 2^15). A power of two, so that dividing and multiplying back are
- * exact and the stored bits are those of radiance itself, shifted; the full 2^30 of normal half
- * floats then sits just below the bound, at any brightness (denormals go down another 2^10). 1
- * for a bound that is zero or not finite (no light: black). */
+/* The pre-exposure of a half-float texture whose radiance never exceeds `bound`: s = bound /
+ * CGP_HALF_TOP, so that the 2^30 of normal half floats sit just below the bound at any brightness
+ * (denormals go down another 2^10), and a scene lit k times brighter stores the very same values
+ * (its bound is k times larger): its image is k times brighter to within fp32 rounding, not only
+ * to a half float's 2^-11. Never below fp32's smallest normal (shaders divide by it); 1 for a
+ * bound that is zero or not finite (no light: black). */
 double cgp_half_float_scale(double bound);
 
 #endif

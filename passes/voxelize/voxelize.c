@@ -195,9 +195,9 @@ voxelize_execute(fg_pass *pass, voxelize_state *s, cg_error *err)
     if (!cgp_radiance_bound(&s->light_distances, scene, filter, 0.5 * region.voxel, &bound, err))
         return false;
     /* Fixed point: FRAGMENT_HEADROOM fragments at the bound sum to 2^32, so its precision is
-     * bound / 2^22 at any brightness. RGBA16F stores radiance / a power of two that puts the
-     * bound just below 2^15 (sdk/radiance.h), so that neither 1e9 W/m^2 clips at 65504 nor
-     * 1e-6 W/m^2 sinks into denormals and zero; RGBA8 stores radiance / (the largest radiance in
+     * bound / 2^22 at any brightness. RGBA16F stores radiance / (bound / 32768) (sdk/radiance.h),
+     * so that neither 1e9 W/m^2 clips at 65504 nor 1e-6 W/m^2 sinks into denormals and zero, and
+     * a scene k times brighter stores the same values; RGBA8 stores radiance / (the largest radiance in
      * the volume), found on the GPU by a first resolve dispatch. Both publish their scale in the
      * region block. A scene with no light and no emission is black. */
     double fixed_scale = bound > 0.0 ? 4294967295.0 / (bound * FRAGMENT_HEADROOM) : 1.0;

@@ -7,8 +7,8 @@
 //
 // The lightmap covers the height-field meshes' xz bounds [origin, origin + texel * resolution]
 // with resolution x resolution texels (texel row j at z = origin.y + (j + 0.5) texel.y);
-// rgb = outgoing diffuse radiance / radiance_scale (1 for RGBA32F; a power-of-two pre-exposure
-// for RGBA16F, sdk/radiance.h), a = height as world y (not normalised: a fp32 texel keeps a
+// rgb = outgoing diffuse radiance / radiance_scale (1 for RGBA32F; for RGBA16F a pre-exposure,
+// a radiance bound / 32768, sdk/radiance.h), a = height as world y (not normalised: a fp32 texel keeps a
 // centimetre at 100 km; [y_min, y_max] bounds every stored height).
 #ifndef CG_COMMON_HEIGHTMAP_GLSL
 #define CG_COMMON_HEIGHTMAP_GLSL
