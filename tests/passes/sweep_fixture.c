@@ -39,9 +39,18 @@ sf_list_graphs(char names[SF_MAX_GRAPHS][256])
 cg_image
 sf_render(const char *source, const char *graph, const char *const *overrides, int width, int height)
 {
+    return sf_render_scaled(source, 1.0, graph, overrides, width, height);
+}
+
+cg_image
+sf_render_scaled(const char *source, double scale, const char *graph, const char *const *overrides, int width,
+                 int height)
+{
     cg_scene scene;
     cg_error err = {0};
     assert_cg_ok(cg_scene_load(source, &scene, &err), &err);
+    if (scale != 1.0)
+        cg_test_scale_scene(&scene, scale);
     char file[300];
     snprintf(file, sizeof file, "%s.json", graph);
     vf_runner r;

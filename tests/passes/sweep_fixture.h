@@ -1,7 +1,7 @@
 /* tests/passes/sweep_fixture.h: one graph file on one scene, rendered in this process, for the
  * tests that render the same scene many times over (test_scale_sweep.c, test_radiance_range.c).
  *
- * Declares: SF_MAX_GRAPHS, sf_list_graphs, sf_render, sf_nonfinite, sf_compare.
+ * Declares: SF_MAX_GRAPHS, sf_list_graphs, sf_render, sf_render_scaled, sf_nonfinite, sf_compare.
  */
 #ifndef CG_TEST_SWEEP_FIXTURE_H
 #define CG_TEST_SWEEP_FIXTURE_H
@@ -20,6 +20,11 @@ int sf_list_graphs(char names[SF_MAX_GRAPHS][256]);
  * `overrides` ("pass.param=value", NULL-terminated, may be NULL): linear RGBA, rows bottom to
  * top. Fails the test on any error. The caller frees with cg_image_free. */
 cg_image sf_render(const char *source, const char *graph, const char *const *overrides, int width, int height);
+
+/* The same with the scene scaled about the origin by `scale` after loading (cg_test_scale_scene:
+ * lights keep their irradiance), for scenes without a scale parameter. */
+cg_image sf_render_scaled(const char *source, double scale, const char *graph, const char *const *overrides, int width,
+                          int height);
 
 /* RGB values of the image that are NaN or infinite. */
 size_t sf_nonfinite(const cg_image *img);
