@@ -39,18 +39,36 @@ sf_list_graphs(char names[SF_MAX_GRAPHS][256])
 cg_image
 sf_render(const char *source, const char *graph, const char *const *overrides, int width, int height)
 {
-    return sf_render_scaled(source, 1.0, graph, overrides, width, height);
+    return sf_render_placed(source, 1.0, 0.0, graph, overrides, width, height);
+}
+
+/* Moves the whole scene by d along each axis. */
+static void
+move_scene(cg_scene *s, double d)
+{
+    for (int i = 0; i < s->instance_count; i++)
+        for (int r = 0; r < 3; r++)
+            s->instances[i].world[12 + r] = (float)(s->instances[i].world[12 + r] + d);
+    for (int i = 0; i < s->light_count; i++)
+        for (int r = 0; r < 3; r++)
+            s->lights[i].position[r] = (float)(s->lights[i].position[r] + d);
+    for (int i = 0; i < s->camera_count; i++)
+        for (int r = 0; r < 3; r++)
+            s->cameras[i].world[12 + r] = (float)(s->cameras[i].world[12 + r] + d);
+    cg_scene_compute_bounds(s);
 }
 
 cg_image
-sf_render_scaled(const char *source, double scale, const char *graph, const char *const *overrides, int width,
-                 int height)
+sf_render_placed(const char *source, double scale, double offset, const char *graph, const char *const *overrides,
+                 int width, int height)
 {
     cg_scene scene;
     cg_error err = {0};
     assert_cg_ok(cg_scene_load(source, &scene, &err), &err);
     if (scale != 1.0)
         cg_test_scale_scene(&scene, scale);
+    if (offset != 0.0)
+        move_scene(&scene, offset);
     char file[300];
     snprintf(file, sizeof file, "%s.json", graph);
     vf_runner r;

@@ -1,7 +1,7 @@
 /* tests/passes/sweep_fixture.h: one graph file on one scene, rendered in this process, for the
  * tests that render the same scene many times over (test_scale_sweep.c, test_radiance_range.c).
  *
- * Declares: SF_MAX_GRAPHS, sf_list_graphs, sf_render, sf_render_scaled, sf_nonfinite, sf_compare.
+ * Declares: SF_MAX_GRAPHS, sf_list_graphs, sf_render, sf_render_placed, sf_nonfinite, sf_compare.
  */
 #ifndef CG_TEST_SWEEP_FIXTURE_H
 #define CG_TEST_SWEEP_FIXTURE_H
@@ -22,9 +22,10 @@ int sf_list_graphs(char names[SF_MAX_GRAPHS][256]);
 cg_image sf_render(const char *source, const char *graph, const char *const *overrides, int width, int height);
 
 /* The same with the scene scaled about the origin by `scale` after loading (cg_test_scale_scene:
- * lights keep their irradiance), for scenes without a scale parameter. */
-cg_image sf_render_scaled(const char *source, double scale, const char *graph, const char *const *overrides, int width,
-                          int height);
+ * lights keep their irradiance), for scenes without a scale parameter, then moved by `offset`
+ * metres along each axis (geometry, lights and cameras). */
+cg_image sf_render_placed(const char *source, double scale, double offset, const char *graph,
+                          const char *const *overrides, int width, int height);
 
 /* RGB values of the image that are NaN or infinite. */
 size_t sf_nonfinite(const cg_image *img);
