@@ -6,7 +6,7 @@
  * Output `radiance` is RGBA32F: a half float clips at 65504 W/sr/m^2 (a white surface under
  * 2e5 W/m^2; 1e9 W/m^2 gives 3e8) and loses precision below 6e-5 (starlight's 1e-6 W/m^2 lights
  * a white surface at 3e-7); fp32 holds 1e-38 to 3e38 at full precision for 8 more bytes a pixel
- * (docs/architecture.md, "Units, formats and numerics").
+ * (docs/architecture.md, "Radiance range").
  */
 #include <stdlib.h>
 #include <string.h>
