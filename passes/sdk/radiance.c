@@ -83,7 +83,7 @@ cgp_radiance_bound(cgp_light_distances *cache, const cg_scene *scene, cg_mesh_fi
             albedo = fmax(albedo, mat->base_color[k]);
         }
     }
-    if (cache->count != scene->light_count) {
+    if (cache->count != scene->light_count || cache->revision != scene->instances_revision) {
         cgp_light_distances_free(cache);
         cache->positions = calloc((size_t)scene->light_count * 3 + 1, sizeof(float));
         cache->nearest = calloc((size_t)scene->light_count + 1, sizeof(double));
@@ -92,6 +92,7 @@ cgp_radiance_bound(cgp_light_distances *cache, const cg_scene *scene, cg_mesh_fi
         for (int l = 0; l < scene->light_count; l++)
             cache->nearest[l] = -1.0;
         cache->count = scene->light_count;
+        cache->revision = scene->instances_revision;
     }
     double irradiance = 0.0;
     for (int l = 0; l < scene->light_count; l++) {

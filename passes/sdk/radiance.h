@@ -20,11 +20,13 @@
 #include "cg/scene.h"
 
 /* The distance from each point and spot light to the nearest surface of a mesh filter, kept by a
- * pass between frames and recomputed for a light that moved (a walk over every triangle). */
+ * pass between frames and recomputed for a light that moved, or all of them once instances moved
+ * (a walk over every triangle). */
 typedef struct cgp_light_distances {
     float *positions;   /* xyz per light: where it was when its distance was found */
     double *nearest;    /* per light; < 0: not found yet */
     int count;          /* lights the arrays hold */
+    uint64_t revision;  /* cg_scene.instances_revision the distances were found at */
 } cgp_light_distances;
 
 /* An upper bound on the outgoing radiance (W/sr/m^2) of any surface of the meshes `filter`

@@ -16,8 +16,8 @@ static bool
 build_cornell(cg_scene *scene, const char *query, cg_error *err)
 {
     bs_param params[] = {
-        { "scale", 1e-6, 1e7, 1, false, 0, false },
-        { "light_scale", 0, 1e12, 1, false, 0, false },
+        { "scale", 1e-6, 1e7, 1, false, 0, false, NULL },
+        { "light_scale", 0, 1e12, 1, false, 0, false, NULL },
     };
     if (!bs_parse_params("cornell", query, params, 2, err))
         return false;
