@@ -1,6 +1,6 @@
 /* The radiance range: builtin:cornell and builtin:furnace (its floor a height field) lit from
- * 1e-6 to 1e9 W/m^2 through every graph of graphs/ (and the hybrid graph with a half-float 2D
- * lightmap) give the image lit at 1 W/m^2 times the light's ratio: relMSE below 1e-3 after
+ * 1e-6 to 1e9 W/m^2 through every graph of graphs/ (and the furnace through the hybrid graph
+ * with a half-float 2D lightmap) give the image lit at 1 W/m^2 times the light's ratio: relMSE below 1e-3 after
  * dividing by it, no NaN or Inf, nothing stuck at the half-float maximum. A scene lit 1e5 times
  * brighter is 1e5 times brighter to rounding: relMSE below 1e-9, mean luminance within 1e-4 and
  * every pixel within 2e-3 (the voxels' fixed-point sums round dim fragments to whole units; the
@@ -18,10 +18,12 @@
 #define HEIGHT 27
 #define MAX_REL_MSE 1e-3
 
-static const double irradiances[] = {1e-6, 1e-3, 1.0, 1e3, 1e5, 1e6, 1e9};
+/* Five levels keep the test quick (CI runs it under the sanitizers too): the two ends, the unit,
+ * 1e5 (the "exactly 1e5 times brighter"), and 1e-3, where half floats would be denormal. */
+static const double irradiances[] = {1e-6, 1e-3, 1.0, 1e5, 1e9};
 #define LEVEL_COUNT ((int)(sizeof irradiances / sizeof irradiances[0]))
 #define UNIT_LEVEL 2
-#define BRIGHT_LEVEL 4      /* 1e5 x the unit level: "exactly" 1e5 times brighter */
+#define BRIGHT_LEVEL 3      /* 1e5 x the unit level: "exactly" 1e5 times brighter */
 #define BRIGHT_REL_MSE 1e-9
 #define BRIGHT_LUMINANCE 1e-4
 #define BRIGHT_PIXEL 2e-3
@@ -31,9 +33,11 @@ typedef struct lit_scene {
     double irradiance_per_unit; /* W/m^2 for the parameter 1 */
 } lit_scene;
 
+#define CORNELL 0
+#define FURNACE 1
 static const lit_scene scenes[] = {
-    {"builtin:cornell?light_scale=%.17g", 2.0 / (0.97 * 0.97)},
-    {"builtin:furnace?heightfield=1&radiance=%.17g", M_PI},
+    [CORNELL] = {"builtin:cornell?light_scale=%.17g", 2.0 / (0.97 * 0.97)},
+    [FURNACE] = {"builtin:furnace?heightfield=1&radiance=%.17g", M_PI},
 };
 
 static const char *const reference_overrides[] = {"trace.spp=16", NULL};
@@ -64,11 +68,12 @@ half_float_maxima(const cg_image *img)
     return n;
 }
 
+/* The graph on scenes first..last. */
 static int
-check_configuration(const char *graph, const char *label, const char *const *overrides)
+check_configuration(const char *graph, const char *label, const char *const *overrides, int first, int last)
 {
     int failures = 0;
-    for (size_t sc = 0; sc < sizeof scenes / sizeof scenes[0]; sc++) {
+    for (int sc = first; sc <= last; sc++) {
         cg_image images[LEVEL_COUNT];
         double parameters[LEVEL_COUNT];
         for (int i = 0; i < LEVEL_COUNT; i++) {
@@ -113,8 +118,10 @@ test_every_graph_over_the_range(void **state)
     assert_true(graph_count > 0);
     int failures = 0;
     for (int g = 0; g < graph_count; g++)
-        failures += check_configuration(graphs[g], graphs[g], strcmp(graphs[g], "reference") ? NULL : reference_overrides);
-    failures += check_configuration("hybrid", "hybrid, rgba16f terrain", half_lightmap);
+        failures += check_configuration(graphs[g], graphs[g], strcmp(graphs[g], "reference") ? NULL : reference_overrides,
+                                        CORNELL, FURNACE);
+    /* The furnace alone has a height field (Cornell's hybrid graph culls its 2D branch). */
+    failures += check_configuration("hybrid", "hybrid, rgba16f terrain", half_lightmap, FURNACE, FURNACE);
     assert_no_gl_errors(ctx);
     assert_int_equal(failures, 0);
 }
