@@ -12,11 +12,13 @@
  *   normal        RGBA8_SNORM: xyz the mean of the fragments' unit normals as authored (|N| <= 1,
  *                 1 for one plane), w the mean of n . (x - c) / voxel over its fragments, the
  *                 offset of their plane from the voxel's centre c, in voxels.
- *   emission      RGBA16F: mean emitted radiance (rgb), a = 1 where a surface is.
+ *   emission      RGBA16F: mean emitted radiance (rgb) / the region's radiance scale, a = 1 where a
+ *                 surface is.
  * Both models:
  *   region        std140 block CG_VOLUME_BLOCK (common/blocks.h) for common/volume.glsl: where
  *                 the volume lies and how its values decode (consumers bind it at CG_BINDING_VOLUME).
- *   accumulation  3D R32UI, resolution^2 x (4 or 14) resolution: the fixed-point sums and counts
+ *   accumulation  3D R32UI, resolution^2 x 4 resolution (surface model: 2 resolution x 2 resolution x
+ *                 4 resolution, 14 of its 16 slabs used): the fixed-point sums and counts
  *                 of the fragments (shaders/voxelize/voxelize.frag), transient working memory,
  *                 declared so that the memory report counts it.
  * Inputs (optional, together, model = radiance): shadow (depth) and shadow_matrix (buffer) of a
@@ -24,14 +26,13 @@
  *
  * Cleared and rebuilt every frame, so the volume follows moving lights and geometry.
  */
-#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
-#include <string.h>
 
 #include "sdk/blocks.h"
 #include "sdk/pass.h"
+#include "sdk/radiance.h"
 #include "sdk/scene.h"
 #include "sdk/shadow.h"
 #include "cg/fg.h"
@@ -45,10 +46,11 @@ enum { FORMAT_RGBA8, FORMAT_RGBA16F };
 enum { MODEL_RADIANCE, MODEL_SURFACE };
 
 /* Accumulation slabs of the surface model (shaders/voxelize/voxelize.frag): count, albedo RGB,
- * emission RGB, normal xyz, plane offset, coverage xyz. */
-#define SURFACE_SLABS 14
+ * emission RGB, normal xyz, plane offset, coverage xyz; 14 of 2 x 2 x 4. */
 /* Fragments one voxel may sum without overflowing 32 bits, surface model. */
 #define SURFACE_HEADROOM 4096.0
+/* The surface model's pre-exposure over sdk/radiance.h's (voxelize_execute). */
+#define SURFACE_PRE_EXPOSURE 32.0
 enum { REGION_MESHES, REGION_SCENE, REGION_EXPLICIT };
 
 static const fg_param_desc voxelize_params[] = {
@@ -103,9 +105,7 @@ typedef struct voxelize_state {
     cgp_no_shadow no_shadow;
     GLenum format;
     /* Nearest-surface distance per point/spot light, recomputed when a light moves. */
-    float *light_positions;
-    double *light_nearest;
-    int light_cache_count;
+    cgp_light_distances light_distances;
 } voxelize_state;
 
 /* Where the volume lies: a cube. */
@@ -189,20 +189,20 @@ voxelize_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
     fg_declare_output(decl, "region", &block, FG_ACCESS_TRANSFER | FG_ACCESS_STORAGE);
     fg_resource_desc accumulation = {
         .kind = FG_TEXTURE_3D, .format = GL_R32UI,
-        .width = resolution, .height = resolution, .depth = (surface ? SURFACE_SLABS : 4) * resolution, .levels = 1,
+        .width = (surface ? 2 : 1) * resolution, .height = (surface ? 2 : 1) * resolution, .depth = 4 * resolution,
+        .levels = 1,
         .gi = true,
     };
     fg_declare_output(decl, "accumulation", &accumulation, FG_ACCESS_IMAGE_STORE | FG_ACCESS_TRANSFER);
     return true;
 }
 
-/* What the state holds beside its GL objects: the light cache of radiance_bound(). */
+/* What the state holds beside its GL objects: the light cache of cgp_radiance_bound(). */
 static void
 voxelize_cleanup(void *state)
 {
     voxelize_state *s = state;
-    free(s->light_positions);
-    free(s->light_nearest);
+    cgp_light_distances_free(&s->light_distances);
 }
 
 static bool
@@ -229,114 +229,6 @@ voxelize_prepare(fg_pass *pass, voxelize_state *s, cg_error *err)
                                                          "#define FORMAT rgba8\n#define FIND_MAX\n", &s->find_max, err));
 }
 
-/* Squared distance from p to triangle abc (Ericson, Real-Time Collision Detection 5.1.5). */
-static double
-point_triangle_dist2(const double p[3], const double a[3], const double b[3], const double c[3])
-{
-    double ab[3], ac[3], ap[3], q[3];
-    for (int k = 0; k < 3; k++)
-        ab[k] = b[k] - a[k], ac[k] = c[k] - a[k], ap[k] = p[k] - a[k];
-#define DOT(u, v) ((u)[0] * (v)[0] + (u)[1] * (v)[1] + (u)[2] * (v)[2])
-    double d1 = DOT(ab, ap), d2 = DOT(ac, ap);
-    double bp[3], cp[3];
-    for (int k = 0; k < 3; k++)
-        bp[k] = p[k] - b[k], cp[k] = p[k] - c[k];
-    double d3 = DOT(ab, bp), d4 = DOT(ac, bp), d5 = DOT(ab, cp), d6 = DOT(ac, cp);
-    double vc = d1 * d4 - d3 * d2, vb = d5 * d2 - d1 * d6, va = d3 * d6 - d5 * d4;
-#undef DOT
-    if (d1 <= 0 && d2 <= 0) {
-        memcpy(q, a, sizeof q);
-    } else if (d3 >= 0 && d4 <= d3) {
-        memcpy(q, b, sizeof q);
-    } else if (d6 >= 0 && d5 <= d6) {
-        memcpy(q, c, sizeof q);
-    } else if (vc <= 0 && d1 >= 0 && d3 <= 0) {
-        double v = d1 / (d1 - d3);
-        for (int k = 0; k < 3; k++) q[k] = a[k] + v * ab[k];
-    } else if (vb <= 0 && d2 >= 0 && d6 <= 0) {
-        double w = d2 / (d2 - d6);
-        for (int k = 0; k < 3; k++) q[k] = a[k] + w * ac[k];
-    } else if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
-        double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-        for (int k = 0; k < 3; k++) q[k] = b[k] + w * (c[k] - b[k]);
-    } else {
-        double denom = 1.0 / (va + vb + vc);
-        double v = vb * denom, w = vc * denom;
-        for (int k = 0; k < 3; k++) q[k] = a[k] + ab[k] * v + ac[k] * w;
-    }
-    double d2sum = 0;
-    for (int k = 0; k < 3; k++)
-        d2sum += (p[k] - q[k]) * (p[k] - q[k]);
-    return d2sum;
-}
-
-/* Distance from a point light to the nearest voxelized surface. */
-static double
-nearest_surface(const cg_scene *scene, cg_mesh_filter filter, const float light[3])
-{
-    double p[3] = {light[0], light[1], light[2]}, best = DBL_MAX;
-    for (int i = 0; i < scene->instance_count; i++) {
-        const cg_instance *inst = &scene->instances[i];
-        const cg_mesh *mesh = &scene->meshes[inst->mesh];
-        if (!cgp_mesh_passes(mesh->kind, filter))
-            continue;
-        for (uint32_t t = 0; t + 2 < mesh->index_count; t += 3) {
-            double v[3][3];
-            for (int j = 0; j < 3; j++)
-                cgp_transform_point(inst->world, &mesh->positions[3 * mesh->indices[t + j]], v[j]);
-            double d2 = point_triangle_dist2(p, v[0], v[1], v[2]);
-            if (d2 < best)
-                best = d2;
-        }
-    }
-    return sqrt(best);
-}
-
-/* An upper bound on the outgoing radiance of any voxelized surface: the brightest emission
- * plus the brightest albedo lit by every light at once, point and spot lights at their
- * nearest surface (never nearer than half a voxel, the scale at which radiance is averaged). */
-static bool
-radiance_bound(voxelize_state *s, const cg_scene *scene, cg_mesh_filter filter, double voxel,
-               double *bound, cg_error *err)
-{
-    double emission = 0.0, albedo = 0.0;
-    for (int m = 0; m < scene->material_count; m++) {
-        const cg_material *mat = &scene->materials[m];
-        for (int k = 0; k < 3; k++) {
-            emission = fmax(emission, (double)mat->emissive[k] * mat->emissive_strength);
-            albedo = fmax(albedo, mat->base_color[k]);
-        }
-    }
-    if (s->light_cache_count != scene->light_count) {
-        free(s->light_positions);
-        free(s->light_nearest);
-        s->light_positions = calloc((size_t)scene->light_count * 3 + 1, sizeof(float));
-        s->light_nearest = calloc((size_t)scene->light_count + 1, sizeof(double));
-        if (!s->light_positions || !s->light_nearest)
-            return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "voxelize: light cache");
-        for (int l = 0; l < scene->light_count; l++)
-            s->light_nearest[l] = -1.0;
-        s->light_cache_count = scene->light_count;
-    }
-    double irradiance = 0.0;
-    for (int l = 0; l < scene->light_count; l++) {
-        const cg_light *light = &scene->lights[l];
-        double e = light->intensity * fmax(light->color[0], fmax(light->color[1], light->color[2]));
-        if (light->type != CG_LIGHT_DIRECTIONAL) {
-            float *cached = &s->light_positions[3 * l];
-            if (s->light_nearest[l] < 0.0 || memcmp(cached, light->position, 3 * sizeof(float)) != 0) {
-                memcpy(cached, light->position, 3 * sizeof(float));
-                s->light_nearest[l] = nearest_surface(scene, filter, light->position);
-            }
-            double d = fmax(s->light_nearest[l], 0.5 * voxel);
-            e /= d * d;
-        }
-        irradiance += e;
-    }
-    *bound = emission + albedo * irradiance / M_PI;
-    return true;
-}
-
 static bool
 voxelize_execute(fg_pass *pass, voxelize_state *s, cg_error *err)
 {
@@ -347,21 +239,24 @@ voxelize_execute(fg_pass *pass, voxelize_state *s, cg_error *err)
     voxel_region region;
     if (!voxelize_region(pass, scene, &region))
         return cg_fail(err, CG_ERR_PASS, "pass '%s': the voxelized meshes vanished since compile", fg_pass_name(pass));
+    /* Radiance is averaged over voxels: a point light is never nearer than half a voxel. */
     double bound = 0.0;
-    if (!radiance_bound(s, scene, filter, region.voxel, &bound, err))
+    if (!cgp_radiance_bound(&s->light_distances, scene, filter, 0.5 * region.voxel, &bound, err))
         return false;
-    /* Fixed point: FRAGMENT_HEADROOM fragments at the bound sum to 2^32. RGBA16F stores
-     * radiance itself (so a dump of the volume reads in scene units) unless the bound nears
-     * the half-float maximum (65504); RGBA8 stores radiance / (the largest radiance in the
-     * volume), found on the GPU by a first resolve dispatch. A scene with no light and no
-     * emission is black. The surface model stores no radiance; its scale is published for the
-     * voxel_light pass that lights it, whose volumes hold up to 3 x the radiance (premultiplied by
-     * the coverage sum) plus its bounces: 2048 keeps that below the half-float maximum. */
+    /* Fixed point: FRAGMENT_HEADROOM fragments at the bound sum to 2^32, so its precision is
+     * bound / 2^22 at any brightness. RGBA16F stores radiance / (bound / 32768) (sdk/radiance.h),
+     * so that neither 1e9 W/m^2 clips at 65504 nor 1e-6 W/m^2 sinks into denormals and zero, and
+     * a scene k times brighter stores the same values; RGBA8 stores radiance / (the largest radiance in
+     * the volume), found on the GPU by a first resolve dispatch. Both publish their scale in the
+     * region block. A scene with no light and no emission is black.
+     * The surface model stores emission / scale and publishes the scale for the voxel_light pass
+     * that lights it, whose volumes hold the radiance premultiplied by the coverage sum (up to 3)
+     * plus up to 8 bounces (at most 9 x the bound): its pre-exposure is 32 times larger, bound /
+     * 1024, so that 3 x 9 x 1024 stays below the half-float maximum. */
     double fixed_scale = bound > 0.0 ? 4294967295.0 / (bound * FRAGMENT_HEADROOM) : 1.0;
-    double radiance_scale = 1.0;
-    double scale_limit = s->surface ? 2048.0 : 32768.0;
-    if (s->format != GL_RGBA8 && bound > scale_limit)
-        radiance_scale = bound / scale_limit;
+    double radiance_scale = s->format != GL_RGBA8 ? cgp_half_float_scale(bound) : 1.0;
+    if (s->surface)
+        radiance_scale *= SURFACE_PRE_EXPOSURE;
     /* Surface model: quantities in [-1, 1] (albedo, normals, offsets in voxels, coverage) at 2^32 /
      * (2 SURFACE_HEADROOM) per unit, so that SURFACE_HEADROOM fragments sum within a signed 32-bit
      * integer; emission per unit of the brightest emission. */
@@ -419,7 +314,7 @@ voxelize_execute(fg_pass *pass, voxelize_state *s, cg_error *err)
         static const GLenum formats[4] = {GL_RGBA8, GL_RGBA8, GL_RGBA8_SNORM, GL_RGBA16F};
         glUseProgram(s->resolve);
         glUniform1i(0, resolution);
-        glUniform4f(4, (float)unit_fixed, (float)emission_fixed, 0.0f, 0.0f);
+        glUniform4f(4, (float)unit_fixed, (float)emission_fixed, (float)radiance_scale, 0.0f);
         glBindImageTexture(0, accum, 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
         for (int i = 0; i < 4; i++)
             glBindImageTexture(1 + (GLuint)i, fg_texture(pass, names[i]), 0, GL_TRUE, 0, GL_WRITE_ONLY, formats[i]);

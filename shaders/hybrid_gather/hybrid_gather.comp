@@ -65,11 +65,15 @@ ray_box_exit(vec3 o, vec3 d, vec3 lo, vec3 hi)
 float
 coverage(float h, float y0, float y1)
 {
-    float u = clamp(2.0 * (h - y0) / max(y1 - y0, 1e-30) - 1.0, -1.0, 1.0);
+    // y1 > y0 for every cube (its side is at least the finest xel); a zero-height section (an
+    // underflowed side) is covered when the terrain reaches it. No floor in metres.
+    if (!(y1 > y0))
+        return h >= y0 ? 1.0 : 0.0;
+    float u = clamp(2.0 * (h - y0) / (y1 - y0) - 1.0, -1.0, 1.0);
     return clamp(0.5 + (u * sqrt(1.0 - u * u) + asin(u)) / 3.14159265358979, 0.0, 1.0);
 }
 
-// The terrain in one step: rgb = radiance of the most occluding texel, a = its coverage of
+// The terrain in one step: rgb = stored radiance of the most occluding texel, a = its coverage of
 // the cube's vertical extent. The DDA walks the texels of level `level` that the cone axis
 // crosses between t0 and t1 (Amanatides and Woo 1987); at each, the cube is centred on the
 // axis height there. When one texel occludes, later ones count only where they rise higher
@@ -87,7 +91,7 @@ terrain_sample(CgHeightmap m, vec3 origin, vec3 dir, float t0, float t1, CgFitti
     vec2 cell_size = m.texel * float(1 << level);
     vec3 p0 = origin + dir * t0;
     vec2 a = (p0.xz - m.origin) / cell_size;
-    vec2 span = dir.xz * (t1 - t0) / cell_size;     // texels crossed over the step
+    vec2 span = dir.xz * (t1 - t0) / cell_size;     // texels crossed over the step (1e30: never, in texels)
     ivec2 cell = ivec2(floor(a));
     ivec2 stride = ivec2(sign(span));
     vec2 inv = vec2(span.x != 0.0 ? 1.0 / abs(span.x) : 1e30, span.y != 0.0 ? 1.0 / abs(span.y) : 1e30);
@@ -178,6 +182,7 @@ hybrid_trace(vec3 origin, vec3 dir, float tan_half, float t_start, float t_max, 
             }
             if (!empty) {
                 vec4 s = terrain_sample(m, origin, dir, t, t + dt, cube, lod);
+                s.rgb *= m.radiance_scale;  // the lightmap's pre-exposure (common/heightmap.glsl)
                 if (occlusion == OCCLUSION_EQ17) {
                     // Eq. 17: a = step_diameter / current_step_length wherever the cube meets the
                     // terrain, an opacity composited front to back.

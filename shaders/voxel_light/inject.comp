@@ -5,6 +5,7 @@
 // Each side of the voxel's surface has its own radiance: the side N points to (+) and the other
 // (-). With the mean normal N (|N| <= 1) of the voxel's facets and their mean albedo rho,
 //     L+- = emission + rho / pi sum_lights E V+- max(0, +-N . l) + rho G+-
+// (the lights' term with u_direct)
 // l towards the light, E its irradiance, V+- its visibility through the shadow map at the surface
 // point on that side (the mean of 2 x 2 points a half voxel apart across the plane, the voxel's
 // footprint on it), G+- the gathered light of a bounce (E_i / pi on that side, gather.comp), with
@@ -41,6 +42,8 @@ layout(rgba16f, binding = 2) writeonly uniform image3D u_normals;
 layout(location = 1) uniform bool u_gathered;
 layout(location = 2) uniform bool u_build_list;
 layout(location = 3) uniform uint u_list_capacity;
+// false: the emission alone (V_0 of passes/voxel_light's recursion), without the lights' direct light.
+layout(location = 4) uniform bool u_direct;
 
 float
 luminance(vec3 c)
@@ -89,11 +92,11 @@ main()
     float coherence = length(n);
     vec3 nh = coherence > 1e-4 ? n / coherence : vec3(0.0, 0.0, 1.0);
     vec3 x = voxel_light_point(vol, v, nd.xyz, nd.w);
-    vec3 emission = texelFetch(u_emission, v, 0).rgb;
-    vec3 front = emission, back = emission;
+    vec3 emission = texelFetch(u_emission, v, 0).rgb;   // / vol.radiance_scale already (voxelize)
+    vec3 front = vec3(0.0), back = vec3(0.0);
     {
         vec3 e_front = vec3(0.0), e_back = vec3(0.0);
-        for (uint i = 0u; i < cg_light_count(); i++) {
+        for (uint i = 0u; u_direct && i < cg_light_count(); i++) {
             CgLightSample s = cg_light_sample(cg_lights[i], x);
             float c = dot(n, s.to_light);
             if (c > 0.0)
@@ -104,8 +107,8 @@ main()
         front += albedo.rgb * e_front / CG_PI;
         back += albedo.rgb * e_back / CG_PI;
     }
-    front /= vol.radiance_scale;
-    back /= vol.radiance_scale;
+    front = front / vol.radiance_scale + emission;
+    back = back / vol.radiance_scale + emission;
     if (u_gathered) {
         // Stored in the volumes' units already (gather.comp).
         front += albedo.rgb * texelFetch(u_gathered_front, v, 0).rgb;

@@ -23,13 +23,15 @@ layout(rgba8, binding = 2) writeonly uniform image3D u_coverage;
 layout(rgba8_snorm, binding = 3) writeonly uniform image3D u_normal;
 layout(rgba16f, binding = 4) writeonly uniform image3D u_emission;
 layout(location = 0) uniform int u_resolution;
-// x: fixed-point units per unit of albedo, normal, offset and coverage; y: per unit of emission.
+// x: fixed-point units per unit of albedo, normal, offset and coverage; y: per unit of emission;
+// z: the region's radiance scale (pre-exposure, sdk/radiance.h): emission is stored divided by it.
 layout(location = 4) uniform vec4 u_surface_fixed;
 
 uint
 slab(ivec3 v, int k)
 {
-    return imageLoad(u_accum, v + ivec3(0, 0, k * u_resolution)).r;
+    // 2 x 2 x 4 slabs of resolution^3 (voxelize.frag's surface_slab)
+    return imageLoad(u_accum, v + ivec3(k & 1, (k >> 1) & 1, k >> 2) * u_resolution).r;
 }
 
 void
@@ -48,7 +50,7 @@ main()
     }
     float unit = float(count) * u_surface_fixed.x;
     vec3 albedo = vec3(slab(v, 1), slab(v, 2), slab(v, 3)) / unit;
-    vec3 emission = vec3(slab(v, 4), slab(v, 5), slab(v, 6)) / (float(count) * u_surface_fixed.y);
+    vec3 emission = vec3(slab(v, 4), slab(v, 5), slab(v, 6)) / (float(count) * u_surface_fixed.y) / u_surface_fixed.z;
     vec3 normal = vec3(int(slab(v, 7)), int(slab(v, 8)), int(slab(v, 9))) / unit;
     float offset = float(int(slab(v, 10))) / unit;
     vec3 coverage = min(vec3(slab(v, 11), slab(v, 12), slab(v, 13)) / u_surface_fixed.x, vec3(1.0));

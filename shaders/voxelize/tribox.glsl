@@ -2,11 +2,6 @@
 // of Akenine-Moller (2001, "Fast 3D triangle-box overlap testing"): the 3 box normals,
 // the triangle normal and the 9 edge-cross-axis directions. tests/passes/tribox_ref.h
 // is the same test in C, used to compute the voxels a triangle must occupy.
-// Along the box normals the box is half-open, [c - h, c + h): a triangle that only touches a
-// voxel's upper face belongs to the voxel above, not to both. A wall on a face is one voxel
-// thick, and a wall's edge on a face (a box's ceiling meeting its back wall there) does not put
-// the ceiling into the voxels beyond the back wall, whose cones would start outside the box
-// (docs/vct.md: the white furnace at 1 mm).
 #ifndef CG_VOXELIZE_TRIBOX_GLSL
 #define CG_VOXELIZE_TRIBOX_GLSL
 
@@ -23,8 +18,8 @@ bool
 tribox_overlap(vec3 centre, vec3 h, vec3 a, vec3 b, vec3 c)
 {
     vec3 v0 = a - centre, v1 = b - centre, v2 = c - centre;
-    // Box normals: the triangle's bounding box against the half-open box.
-    if (any(greaterThanEqual(min(v0, min(v1, v2)), h)) || any(lessThan(max(v0, max(v1, v2)), -h)))
+    // Box normals: the triangle's bounding box against the box.
+    if (any(greaterThan(min(v0, min(v1, v2)), h)) || any(lessThan(max(v0, max(v1, v2)), -h)))
         return false;
     vec3 e0 = v1 - v0, e1 = v2 - v1, e2 = v0 - v2;
     // Triangle plane against the box.

@@ -30,6 +30,10 @@ layout(location = 4) flat in vec3 gs_tri_b;
 layout(location = 5) flat in vec3 gs_tri_c;
 layout(location = 6) flat in int gs_axis;
 
+// Voxels: how far off a face a triangle still counts as on it (float rounding of voxel
+// coordinates up to the resolution, 512 x 6e-8 = 3e-5, stays below it).
+#define FACE_TOLERANCE 1e-4
+
 layout(location = 9) uniform int u_resolution;
 layout(location = 10) uniform float u_fixed_scale;
 layout(location = 12) uniform bool u_conservative;
@@ -48,6 +52,14 @@ ivec3
 unswizzle(ivec3 s, int axis)
 {
     return axis == 0 ? s.zxy : axis == 1 ? s.yzx : s;
+}
+
+// Where slab k of the surface model's 14 lies in the accumulation volume, 2 x 2 x 4 slabs of
+// resolution^3 (so that 512^3 fits GL_MAX_3D_TEXTURE_SIZE 2048, which 14 along z would not).
+ivec3
+surface_slab(int k)
+{
+    return ivec3(k & 1, (k >> 1) & 1, k >> 2) * u_resolution;
 }
 
 vec3
@@ -85,8 +97,13 @@ main()
     vec2 centre = vec2(column) + 0.5;
     float z = a.z - (n.x * (centre.x - a.x) + n.y * (centre.y - a.y)) / n.z;
     float spread = u_conservative ? 0.5 * (abs(n.x) + abs(n.y)) / abs(n.z) : 0.0;
-    float z_lo = max(z - spread, min(a.z, min(b.z, c.z)));
-    float z_hi = min(z + spread, max(a.z, max(b.z, c.z)));
+    // Conservative: widened by the overlap test's tolerance, so that a triangle on a voxel face
+    // (z on an integer) reaches the voxels of both sides whatever the rounding of z; without it,
+    // which side a wall landed on followed the last bit of (world - origin) / voxel, and with it
+    // the scale of the scene (a furnace's walls lie on faces: 0.2% of its mean luminance).
+    float tolerance = u_conservative ? FACE_TOLERANCE : 0.0;
+    float z_lo = max(z - spread, min(a.z, min(b.z, c.z))) - tolerance;
+    float z_hi = min(z + spread, max(a.z, max(b.z, c.z))) + tolerance;
     int k_lo = max(int(floor(z_lo)), 0);
     int k_hi = min(int(floor(z_hi)), u_resolution - 1);
     if (k_lo > k_hi)
@@ -109,9 +126,9 @@ main()
                             vec3(4294967295.0)));
 #endif
     int slab = u_resolution;
-    // Half-open voxels of the snapped coordinates (voxelize.geom, tribox.glsl): a triangle lying
-    // exactly on a voxel face belongs to the voxel above it, at every scale.
-    const vec3 half_voxel = vec3(0.5);
+    // A hair over half a voxel: a triangle lying exactly on a voxel face counts for both
+    // voxels, whatever the rounding.
+    const vec3 half_voxel = vec3(0.5 + FACE_TOLERANCE);
     for (int k = k_lo; k <= k_hi; k++) {
         ivec3 cell = ivec3(column, k);
         if (u_conservative && !tribox_overlap(vec3(cell) + 0.5, half_voxel, a, b, c))
@@ -123,19 +140,19 @@ main()
         vec3 centre = u_origin_voxel.xyz + (vec3(v) + 0.5) * u_origin_voxel.w;
         uint q_offset = uint(int(round(dot(normal, gs_world - centre) / u_origin_voxel.w * u_surface_fixed.x)));
         imageAtomicAdd(u_accum, v, 1u);
-        imageAtomicAdd(u_accum, v + ivec3(0, 0, slab), q_albedo.r);
-        imageAtomicAdd(u_accum, v + ivec3(0, 0, 2 * slab), q_albedo.g);
-        imageAtomicAdd(u_accum, v + ivec3(0, 0, 3 * slab), q_albedo.b);
-        imageAtomicAdd(u_accum, v + ivec3(0, 0, 4 * slab), q_emission.r);
-        imageAtomicAdd(u_accum, v + ivec3(0, 0, 5 * slab), q_emission.g);
-        imageAtomicAdd(u_accum, v + ivec3(0, 0, 6 * slab), q_emission.b);
-        imageAtomicAdd(u_accum, v + ivec3(0, 0, 7 * slab), q_normal.x);
-        imageAtomicAdd(u_accum, v + ivec3(0, 0, 8 * slab), q_normal.y);
-        imageAtomicAdd(u_accum, v + ivec3(0, 0, 9 * slab), q_normal.z);
-        imageAtomicAdd(u_accum, v + ivec3(0, 0, 10 * slab), q_offset);
-        imageAtomicMax(u_accum, v + ivec3(0, 0, 11 * slab), q_share.x);
-        imageAtomicMax(u_accum, v + ivec3(0, 0, 12 * slab), q_share.y);
-        imageAtomicMax(u_accum, v + ivec3(0, 0, 13 * slab), q_share.z);
+        imageAtomicAdd(u_accum, v + surface_slab(1), q_albedo.r);
+        imageAtomicAdd(u_accum, v + surface_slab(2), q_albedo.g);
+        imageAtomicAdd(u_accum, v + surface_slab(3), q_albedo.b);
+        imageAtomicAdd(u_accum, v + surface_slab(4), q_emission.r);
+        imageAtomicAdd(u_accum, v + surface_slab(5), q_emission.g);
+        imageAtomicAdd(u_accum, v + surface_slab(6), q_emission.b);
+        imageAtomicAdd(u_accum, v + surface_slab(7), q_normal.x);
+        imageAtomicAdd(u_accum, v + surface_slab(8), q_normal.y);
+        imageAtomicAdd(u_accum, v + surface_slab(9), q_normal.z);
+        imageAtomicAdd(u_accum, v + surface_slab(10), q_offset);
+        imageAtomicMax(u_accum, v + surface_slab(11), q_share.x);
+        imageAtomicMax(u_accum, v + surface_slab(12), q_share.y);
+        imageAtomicMax(u_accum, v + surface_slab(13), q_share.z);
 #else
         imageAtomicAdd(u_accum, v, value.r);
         imageAtomicAdd(u_accum, v + ivec3(0, 0, slab), value.g);

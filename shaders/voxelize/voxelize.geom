@@ -51,14 +51,9 @@ cross2(vec2 a, vec2 b)
 void
 main()
 {
-    // Voxel coordinates snapped to 1/1024 of a voxel: a surface lying on a voxel face (the bounds
-    // of the voxelized meshes lie `padding` voxels from the volume's edge, on a face) then falls on
-    // it exactly, at every scale, and the half-open voxels of tribox_overlap give it to the same
-    // voxel whatever the rounding of (x - origin) / voxel (10^-5 voxels at 1 mm, 0 at 1 m). The
-    // coordinates stay below 2^10 voxels, so the snapped values are exact in single precision.
     vec3 p[3];
     for (int i = 0; i < 3; i++)
-        p[i] = round((vs_world[i] - u_origin_voxel.xyz) / u_origin_voxel.w * 1024.0) / 1024.0;
+        p[i] = (vs_world[i] - u_origin_voxel.xyz) / u_origin_voxel.w;
     vec3 n = abs(cross(p[1] - p[0], p[2] - p[0]));
     int axis = n.x >= n.y && n.x >= n.z ? 0 : n.y >= n.z ? 1 : 2;
     vec3 s[3];

@@ -77,6 +77,19 @@ parse_shard(const char *text, bench_config *c)
     return true;
 }
 
+/* "relmse" or "gi-nrmse" (--error, the sweep's "error"). */
+static bool
+parse_error(const char *text, bench_error *out)
+{
+    if (!strcmp(text, "relmse"))
+        *out = BENCH_ERROR_RELMSE;
+    else if (!strcmp(text, "gi-nrmse"))
+        *out = BENCH_ERROR_GI_NRMSE;
+    else
+        return false;
+    return true;
+}
+
 /* "pass.param=v1,v2,..." into a vary entry. */
 static bool
 parse_vary(const char *text, bench_vary *v)
@@ -204,8 +217,8 @@ load_setting(const char *path, size_t index, const json_t *value, bench_setting 
 static int
 load_sweep_object(const char *path, const json_t *root, bench_config *c)
 {
-    static const char *const known[] = { "scenes", "size", "camera", "frames", "warmup", "reference",
-                                          "path_tracer_spp", "settings", NULL };
+    static const char *const known[] = { "scenes", "size", "camera", "sky", "default_light", "frames", "warmup",
+                                          "reference", "path_tracer_spp", "settings", "error", NULL };
     char text[BENCH_TEXT];
     if (!json_is_object(root))
         return sweep_error(path, "expected a JSON object at the top");
@@ -226,6 +239,23 @@ load_sweep_object(const char *path, const json_t *root, bench_config *c)
     json_t *camera = json_object_get(root, "camera");
     if (camera && !(json_scalar_text(camera, text, sizeof text) && copy_text(c->camera, text)))
         return sweep_error(path, "\"camera\" must be a name or an index");
+    json_t *sky = json_object_get(root, "sky");
+    if (sky) {
+        cg_error why = { 0 };
+        if (!json_scalar_text(sky, text, sizeof text) || json_is_boolean(sky))
+            return sweep_error(path, "\"sky\" must be a string as --sky takes it (or a number)");
+        if (!cg_sky_parse(text, &c->sky, &why))
+            return sweep_error(path, "\"sky\": %s", why.message);
+        c->sky_given = true;
+    }
+    json_t *error = json_object_get(root, "error");
+    if (error && !(json_is_string(error) && parse_error(json_string_value(error), &c->error)))
+        return sweep_error(path, "\"error\" must be \"relmse\" or \"gi-nrmse\"");
+    json_t *default_light = json_object_get(root, "default_light");
+    if (default_light && !json_is_boolean(default_light))
+        return sweep_error(path, "\"default_light\" must be true or false");
+    if (default_light)
+        c->no_default_light = !json_is_true(default_light);
     json_t *ref = json_object_get(root, "reference");
     if (ref && !json_is_object(ref))
         return sweep_error(path, "\"reference\" must be an object { spp, bounces, seed }");
@@ -314,6 +344,10 @@ bench_parse_args(int argc, char **argv, bench_config *c)
             c->images = true;
             continue;
         }
+        if (!strcmp(a, "--no-default-light")) {
+            c->no_default_light = true;
+            continue;
+        }
         if (!strcmp(a, "--merge")) {
             /* The directories up to the next option. */
             int before = c->merge_count;
@@ -363,6 +397,11 @@ bench_parse_args(int argc, char **argv, bench_config *c)
         } else if (!strcmp(a, "--camera")) {
             if (!copy_text(c->camera, v))
                 return usage_error("--camera '%s' is too long", v);
+        } else if (!strcmp(a, "--sky")) {
+            cg_error why = { 0 };
+            if (!cg_sky_parse(v, &c->sky, &why))
+                return usage_error("--sky: %s", why.message);
+            c->sky_given = true;
         } else if ((option = find_int_flag(int_flags, 4, a))) {
             long n;
             if (!app_parse_int(v, option->min, option->max, &n)) {
@@ -371,6 +410,9 @@ bench_parse_args(int argc, char **argv, bench_config *c)
                 return usage_error(fmt, v);
             }
             *option->field = (int)n;
+        } else if (!strcmp(a, "--error")) {
+            if (!parse_error(v, &c->error))
+                return usage_error("--error wants relmse or gi-nrmse, not '%s'", v);
         } else if (!strcmp(a, "--shard")) {
             if (!parse_shard(v, c))
                 return usage_error("--shard wants K/N with 1 <= K <= N <= 4096, not '%s'", v);
@@ -501,8 +543,9 @@ bench_validate(const bench_config *c, const bench_run *runs, int run_count, benc
     for (int s = 0; s < c->scene_count; s++) {
         bench_scene *bs = &scenes[s];
         bs->source = c->scenes[s];
-        app_session_desc desc = { .scene = bs->source, .camera = c->camera[0] ? c->camera : NULL,
-                                  .width = c->width, .height = c->height };
+        app_session_desc desc = { .tool = TOOL, .scene = bs->source, .camera = c->camera[0] ? c->camera : NULL,
+                                  .width = c->width, .height = c->height, .sky = c->sky_given ? &c->sky : NULL,
+                                  .no_default_light = c->no_default_light };
         if (!app_session_open(&bs->session, &desc, &err))
             return app_fail(TOOL, bs->source, &err);
     }
@@ -520,6 +563,12 @@ bench_validate(const bench_config *c, const bench_run *runs, int run_count, benc
                          runs[i].params[0] ? " " : "", runs[i].params);
                 return app_fail(TOOL, what, &err);
             }
+            /* Once per setting: a graph whose direct image cannot be found has no GI columns. */
+            bench_split split;
+            bench_graph_split(&scenes[s].session, &split);
+            if (s == 0 && runs[i].combo == 0 && !split.ok)
+                fprintf(stderr, "%s: %s: %s, so its own direct image cannot be read: its GI and direct "
+                        "columns are left empty\n", TOOL, setting->graph, split.why);
         }
     return 0;
 }

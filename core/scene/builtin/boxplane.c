@@ -13,9 +13,9 @@
 static bool
 build_boxplane(cg_scene *scene, const char *query, cg_error *err)
 {
-    bs_param p[] = { BS_UNIT_PARAMS, { "s", 0.01, 100, 1, false, 0, false }, { "L", 0.1, 1000, 6, false, 0, false },
-                     { "boxyaw", -360, 360, 0, false, 0, false }, { "gamma", 1, 89, 45, false, 0, false },
-                     { "E", 0, 1e6, 3, false, 0, false } };
+    bs_param p[] = { BS_UNIT_PARAMS, { "s", 0.01, 100, 1, false, 0, false, NULL }, { "L", 0.1, 1000, 6, false, 0, false, NULL },
+                     { "boxyaw", -360, 360, 0, false, 0, false, NULL }, { "gamma", 1, 89, 45, false, 0, false, NULL },
+                     { "E", 0, 1e6, 3, false, 0, false, NULL } };
     if (!bs_parse_params("boxplane", query, p, 8, err))
         return false;
     bs_unit_frame f;

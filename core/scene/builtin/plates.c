@@ -18,8 +18,8 @@
 static bool
 build_plates(cg_scene *scene, const char *query, cg_error *err)
 {
-    bs_param p[] = { BS_UNIT_PARAMS, { "w", 0.01, 100, 1, false, 0, false }, { "h", 0.01, 100, 1, false, 0, false },
-                     { "beta", -1, 89, -1, false, 0, false }, { "E", 0, 1e6, 3, false, 0, false } };
+    bs_param p[] = { BS_UNIT_PARAMS, { "w", 0.01, 100, 1, false, 0, false, NULL }, { "h", 0.01, 100, 1, false, 0, false, NULL },
+                     { "beta", -1, 89, -1, false, 0, false, NULL }, { "E", 0, 1e6, 3, false, 0, false, NULL } };
     if (!bs_parse_params("plates", query, p, 7, err))
         return false;
     bs_unit_frame f;

@@ -15,10 +15,10 @@
 static bool
 build_terrain(cg_scene *scene, const char *query, cg_error *err)
 {
-    bs_param p[] = { BS_UNIT_PARAMS, { "A", 0, 100, 0.5, false, 0, false }, { "lambda", 0.01, 1000, 4, false, 0, false },
-                     { "L", 0.1, 1000, 16, false, 0, false }, { "n", 2, 1024, 128, true, 128, false },
-                     { "ridges", 0, 1, 0, true, 0, false }, { "gamma", 1, 89, 40, false, 0, false },
-                     { "E", 0, 1e6, 3, false, 0, false } };
+    bs_param p[] = { BS_UNIT_PARAMS, { "A", 0, 100, 0.5, false, 0, false, NULL }, { "lambda", 0.01, 1000, 4, false, 0, false, NULL },
+                     { "L", 0.1, 1000, 16, false, 0, false, NULL }, { "n", 2, 1024, 128, true, 128, false, NULL },
+                     { "ridges", 0, 1, 0, true, 0, false, NULL }, { "gamma", 1, 89, 40, false, 0, false, NULL },
+                     { "E", 0, 1e6, 3, false, 0, false, NULL } };
     if (!bs_parse_params("terrain", query, p, 10, err))
         return false;
     bs_unit_frame f;

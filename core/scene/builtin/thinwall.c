@@ -16,9 +16,9 @@
 static bool
 build_thinwall(cg_scene *scene, const char *query, cg_error *err)
 {
-    bs_param p[] = { BS_UNIT_PARAMS, { "back", 0.05, 10, 1.2, false, 0, false },
-                     { "front", 0.05, 10, 1.5, false, 0, false }, { "gamma", 1, 89, 30, false, 0, false },
-                     { "view", 0, 1, 0, true, 0, false }, { "E", 0, 1e6, 3, false, 0, false } };
+    bs_param p[] = { BS_UNIT_PARAMS, { "back", 0.05, 10, 1.2, false, 0, false, NULL },
+                     { "front", 0.05, 10, 1.5, false, 0, false, NULL }, { "gamma", 1, 89, 30, false, 0, false, NULL },
+                     { "view", 0, 1, 0, true, 0, false, NULL }, { "E", 0, 1e6, 3, false, 0, false, NULL } };
     if (!bs_parse_params("thinwall", query, p, 8, err))
         return false;
     bs_unit_frame f;

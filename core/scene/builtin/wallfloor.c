@@ -18,9 +18,9 @@
 static bool
 build_wallfloor(cg_scene *scene, const char *query, cg_error *err)
 {
-    bs_param p[] = { BS_UNIT_PARAMS, { "w", 0.01, 100, 2, false, 0, false }, { "d", 0.01, 100, 1, false, 0, false },
-                     { "H", 0.01, 100, 1, false, 0, false }, { "gamma", 1, 89, 45, false, 0, false },
-                     { "E", 0, 1e6, 3, false, 0, false }, { "emit", 0, 1e6, 0, false, 0, false } };
+    bs_param p[] = { BS_UNIT_PARAMS, { "w", 0.01, 100, 2, false, 0, false, NULL }, { "d", 0.01, 100, 1, false, 0, false, NULL },
+                     { "H", 0.01, 100, 1, false, 0, false, NULL }, { "gamma", 1, 89, 45, false, 0, false, NULL },
+                     { "E", 0, 1e6, 3, false, 0, false, NULL }, { "emit", 0, 1e6, 0, false, 0, false, NULL } };
     if (!bs_parse_params("wallfloor", query, p, 9, err))
         return false;
     bs_unit_frame f;
