@@ -4,14 +4,15 @@
 # build in ./build (BUILD= to choose another).
 #
 #   gi_measure.sh indirect SCENE GRAPH LABEL [--set PASS.PARAM=VALUE ...]
-#       estimate = GRAPH's image - direct.json's image, truth = the path tracer's parts
-#       direct_emitters + indirect (reference.json, trace.bounces=$BOUNCES, $SPP spp, cached in
-#       $CACHE); prints gi-metric's energy and nrmse (tests/tools/gi_metric.c).
+#       `conegraph compare --direct --ref-direct` (core/metrics' cg_metrics_part): the estimate is
+#       GRAPH's image minus its own direct light and emission (direct.radiance + gbuf.emissive of
+#       the same frame), the truth the path tracer's image minus its parts emitted and
+#       direct_punctual (reference.json, trace.bounces=$BOUNCES, $SPP spp, cached in $CACHE), as
+#       bench's GI columns; prints the energy and nrmse of the indirect part and both means.
 #   gi_measure.sh suite GRAPH TAG [--set ...]      `indirect` over $SCENES
 #   gi_measure.sh furnace GRAPH TAG [--set ...]    builtin:furnace?albedo=0.5&radiance=2 at 64x64,
 #                                                  scales $SCALES: mean and worst pixel against
-#                                                  path_trace at $FURNACE_BOUNCES (0: radiance-model
-#                                                  graphs, which gather the emission once)
+#                                                  path_trace at $FURNACE_BOUNCES (gi-metric furnace)
 #   gi_measure.sh reads SCENE GRAPH LABEL [--set ...]  volume reads per covered pixel of the diffuse
 #                                                  cones (gather.count_reads): a deterministic cost
 # Environment: SIZE (160x90), SPP (1024), BOUNCES (1), CACHE (build/gi-cache), SCENES, SCALES.
@@ -27,23 +28,19 @@ export CONEGRAPH_LOG=${CONEGRAPH_LOG:-warn}
 OUT=${OUT:-$BUILD/gi-out}
 mkdir -p "$CACHE" "$OUT"
 
-# The truth of SCENE at $SIZE, $SPP, $BOUNCES: its path ($CACHE/KEY/truth.exr), rendered once.
+# The truth of SCENE at $SIZE, $SPP, $BOUNCES: its directory ($CACHE/KEY: ref.exr and the parts
+# emitted.exr, punctual.exr), rendered once.
 truth() {
   local scene=$1 key d
-  key=$(echo "$scene|$SIZE|$SPP|$BOUNCES|v2" | md5sum | cut -c1-12)
+  key=$(echo "$scene|$SIZE|$SPP|$BOUNCES|v3" | md5sum | cut -c1-12)
   d=$CACHE/$key
   mkdir -p "$d"
   echo "$scene $SIZE spp $SPP bounces $BOUNCES" > "$d/what"
-  if [ ! -f "$d/truth.exr" ]; then
+  if [ ! -f "$d/ref.exr" ]; then
     $C render "$scene" --graph reference.json --size "$SIZE" --set trace.spp="$SPP" --set trace.bounces="$BOUNCES" \
-      --set trace.parts=true --set trace.progress=false --dump trace.indirect="$d/indirect.exr" \
-      --dump trace.direct_emitters="$d/emitters.exr" -o "$d/ref.exr" > /dev/null 2>> "$OUT/render.log"
-    $M sum "$d/indirect.exr" "$d/emitters.exr" "$d/truth.tmp.exr"
-    mv "$d/truth.tmp.exr" "$d/truth.exr"
-  fi
-  if [ ! -f "$d/direct.exr" ]; then
-    $C render "$scene" --graph direct.json --size "$SIZE" -o "$d/direct.tmp.exr" > /dev/null 2>> "$OUT/render.log"
-    mv "$d/direct.tmp.exr" "$d/direct.exr"
+      --set trace.parts=true --set trace.progress=false --dump trace.emitted="$d/emitted.exr" \
+      --dump trace.direct_punctual="$d/punctual.exr" -o "$d/ref.tmp.exr" > /dev/null 2>> "$OUT/render.log"
+    mv "$d/ref.tmp.exr" "$d/ref.exr"
   fi
   echo "$d"
 }
@@ -54,9 +51,14 @@ indirect() {
   local scene=$1 graph=$2 label=$3 d img
   shift 3
   d=$(truth "$scene")
-  img=$OUT/$(name "$label").exr
-  $C render "$scene" --graph "$graph" --size "$SIZE" "$@" -o "$img" > /dev/null 2>> "$OUT/render.log"
-  $M indirect "$img" "$d/direct.exr" "$d/truth.exr" --label "$label"
+  img=$OUT/$(name "$label")
+  $C render "$scene" --graph "$graph" --size "$SIZE" "$@" --dump direct.radiance="$img.direct.exr" \
+    --dump gbuf.emissive="$img.emissive.exr" -o "$img.exr" > /dev/null 2>> "$OUT/render.log"
+  $C compare "$img.exr" "$d/ref.exr" --direct "$img.direct.exr" --direct "$img.emissive.exr" \
+    --ref-direct "$d/emitted.exr" --ref-direct "$d/punctual.exr" --json |
+    python3 -c 'import json, sys; i = json.load(sys.stdin)["indirect"]
+f = lambda x: "inf" if x is None else "%.4f" % x
+print(sys.argv[1], "energy", f(i["energy"]), "nrmse", f(i["nrmse"]), "meanY_est %.6g meanY_truth %.6g" % (i["mean_luminance_test"], i["mean_luminance_ref"]))' "$label"
 }
 
 cmd=$1

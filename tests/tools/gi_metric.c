@@ -1,13 +1,8 @@
-/* tests/tools/gi_metric.c: the figures of docs/vct.md's GI measurements, from images that
- * `conegraph render` wrote (tests/tools/gi_measure.sh runs the renders).
+/* tests/tools/gi_metric.c: the two figures of docs/vct.md's GI measurements that `conegraph
+ * compare` does not give, from images that `conegraph render` wrote (tests/tools/gi_measure.sh
+ * runs the renders; the indirect light's energy and nrmse are compare's --direct/--ref-direct,
+ * core/metrics' cg_metrics_part, so that there is one implementation of them).
  *
- *   gi-metric indirect GI.exr DIRECT.exr TRUTH.exr [--rect x0 y0 x1 y1] [--label TEXT]
- *       estimate = GI - DIRECT (the graph's image minus direct.json's: the gathered light alone),
- *       truth = TRUTH (the path tracer's light reflected off surfaces: its parts direct_emitters
- *       + indirect, or reference(bounces N) - reference(bounces 0) for a scene without emitters);
- *       energy = mean Y(estimate) / mean Y(truth) (Rec. 709 Y), nrmse = rmse(estimate - truth) /
- *       rms(truth) over RGB, both over the pixels in the rectangle (default: all; x1, y1 exclusive,
- *       rows from the top as the file stores them). Prints the label, energy, nrmse and both means.
  *   gi-metric furnace IMG.exr ALBEDO RADIANCE [BOUNCES]
  *       the white furnace: every pixel should be L sum_{k=0..B+1} a^k, path_trace's value at
  *       `bounces` B (default 0: the emission seen plus one gathered reflection, what a radiance-
@@ -16,8 +11,6 @@
  *   gi-metric mean IMG.exr [--rect x0 y0 x1 y1]
  *       mean red channel over the pixels whose red is above 0 (a gather's `reads` output: volume
  *       reads per covered pixel).
- *   gi-metric sum A.exr B.exr OUT.exr
- *       OUT = A + B (RGB; alpha 1): the path tracer's parts added up.
  * Exit codes: 0, 2 for bad arguments or unreadable images.
  */
 #include <math.h>
@@ -27,7 +20,6 @@
 
 #include "cg/error.h"
 #include "cg/image.h"
-#include "cg/metrics.h"
 
 static void
 load(const char *path, cg_image *img)
@@ -39,14 +31,7 @@ load(const char *path, cg_image *img)
     }
 }
 
-static void
-same_size(const cg_image *a, const cg_image *b, const char *what)
-{
-    if (a->width != b->width || a->height != b->height) {
-        fprintf(stderr, "gi-metric: %s is %dx%d, expected %dx%d\n", what, b->width, b->height, a->width, a->height);
-        exit(2);
-    }
-}
+
 
 typedef struct rect {
     int x0, y0, x1, y1;
@@ -72,48 +57,6 @@ options(int argc, char **argv, int first, const cg_image *img, rect *r, const ch
         fprintf(stderr, "gi-metric: rectangle outside the %dx%d image\n", img->width, img->height);
         exit(2);
     }
-}
-
-static int
-indirect(int argc, char **argv)
-{
-    if (argc < 5) {
-        fprintf(stderr, "usage: gi-metric indirect GI DIRECT TRUTH [--rect x0 y0 x1 y1] [--label TEXT]\n");
-        return 2;
-    }
-    cg_image g, d, t;
-    load(argv[2], &g);
-    load(argv[3], &d);
-    load(argv[4], &t);
-    same_size(&g, &d, argv[3]);
-    same_size(&g, &t, argv[4]);
-    rect r;
-    const char *label = "";
-    options(argc, argv, 5, &g, &r, &label);
-    double ye = 0, yt = 0, se = 0, st = 0, n = 0;
-    for (int y = r.y0; y < r.y1; y++)
-        for (int x = r.x0; x < r.x1; x++) {
-            size_t k = 4 * ((size_t)y * (size_t)g.width + (size_t)x);
-            float e[3], tr[3];
-            bool finite = true;
-            for (int c = 0; c < 3; c++) {
-                e[c] = g.rgba[k + c] - d.rgba[k + c];
-                tr[c] = t.rgba[k + c];
-                finite = finite && isfinite(e[c]) && isfinite(tr[c]);
-            }
-            if (!finite)
-                continue;
-            ye += cg_luminance(e);
-            yt += cg_luminance(tr);
-            for (int c = 0; c < 3; c++) {
-                se += (double)(e[c] - tr[c]) * (e[c] - tr[c]);
-                st += (double)tr[c] * tr[c];
-            }
-            n++;
-        }
-    printf("%s energy %.4f nrmse %.4f meanY_est %.6g meanY_truth %.6g\n", label, yt != 0 ? ye / yt : NAN,
-           st > 0 ? sqrt(se / st) : NAN, n > 0 ? ye / n : NAN, n > 0 ? yt / n : NAN);
-    return 0;
 }
 
 static int
@@ -169,41 +112,13 @@ mean(int argc, char **argv)
     return 0;
 }
 
-static int
-sum(int argc, char **argv)
-{
-    if (argc != 5) {
-        fprintf(stderr, "usage: gi-metric sum A B OUT\n");
-        return 2;
-    }
-    cg_image a, b;
-    load(argv[2], &a);
-    load(argv[3], &b);
-    same_size(&a, &b, argv[3]);
-    for (size_t i = 0; i < (size_t)a.width * (size_t)a.height; i++) {
-        for (int c = 0; c < 3; c++)
-            a.rgba[4 * i + (size_t)c] += b.rgba[4 * i + (size_t)c];
-        a.rgba[4 * i + 3] = 1.0f;
-    }
-    cg_error err = {0};
-    if (!cg_image_write(argv[4], &a, CG_EXR_FLOAT, &err)) {
-        fprintf(stderr, "gi-metric: %s\n", err.message);
-        return 2;
-    }
-    return 0;
-}
-
 int
 main(int argc, char **argv)
 {
-    if (argc >= 2 && !strcmp(argv[1], "indirect"))
-        return indirect(argc, argv);
     if (argc >= 2 && !strcmp(argv[1], "furnace"))
         return furnace(argc, argv);
     if (argc >= 2 && !strcmp(argv[1], "mean"))
         return mean(argc, argv);
-    if (argc >= 2 && !strcmp(argv[1], "sum"))
-        return sum(argc, argv);
-    fprintf(stderr, "usage: gi-metric indirect|furnace|mean|sum ... (tests/tools/gi_metric.c)\n");
+    fprintf(stderr, "usage: gi-metric furnace|mean ... (tests/tools/gi_metric.c)\n");
     return 2;
 }
