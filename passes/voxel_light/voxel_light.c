@@ -8,16 +8,20 @@
  *             the voxel's coverage sum (shaders/voxel_light/inject.comp)
  *   sides     (w beta, w delta, 0, alpha_y): the other side's luminance fraction, the plane offset
  *   normals   (w N, alpha_z): the mean normal of the lit side
- *   and, where a bounce is gathered (bounces > 1), the transient gathered_front, gathered_back
+ *   and, where a bounce is gathered (the header's recursion), the transient gathered_front, gathered_back
  *   (level 0: each side's gathered light) and voxels (the list of occupied voxels).
  *
  * The light is evaluated per voxel, at its surface point, from its geometry: a pass after
- * voxelize, so that the geometry can stay while the light changes. Every frame: the direct light of
- * the scene's lights plus emission (inject.comp) and the mip chain (mip.comp); then bounces - 1
- * times a gather at the voxels (gather.comp) added to their light, and the chain again. A cone
- * gather after this pass then reflects light that has bounced `bounces` times off surfaces after
- * leaving a punctual light, as path_trace counts bounces; an emitter's light reaches the gather
- * through the volume, so it has bounced once less (docs/vct.md has the bookkeeping).
+ * voxelize, so that the geometry can stay while the light changes. Bounces are counted as
+ * path_trace counts them: with G the gather at the voxels (gather.comp) times the albedo, Le the
+ * emission and D the direct light of the scene's lights (inject.comp),
+ *     V_0 = Le,   V_(k+1) = Le + D + G(V_k),
+ * and a cone gather of V_N at a pixel holds every path of up to N reflections between the pixel
+ * and any source (emitter or punctual light), as path_trace with `bounces` N: an emitter's light
+ * reaches the pixel's gather directly (0 reflections), a punctual light's through D (1), and each
+ * G adds one more to both. Where no voxelized mesh emits, G(V_0) = 0 and the first gather is
+ * skipped (V_1 = D): N - 1 gathers, N otherwise; each gather is followed by the mip chain
+ * (mip.comp) of the new light.
  */
 #include <math.h>
 #include <stdio.h>
@@ -34,17 +38,18 @@
 
 /* The march of the gathers at the voxels: the defaults of graphs/vct.json's cone_gather. */
 #define BOUNCE_STEP 0.5
-#define BOUNCE_START_OFFSET 0.5
+#define BOUNCE_START_OFFSET 1.0
 #define BOUNCE_LOD_BIAS -1.0
 
 static const fg_param_desc voxel_light_params[] = {
-    { .name = "bounces", .type = FG_PARAM_INT, .default_value = 1, .min = 1, .max = 8,
-      .doc = "cone gathers along a path: 1 reflects the volume's direct light (what path_trace with "
-             "bounces 1 adds for punctual lights; an emitter's light, which the volume holds, has bounced "
-             "once less); each bounce above 1 is a gather at every occupied voxel added to its light "
-             "(docs/vct.md)" },
+    { .name = "bounces", .type = FG_PARAM_INT, .default_value = 1, .min = 0, .max = 8,
+      .doc = "diffuse bounces, counted as path_trace counts them (Cycles, pbrt): a cone gather after this "
+             "pass adds what path_trace with the same bounces adds to direct_light's image. 0: the volume "
+             "holds emission alone (the emitters' direct light on their neighbours); each bounce is one "
+             "more diffuse reflection: the volume's light gathered at every occupied voxel and added to it "
+             "(N - 1 gathers, N when the voxelized meshes emit: docs/vct.md)" },
     { .name = "bounce_cones", .type = FG_PARAM_INT, .default_value = 16, .min = 1, .max = 16,
-      .allowed = FG_PARAM_VALUES(CGP_CONE_SET_SIZES), .active_when = "bounces=2|3|4|5|6|7|8",
+      .allowed = FG_PARAM_VALUES(CGP_CONE_SET_SIZES),
       .doc = "diffuse cones of the gathers at the voxels: 1, 6, 9 or 16" },
 };
 
@@ -67,6 +72,30 @@ static GLuint
 list_capacity(int resolution)
 {
     return (GLuint)((size_t)resolution * (size_t)resolution * (size_t)resolution / 4);
+}
+
+/* Whether any mesh that a voxelize pass may have voxelized emits (emission in the volume). */
+static bool
+scene_emits(const cg_scene *scene)
+{
+    for (int i = 0; i < scene->material_count; i++) {
+        const cg_material *m = &scene->materials[i];
+        if (m->emissive_strength > 0.0f && (m->emissive[0] > 0.0f || m->emissive[1] > 0.0f || m->emissive[2] > 0.0f))
+            return true;
+    }
+    return false;
+}
+
+/* Gathers at the voxels for the pass's bounces (the header's recursion). */
+static int
+gathers(const fg_pass *pass)
+{
+    int bounces = fg_param_int(pass, "bounces");
+    const fg_frame *frame = fg_pass_frame(pass);
+    bool emits = frame && frame->scene && scene_emits(frame->scene);
+    if (bounces == 0)
+        return 0;
+    return emits ? bounces : bounces - 1;
 }
 
 static bool
@@ -102,7 +131,7 @@ voxel_light_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
     };
     for (int i = 0; i < 3; i++)
         fg_declare_output(decl, light_names[i], &light, FG_ACCESS_IMAGE_STORE);
-    if (fg_param_int(pass, "bounces") > 1) {
+    if (gathers(pass) > 0) {
         fg_resource_desc gathered = light;
         gathered.levels = 1;
         fg_declare_output(decl, "gathered_front", &gathered, FG_ACCESS_IMAGE_STORE);
@@ -132,9 +161,10 @@ voxel_light_prepare(fg_pass *pass, voxel_light_state *s, cg_error *err)
 
 /* Level 0 of the three volumes. */
 static void
-inject(const fg_pass *pass, const voxel_light_state *s, int resolution, bool gathered, bool build_list)
+inject(const fg_pass *pass, const voxel_light_state *s, int resolution, bool direct, bool gathered, bool build_list)
 {
     glUseProgram(s->inject);
+    glUniform1i(4, direct);
     glUniform1i(1, gathered);
     glUniform1i(2, build_list);
     glUniform1ui(3, s->gathers ? list_capacity(resolution) : 0u);
@@ -222,13 +252,16 @@ voxel_light_execute(fg_pass *pass, voxel_light_state *s, cg_error *err)
         cgp_cone_block_fill_march(&s->set, BOUNCE_STEP, BOUNCE_START_OFFSET, 0.0, BOUNCE_LOD_BIAS, &cones);
         cgp_uniform_upload(s->cone_block, CG_BINDING_CONES, &cones, sizeof cones);
     }
+    /* V_0 = Le, or V_1 = D where nothing emits (the header); then a gather per bounce left. */
+    int count = s->gathers ? gathers(pass) : 0;
+    bool skip_first = bounces > 0 && count < bounces;
     bind_inject_inputs(pass, s);
-    inject(pass, s, resolution, false, s->gathers);
+    inject(pass, s, resolution, skip_first, false, s->gathers);
     mip(pass, s, resolution);
-    for (int b = 1; b < bounces; b++) {
+    for (int b = 0; b < count; b++) {
         gather(pass, s, resolution);
         bind_inject_inputs(pass, s);
-        inject(pass, s, resolution, true, false);
+        inject(pass, s, resolution, true, true, false);
         mip(pass, s, resolution);
     }
     for (GLuint unit = 0; unit < 7; unit++)
@@ -241,7 +274,7 @@ voxel_light_execute(fg_pass *pass, voxel_light_state *s, cg_error *err)
 CGP_PASS(voxel_light, CGP_PARAMS(voxel_light_params),
          "Lights voxelize's surface model (docs/vct.md): each side of every voxel's mean plane gets the "
          "direct light of the scene's lights at its surface point (shadowed through the optional shadow "
-         "map, 2 x 2 points across the voxel), its emission and, for bounces > 1, the light gathered "
+         "map, 2 x 2 points across the voxel), its emission and, per bounce as path_trace counts them, the light gathered "
          "at the voxels by the cone tracers' own march; writes the one-sided volumes "
          "radiance, sides and normals with their mip chains (per-axis additive coverage) that "
          "cone_gather and hybrid_gather read.");
