@@ -266,7 +266,7 @@ test_describe(void **state)
 {
     (void)state;
     fg_registry *registry;
-    fg_graph *graph = load_graph("vct.json", &registry);
+    fg_graph *graph = load_graph("vct-aniso.json", &registry);
     cg_error err = { 0 };
     fg_pass *gather = fg_graph_find_pass(graph, "gather"), *vox = fg_graph_find_pass(graph, "vox");
     char line[1024];
@@ -291,7 +291,7 @@ test_adjust(void **state)
 {
     (void)state;
     fg_registry *registry;
-    fg_graph *graph = load_graph("vct.json", &registry);
+    fg_graph *graph = load_graph("vct-aniso.json", &registry);
     cg_error err = { 0 };
     demo_selection sel;
     char previous[64];
@@ -338,7 +338,7 @@ test_adjust(void **state)
     select_param(graph, &sel, "gather", "step");
     for (int i = 0; i < 3; i++)
         assert_cg_ok(demo_adjust(graph, &sel, 1, &changed, previous, sizeof previous, &err), &err);
-    /* vct.json's step is 0.5: three steps of 0.05 up. */
+    /* vct-aniso.json's step is 0.5: three steps of 0.05 up. */
     assert_float_equal(fg_param_float(fg_graph_find_pass(graph, "gather"), "step"), 0.65f, 1e-6);
     assert_string_equal(previous, "0.600000024");
     fg_graph_destroy(graph);
@@ -578,7 +578,7 @@ test_param_set(void **state)
 {
     (void)state;
     fg_registry *registry;
-    fg_graph *graph = load_graph("vct.json", &registry);
+    fg_graph *graph = load_graph("vct-aniso.json", &registry);
     cg_error err = { 0 };
     char previous[64];
     fg_pass *gather = fg_graph_find_pass(graph, "gather"), *vox = fg_graph_find_pass(graph, "vox");
