@@ -18,7 +18,8 @@
  * geometry (position, normal, albedo, emission of the surface under each texel) is rasterized
  * into persistent textures only when it may have changed: the first frame after prepare, or
  * when a height-field instance's world matrix, mesh or material, the set of instances, the
- * scene, the GPU scene or the map's region differ from the last build (compared by value, so
+ * scene, the GPU scene's upload (cg_gpu_scene.generation) or the map's region differ from the
+ * last build (compared by value, so
  * a world changed by hand without a revision still rebuilds; any doubt rebuilds). The light
  * is recomputed every frame by a compute pass over the texels (relight.comp), at a cost that
  * follows texels, not triangles, with the formula the lit raster uses
@@ -97,6 +98,7 @@ typedef struct heightmap_raster_state {
     bool built;
     const cg_scene *scene;
     const cg_gpu_scene *gpu_scene;
+    uint64_t generation;    /* the GPU scene's upload */
     int instance_count, resolution;
     heightmap_region region;
     built_instance *instances;
@@ -207,8 +209,9 @@ geometry_stale(const heightmap_raster_state *s, const fg_frame *frame, const hei
     const cg_scene *scene = frame->scene;
     if (!s->built)
         return "first frame";
-    if (scene != s->scene || frame->gpu_scene != s->gpu_scene || scene->instance_count != s->instance_count)
-        return "new scene";
+    if (scene != s->scene || frame->gpu_scene != s->gpu_scene ||
+        frame->gpu_scene->generation != s->generation || scene->instance_count != s->instance_count)
+        return "scene uploaded again";
     if (resolution != s->resolution || memcmp(region, &s->region, sizeof *region))
         return "region moved";
     int n = 0;
@@ -258,6 +261,7 @@ remember_build(heightmap_raster_state *s, const fg_frame *frame, const heightmap
     }
     s->scene = scene;
     s->gpu_scene = frame->gpu_scene;
+    s->generation = frame->gpu_scene->generation;
     s->instance_count = scene->instance_count;
     s->resolution = resolution;
     s->region = *region;
