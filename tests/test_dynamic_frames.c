@@ -20,6 +20,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cg/fs.h"
 #include "cg/image.h"
 #include "cg/metrics.h"
 #include "test_support.h"
@@ -64,13 +65,40 @@ compare(const char *test, const char *ref, double *max_difference)
     return m.rel_mse;
 }
 
+/* render --pass-costs: a header, then per frame a row per live pass (hybrid.json on openworld:
+ * 10), with heightmap_raster's words: rasterized in the first frame, kept in the others. */
+static void
+check_costs(const char *path)
+{
+    char *text = NULL;
+    cg_error err = {0};
+    assert_cg_ok(cg_read_file(path, &text, NULL, &err), &err);
+    assert_memory_equal(text, "frame,time,pass,type,ms,rebuilt\n", 32);
+    int rows = 0, terrain = 0;
+    for (char *line = strtok(strchr(text, '\n') + 1, "\n"); line; line = strtok(NULL, "\n")) {
+        rows++;
+        int frame = atoi(line);
+        if (strstr(line, ",terrain,heightmap_raster,")) {
+            terrain++;
+            assert_non_null(strstr(line, frame == 0 ? "\"geometry rasterized (first frame);" : "\"geometry kept;"));
+        }
+    }
+    assert_int_equal(rows, 5 * 10);
+    assert_int_equal(terrain, 5);
+    free(text);
+}
+
 static void
 check_motion(const char *motion)
 {
     char animated[512], animated_map[512], fresh[512], fresh_map[512], rebuilt[512], rebuilt_map[512];
-    render(motion, "--frames 5 --fps 4 --time 0.5", "animated", animated, animated_map);
+    char costs[512], options[1024];
+    snprintf(costs, sizeof costs, "%s/%s-costs.csv", cg_test_tmpdir(), motion);
+    snprintf(options, sizeof options, "--frames 5 --fps 4 --time 0.5 --pass-costs '%s'", costs);
+    render(motion, options, "animated", animated, animated_map);
     /* The last frame's report says the 2D geometry was kept and only the light recomputed. */
     assert_non_null(strstr(out, "rebuilt: geometry kept; light 262144 texels relit (1 geometry build since prepare)"));
+    check_costs(costs);
     render(motion, "--frames 1 --time 1.5", "fresh", fresh, fresh_map);
     render(motion, "--frames 5 --fps 4 --time 0.5 --set terrain.cache=false", "rebuilt", rebuilt, rebuilt_map);
     assert_non_null(strstr(out, "rebuilt: geometry and light rasterized (cache=false)"));

@@ -17,15 +17,15 @@
  * Caching (cache=true, the default): the texels are split into geometry and light. The
  * geometry (position, normal, albedo, emission of the surface under each texel) is rasterized
  * into persistent textures only when it may have changed: the first frame after prepare, or
- * when a height-field instance's world matrix, mesh or material, the set of instances, the
- * scene, the GPU scene's upload (cg_gpu_scene.generation) or the map's region differ from the
- * last build (compared by value, so
- * a world changed by hand without a revision still rebuilds; any doubt rebuilds). The light
- * is recomputed every frame by a compute pass over the texels (relight.comp), at a cost that
- * follows texels, not triangles, with the formula the lit raster uses
- * (common/surface_light.glsl), so that a cached frame equals a rebuilt one. cache=false is the
- * paper's full rebuild: every frame rasterizes the meshes and lights them in the raster. The
- * pass says which it did through fg_pass_report_rebuilt.
+ * when a height-field instance's world matrix, revision, mesh or material, the set of
+ * instances, the scene, the GPU scene's upload (cg_gpu_scene.generation) or the map's region
+ * differ from the last build, compared by value (a world changed by hand without a revision
+ * still rebuilds; any doubt rebuilds). The light is recomputed every frame by a compute pass
+ * over the texels (relight.comp), at a cost that follows texels, not triangles, with the
+ * formula the lit raster uses (common/surface_light.glsl) on the values it would use, so that
+ * a cached frame equals a rebuilt one bit for bit. cache=false is the paper's full rebuild:
+ * every frame rasterizes the meshes and lights them in the raster. The pass says which it did
+ * through fg_pass_report_rebuilt.
  *
  * Radiance range: RGBA16F stores radiance / s, s = a bound on the height fields' radiance /
  * 32768 (sdk/radiance.h), published in the region block: neither 1e9 W/m^2 clips at 65504 nor
