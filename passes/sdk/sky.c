@@ -168,6 +168,34 @@ cgp_sky_prepare(void *state, cgp_sky *sky)
     sky->block = cgp_uniform_buffer(state, sizeof(cg_sky_block));
 }
 
+/* The texels of the last bake in this process, by the model they were baked from: every pass
+ * that reads the sky (gbuffer, a gather) bakes the same sky, so the second one only uploads. The
+ * model holds everything the radiance depends on (the sun's direction included). */
+static struct {
+    bool valid;
+    cg_sky_model model;
+    float *texels;
+} last_bake;
+
+static bool
+bake_cached(const cg_scene *scene, const float **texels, cg_error *err)
+{
+    cg_sky_model model;
+    if (!cg_sky_model_init(scene, &model, err))
+        return false;
+    if (!last_bake.valid || memcmp(&model, &last_bake.model, sizeof model) != 0) {
+        if (!last_bake.texels && !(last_bake.texels = malloc(CGP_SKY_BYTES)))
+            return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "%s: out of memory baking the sky", scene->name);
+        last_bake.valid = false;
+        if (!cgp_sky_bake(scene, last_bake.texels, err))
+            return false;
+        last_bake.model = model;
+        last_bake.valid = true;
+    }
+    *texels = last_bake.texels;
+    return true;
+}
+
 bool
 cgp_sky_update(void *state, cgp_sky *sky, const cg_scene *scene, cg_error *err)
 {
@@ -177,13 +205,9 @@ cgp_sky_update(void *state, cgp_sky *sky, const cg_scene *scene, cg_error *err)
         bool changed = !sky->baked || !cg_sky_equal(&sky->sky, &scene->sky) ||
                        (follows_sun && sky->lights_revision != scene->lights_revision);
         if (changed) {
-            float *texels = malloc(CGP_SKY_BYTES);
-            if (!texels)
-                return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "%s: out of memory baking the sky", scene->name);
-            if (!cgp_sky_bake(scene, texels, err)) {
-                free(texels);
+            const float *texels = NULL;
+            if (!bake_cached(scene, &texels, err))
                 return false;
-            }
             if (!sky->texture) {
                 glCreateTextures(GL_TEXTURE_3D, 1, &sky->texture);
                 glTextureStorage3D(sky->texture, 1, GL_RGBA32F, CGP_SKY_WIDTH, CGP_SKY_HEIGHT, CGP_SKY_LAYERS);
@@ -191,7 +215,6 @@ cgp_sky_update(void *state, cgp_sky *sky, const cg_scene *scene, cg_error *err)
             }
             glTextureSubImage3D(sky->texture, 0, 0, 0, 0, CGP_SKY_WIDTH, CGP_SKY_HEIGHT, CGP_SKY_LAYERS, GL_RGBA,
                                 GL_FLOAT, texels);
-            free(texels);
             sky->sky = scene->sky;
             sky->lights_revision = scene->lights_revision;
             sky->baked = true;

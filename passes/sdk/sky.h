@@ -7,7 +7,8 @@
  *
  * The sky is evaluated by one implementation, cg_sky_model_radiance (core/scene/sky.c), here on
  * the CPU, once per change of the sky (its value, and for a Preetham sky the lights' stamp, since
- * it follows the sun). The texture is a 3D texture of CGP_SKY_LAYERS lat-long layers of
+ * it follows the sun); the passes of a process that read the same sky share one bake (the last
+ * one is kept, keyed by its cg_sky_model) and each upload it. The texture is a 3D texture of CGP_SKY_LAYERS lat-long layers of
  * CGP_SKY_WIDTH x CGP_SKY_HEIGHT texels, RGBA32F (radiance of any brightness):
  *   layer 0      the sky's radiance at each texel centre (the background; the narrowest cones),
  *   layer k > 0  the cosine-weighted mean of the sky over a cone of half angle
@@ -56,7 +57,7 @@ typedef struct cgp_sky {
     bool baked;             /* `sky` and `lights_revision` hold what was baked */
     cg_sky sky;
     uint64_t lights_revision;
-    uint64_t bakes;         /* bakes so far (tests check that a frame does not bake again) */
+    uint64_t bakes;         /* uploads of a new bake so far (a frame with the same sky makes none) */
 } cgp_sky;
 
 /* In prepare(): the sampler and the block, owned by `state` (cgp_state_new). */
