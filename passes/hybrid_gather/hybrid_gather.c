@@ -130,15 +130,15 @@ hybrid_gather_prepare(fg_pass *pass, hybrid_gather_state *s, cg_error *err)
 static bool
 hybrid_gather_execute(fg_pass *pass, hybrid_gather_state *s, cg_error *err)
 {
-    (void)err;
     const cg_hybrid_gather_block block = {
         .maps = {s->has_3d},
         .switches = {fg_param_enum(pass, "cube") == CUBE_EQ11, fg_param_enum(pass, "occlusion"),
                      fg_param_bool(pass, "dda"), fg_param_bool(pass, "skip")},
     };
 
-    cgp_gather_begin(pass, &s->gather, &block, sizeof block, s->has_3d ? fg_texture(pass, "volume") : 0,
-                     s->has_3d ? fg_buffer(pass, "region") : s->empty_block);
+    if (!cgp_gather_begin(pass, &s->gather, &block, sizeof block, s->has_3d ? fg_texture(pass, "volume") : 0,
+                          s->has_3d ? fg_buffer(pass, "region") : s->empty_block, err))
+        return false;
     glBindBufferBase(GL_UNIFORM_BUFFER, CG_BINDING_HEIGHTMAP, s->has_2d ? fg_buffer(pass, "region2d") : s->empty_block);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_HSAT,
                      s->has_2d ? fg_buffer(pass, "hsat_info") : s->empty_block);

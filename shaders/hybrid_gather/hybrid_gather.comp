@@ -232,9 +232,12 @@ main()
             hi = max(hi, v.origin + vec3(cg_volume_extent(v)));
         }
         float t_max = march.max_distance > 0.0 ? march.max_distance : length(hi - lo);
-        for (int k = 0; k < cg_cone_count(); k++)
-            cg_cone_accumulate(diffuse, k, hybrid_trace(origin, cg_cone_direction(frame, k), cg_cone_tan_half(k), xel,
-                                                        t_max, surface));
+        for (int k = 0; k < cg_cone_count(); k++) {
+            // What the cone left open, past the volume and the terrain, sees the sky (common/sky.glsl).
+            vec3 dir = cg_cone_direction(frame, k);
+            cg_cone_accumulate(diffuse, k, cg_sky_gather(hybrid_trace(origin, dir, cg_cone_tan_half(k), xel, t_max, surface),
+                                                         dir, cg_cone_tan_half(k)));
+        }
 #else
         // No 2D lightmap: the VCT gather, the very function cone_gather calls.
         CgVolume v = cg_volume();
