@@ -1,7 +1,9 @@
 /* core/scene/classify.c: which meshes are height fields (hybrid cone tracing paper, section V.A,
  * eq. 5), and the normal rule kept beside it as a documented alternative.
  *
- * Eq. 5, per mesh and per instance in world space (y up):
+ * Eq. 5, per mesh and per instance in world space (y up; an instance that only turns the mesh
+ * about the vertical, scales it uniformly and moves it is measured in the mesh's own frame, the
+ * same for all such instances: measured once):
  *   Step 1: the bottom face of the instance's bounding box is sampled on a regular grid of
  *     `resolution` samples along its longer horizontal side (the other side in proportion, at
  *     least 2), at the cells' centres; each sample's value is the largest y at which the vertical
@@ -177,8 +179,9 @@ typedef struct raster_ctx {
 } raster_ctx;
 
 /* Rows [begin, end) of the grid: every triangle with an area seen from above is drawn into the
- * samples its xz projection covers (inclusive, with a tolerance relative to its area, so that the
- * shared edges of a mesh leave no sample uncovered), keeping the largest y. */
+ * samples its xz projection covers, keeping the largest y. Per row the triangle covers one span
+ * of x, where its plane gives y linearly; the span is widened by a tolerance relative to the
+ * triangle's size, so that the shared edges of a mesh leave no sample uncovered. */
 static void
 raster_rows(void *arg, size_t begin, size_t end, int part)
 {
@@ -192,37 +195,55 @@ raster_rows(void *arg, size_t begin, size_t end, int part)
             g->y[j * (size_t)g->nx + i] = -INFINITY;
     double zb = ((double)begin + 0.5) * g->hz, ze = ((double)end - 0.5) * g->hz;
     for (uint32_t t = 0; t + 2 < m->index_count; t += 3) {
-        const double *a = p + 3 * (size_t)m->indices[t], *b = p + 3 * (size_t)m->indices[t + 1],
-                     *cc = p + 3 * (size_t)m->indices[t + 2];
-        double zmin = fmin(a[2], fmin(b[2], cc[2])), zmax = fmax(a[2], fmax(b[2], cc[2]));
+        const double *v[3] = { p + 3 * (size_t)m->indices[t], p + 3 * (size_t)m->indices[t + 1],
+                               p + 3 * (size_t)m->indices[t + 2] };
+        double zmin = fmin(v[0][2], fmin(v[1][2], v[2][2])), zmax = fmax(v[0][2], fmax(v[1][2], v[2][2]));
         if (zmax < zb - g->hz || zmin > ze + g->hz)
             continue;
-        double area2 = (b[0] - a[0]) * (cc[2] - a[2]) - (b[2] - a[2]) * (cc[0] - a[0]);
-        if (!(fabs(area2) > 0))
+        double ex = v[1][0] - v[0][0], ez = v[1][2] - v[0][2], fx = v[2][0] - v[0][0], fz = v[2][2] - v[0][2];
+        double area2 = ex * fz - ez * fx;
+        double xmin = fmin(v[0][0], fmin(v[1][0], v[2][0])), xmax = fmax(v[0][0], fmax(v[1][0], v[2][0]));
+        double size = fmax(xmax - xmin, zmax - zmin);
+        if (!(fabs(area2) > 1e-18 * size * size))
             continue; /* seen edge-on from above: covers no sample */
-        double xmin = fmin(a[0], fmin(b[0], cc[0])), xmax = fmax(a[0], fmax(b[0], cc[0]));
-        long i0 = (long)ceil(xmin / g->hx - 0.5 - 1e-9), i1 = (long)floor(xmax / g->hx - 0.5 + 1e-9);
-        long j0 = (long)ceil(zmin / g->hz - 0.5 - 1e-9), j1 = (long)floor(zmax / g->hz - 0.5 + 1e-9);
-        if (i0 < 0) i0 = 0;
-        if (i1 > g->nx - 1) i1 = g->nx - 1;
+        /* The plane y = y0 + a (x - x0) + b (z - z0) through the three vertices. */
+        double ey = v[1][1] - v[0][1], fy = v[2][1] - v[0][1];
+        double a = (ey * fz - ez * fy) / area2, b = (ex * fy - ey * fx) / area2;
+        double tol = 1e-9 * size;
+        long j0 = (long)ceil((zmin - tol) / g->hz - 0.5), j1 = (long)floor((zmax + tol) / g->hz - 0.5);
         if (j0 < (long)begin) j0 = (long)begin;
         if (j1 > (long)end - 1) j1 = (long)end - 1;
-        double sign = area2 > 0 ? 1.0 : -1.0, tol = -1e-9 * fabs(area2);
         for (long j = j0; j <= j1; j++) {
             double z = ((double)j + 0.5) * g->hz;
-            for (long i = i0; i <= i1; i++) {
-                double x = ((double)i + 0.5) * g->hx;
-                /* Barycentric weights from the edge functions (of b-c, c-a, a-b). */
-                double w0 = sign * ((cc[0] - b[0]) * (z - b[2]) - (cc[2] - b[2]) * (x - b[0]));
-                double w1 = sign * ((a[0] - cc[0]) * (z - cc[2]) - (a[2] - cc[2]) * (x - cc[0]));
-                double w2 = sign * ((b[0] - a[0]) * (z - a[2]) - (b[2] - a[2]) * (x - a[0]));
-                if (w0 < tol || w1 < tol || w2 < tol)
+            /* The span of x where the line at z crosses the triangle: between the crossings of
+             * its edges (an edge along the line gives its own ends). */
+            double lo = INFINITY, hi = -INFINITY;
+            for (int e = 0; e < 3; e++) {
+                const double *u = v[e], *w = v[(e + 1) % 3];
+                double z0 = fmin(u[2], w[2]), z1 = fmax(u[2], w[2]);
+                if (z < z0 - tol || z > z1 + tol)
                     continue;
-                double y = (w0 * a[1] + w1 * b[1] + w2 * cc[1]) / (w0 + w1 + w2);
-                float *s = &g->y[(size_t)j * g->nx + i];
-                if ((float)y > *s)
-                    *s = (float)y;
+                if (z1 - z0 <= tol) {
+                    lo = fmin(lo, fmin(u[0], w[0]));
+                    hi = fmax(hi, fmax(u[0], w[0]));
+                    continue;
+                }
+                double s = fmin(fmax((z - u[2]) / (w[2] - u[2]), 0.0), 1.0);
+                double x = u[0] + s * (w[0] - u[0]);
+                lo = fmin(lo, x);
+                hi = fmax(hi, x);
             }
+            if (!(lo <= hi))
+                continue;
+            long i0 = (long)ceil((lo - tol) / g->hx - 0.5), i1 = (long)floor((hi + tol) / g->hx - 0.5);
+            if (i0 < 0) i0 = 0;
+            if (i1 > g->nx - 1) i1 = g->nx - 1;
+            float *row = &g->y[(size_t)j * g->nx];
+            double y = v[0][1] + a * (((double)i0 + 0.5) * g->hx - v[0][0]) + b * (z - v[0][2]);
+            double dy = a * g->hx;
+            for (long i = i0; i <= i1; i++, y += dy)
+                if ((float)y > row[i])
+                    row[i] = (float)y;
         }
     }
 }
@@ -285,8 +306,8 @@ hf_grid_build(const placed_mesh *pm, int resolution, int threads, hf_grid *g, cg
                             clo = g->lo[g->offset[k - 1] + q];
                             chi = g->hi[g->offset[k - 1] + q];
                         }
-                        lo = fminf(lo, clo);
-                        hi = fmaxf(hi, chi);
+                        lo = clo < lo ? clo : lo;
+                        hi = chi > hi ? chi : hi;
                     }
                 g->lo[g->offset[k] + (size_t)j * g->level_nx[k] + i] = lo;
                 g->hi[g->offset[k] + (size_t)j * g->level_nx[k] + i] = hi;
@@ -516,6 +537,21 @@ normals_up(const cg_mesh *mesh, const float world[16])
 
 /* ---------------------------------------------------------------- per mesh, per scene */
 
+/* Whether an instance's transform only turns the mesh about the vertical, scales it uniformly
+ * (mirrored or not) and moves it: its local y stays the world's up, x and z stay horizontal. Eq. 5
+ * is then the same for every such instance when measured in the mesh's own frame (its bounding
+ * box turns with it; the distances and the diagonal scale alike), so it is measured once. */
+static bool
+turns_about_vertical(const float m[16])
+{
+    double s = sqrt((double)m[4] * m[4] + (double)m[5] * m[5] + (double)m[6] * m[6]);
+    double tol = 1e-6 * s;
+    return s > 0 && fabs(m[4]) <= tol && fabs(m[6]) <= tol && m[5] > 0 && fabs(m[1]) <= tol && fabs(m[9]) <= tol &&
+           fabs(sqrt((double)m[0] * m[0] + (double)m[2] * m[2]) - s) <= tol &&
+           fabs(sqrt((double)m[8] * m[8] + (double)m[10] * m[10]) - s) <= tol &&
+           fabs((double)m[0] * m[8] + (double)m[2] * m[10]) <= tol * s;
+}
+
 bool
 cg_mesh_classify(const cg_scene *scene, int mesh_index, const cg_classify_options *options, cg_mesh_class *out,
                  cg_error *err)
@@ -526,7 +562,8 @@ cg_mesh_classify(const cg_scene *scene, int mesh_index, const cg_classify_option
     out->distance = out->max_distance = NAN;
     out->instances = 0;
     out->normals_up = true;
-    bool all_below = true;
+    bool all_below = true, own_frame_done = false;
+    double own_d = 0, own_dmax = 0;
     for (int i = 0; i < scene->instance_count; i++) {
         const cg_instance *inst = &scene->instances[i];
         if (inst->mesh != mesh_index)
@@ -536,8 +573,17 @@ cg_mesh_classify(const cg_scene *scene, int mesh_index, const cg_classify_option
         if (o.rule != CG_CLASSIFY_EQ5)
             continue;
         double d, dmax;
-        if (!eq5_instance(mesh, inst->world, &o, &d, &dmax, err))
+        if (turns_about_vertical(inst->world)) {
+            if (!own_frame_done) {
+                static const float identity[16] = { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
+                if (!eq5_instance(mesh, identity, &o, &own_d, &own_dmax, err))
+                    return false;
+                own_frame_done = true;
+            }
+            d = own_d, dmax = own_dmax;
+        } else if (!eq5_instance(mesh, inst->world, &o, &d, &dmax, err)) {
             return false;
+        }
         /* The worst instance decides: the kind is the mesh's, shared by all of them. */
         if (isnan(out->distance) || d > out->distance)
             out->distance = d;

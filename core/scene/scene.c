@@ -1,4 +1,4 @@
-/* core/scene/scene.c: scene loading dispatch (file or built-in, with the classification
+/* core/scene/scene.c: scene loading dispatch (file, built-in or DEM, with the classification
  * keys of the source's query), freeing, bounds, validation. The height-field classification of
  * meshes is classify.c's.
  */
@@ -271,12 +271,12 @@ cg_scene_load(const char *source, cg_scene *out, cg_error *err)
 {
     memset(out, 0, sizeof *out);
     if (!source || !source[0])
-        return cg_fail(err, CG_ERR_USAGE, "no scene given (a .gltf/.glb path or builtin:NAME)");
-    /* The query: after the '?' of a built-in source, or of a file name that is not itself
+        return cg_fail(err, CG_ERR_USAGE, "no scene given (a .gltf/.glb path, builtin:NAME or dem:IMAGE)");
+    /* The query: after the '?' of a built-in or DEM source, or of a file name that is not itself
      * an existing file (so that a file whose name holds a '?' still loads). */
     const char *q = strchr(source, '?');
-    bool builtin = has_prefix(source, "builtin:");
-    if (q && !builtin && is_file(source))
+    bool builtin = has_prefix(source, "builtin:"), dem = has_prefix(source, "dem:");
+    if (q && !builtin && !dem && is_file(source))
         q = NULL;
     size_t len = q ? (size_t)(q - source) : strlen(source);
     char *path = malloc(len + 1), *rest = malloc((q ? strlen(q) : 0) + 1);
@@ -292,6 +292,8 @@ cg_scene_load(const char *source, cg_scene *out, cg_error *err)
     if (ok && builtin) {
         ok = cg_builtin_scene_load(path + strlen("builtin:"), rest[0] ? rest : NULL, out, err) &&
              mark_all(out, CG_KIND_SCENE, err);
+    } else if (ok && dem) {
+        ok = cg_dem_load(path + strlen("dem:"), rest[0] ? rest : NULL, out, err);
     } else if (ok && rest[0]) {
         ok = cg_fail(err, CG_ERR_SCENE_PARAM, "%s: unknown parameter '%s' (a glTF file takes classify, "
                      "eq5_resolution, eq5_threshold, eq5_points)", source, rest);

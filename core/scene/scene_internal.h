@@ -1,10 +1,10 @@
-/* core/scene/scene_internal.h: helpers shared by the scene loaders (scene.c, classify.c,
+/* core/scene/scene_internal.h: helpers shared by the scene loaders (scene.c, classify.c, dem.c,
  * builtin/ (one file per scene), gltf_adapter.cpp). Not a public header: passes and apps use cg/scene.h only.
  *
  * Declares: cg_scene_add_material, cg_scene_add_mesh, cg_scene_add_instance,
  *           cg_scene_add_light, cg_scene_add_camera, cg_scene_add_texture,
  *           cg_mesh_compute_bounds, cg_mesh_generate_normals, CG_HEIGHTFIELD_MIN_NY,
- *           cg_scene_set_kind_source, cg_scene_classify, cg_builtin_scene_load,
+ *           cg_scene_set_kind_source, cg_scene_classify, cg_dem_load, cg_builtin_scene_load,
  *           cg_gltf_load, cg_gltf_check_json, cg_copy_name.
  */
 #ifndef CG_SCENE_INTERNAL_H
@@ -51,6 +51,10 @@ bool cg_scene_set_kind_source(cg_scene *scene, int mesh, cg_kind_source source, 
 /* Classifies (cg_mesh_classify, with scene->classify) every mesh whose kind source is
  * CG_KIND_CLASSIFIED and sets its kind; the others keep theirs. Called by cg_scene_load. */
 bool cg_scene_classify(cg_scene *scene, cg_error *err);
+
+/* A height-field scene from a DEM image, "dem:PATH?key=value&..." (dem.c, docs/scenes.md); query
+ * may be NULL. */
+bool cg_dem_load(const char *path, const char *query, cg_scene *out, cg_error *err);
 
 /* "NAME" and "key=value&..." (query may be NULL) of a "builtin:" source. */
 bool cg_builtin_scene_load(const char *name, const char *query, cg_scene *out, cg_error *err);

@@ -1,4 +1,4 @@
-/* cg/scene.h: the plain C scene every pass reads: glTF 2.0 files and built-in scenes.
+/* cg/scene.h: the plain C scene every pass reads: glTF 2.0 files, built-in scenes, DEM images.
  *
  * Declares: cg_mesh_kind, cg_texture, cg_material, cg_mesh, cg_instance, cg_light_type,
  *           cg_light, cg_camera_type, cg_camera, cg_sky_type, cg_sky, cg_kind_source,
@@ -190,7 +190,8 @@ typedef struct cg_scene {
     int mesh_class_count;
 } cg_scene;
 
-/* Loads `source`: a .gltf/.glb path or "builtin:NAME", each with an optional "?key=value&..." (e.g. "builtin:openworld?triangles=2000000&seed=7",
+/* Loads `source`: a .gltf/.glb path, "builtin:NAME" or "dem:IMAGE" (docs/scenes.md), each
+ * with an optional "?key=value&..." (e.g. "builtin:openworld?triangles=2000000&seed=7",
  * "town.glb?eq5_threshold=0.002"); the classification keys above are taken by every kind of
  * source. Then classifies the meshes whose kind the source does not give. On failure *out is
  * left empty and err names the file and the problem. */
