@@ -57,12 +57,74 @@ sweep_runs_and_caches_the_reference(void **state)
     }
     assert_non_null(strstr(out, "shadow.resolution=512"));
     assert_null(strstr(out, "from the cache"));
-    /* Again: both references come from the cache. */
+    /* Again: the reference and its direct part come from the cache. */
     code = run(args, out, sizeof out);
     assert_int_equal(code, 0);
-    const char *first = strstr(out, "from the cache");
-    assert_non_null(first);
-    assert_non_null(strstr(first + 1, "from the cache"));
+    assert_non_null(strstr(out, "reference (4 spp, 1 bounces) and its direct part from the cache"));
+    assert_null(strstr(out, "rendering the reference"));
+    /* A sky is part of the scene: it is not the cached reference (the cache keys hash it). */
+    snprintf(args, sizeof args,
+             "bench --scene builtin:cornell --graph direct.json --vary shadow.resolution=256,512 "
+             "--size 32x18 --ref-spp 4 --pt-spp 1,2 --frames 2 --warmup 1 --out '%s/b' --images --sky 0.5", dir);
+    code = run(args, out, sizeof out);
+    assert_int_equal(code, 0);
+    assert_non_null(strstr(out, "rendering the reference"));
+}
+
+/* The scene's light in a sweep: the default light for a scene nothing lights, with its notice
+ * (the reference and every setting see the same); graph files that ask for different skies
+ * are refused before anything renders, unless --sky chooses one. */
+static void
+sweep_lights_each_scene_once(void **state)
+{
+    (void)state;
+    static char out[1 << 16];
+    char args[8192];
+    const char *dir = cg_test_tmpdir();
+    snprintf(args, sizeof args, "bench --scene 'builtin:furnace?radiance=0' --graph direct.json --size 16x16 "
+             "--ref-spp 1 --pt-spp 1 --frames 1 --warmup 0 --out '%s/dark'", dir);
+    int code = run(args, out, sizeof out);
+    if (code != 0)
+        fail_msg("bench exited with %d:\n%s", code, out);
+    assert_non_null(strstr(out, "conegraph bench: scene builtin:furnace?radiance=0 has no light: added a sun"));
+    snprintf(args, sizeof args, "bench --scene 'builtin:furnace?radiance=0' --graph direct.json --size 16x16 "
+             "--ref-spp 1 --pt-spp 1 --frames 1 --warmup 0 --out '%s/dark2' --no-default-light", dir);
+    assert_int_equal(run(args, out, sizeof out), 0);
+    assert_null(strstr(out, "added a sun"));
+    /* Two graph files asking for two skies. */
+    const char *blue = cg_test_write_file("blue.json",
+        "{ \"version\": 1, \"sky\": \"0.2,0.3,0.6\",\n"
+        "  \"passes\": { \"trace\": { \"type\": \"path_trace\", \"params\": { \"spp\": 1 } },\n"
+        "    \"final\": { \"type\": \"composite\", \"inputs\": { \"direct\": \"trace.radiance\" } } },\n"
+        "  \"outputs\": [ \"final.hdr\", \"final.ldr\" ] }\n", 0);
+    const char *grey = cg_test_write_file("grey.json",
+        "{ \"version\": 1, \"sky\": 0.5,\n"
+        "  \"passes\": { \"trace\": { \"type\": \"path_trace\", \"params\": { \"spp\": 1 } },\n"
+        "    \"final\": { \"type\": \"composite\", \"inputs\": { \"direct\": \"trace.radiance\" } } },\n"
+        "  \"outputs\": [ \"final.hdr\", \"final.ldr\" ] }\n", 0);
+    snprintf(args, sizeof args, "bench --scene builtin:cornell --graph '%s' --graph '%s' --size 16x16 --ref-spp 1 "
+             "--pt-spp 1 --frames 1 --warmup 0 --out '%s/skies'", blue, grey, dir);
+    assert_int_equal(run(args, out, sizeof out), 2);
+    assert_non_null(strstr(out, "grey.json asks for the sky 0.5, but the scene's sky is 0.2,0.3,0.6"));
+    assert_null(strstr(out, "rendering the reference"));
+    snprintf(args, sizeof args, "bench --scene builtin:cornell --graph '%s' --graph '%s' --size 16x16 --ref-spp 1 "
+             "--pt-spp 1 --frames 1 --warmup 0 --out '%s/skies' --sky 0.1", blue, grey, dir);
+    assert_int_equal(run(args, out, sizeof out), 0);
+    /* The sweep file's fields. */
+    const char *sweep = cg_test_write_file("sky-sweep.json",
+        "{ \"scenes\": [\"builtin:furnace?radiance=0\"], \"size\": \"16x16\", \"frames\": 1, \"warmup\": 0,\n"
+        "  \"sky\": \"0.5\", \"default_light\": false,\n"
+        "  \"reference\": { \"spp\": 1 }, \"path_tracer_spp\": [1],\n"
+        "  \"settings\": [ { \"graph\": \"direct.json\" } ] }\n", 0);
+    snprintf(args, sizeof args, "bench --sweep '%s' --out '%s/sw'", sweep, dir);
+    assert_int_equal(run(args, out, sizeof out), 0);
+    assert_null(strstr(out, "added a sun"));
+    const char *bad = cg_test_write_file("bad-sky.json", "{ \"sky\": \"purple\" }", 0);
+    snprintf(args, sizeof args, "bench --sweep '%s' --out '%s/x'", bad, dir);
+    assert_int_equal(run(args, out, sizeof out), 2);
+    bad = cg_test_write_file("bad-light.json", "{ \"default_light\": 1 }", 0);
+    snprintf(args, sizeof args, "bench --sweep '%s' --out '%s/x'", bad, dir);
+    assert_int_equal(run(args, out, sizeof out), 2);
 }
 
 static void
@@ -256,6 +318,7 @@ main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(sweep_runs_and_caches_the_reference),
         cmocka_unit_test(sweep_file),
+        cmocka_unit_test(sweep_lights_each_scene_once),
         cmocka_unit_test(bad_input_exits_with_2),
         cmocka_unit_test(one_bad_setting_renders_and_writes_nothing),
         cmocka_unit_test(shards_merge_into_the_unsharded_table),

@@ -1,7 +1,8 @@
 /* Camera conventions: a point projected by view_proj lands at the expected pixel (GL window
  * coordinates, pixel centres at +0.5, y from the bottom), aspect follows the image, an
  * orthographic camera, a scaled camera node, the framed view of a camera-less scene, finite
- * far planes, and camera selection by name and index. */
+ * far planes, camera selection by name, index and "auto", a camera's own aspect ratio fitted
+ * inside the image instead of stretched, and views moved, aimed and zoomed by a cg_view_spec. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -191,6 +192,116 @@ framed_view_sees_the_bounds(void **state)
     cg_scene_free(&s);
 }
 
+/* glTF aspectRatio 1 in a 2:1 and a 1:2 image: the camera's square frame fits inside, its
+ * corner lands on the image's edge, pixels stay square (no stretch). */
+static void
+own_aspect_ratio_is_fitted_not_stretched(void **state)
+{
+    (void)state;
+    cg_camera cam = { .type = CG_CAMERA_PERSPECTIVE, .yfov = 0.6f, .aspect = 1.0f, .znear = 0.1f, .zfar = 100 };
+    strcpy(cam.name, "square");
+    for (int k = 0; k < 4; k++)
+        cam.world[5 * k] = 1;
+    cam.world[14] = 20;
+    cg_scene s;
+    one_triangle_scene(&s, &cam);
+    double t = tan(0.3), d = 10;
+    /* The top-right corner of the camera's square frame at depth d. */
+    double corner[3] = { t * d, t * d, 20 - d }, px[2];
+    cg_view v;
+    cg_view_from_scene(&s, 0, 200, 100, &v);
+    project(&v, corner, px, NULL);
+    assert_float_equal(px[1], 100, 1e-3);           /* the vertical field of view is kept */
+    assert_float_equal(px[0], 100 + 50, 1e-3);      /* square pixels: half the height to the right */
+    cg_view_from_scene(&s, 0, 100, 200, &v);
+    project(&v, corner, px, NULL);
+    assert_float_equal(px[0], 100, 1e-3);           /* the horizontal one is kept, the vertical widened */
+    assert_float_equal(px[1], 100 + 50, 1e-3);
+    char note[512];
+    cg_view_spec spec = { .camera = 0 };
+    assert_true(cg_view_aspect_note(&s, &spec, 200, 100, note, sizeof note));
+    assert_non_null(strstr(note, "camera 'square' has aspect ratio 1 and the 200x100 image 2"));
+    assert_non_null(strstr(note, "horizontal field of view is widened from 34.4 to 63.5 degrees"));
+    assert_true(cg_view_aspect_note(&s, &spec, 100, 200, note, sizeof note));
+    assert_non_null(strstr(note, "vertical field of view is widened from 34.4 to 63.5 degrees"));
+    assert_false(cg_view_aspect_note(&s, &spec, 100, 100, note, sizeof note));
+    /* An orthographic camera: its 1:1 frame of half extent 2 inside a 1:2 image. */
+    s.cameras[0] = (cg_camera){ .type = CG_CAMERA_ORTHOGRAPHIC, .xmag = 2, .ymag = 2, .aspect = 1, .znear = 0.1f,
+                                .zfar = 50 };
+    memcpy(s.cameras[0].world, cam.world, sizeof cam.world);
+    cg_view_from_scene(&s, 0, 100, 200, &v);
+    double edge[3] = { 2, 2, 0 };
+    project(&v, edge, px, NULL);
+    assert_float_equal(px[0], 100, 1e-3);
+    assert_float_equal(px[1], 150, 1e-3);
+    cg_scene_free(&s);
+}
+
+/* --from, --look-at, --fov on the framing and on a scene camera. */
+static void
+view_spec_moves_aims_and_zooms(void **state)
+{
+    (void)state;
+    cg_camera cam = { .type = CG_CAMERA_PERSPECTIVE, .yfov = 0.6f, .znear = 0.1f, .zfar = 0 };
+    strcpy(cam.name, "cam");
+    for (int k = 0; k < 4; k++)
+        cam.world[5 * k] = 1;
+    cam.world[14] = 20;
+    cg_scene s;
+    one_triangle_scene(&s, &cam);
+    cg_error err = { 0 };
+    double px[2], z;
+    /* The framing aimed from a chosen eye: the point looked at lands in the middle and the
+     * whole scene lies between the planes. */
+    cg_view_spec spec = { .camera = -1, .from_given = true, .from = { 30, 40, 50 }, .look_at_given = true,
+                          .look_at = { 1, 2, 3 } };
+    assert_cg_ok(cg_view_spec_check(&s, &spec, &err), &err);
+    cg_view v;
+    cg_view_from_spec(&s, &spec, 64, 32, &v);
+    assert_float_equal(v.position[0], 30, 1e-5);
+    assert_float_equal(v.position[2], 50, 1e-5);
+    double target[3] = { 1, 2, 3 };
+    project(&v, target, px, NULL);
+    assert_float_equal(px[0], 32, 1e-3);
+    assert_float_equal(px[1], 16, 1e-3);
+    for (int c = 0; c < 8; c++) {
+        double corner[3] = { (c & 1) ? s.bounds_max[0] : s.bounds_min[0], (c & 2) ? s.bounds_max[1] : s.bounds_min[1],
+                             (c & 4) ? s.bounds_max[2] : s.bounds_min[2] };
+        project(&v, corner, px, &z);
+        assert_true(z > -1 && z < 1);
+    }
+    /* Straight down has an up vector too. */
+    spec = (cg_view_spec){ .camera = -1, .from_given = true, .from = { 0, 50, 0 }, .look_at_given = true };
+    cg_view_from_spec(&s, &spec, 64, 64, &v);
+    project(&v, (double[3]){ 0, 0, 0 }, px, NULL);
+    assert_float_equal(px[0], 32, 1e-3);
+    assert_float_equal(px[1], 32, 1e-3);
+    assert_true(isfinite(v.inv_view_proj[0]));
+    /* A scene camera moved keeps its orientation; --fov sets the image's vertical field. */
+    spec = (cg_view_spec){ .camera = 0, .from_given = true, .from = { 5, 1, 30 }, .yfov = 1.0f };
+    assert_cg_ok(cg_view_spec_check(&s, &spec, &err), &err);
+    cg_view_from_spec(&s, &spec, 64, 64, &v);
+    double ahead[3] = { 5, 1 + 10 * tan(0.5), 20 };
+    project(&v, ahead, px, NULL);
+    assert_float_equal(px[0], 32, 1e-3);
+    assert_float_equal(px[1], 64, 1e-3);
+    /* Refused: a look-at point at the eye, a field of view out of range or for an
+     * orthographic camera, a camera the scene lacks. */
+    spec = (cg_view_spec){ .camera = 0, .look_at_given = true, .look_at = { 0, 0, 20 } };
+    assert_cg_status(cg_view_spec_check(&s, &spec, &err), &err, CG_ERR_USAGE);
+    spec = (cg_view_spec){ .camera = -1, .yfov = 3.2f };
+    assert_cg_status(cg_view_spec_check(&s, &spec, &err), &err, CG_ERR_USAGE);
+    spec = (cg_view_spec){ .camera = 1 };
+    assert_cg_status(cg_view_spec_check(&s, &spec, &err), &err, CG_ERR_USAGE);
+    s.cameras[0].type = CG_CAMERA_ORTHOGRAPHIC;
+    s.cameras[0].ymag = 1;
+    s.cameras[0].zfar = 50;
+    spec = (cg_view_spec){ .camera = 0, .yfov = 1.0f };
+    assert_cg_status(cg_view_spec_check(&s, &spec, &err), &err, CG_ERR_USAGE);
+    assert_non_null(strstr(err.message, "orthographic"));
+    cg_scene_free(&s);
+}
+
 static void
 camera_selection(void **state)
 {
@@ -206,6 +317,9 @@ camera_selection(void **state)
     assert_cg_status(cg_camera_select(&s, "1", &cam, &err), &err, CG_ERR_USAGE);
     assert_cg_status(cg_camera_select(&s, "nobody", &cam, &err), &err, CG_ERR_USAGE);
     assert_non_null(strstr(err.message, "overview"));
+    /* auto: the framing, although the scene has a camera. */
+    assert_cg_ok(cg_camera_select(&s, "auto", &cam, &err), &err);
+    assert_int_equal(cam, -1);
     cg_scene_free(&s);
 }
 
@@ -217,6 +331,8 @@ main(void)
         cmocka_unit_test(orthographic_and_scaled_cameras),
         cmocka_unit_test(framed_view_sees_the_bounds),
         cmocka_unit_test(camera_selection),
+        cmocka_unit_test(own_aspect_ratio_is_fitted_not_stretched),
+        cmocka_unit_test(view_spec_moves_aims_and_zooms),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -72,7 +72,7 @@ scene_of(mesh_in *m, const float (*worlds)[16], int instances, cg_scene *s)
 {
     memset(s, 0, sizeof *s);
     s->meshes = calloc(1, sizeof *s->meshes);
-    s->instances = calloc((size_t)(instances ? instances : 1), sizeof *s->instances);
+    s->instances = calloc((size_t)(instances ? instances : 1), sizeof *s->instances); /* zero: not moving */
     assert_non_null(s->meshes);
     assert_non_null(s->instances);
     s->mesh_count = 1;
@@ -268,6 +268,7 @@ resolution_scale_points_instances(void **state)
     s.instances = realloc(s.instances, 2 * sizeof *s.instances);
     assert_non_null(s.instances);
     s.instance_count = 2;
+    s.instances[1] = s.instances[0];
     float standing[16] = { 1, 0, 0, 0, 0, 0, 1, 0, 0, -1, 0, 0, 0, 0, 0, 1 };
     memcpy(s.instances[1].world, standing, sizeof standing);
     cg_mesh_class two = classify(&s, CG_CLASSIFY_EQ5, 0, CG_CLASSIFY_VERTICES, 0);

@@ -50,6 +50,33 @@ json_number(const char *json, const char *section, const char *key)
     return strtod(k + strlen(pattern), NULL);
 }
 
+/* An 8-bit sRGB PNG beside a linear EXR: refused with exit 2, naming both and the way out;
+ * two PNGs, or two EXRs, are compared. */
+static void
+display_image_beside_linear_one_is_refused(void **state)
+{
+    (void)state;
+    const char *exr = write_constant("lin.exr", 0.2f, W, H);
+    const char *png = write_constant("disp.png", 0.2f, W, H);
+    const char *other = write_constant("other.exr", 0.25f, W, H);
+    char args[9000], out[8192];
+    snprintf(args, sizeof args, "compare '%s' '%s'", png, exr);
+    assert_int_equal(cg_test_run_conegraph(args, true, out, sizeof out), 2);
+    assert_non_null(strstr(out, "disp.png holds 8-bit integer sRGB values"));
+    assert_non_null(strstr(out, "lin.exr 32-bit float linear ones"));
+    assert_non_null(strstr(out, "--colorconvert sRGB linear -d float -o "));
+    assert_non_null(strstr(out, "disp-linear.exr"));
+    snprintf(args, sizeof args, "compare '%s' '%s'", exr, png);
+    assert_int_equal(run(args, out, sizeof out), 2);
+    /* The direct part must be of the reference's kind too. */
+    snprintf(args, sizeof args, "compare '%s' '%s' --direct '%s'", other, exr, png);
+    assert_int_equal(run(args, out, sizeof out), 2);
+    snprintf(args, sizeof args, "compare '%s' '%s' --json", png, png);
+    assert_int_equal(run(args, out, sizeof out), 0);
+    snprintf(args, sizeof args, "compare '%s' '%s' --direct '%s' --json", other, exr, exr);
+    assert_int_equal(run(args, out, sizeof out), 0);
+}
+
 static void
 identical_images(void **state)
 {
@@ -116,6 +143,7 @@ main(void)
         cmocka_unit_test(identical_images),
         cmocka_unit_test(offset_and_indirect_part),
         cmocka_unit_test(bad_input_exits_with_2),
+        cmocka_unit_test(display_image_beside_linear_one_is_refused),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -1,6 +1,7 @@
 /* The demo without a window: parameter stepping from the tables (apps/demo/demo_params.c),
- * the pass/parameter selection on a real graph, the fly camera, and the command line's bad
- * input (exit 2 before any window opens; $CONEGRAPH_DEMO_EXE). */
+ * the UI's controls built from the same tables, the pass/parameter selection on a real
+ * graph, the fly camera, and the command line's bad input (exit 2 before any window opens;
+ * $CONEGRAPH_DEMO_EXE). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -418,6 +419,184 @@ test_every_table_steps_validly(void **state)
     fg_registry_destroy(registry);
 }
 
+static void
+assert_list(const demo_control *c, const double *values, int count, int current)
+{
+    assert_int_equal(c->kind, DEMO_CONTROL_LIST);
+    assert_int_equal(c->count, count);
+    for (int i = 0; i < count; i++)
+        if (c->values[i] != values[i])
+            fail_msg("entry %d is %g, expected %g", i, c->values[i], values[i]);
+    assert_int_equal(c->current, current);
+}
+
+/* Each table entry gets the control its constraints ask for: a list of exactly the values
+ * Left/Right reach, a slider over a range up to 1000 wide, a drag over a wider one. */
+static void
+test_controls(void **state)
+{
+    (void)state;
+    demo_control c;
+    demo_param_control(&cones, 6, &c);
+    assert_list(&c, (const double[]){ 1, 6, 9, 16 }, 4, 1);
+    demo_param_control(&resolution, 128, &c);
+    assert_list(&c, (const double[]){ 16, 32, 64, 128, 256, 512 }, 6, 3);
+    /* Doubling: what Left reaches from the value, the value, what Right reaches (an int
+     * halves rounding down, so 100 lists 12 and 200, not 12.5 or 128). */
+    demo_param_control(&samples, 100, &c);
+    assert_list(&c, (const double[]){ 1, 3, 6, 12, 25, 50, 100, 200, 400, 800, 1600, 3200, 6400, 12800,
+                                      25600, 51200, 65536 }, 17, 6);
+    demo_param_control(&samples, 64, &c);
+    assert_int_equal(c.count, 17);
+    assert_true(c.values[0] == 1 && c.values[6] == 64 && c.values[16] == 65536);
+    assert_int_equal(c.current, 6);
+    for (int i = 0; i + 1 < c.count; i++) {
+        double next;
+        assert_true(demo_param_step(&samples, c.values[i], 1, &next) && next == c.values[i + 1]);
+    }
+    /* A value off the list (only code can set one) is no entry. */
+    demo_param_control(&cones, 7, &c);
+    assert_list(&c, (const double[]){ 1, 6, 9, 16 }, 4, -1);
+    demo_param_control(&tonemap, 2, &c);
+    assert_list(&c, (const double[]){ 0, 1, 2 }, 3, 2);
+
+    demo_param_control(&count, 7, &c);
+    assert_int_equal(c.kind, DEMO_CONTROL_SLIDER);
+    assert_true(c.min == 0 && c.max == 256 && c.step == 1);
+    demo_param_control(&exposure, 0, &c);
+    assert_int_equal(c.kind, DEMO_CONTROL_SLIDER);
+    assert_true(c.min == -20 && c.max == 20 && c.step == 0.5);
+    demo_param_control(&aperture, 30, &c);
+    assert_int_equal(c.kind, DEMO_CONTROL_SLIDER);
+    assert_true(c.step == 5);
+    demo_param_control(&light, -1, &c);
+    assert_int_equal(c.kind, DEMO_CONTROL_DRAG);
+    assert_true(c.min == -1 && c.max == 65535 && c.step == 1);
+    demo_param_control(&distance, 10, &c);
+    assert_int_equal(c.kind, DEMO_CONTROL_DRAG);
+    assert_true(c.step == 2);
+
+    demo_param_control(&flag, 1, &c);
+    assert_int_equal(c.kind, DEMO_CONTROL_CHECKBOX);
+    demo_param_control(&text, 0, &c);
+    assert_int_equal(c.kind, DEMO_CONTROL_TEXT);
+}
+
+/* Sliders and drags land on the step's grid, within the range. */
+static void
+test_snap(void **state)
+{
+    (void)state;
+    assert_true(demo_param_snap(&exposure, 0.3) == 0.5);
+    assert_true(demo_param_snap(&exposure, 0.2) == 0);
+    assert_true(demo_param_snap(&exposure, -0.74) == -0.5);
+    assert_true(demo_param_snap(&exposure, 25) == 20);
+    assert_true(demo_param_snap(&aperture, 12) == 10);
+    assert_true(demo_param_snap(&aperture, 13) == 15);
+    assert_true(demo_param_snap(&aperture, 149) == 150);
+    assert_true(demo_param_snap(&count, 3.6) == 4);
+    assert_true(demo_param_snap(&light, -3) == -1);
+    assert_true(fabs(demo_param_snap(&step, 0.07) - 0.05) < 1e-12);
+    assert_true(fabs(demo_param_snap(&step, 0.33) - 0.35) < 1e-12);
+    assert_true(demo_param_snap(&step, 0.01) == 0.05);
+    /* A wide range's grid follows the value's magnitude: 2 at 10, 20 at 100. */
+    assert_true(demo_param_snap(&distance, 10.9) == 10);
+    assert_true(demo_param_snap(&distance, 109) == 100);
+    /* Lists are clamped only: their entries are the control's. */
+    assert_true(demo_param_snap(&samples, 100) == 100);
+    assert_true(demo_param_snap(&samples, 1e6) == 65536);
+}
+
+/* Every built-in parameter's control, built at its default, offers only values the graph's
+ * validation accepts: each entry of a list (and the default among them), a slider's or a
+ * drag's ends, its middle and its default snapped to the grid. */
+static void
+test_every_control_valid(void **state)
+{
+    (void)state;
+    cg_error err = { 0 };
+    fg_registry *registry = fg_registry_create();
+    assert_cg_ok(cg_builtin_passes_register(registry, &err), &err);
+    fg_graph *graph = fg_graph_create(registry);
+    int lists = 0, numbers = 0;
+    for (int t = 0; t < fg_registry_count(registry); t++) {
+        const fg_pass_type *type = fg_registry_at(registry, t);
+        char name[64];
+        snprintf(name, sizeof name, "p%d", t);
+        assert_cg_ok(fg_graph_add_pass(graph, name, type->name, NULL, &err), &err);
+        for (int i = 0; i < type->param_count; i++) {
+            const fg_param_desc *desc = &type->params[i];
+            demo_control c;
+            demo_param_control(desc, desc->default_value, &c);
+            double tries[4];
+            int n = 0;
+            if (c.kind == DEMO_CONTROL_LIST) {
+                if (c.current < 0)
+                    fail_msg("%s.%s: the default %g is not among its control's entries", type->name, desc->name,
+                             desc->default_value);
+                for (int k = 0; k < c.count; k++) {
+                    char value[256];
+                    demo_param_format(desc, c.values[k], value, sizeof value);
+                    cg_error_clear(&err);
+                    if (!fg_graph_set_param(graph, name, desc->name, value, NULL, &err))
+                        fail_msg("%s.%s: entry '%s': %s", type->name, desc->name, value, err.message);
+                }
+                if (desc->allowed.count > 0)
+                    assert_int_equal(c.count, desc->allowed.count);
+                lists++;
+                continue;
+            }
+            if (c.kind != DEMO_CONTROL_SLIDER && c.kind != DEMO_CONTROL_DRAG)
+                continue;
+            assert_true(c.min == desc->min && c.max == desc->max);
+            tries[n++] = c.min;
+            tries[n++] = c.max;
+            tries[n++] = (c.min + c.max) / 2;
+            tries[n++] = desc->default_value;
+            for (int k = 0; k < n; k++) {
+                char value[256];
+                demo_param_format(desc, demo_param_snap(desc, tries[k]), value, sizeof value);
+                cg_error_clear(&err);
+                if (!fg_graph_set_param(graph, name, desc->name, value, NULL, &err))
+                    fail_msg("%s.%s: %g snapped to '%s': %s", type->name, desc->name, tries[k], value, err.message);
+            }
+            numbers++;
+        }
+    }
+    assert_true(lists >= 10);
+    assert_true(numbers >= 20);
+    fg_graph_destroy(graph);
+    fg_registry_destroy(registry);
+}
+
+/* A control's value takes the keys' path: validated, dependencies checked, undone when one
+ * breaks, the old text returned. */
+static void
+test_param_set(void **state)
+{
+    (void)state;
+    fg_registry *registry;
+    fg_graph *graph = load_graph("vct.json", &registry);
+    cg_error err = { 0 };
+    char previous[64];
+    fg_pass *gather = fg_graph_find_pass(graph, "gather"), *vox = fg_graph_find_pass(graph, "vox");
+    assert_cg_ok(demo_param_set(graph, gather, desc_of(gather, "cones"), "9", previous, sizeof previous, &err), &err);
+    assert_string_equal(previous, "6");
+    assert_int_equal(fg_param_int(gather, "cones"), 9);
+    assert_cg_status(demo_param_set(graph, gather, desc_of(gather, "cones"), "7", previous, sizeof previous, &err),
+                     &err, CG_ERR_GRAPH_PARAM_RANGE);
+    assert_int_equal(fg_param_int(gather, "cones"), 9);
+    cg_error_clear(&err);
+    assert_cg_ok(fg_graph_set_param(graph, "vox", "resolution", "16", NULL, &err), &err);
+    assert_cg_status(demo_param_set(graph, vox, desc_of(vox, "padding"), "4", previous, sizeof previous, &err),
+                     &err, CG_ERR_GRAPH_PARAM_RANGE);
+    assert_non_null(strstr(err.message, "expected less than 0.25 x resolution"));
+    assert_string_equal(previous, "1");
+    assert_float_equal(fg_param_float(vox, "padding"), 1.0f, 1e-6);
+    fg_graph_destroy(graph);
+    fg_registry_destroy(registry);
+}
+
 /* The fly camera starts where the scene's view is and moves along its own axes. */
 static void
 test_camera(void **state)
@@ -509,6 +688,12 @@ test_bad_input(void **state)
         "builtin:cornell --keys ''",
         "builtin:cornell --keys shift+",
         "builtin:cornell --keys shift+x",
+        "builtin:cornell --keys f2",
+        "builtin:cornell --ui maybe",
+        "builtin:cornell --image-screenshot shot.exr",
+        "builtin:cornell --graph vct.json --view gather",
+        "builtin:cornell --graph vct.json --view nosuch.output",
+        "builtin:cornell --graph vct.json --view shadow.matrix",
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++)
         if (run_demo(cases[i]) != 2)
@@ -529,6 +714,10 @@ main(void)
         cmocka_unit_test(test_describe),
         cmocka_unit_test(test_adjust),
         cmocka_unit_test(test_every_table_steps_validly),
+        cmocka_unit_test(test_controls),
+        cmocka_unit_test(test_snap),
+        cmocka_unit_test(test_every_control_valid),
+        cmocka_unit_test(test_param_set),
         cmocka_unit_test(test_camera),
         cmocka_unit_test(test_bad_input),
     };

@@ -1,7 +1,9 @@
 /* conegraph-demo in a window, as a user runs it with --frames: exit 0 (the demo exits 1
  * on any GL error the context counts), a screenshot of what the window shows that is
  * finite, not black, and the same image `conegraph render` writes for the same scene,
- * graph and size (so the blit is the right way up and nothing is lost on the way).
+ * graph and size (so the blit is the right way up and nothing is lost on the way); the
+ * UI drawn over it where it says its windows are and nowhere else, hidden by --ui off and
+ * F1, and its resource viewer on every kind of texture.
  * Needs an X display: .ci/test runs the suite under xvfb-run; without one the program
  * reports SKIP. $CONEGRAPH_DEMO_EXE and $CONEGRAPH_EXE name the executables; the argument
  * is tests/plugin/demo_test_plugin.so. */
@@ -105,7 +107,7 @@ test_direct_matches_render(void **state)
     const char *shot = tmp("demo.png"), *ref = tmp("render.png"), *log = tmp("demo.txt");
     char args[8192];
     snprintf(args, sizeof args,
-             "builtin:cornell --graph direct.json --size 64x64 --frames 3 --screenshot '%s'", shot);
+             "builtin:cornell --graph direct.json --size 64x64 --frames 3 --ui off --screenshot '%s'", shot);
     assert_int_equal(run("CONEGRAPH_DEMO_EXE", args, log), 0);
     snprintf(args, sizeof args, "render builtin:cornell --graph direct.json --size 64x64 -o '%s'", ref);
     assert_int_equal(run("CONEGRAPH_EXE", args, NULL), 0);
@@ -143,7 +145,7 @@ test_vct_runs(void **state)
     char args[8192];
     snprintf(args, sizeof args,
              "builtin:cornell --graph vct.json --set vox.resolution=32 --size 48x32 --frames 3 "
-             "--timing sync --keys shift+tab,shift+tab,right --screenshot '%s'", shot);
+             "--timing sync --ui off --keys shift+tab,shift+tab,right --screenshot '%s'", shot);
     assert_int_equal(run("CONEGRAPH_DEMO_EXE", args, log), 0);
     cg_image a = { 0 };
     assert_cg_ok(cg_image_read(shot, &a, &err), &err);
@@ -182,10 +184,10 @@ test_keys(void **state)
     const char *plain = tmp("plain.png"), *bright = tmp("bright.png"), *other = tmp("other.png");
     const char *log = tmp("keys.txt");
     char args[8192];
-    snprintf(args, sizeof args, "builtin:cornell --graph direct.json --size 48x32 --frames 1 --screenshot '%s'",
-             plain);
+    snprintf(args, sizeof args, "builtin:cornell --graph direct.json --size 48x32 --frames 1 --ui off "
+             "--screenshot '%s'", plain);
     assert_int_equal(run("CONEGRAPH_DEMO_EXE", args, NULL), 0);
-    snprintf(args, sizeof args, "builtin:cornell --graph direct.json --size 48x32 --frames 4 "
+    snprintf(args, sizeof args, "builtin:cornell --graph direct.json --size 48x32 --frames 4 --ui off "
              "--keys shift+tab,right,right --screenshot '%s'", bright);
     assert_int_equal(run("CONEGRAPH_DEMO_EXE", args, log), 0);
     const char *out = read_text(log);
@@ -199,23 +201,210 @@ test_keys(void **state)
     /* Scripted flight: held for a fixed 0.25 s each, so the same distance on any machine.
      * Forward twice and right at 4x speed changes the view; R brings back the scene's. */
     const char *flown = tmp("flown.png"), *back = tmp("back.png");
-    snprintf(args, sizeof args, "builtin:cornell --graph direct.json --size 48x32 --frames 3 "
+    snprintf(args, sizeof args, "builtin:cornell --graph direct.json --size 48x32 --frames 3 --ui off "
              "--keys shift+w,shift+w,shift+d --screenshot '%s'", flown);
     assert_int_equal(run("CONEGRAPH_DEMO_EXE", args, NULL), 0);
     int moved = max_level_difference(plain, flown);
     if (moved < 40)
         fail_msg("flying forward and right changed the image by %d levels at most", moved);
-    snprintf(args, sizeof args, "builtin:cornell --graph direct.json --size 48x32 --frames 4 "
+    snprintf(args, sizeof args, "builtin:cornell --graph direct.json --size 48x32 --frames 4 --ui off "
              "--keys shift+w,shift+w,shift+d,r --screenshot '%s'", back);
     assert_int_equal(run("CONEGRAPH_DEMO_EXE", args, log), 0);
     assert_non_null(strstr(read_text(log), "camera: reset to the scene's view"));
     assert_true(max_level_difference(plain, back) <= 1);
 
-    snprintf(args, sizeof args, "builtin:cornell --graph direct.json --size 48x32 --frames 2 "
+    snprintf(args, sizeof args, "builtin:cornell --graph direct.json --size 48x32 --frames 2 --ui off "
              "--keys 2 --screenshot '%s'", other);
     assert_int_equal(run("CONEGRAPH_DEMO_EXE", args, log), 0);
     assert_non_null(strstr(read_text(log), "show: 2 "));
     assert_true(fabs(mean_of(other) - m0) > 0.01);
+}
+
+/* A UI window as the demo reports it with a screenshot, in whole pixels, grown by a margin
+ * for the antialiased edges. */
+typedef struct drawn_window {
+    char title[64];
+    int x0, y0, x1, y1;         /* [x0, x1) x [y0, y1) */
+} drawn_window;
+
+#define MAX_WINDOWS 16
+
+/* "ui: window 'TITLE' at X,Y size WxH" lines. */
+static int
+ui_windows(const char *out, drawn_window *w)
+{
+    int n = 0;
+    for (const char *p = strstr(out, "ui: window '"); p && n < MAX_WINDOWS; p = strstr(p + 1, "ui: window '")) {
+        const char *title = p + strlen("ui: window '"), *end = strchr(title, '\'');
+        assert_non_null(end);
+        float x, y, width, height;
+        assert_int_equal(sscanf(end, "' at %f,%f size %fx%f", &x, &y, &width, &height), 4);
+        snprintf(w[n].title, sizeof w[n].title, "%.*s", (int)(end - title), title);
+        w[n].x0 = (int)floorf(x) - 2;
+        w[n].y0 = (int)floorf(y) - 2;
+        w[n].x1 = (int)ceilf(x + width) + 2;
+        w[n].y1 = (int)ceilf(y + height) + 2;
+        n++;
+    }
+    return n;
+}
+
+static const drawn_window *
+find_window(const drawn_window *w, int n, const char *title)
+{
+    for (int i = 0; i < n; i++)
+        if (!strcmp(w[i].title, title))
+            return &w[i];
+    fail_msg("no UI window '%s' reported", title);
+    return NULL;
+}
+
+static bool
+inside(const drawn_window *w, int n, int x, int y)
+{
+    for (int i = 0; i < n; i++)
+        if (x >= w[i].x0 && x < w[i].x1 && y >= w[i].y0 && y < w[i].y1)
+            return true;
+    return false;
+}
+
+static int
+level_difference(const cg_image *a, const cg_image *b, int x, int y)
+{
+    int worst = 0;
+    for (int c = 0; c < 3; c++) {
+        size_t i = ((size_t)y * (size_t)a->width + (size_t)x) * 4 + (size_t)c;
+        int d = abs((int)lroundf(cg_srgb_encode(a->rgba[i]) * 255.0f) - (int)lroundf(cg_srgb_encode(b->rgba[i]) * 255.0f));
+        worst = d > worst ? d : worst;
+    }
+    return worst;
+}
+
+static void
+read_pair(const char *path_a, const char *path_b, cg_image *a, cg_image *b)
+{
+    cg_error err = { 0 };
+    assert_cg_ok(cg_image_read(path_a, a, &err), &err);
+    assert_cg_ok(cg_image_read(path_b, b, &err), &err);
+    assert_int_equal(a->width, b->width);
+    assert_int_equal(a->height, b->height);
+}
+
+#define UI_SIZE "800x450"
+
+/* The UI is drawn over the image: the screenshot with it differs from the one without it
+ * where the demo says its windows are, and is the same image everywhere else; the image
+ * without the UI (Shift+F12's, --image-screenshot) is the image of --ui off, and so is the
+ * window after F1. Keys still work with the UI shown. */
+static void
+test_ui_shown(void **state)
+{
+    (void)state;
+    const char *shown = tmp("ui.png"), *bare = tmp("bare.png"), *off = tmp("off.png"), *f1 = tmp("f1.png");
+    const char *log = tmp("ui.txt");
+    char args[8192];
+    snprintf(args, sizeof args, "builtin:cornell --graph direct.json --size " UI_SIZE " --frames 3 "
+             "--keys shift+tab,right --screenshot '%s' --image-screenshot '%s'", shown, bare);
+    assert_int_equal(run("CONEGRAPH_DEMO_EXE", args, log), 0);
+    const char *out = read_text(log);
+    assert_non_null(strstr(out, "param: final.exposure = 0.5 "));
+    drawn_window windows[MAX_WINDOWS];
+    int n = ui_windows(out, windows);
+    find_window(windows, n, "conegraph");
+    find_window(windows, n, "parameters");
+    find_window(windows, n, "resource viewer");
+
+    snprintf(args, sizeof args, "builtin:cornell --graph direct.json --size " UI_SIZE " --frames 3 --ui off "
+             "--keys shift+tab,right --screenshot '%s'", off);
+    assert_int_equal(run("CONEGRAPH_DEMO_EXE", args, log), 0);
+    assert_null(strstr(read_text(log), "ui: window"));
+    snprintf(args, sizeof args, "builtin:cornell --graph direct.json --size " UI_SIZE " --frames 4 "
+             "--keys shift+tab,right,f1 --screenshot '%s'", f1);
+    assert_int_equal(run("CONEGRAPH_DEMO_EXE", args, log), 0);
+    out = read_text(log);
+    assert_non_null(strstr(out, "ui: hidden"));
+    assert_null(strstr(out, "ui: window"));
+    assert_true(max_level_difference(bare, off) <= 1);
+    assert_true(max_level_difference(f1, off) <= 1);
+
+    cg_image a = { 0 }, b = { 0 };
+    read_pair(shown, off, &a, &b);
+    long covered = 0, changed = 0, outside_worst = 0;
+    for (int y = 0; y < a.height; y++)
+        for (int x = 0; x < a.width; x++) {
+            int d = level_difference(&a, &b, x, y);
+            if (inside(windows, n, x, y)) {
+                covered++;
+                changed += d > 2;
+            } else if (d > outside_worst) {
+                outside_worst = d;
+            }
+        }
+    cg_image_free(&a);
+    cg_image_free(&b);
+    if (outside_worst > 1)
+        fail_msg("outside the UI's windows the image differs by %ld levels", outside_worst);
+    /* The panels cover a good part of the window, and nearly all of it visibly (their
+     * backgrounds are nearly opaque; only black scene pixels under black can agree). */
+    if (covered < (long)800 * 450 / 4 || changed < covered * 6 / 10)
+        fail_msg("the UI covers %ld pixels of which %ld differ", covered, changed);
+}
+
+/* The viewer shows each kind of texture (2D float colour, depth, 3D float colour, 3D
+ * unsigned integer) without a GL error, in its window: there the screenshot differs from
+ * the viewer showing none. */
+static void
+test_viewer(void **state)
+{
+    (void)state;
+    static const struct {
+        const char *graph, *view;
+    } cases[] = {
+        { "direct.json", NULL },
+        { "direct.json", "gbuf.normal" },
+        { "direct.json", "shadow.depth" },
+        { "vct.json", NULL },
+        { "vct.json", "voxmip.volume" },
+        { "vct.json", "vox.accumulation" },
+    };
+    const char *none = NULL;
+    drawn_window windows[MAX_WINDOWS];
+    int n = 0;
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        char name[64], args[8192], view[128] = "";
+        snprintf(name, sizeof name, "view%zu.png", k);
+        const char *shot = tmp(name), *log = tmp("view.txt");
+        if (cases[k].view)
+            snprintf(view, sizeof view, "--view %s", cases[k].view);
+        snprintf(args, sizeof args, "builtin:cornell --graph %s --set vox.resolution=32 --size 480x360 --frames 2 "
+                 "%s --screenshot '%s'", cases[k].graph, view, shot);
+        if (!strcmp(cases[k].graph, "direct.json"))
+            snprintf(args, sizeof args, "builtin:cornell --graph direct.json --size 480x360 --frames 2 %s "
+                     "--screenshot '%s'", view, shot);
+        assert_int_equal(run("CONEGRAPH_DEMO_EXE", args, log), 0);
+        const char *out = read_text(log);
+        if (!cases[k].view) {
+            none = shot;
+            n = ui_windows(out, windows);
+            continue;
+        }
+        char said[160];
+        snprintf(said, sizeof said, "view: %s\n", cases[k].view);
+        assert_non_null(strstr(out, said));
+        const drawn_window *w = find_window(windows, n, "resource viewer");
+        cg_image a = { 0 }, b = { 0 };
+        read_pair(shot, none, &a, &b);
+        long area = 0, changed = 0;
+        for (int y = w->y0 > 0 ? w->y0 : 0; y < w->y1 && y < a.height; y++)
+            for (int x = w->x0 > 0 ? w->x0 : 0; x < w->x1 && x < a.width; x++) {
+                area++;
+                changed += level_difference(&a, &b, x, y) > 2;
+            }
+        cg_image_free(&a);
+        cg_image_free(&b);
+        if (changed < area / 20)
+            fail_msg("--view %s: %ld of the viewer's %ld pixels changed", cases[k].view, changed, area);
+    }
 }
 
 static const char *plugin_path;
@@ -240,7 +429,7 @@ test_plugin_levels_and_gl_error(void **state)
     cg_error err = { 0 };
     const char *shot = tmp("fill.png"), *log = tmp("fill.txt");
     char args[8192];
-    snprintf(args, sizeof args, "builtin:cornell --plugin '%s' --graph '%s' --size 40x24 --frames 3 "
+    snprintf(args, sizeof args, "builtin:cornell --plugin '%s' --graph '%s' --size 40x24 --frames 3 --ui off "
              "--screenshot '%s'", plugin_path, write_fill_graph("fill.json", -1), shot);
     assert_int_equal(run("CONEGRAPH_DEMO_EXE", args, log), 0);
     cg_image img = { 0 };
@@ -282,6 +471,8 @@ main(int argc, char **argv)
         cmocka_unit_test(test_vct_runs),
         cmocka_unit_test(test_keys),
         cmocka_unit_test(test_plugin_levels_and_gl_error),
+        cmocka_unit_test(test_ui_shown),
+        cmocka_unit_test(test_viewer),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

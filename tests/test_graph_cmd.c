@@ -41,6 +41,24 @@ graph_check_and_report(void **state)
     assert_int_equal(run(args, out, sizeof out), 0);
     assert_true(strncmp(out, "digraph", 7) == 0);
 
+    /* A bare name is looked up in the graph directory, as render --graph does. */
+    assert_int_equal(run("graph hybrid.json builtin:cornell --size 64x36", out, sizeof out), 0);
+    assert_non_null(strstr(out, "hybrid.json: compiles for builtin:cornell"));
+
+    /* The README's pipe through Graphviz (.ci/deps installs it). */
+    if (system("command -v dot >/dev/null 2>&1") != 0) {
+        fprintf(stderr, "# skipping the Graphviz pipe: no `dot` on PATH (.ci/deps installs graphviz)\n");
+    } else {
+        char svg[4200];
+        snprintf(svg, sizeof svg, "%s/graph.svg", cg_test_tmpdir());
+        snprintf(args, sizeof args, "'%s' graph hybrid.json builtin:cornell --dot | dot -Tsvg > '%s'",
+                 getenv("CONEGRAPH_EXE"), svg);
+        assert_int_equal(system(args), 0);
+        struct stat st;
+        assert_int_equal(stat(svg, &st), 0);
+        assert_true(st.st_size > 1000);
+    }
+
     assert_int_equal(run("graph --help", out, sizeof out), 0);
     assert_non_null(strstr(out, "--dot"));
     assert_int_equal(run("graph", out, sizeof out), 2);
@@ -70,9 +88,13 @@ bad_graphs_exit_2_and_write_nothing(void **state)
     assert_non_null(strstr(out, "cycle.json:4:5: graph has a cycle: 'd' -> 'c' -> 'd'"));
     assert_int_not_equal(access(report, F_OK), 0);
 
-    snprintf(args, sizeof args, "graph '%s' builtin:cornell --max-gpu-memory 1", direct_graph);
+    snprintf(args, sizeof args, "graph '%s' builtin:cornell --max-gpu-memory 1M", direct_graph);
     assert_int_equal(run(args, out, sizeof out), 2);
     assert_non_null(strstr(out, "more than the allowed 1.00 MiB"));
+    /* One syntax with render: a number needs its unit. */
+    snprintf(args, sizeof args, "graph '%s' builtin:cornell --max-gpu-memory 1", direct_graph);
+    assert_int_equal(run(args, out, sizeof out), 2);
+    assert_non_null(strstr(out, "--max-gpu-memory wants a size with its unit"));
     snprintf(args, sizeof args, "graph '%s' builtin:no_such_scene", direct_graph);
     assert_int_equal(run(args, out, sizeof out), 2);
 }

@@ -1,5 +1,6 @@
-/* Graph files: a good file, --set overrides, and the bad-graph corpus, where every entry
- * must fail with its named status and a message that points at file:line:column. */
+/* Graph files: a good file, --set overrides, the sky a file asks for, and the bad-graph corpus,
+ * where every entry must fail with its named status and a message that points at
+ * file:line:column. */
 #include "test_support.h"
 
 #include <stdio.h>
@@ -113,6 +114,37 @@ good_graph_loads(void **state)
                      CG_ERR_GRAPH_PARAM_RANGE);
     assert_cg_status(fg_graph_load_file(f->graph, "/nonexistent/graph.json", &f->err), &f->err,
                      CG_ERR_FILE_NOT_FOUND);
+    /* The file asks for no sky. */
+    cg_sky sky;
+    assert_false(fg_graph_file_sky(f->graph, &sky));
+}
+
+/* "sky": --sky's text, or a number for a grey uniform sky. */
+static void
+sky_entry(void **state)
+{
+    fixture *f = *state;
+    const struct { const char *value; cg_sky_type type; float first; } cases[] = {
+        { "\"0.5,0.6,0.8\"", CG_SKY_UNIFORM, 0.5f },
+        { "0.25", CG_SKY_UNIFORM, 0.25f },
+        { "\"preetham:4\"", CG_SKY_PREETHAM, 4.0f },
+        { "\"none\"", CG_SKY_NONE, 0.0f },
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        char text[1024];
+        snprintf(text, sizeof text, "{ \"version\": 1, \"sky\": %s, \"passes\": { " SRC " }, \"outputs\": [ \"src.out\" ] }",
+                 cases[i].value);
+        fg_graph_destroy(f->graph);
+        f->graph = fg_graph_create(f->registry);
+        assert_cg_ok(fg_graph_load_string(f->graph, text, "sky.json", &f->err), &f->err);
+        cg_sky sky;
+        assert_true(fg_graph_file_sky(f->graph, &sky));
+        assert_int_equal(sky.type, cases[i].type);
+        if (sky.type == CG_SKY_UNIFORM)
+            assert_true(sky.radiance[0] == cases[i].first);
+        if (sky.type == CG_SKY_PREETHAM)
+            assert_true(sky.turbidity == cases[i].first);
+    }
 }
 
 /* ---------------------------------------------------------------- the bad-graph corpus */
@@ -201,6 +233,12 @@ static const bad_graph corpus[] = {
                       TAIL, CG_ERR_GRAPH_TOO_LARGE, "\"vox\"", 1, 0, "2048" },
     { "budget", HEAD USE_OK TAIL, CG_ERR_GRAPH_MEMORY_BUDGET, "\"src\"", 1, 1000, "more than the allowed" },
     { "not_object", "[ 1, 2 ]\n", CG_ERR_GRAPH_SCHEMA, "[", 1, 0, NULL },
+    { "sky_not_text", "{\n  \"version\": 1,\n  \"sky\": [ 1, 2, 3 ],\n  \"passes\": {\n    " SRC ",\n    " USE_OK TAIL,
+      CG_ERR_GRAPH_SCHEMA, "[ 1, 2, 3 ]", 1, 0, "\"sky\": expected a string" },
+    { "sky_bad_value", "{\n  \"version\": 1,\n  \"sky\": \"preetham:20\",\n  \"passes\": {\n    " SRC ",\n    " USE_OK
+      TAIL, CG_ERR_GRAPH_SCHEMA, "\"preetham:20\"", 1, 0, "turbidity 1.7 to 10" },
+    { "sky_negative", "{\n  \"version\": 1,\n  \"sky\": -1,\n  \"passes\": {\n    " SRC ",\n    " USE_OK TAIL,
+      CG_ERR_GRAPH_SCHEMA, "-1", 1, 0, ">= 0" },
     { "inputs_not_string", HEAD USE("", "\"in\": 5") TAIL, CG_ERR_GRAPH_SCHEMA, "5 }", 1, 0, NULL },
     { "bad_source", HEAD USE("", "\"in\": \"src.out@next\"") TAIL, CG_ERR_GRAPH_SCHEMA, "\"src.out@next\"", 1,
       0, "@previous" },
@@ -307,6 +345,7 @@ main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_setup_teardown(good_graph_loads, setup, teardown),
         cmocka_unit_test_setup_teardown(bad_graph_corpus, setup, teardown),
+        cmocka_unit_test_setup_teardown(sky_entry, setup, teardown),
         cmocka_unit_test_setup_teardown(mutated_graphs_fail_with_locations, setup, teardown),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

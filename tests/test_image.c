@@ -108,6 +108,33 @@ test_exr_float_round_trip_is_bit_exact(void **state)
     cg_image_free(&img);
 }
 
+/* What the file held: an EXR's linear floats, a PNG's 8-bit sRGB (decoded on reading). */
+static void
+test_read_info_says_how_the_file_stored_its_values(void **state)
+{
+    (void)state;
+    cg_image img = make_test_image(), back;
+    cg_image_file_info info;
+    cg_error err = { 0 };
+    const struct { const char *name; cg_image_exr_type type; bool display, floating; int bits; } cases[] = {
+        { "info.exr", CG_EXR_FLOAT, false, true, 32 },
+        { "info_half.exr", CG_EXR_HALF, false, true, 16 },
+        { "info.png", CG_EXR_FLOAT, true, false, 8 },
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        const char *path = tmp_path(cases[i].name);
+        assert_cg_ok(cg_image_write(path, &img, cases[i].type, &err), &err);
+        assert_cg_ok(cg_image_read_info(path, &back, &info, &err), &err);
+        assert_int_equal(info.display_encoded, cases[i].display);
+        assert_int_equal(info.floating, cases[i].floating);
+        assert_int_equal(info.bits, cases[i].bits);
+        if (cases[i].display)
+            assert_string_equal(info.colour_space, "sRGB");
+        cg_image_free(&back);
+    }
+    cg_image_free(&img);
+}
+
 static void
 test_exr_half_within_half_precision(void **state)
 {
@@ -337,6 +364,7 @@ main(void)
         cmocka_unit_test(test_srgb_transfer),
         cmocka_unit_test(test_exr_float_round_trip_is_bit_exact),
         cmocka_unit_test(test_exr_half_within_half_precision),
+        cmocka_unit_test(test_read_info_says_how_the_file_stored_its_values),
         cmocka_unit_test(test_png_srgb_round_trip),
         cmocka_unit_test(test_row_order_and_round_trip_orientation),
         cmocka_unit_test(test_grey_without_alpha),

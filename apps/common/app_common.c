@@ -63,6 +63,18 @@ app_parse_int(const char *text, long min, long max, long *out)
 }
 
 bool
+app_parse_double(const char *text, double min, double max, bool open_min, double *out)
+{
+    char *end;
+    errno = 0;
+    double v = strtod(text, &end);
+    if (errno || end == text || *end || !isfinite(v) || v < min || v > max || (open_min && v <= min))
+        return false;
+    *out = v;
+    return true;
+}
+
+bool
 app_parse_size(const char *text, int *w, int *h)
 {
     char buf[64];
@@ -95,28 +107,48 @@ app_parse_timing(const char *text, fg_timing_mode *out)
     return true;
 }
 
+/* The units of memory sizes, powers of 1024. KB, MB and GB are not among them: some read
+ * them as powers of 1000, so they are refused rather than guessed. */
+static const struct {
+    const char *name;
+    unsigned long long scale;
+} byte_units[] = {
+    { "B", 1ull },        { "K", 1ull << 10 }, { "KiB", 1ull << 10 }, { "M", 1ull << 20 },
+    { "MiB", 1ull << 20 }, { "G", 1ull << 30 }, { "GiB", 1ull << 30 }, { "T", 1ull << 40 },
+    { "TiB", 1ull << 40 },
+};
+
 bool
 app_parse_bytes(const char *text, size_t *out)
 {
-    char *end;
+    /* Digits, at most one '.', then the unit: no sign, exponent, hex, inf or nan (which
+     * strtod would take). */
+    const char *p = text;
+    size_t digits = 0;
+    while (isdigit((unsigned char)*p))
+        p++, digits++;
+    if (*p == '.')
+        for (p++; isdigit((unsigned char)*p); p++)
+            digits++;
+    if (digits == 0)
+        return false;
+    unsigned long long scale = 0;
+    for (size_t i = 0; i < sizeof byte_units / sizeof byte_units[0]; i++)
+        if (!strcasecmp(p, byte_units[i].name))
+            scale = byte_units[i].scale;
+    if (!scale)
+        return false;
+    char number[64];
+    if ((size_t)(p - text) >= sizeof number)
+        return false;
+    memcpy(number, text, (size_t)(p - text));
+    number[p - text] = '\0';
     errno = 0;
-    if (!isdigit((unsigned char)text[0]))
+    double v = strtod(number, NULL) * (double)scale;
+    /* Whole bytes, at least one, below SIZE_MAX ((double)SIZE_MAX rounds up to 2^64). */
+    if (errno || !(v >= 1.0) || !(v < (double)SIZE_MAX))
         return false;
-    unsigned long long v = strtoull(text, &end, 10);
-    if (errno || end == text)
-        return false;
-    unsigned long long scale = 1;
-    if (*end == 'K' || *end == 'k')
-        scale = 1ull << 10;
-    else if (*end == 'M' || *end == 'm')
-        scale = 1ull << 20;
-    else if (*end == 'G' || *end == 'g')
-        scale = 1ull << 30;
-    if (scale != 1)
-        end++;
-    if (*end || v == 0 || v > (unsigned long long)SIZE_MAX / scale)
-        return false;
-    *out = (size_t)(v * scale);
+    *out = (size_t)v;
     return true;
 }
 

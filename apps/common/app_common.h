@@ -2,7 +2,7 @@
  * conegraph-demo, vct-bench) shares: finding graph files, parsing command-line values,
  * reporting errors with the exit code they stand for, a clock and a median.
  *
- * Declares: app_graph_dir, app_resolve_graph, app_parse_int, app_parse_size, app_parse_timing,
+ * Declares: app_graph_dir, app_resolve_graph, app_parse_int, app_parse_double, app_parse_size, app_parse_timing,
  *           app_parse_bytes, app_has_extension, app_usage_error, app_fail, app_error_prefix,
  *           app_make_dirs, app_now_ms, app_cpu_ms, app_median, app_compare_double.
  *
@@ -25,12 +25,20 @@ void app_resolve_graph(const char *given, char *out, size_t size);
 
 /* Decimal integer in min..max, nothing after it. */
 bool app_parse_int(const char *text, long min, long max, long *out);
+/* A finite decimal number in [min, max] ((min, max] when open_min), nothing after it. */
+bool app_parse_double(const char *text, double min, double max, bool open_min, double *out);
 /* "WxH", each 1..65536. */
 bool app_parse_size(const char *text, int *w, int *h);
 /* "sync", "queries" or "none"; false for anything else. */
 bool app_parse_timing(const char *text, fg_timing_mode *out);
-/* A positive byte count with an optional suffix K, M or G (powers of 1024). */
+/* A memory size, the one syntax of every memory option: a number (decimals allowed) and a
+ * unit, B (bytes), K or KiB, M or MiB, G or GiB, T or TiB (powers of 1024, any case):
+ * "512M", "1.5G", "4096B". Rounded down to whole bytes, at least 1. A number without a unit
+ * is refused (older versions read it as MiB in one command and as bytes in another), and so
+ * are KB, MB and GB (1000 or 1024?). */
 bool app_parse_bytes(const char *text, size_t *out);
+/* The syntax app_parse_bytes accepts, for usage errors. */
+#define APP_BYTES_SYNTAX "a size with its unit, e.g. 512M, 1.5G or 4096B (B bytes; K, M, G, T: KiB, MiB, GiB, TiB)"
 /* Whether `path` ends in `ext` (".png"), ignoring case, with something before it. */
 bool app_has_extension(const char *path, const char *ext);
 

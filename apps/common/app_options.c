@@ -1,6 +1,9 @@
 /* The command-line options shared by the apps: see app_options.h. */
 #include "app_options.h"
 
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "app_common.h"
@@ -24,15 +27,53 @@ append(const char *tool, const char *name, const char *value, const char **list,
     return 0;
 }
 
+bool
+app_parse_point(const char *text, float out[3])
+{
+    const char *p = text;
+    for (int k = 0; k < 3; k++) {
+        char *end;
+        errno = 0;
+        double v = strtod(p, &end);
+        if (end == p || errno || !isfinite(v) || !isfinite((float)v))
+            return false;
+        out[k] = (float)v;
+        if (*end != (k < 2 ? ',' : '\0'))
+            return false;
+        p = end + 1;
+    }
+    return true;
+}
+
 /* One of the common options: 0 taken, 2 bad value, -1 not a common option this app takes. */
 static int
 common_option(const char *tool, unsigned accepted, const char *a, const char *v, app_options *o)
 {
     long n;
+    cg_error err = { 0 };
     if ((accepted & APP_OPT_GRAPH) && !strcmp(a, "--graph"))
         o->graph = v;
     else if ((accepted & APP_OPT_CAMERA) && !strcmp(a, "--camera"))
         o->camera = v;
+    else if ((accepted & APP_OPT_CAMERA) && (!strcmp(a, "--from") || !strcmp(a, "--look-at"))) {
+        bool from = !strcmp(a, "--from");
+        if (!app_parse_point(v, from ? o->from : o->look_at))
+            return app_usage_error(tool, from ? "--from wants X,Y,Z (three numbers, metres), not '%s'"
+                                              : "--look-at wants X,Y,Z (three numbers, metres), not '%s'", v);
+        *(from ? &o->from_given : &o->look_at_given) = true;
+    } else if ((accepted & APP_OPT_CAMERA) && !strcmp(a, "--fov")) {
+        char *end;
+        errno = 0;
+        double deg = strtod(v, &end);
+        if (end == v || *end || errno || !(deg > 0.0 && deg < 180.0))
+            return app_usage_error(tool, "--fov wants a vertical field of view in degrees, above 0 and below "
+                                   "180, not '%s'", v);
+        o->yfov = (float)(deg * 3.14159265358979323846 / 180.0);
+    } else if (!strcmp(a, "--sky")) {
+        if (!cg_sky_parse(v, &o->sky, &err))
+            return app_usage_error(tool, "--sky: %s", err.message);
+        o->sky_given = true;
+    }
     else if ((accepted & APP_OPT_SET) && !strcmp(a, "--set"))
         return append(tool, a, v, o->sets, &o->set_count);
     else if ((accepted & APP_OPT_PLUGIN) && !strcmp(a, "--plugin"))
@@ -53,8 +94,7 @@ common_option(const char *tool, unsigned accepted, const char *a, const char *v,
             return app_usage_error(tool, "--context wants egl, osmesa, glfw or auto, not '%s'", v);
     } else if ((accepted & APP_OPT_MAX_GPU_MEMORY) && !strcmp(a, "--max-gpu-memory")) {
         if (!app_parse_bytes(v, &o->max_gpu_memory))
-            return app_usage_error(tool, "--max-gpu-memory wants a positive byte count (suffix K, M or G), "
-                                   "not '%s'", v);
+            return app_usage_error(tool, "--max-gpu-memory wants " APP_BYTES_SYNTAX ", not '%s'", v);
     } else {
         return -1;
     }
@@ -65,12 +105,17 @@ int
 app_parse_options(const char *tool, int argc, char **argv, unsigned accepted, app_options *o,
                   app_own_option_fn own, void *user)
 {
+    o->tool = tool;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
         if (a[0] != '-' || a[1] == '\0') {
             if (o->scene)
                 return app_usage_error(tool, "one scene only; '%s' is a second one", a);
             o->scene = a;
+            continue;
+        }
+        if (!strcmp(a, "--no-default-light")) {
+            o->no_default_light = true;
             continue;
         }
         if (i + 1 == argc)
@@ -90,9 +135,14 @@ app_parse_options(const char *tool, int argc, char **argv, unsigned accepted, ap
 app_session_desc
 app_options_session(const app_options *o)
 {
-    return (app_session_desc){ .scene = o->scene, .camera = o->camera, .plugins = o->plugins,
-                               .plugin_count = o->plugin_count, .width = o->width, .height = o->height,
-                               .compile = { .max_gpu_memory = o->max_gpu_memory } };
+    app_session_desc d = { .tool = o->tool, .scene = o->scene, .camera = o->camera, .plugins = o->plugins,
+                           .plugin_count = o->plugin_count, .width = o->width, .height = o->height,
+                           .compile = { .max_gpu_memory = o->max_gpu_memory },
+                           .from_given = o->from_given, .look_at_given = o->look_at_given, .yfov = o->yfov,
+                           .sky = o->sky_given ? &o->sky : NULL, .no_default_light = o->no_default_light };
+    memcpy(d.from, o->from, sizeof d.from);
+    memcpy(d.look_at, o->look_at, sizeof d.look_at);
+    return d;
 }
 
 app_graph_desc

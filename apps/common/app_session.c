@@ -19,12 +19,109 @@ failed(cg_error *err, const char *what)
     return false;
 }
 
+/* "sun (3 W/m^2 ...)" of the default light, for the notices. */
+static void
+describe_default_sun(char *out, size_t size)
+{
+    cg_light sun;
+    cg_default_sun(&sun);
+    snprintf(out, size, "a sun (%g W/m^2, white, %g degrees above the horizon, %g degrees from +z towards +x: "
+             "direction [%.3f %.3f %.3f])", (double)sun.intensity, CG_DEFAULT_SUN_ELEVATION_DEG,
+             CG_DEFAULT_SUN_AZIMUTH_DEG, (double)sun.direction[0], (double)sun.direction[1],
+             (double)sun.direction[2]);
+}
+
+static bool
+has_directional_light(const cg_scene *scene)
+{
+    for (int i = 0; i < scene->light_count; i++)
+        if (scene->lights[i].type == CG_LIGHT_DIRECTIONAL)
+            return true;
+    return false;
+}
+
+bool
+app_light_scene(const char *tool, cg_scene *scene, const cg_sky *sky, const char *origin, bool no_default_light,
+                cg_error *err)
+{
+    if (!tool)
+        tool = "conegraph";
+    cg_sky none = { .type = CG_SKY_NONE };
+    if (!sky)
+        sky = &none;
+    char sun[256], text[128];
+    describe_default_sun(sun, sizeof sun);
+    /* A black sky (none, 0) lights nothing: the default light then replaces it. */
+    bool lit = !cg_sky_is_black(sky) || cg_scene_is_lit(scene);
+    if (!lit && !no_default_light) {
+        cg_sky fallback;
+        cg_default_sky(&fallback);
+        if (!cg_scene_add_default_sun(scene, err) || !cg_scene_set_sky(scene, &fallback, err))
+            return false;
+        cg_sky_format(&fallback, text, sizeof text);
+        fprintf(stderr, "%s: scene %s has no light: added %s and a uniform sky (%s W/(m^2 sr)); "
+                "--no-default-light turns this off\n", tool, scene->name, sun, text);
+        return true;
+    }
+    if (sky->type == CG_SKY_PREETHAM && !has_directional_light(scene) && !no_default_light) {
+        if (!cg_scene_add_default_sun(scene, err))
+            return false;
+        fprintf(stderr, "%s: scene %s has no directional light for the Preetham sky (%s) to follow: added %s; "
+                "--no-default-light turns this off\n", tool, scene->name, origin ? origin : "--sky", sun);
+    }
+    if (!cg_scene_set_sky(scene, sky, err)) {
+        if (origin)
+            app_error_prefix(err, origin);
+        return false;
+    }
+    if (!cg_scene_is_lit(scene))
+        fprintf(stderr, "%s: warning: scene %s has no light, no emissive surface and no sky, and "
+                "--no-default-light keeps it so: the image will be black\n", tool, scene->name);
+    return true;
+}
+
+/* The first graph settles the lighting; a later one may not ask for another sky. */
+static bool
+settle_lighting(app_session *s, cg_error *err)
+{
+    cg_sky asked;
+    bool graph_asks = fg_graph_file_sky(s->graph, &asked);
+    char text[2][128];
+    if (s->lighting_settled) {
+        if (s->sky_given || !graph_asks || cg_sky_equal(&asked, &s->sky_requested))
+            return true;
+        cg_sky_format(&asked, text[0], sizeof text[0]);
+        cg_sky_format(&s->sky_requested, text[1], sizeof text[1]);
+        return cg_fail(err, CG_ERR_USAGE,
+                       "%s asks for the sky %s, but the scene's sky is %s (%s): a scene is lit once, and every "
+                       "graph run on it sees the same light; give --sky to choose one for all",
+                       s->graph_path, text[0], text[1], s->sky_origin);
+    }
+    if (!s->sky_given && graph_asks) {
+        s->sky_requested = asked;
+        snprintf(s->sky_origin, sizeof s->sky_origin, "\"sky\" of %s", s->graph_path);
+    } else if (!s->sky_given) {
+        snprintf(s->sky_origin, sizeof s->sky_origin, "no --sky and no \"sky\" in %s", s->graph_path);
+    }
+    if (!app_light_scene(s->tool, &s->scene, &s->sky_requested, s->sky_origin, s->no_default_light, err))
+        return false;
+    s->lighting_settled = true;
+    return true;
+}
+
 bool
 app_session_open(app_session *s, const app_session_desc *desc, cg_error *err)
 {
     memset(s, 0, sizeof *s);
+    s->tool = desc->tool ? desc->tool : "conegraph";
     s->scene_source = desc->scene;
     s->compile = desc->compile;
+    s->no_default_light = desc->no_default_light;
+    s->sky_given = desc->sky != NULL;
+    if (desc->sky) {
+        s->sky_requested = *desc->sky;
+        snprintf(s->sky_origin, sizeof s->sky_origin, "--sky");
+    }
     if (!cg_scene_load(desc->scene, &s->scene, err))
         return failed(err, "scene");
     s->scene_loaded = true;
@@ -32,13 +129,24 @@ app_session_open(app_session *s, const app_session_desc *desc, cg_error *err)
         app_session_close(s);
         return failed(err, "camera");
     }
+    s->view_spec = (cg_view_spec){ .camera = s->camera, .from_given = desc->from_given,
+                                   .look_at_given = desc->look_at_given, .yfov = desc->yfov };
+    memcpy(s->view_spec.from, desc->from, sizeof s->view_spec.from);
+    memcpy(s->view_spec.look_at, desc->look_at, sizeof s->view_spec.look_at);
+    if (!cg_view_spec_check(&s->scene, &s->view_spec, err)) {
+        app_session_close(s);
+        return failed(err, "camera");
+    }
+    char note[1024];
+    if (cg_view_aspect_note(&s->scene, &s->view_spec, desc->width, desc->height, note, sizeof note))
+        fprintf(stderr, "%s: %s\n", s->tool, note);
     s->registry = app_registry_create(desc->plugins, desc->plugin_count, err);
     if (!s->registry) {
         app_session_close(s);
         return failed(err, "passes");
     }
     s->frame = (fg_frame){ .scene = &s->scene, .width = desc->width, .height = desc->height };
-    cg_view_from_scene(&s->scene, s->camera, desc->width, desc->height, &s->frame.view);
+    cg_view_from_spec(&s->scene, &s->view_spec, desc->width, desc->height, &s->frame.view);
     return true;
 }
 
@@ -80,6 +188,8 @@ app_session_load_graph(app_session *s, const app_graph_desc *desc, cg_error *err
     }
     if (!fg_graph_load_file(s->graph, s->graph_path, err))
         return failed(err, "graph");
+    if (!settle_lighting(s, err))
+        return failed(err, "sky");
     for (int i = 0; i < desc->set_count; i++)
         if (!fg_graph_apply_override(s->graph, desc->sets[i], err))
             return failed(err, "graph");
@@ -153,6 +263,20 @@ app_session_compile(app_session *s, cg_error *err)
 }
 
 bool
+app_session_set_time(app_session *s, double t, cg_scene_changes *changes, cg_error *err)
+{
+    cg_scene_changes local;
+    cg_scene_evaluate(&s->scene, t, &local);
+    if (changes)
+        *changes = local;
+    if (local.lights && s->uploaded && !cg_gpu_scene_update_lights(&s->gpu, err))
+        return failed(err, "frame");
+    if (local.cameras && s->camera >= 0)
+        cg_view_from_scene(&s->scene, s->camera, s->frame.width, s->frame.height, &s->frame.view);
+    return true;
+}
+
+bool
 app_session_mark_output(app_session *s, const char *source, bool *added, cg_error *err)
 {
     *added = !is_output(s->graph, source);
@@ -203,6 +327,13 @@ app_session_run(app_session *s, const app_run_desc *run, app_frame_stats *stats,
     for (int f = 0; f < run->warmup + run->frames; f++) {
         s->frame.index = (uint64_t)f;
         double t0 = app_now_ms();
+        if (run->animate) {
+            int k = f < run->warmup ? 0 : f - run->warmup;
+            if (!app_session_set_time(s, run->time + k / run->fps, NULL, err)) {
+                app_frame_stats_free(stats);
+                return false;
+            }
+        }
         if (!fg_graph_execute(s->graph, &s->frame, run->timing, err)) {
             app_frame_stats_free(stats);
             return failed(err, "frame");

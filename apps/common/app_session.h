@@ -7,13 +7,23 @@
  * into images; tear everything down, on every path.
  *
  * Declares: app_session_desc, app_graph_desc, app_session, app_run_desc, app_frame_stats,
- *           app_session_open, app_session_load_graph, app_session_check, app_session_start_gl,
- *           app_session_compile, app_session_mark_output, app_session_run, app_session_check_gl, app_session_read_image,
+ *           app_light_scene, app_session_open, app_session_load_graph, app_session_check,
+ *           app_session_start_gl, app_session_compile, app_session_mark_output, app_session_set_time,
+ *           app_session_run, app_session_check_gl, app_session_read_image,
  *           app_session_write_image, app_session_stop_gl, app_session_close,
  *           app_frame_stats_pass_median, app_frame_stats_free.
  *
+ * The scene's lighting belongs to the scene and is settled once, when the first graph is
+ * loaded (before anything compiles): the sky of --sky, else the one the graph file asks for;
+ * then, when nothing lights the scene, the default light (a sun and a sky) with a notice on
+ * stderr. A later graph asking for another sky is bad input (a bench compares every graph
+ * with one reference per scene): --sky chooses one for all. A camera whose own aspect ratio
+ * is not the image's gets a notice of how its view was fitted.
+ *
  * Order: open, load_graph, check (no GL), start_gl, compile, run, read or write images,
- * close. A graph may be loaded again (bench: one setting after another) and compiled again
+ * close. An animated scene is posed per frame by app_session_set_time (run does it when asked):
+ * the same update for every app, so that render, bench and the demo show the same frame at the
+ * same time. A graph may be loaded again (bench: one setting after another) and compiled again
  * after its parameters, the view or the size changed (the demo); stop_gl gives up the context
  * and the GPU scene while the CPU scene stays (bench: one context per scene at a time).
  *
@@ -29,6 +39,7 @@
 #include <stdbool.h>
 #include <stddef.h>
 
+#include "cg/camera.h"
 #include "cg/error.h"
 #include "cg/fg.h"
 #include "cg/gl.h"
@@ -37,8 +48,14 @@
 #include "cg/scene.h"
 
 typedef struct app_session_desc {
+    const char *tool;               /* names the notices on stderr ("conegraph render"); NULL: "conegraph" */
     const char *scene;              /* a .gltf/.glb file or builtin:NAME[?key=value&...] */
-    const char *camera;             /* name or index; NULL: the first (framed from the bounds if none) */
+    const char *camera;             /* name, index or auto; NULL: the first (framed from the bounds if none) */
+    bool from_given, look_at_given; /* --from, --look-at (cg_view_spec) */
+    float from[3], look_at[3];
+    float yfov;                     /* --fov, radians; 0: the camera's */
+    const cg_sky *sky;              /* --sky; NULL: the graph file's, else none */
+    bool no_default_light;          /* --no-default-light */
     const char *const *plugins;     /* loaded after those of $CONEGRAPH_PLUGIN_PATH */
     int plugin_count;
     int width, height;              /* output image size */
@@ -60,8 +77,17 @@ typedef struct app_graph_desc {
 
 typedef struct app_session {
     const char *scene_source;       /* as in the desc */
-    cg_scene scene;                 /* an app may change its lights (then cg_gpu_scene_update_lights) */
+    const char *tool;               /* for notices */
+    cg_scene scene;                 /* an app may change its lights (then cg_scene_lights_changed and
+                                     * cg_gpu_scene_update_lights); posed by app_session_set_time */
     int camera;                     /* scene camera index, -1: framed from the bounds */
+    cg_view_spec view_spec;         /* the camera, moved, aimed, zoomed: what frame.view was made from */
+    /* Lighting (settled by the first app_session_load_graph): the sky asked for (--sky, else
+     * the first graph's, else none) and who asked. */
+    bool sky_given, no_default_light;
+    cg_sky sky_requested;
+    char sky_origin[4200];
+    bool lighting_settled;
     fg_registry *registry;
     fg_graph *graph;                /* the loaded graph; NULL before app_session_load_graph */
     char graph_path[4096];          /* the file it came from */
@@ -76,6 +102,15 @@ typedef struct app_session {
     cg_gpu_scene gpu;
     bool scene_loaded, uploaded;
 } app_session;
+
+/* The scene's lighting: sets `sky` (NULL: none; `origin` says who asked, for messages), then,
+ * unless no_default_light, adds the default light (cg/scene.h) when nothing lights the scene
+ * (a sun and a sky), or the default sun alone when a Preetham sky has no directional light to
+ * follow; each with one notice on stderr, "TOOL: ...". With no_default_light a scene nothing
+ * lights gets a warning that it renders black. Fails (CG_ERR_USAGE) on a sky the scene
+ * cannot have. */
+bool app_light_scene(const char *tool, cg_scene *scene, const cg_sky *sky, const char *origin,
+                     bool no_default_light, cg_error *err);
 
 /* Loads the scene, selects the camera, makes the registry and frames the view at the desc's
  * size. On failure what was made is freed again. */
@@ -96,11 +131,22 @@ bool app_session_compile(app_session *s, cg_error *err);
  * or a blit; *added: it was not one before (the graph must then be compiled again). */
 bool app_session_mark_output(app_session *s, const char *source, bool *added, cg_error *err);
 
+/* Poses the scene at time t seconds (cg_scene_evaluate) and brings the frame up to date: the GPU
+ * scene's lights when a light changed (cg_gpu_scene_update_lights; meshes stay where they are,
+ * the passes read each instance's world matrix at every draw), and the view when the session's
+ * camera (not a view framed from the bounds) moved. *changes (may be NULL) says what changed.
+ * Works before start_gl too (the GPU scene is then brought up to date when it is uploaded). */
+bool app_session_set_time(app_session *s, double t, cg_scene_changes *changes, cg_error *err);
+
 typedef struct app_run_desc {
     int warmup;                     /* untimed frames first (shader JIT, caches) */
     int frames;                     /* timed frames, at least 1 */
     fg_timing_mode timing;
-    /* Called after each timed frame (0-based) with its time; NULL for none. */
+    /* With `animate`, timed frame k (from 0) is posed at time + k / fps by app_session_set_time
+     * before it runs, and its time includes that update; warm-up frames are posed at `time`. */
+    bool animate;
+    double time, fps;
+    /* Called after each timed frame (0-based) with its duration in ms; NULL for none. */
     void (*on_frame)(void *user, int frame, int frames, double ms);
     void *user;
 } app_run_desc;

@@ -34,8 +34,15 @@ cmd_compare_usage(FILE *out)
         "                       as an 'inferno' colour map, black = 0, yellow >= --heatmap-max\n"
         "                       (default 1); magenta = non-finite\n"
         "\n"
-        "Exit codes: 0 compared, 1 failed while writing, 2 bad usage, unreadable image or\n"
-        "images of different sizes.\n");
+        "Both images must hold the same kind of values: linear (EXR, HDR, float TIFF: radiance)\n"
+        "or display-encoded (PNG, JPEG: sRGB or another transfer function, decoded on reading).\n"
+        "An 8-bit sRGB image beside a linear one is refused: a PNG of `conegraph render` is\n"
+        "exposed and tonemapped, so its decoded values are not radiance. Compare the .exr\n"
+        "outputs, or convert a file that truly holds linear values stored as sRGB first:\n"
+        "  oiiotool IN.png --colorconvert sRGB linear -d float -o IN.exr\n"
+        "\n"
+        "Exit codes: 0 compared, 1 failed while writing, 2 bad usage, unreadable image,\n"
+        "images of different sizes, or a display-encoded image beside a linear one.\n");
 }
 
 static void
@@ -83,6 +90,39 @@ print_metrics_table(const char *label, const cg_metrics *m)
     printf("%-9s rmse %.6g  relmse %.6g  ssim %.6f  max_error %.6g  lum_ratio %.6f  nonfinite %zu\n",
            label, m->rmse, m->rel_mse, m->ssim, m->max_error, m->mean_luminance_ratio,
            m->nonfinite_pixels);
+}
+
+/* "8-bit sRGB", "32-bit float linear", ... for messages. */
+static void
+describe(const cg_image_file_info *info, char *out, size_t size)
+{
+    snprintf(out, size, "%d-bit %s %s", info->bits, info->floating ? "float" : "integer",
+             info->display_encoded ? (info->colour_space[0] ? info->colour_space : "display-encoded")
+                                   : "linear");
+}
+
+/* A display-encoded image beside a linear one: refused (exit 2), naming both and what to do. */
+static bool
+same_kind(const char *a, const cg_image_file_info *ia, const char *b, const cg_image_file_info *ib)
+{
+    if (ia->display_encoded == ib->display_encoded)
+        return true;
+    char da[128], db[128];
+    describe(ia, da, sizeof da);
+    describe(ib, db, sizeof db);
+    const char *display = ia->display_encoded ? a : b;
+    /* The converted file's name: the stem with -linear.exr, never one of the inputs. */
+    const char *slash = strrchr(display, '/'), *dot = strrchr(display, '.');
+    int stem = dot && (!slash || dot > slash) ? (int)(dot - display) : (int)strlen(display);
+    fprintf(stderr,
+            "conegraph compare: %s holds %s values and %s %s ones.\n"
+            "  An image made for display (a render's .png is exposed and tonemapped) is not linear\n"
+            "  radiance, so their difference means nothing. Compare linear images (render -o OUT.exr\n"
+            "  writes the linear hdr output), or two display images; if %s truly holds linear\n"
+            "  values stored as sRGB, convert it first:\n"
+            "    oiiotool %s --colorconvert sRGB linear -d float -o %.*s-linear.exr\n",
+            a, da, b, db, display, display, stem, display);
+    return false;
 }
 
 static int
@@ -140,9 +180,15 @@ cmd_compare(int argc, char **argv)
     cg_image test = { 0 }, ref = { 0 }, direct = { 0 }, test_ind = { 0 }, ref_ind = { 0 }, map = { 0 };
     cg_metrics full, indirect;
     int code = 0;
-    if (!cg_image_read(paths[0], &test, &err) || !cg_image_read(paths[1], &ref, &err) ||
-        (direct_path && !cg_image_read(direct_path, &direct, &err))) {
+    cg_image_file_info test_info, ref_info, direct_info;
+    if (!cg_image_read_info(paths[0], &test, &test_info, &err) || !cg_image_read_info(paths[1], &ref, &ref_info, &err) ||
+        (direct_path && !cg_image_read_info(direct_path, &direct, &direct_info, &err))) {
         code = fail_exit("", &err);
+        goto done;
+    }
+    if (!same_kind(paths[0], &test_info, paths[1], &ref_info) ||
+        (direct_path && !same_kind(direct_path, &direct_info, paths[1], &ref_info))) {
+        code = 2;
         goto done;
     }
     if (test.width != ref.width || test.height != ref.height) {

@@ -16,8 +16,9 @@ cmd_export_usage(FILE *out)
             "--help) and writes it as glTF 2.0: .gltf with the buffers and textures embedded as\n"
             "base64, or a binary .glb, chosen by OUT's extension. Lights are written with\n"
             "KHR_lights_punctual, emissive strengths above 1 with KHR_materials_emissive_strength,\n"
-            "and each mesh's kind (heightfield or complex) in its extras as \"conegraph_kind\",\n"
-            "so that the file loads back as the same scene. The file is written to a temporary\n"
+            "each mesh's kind (heightfield or complex) in its extras as \"conegraph_kind\", and\n"
+            "the animations with the nodes they move (a built-in's motion= included), so that\n"
+            "the file loads back as the same scene. The file is written to a temporary\n"
             "name and renamed, so a failure leaves no partial file.\n"
             "\n"
             "Exit codes: 0 done, 1 failed while writing, 2 bad scene or usage.\n");

@@ -18,13 +18,16 @@ cmd_graph_usage(FILE *out)
 {
     fprintf(out,
         "usage: conegraph graph FILE [--check] [--dot] [--set PASS.PARAM=VALUE]... [--plugin PATH]...\n"
-        "                       [--size WxH] [--max-gpu-memory MIB] [--no-pool] [--report FILE]\n"
-        "                       [SCENE]\n"
+        "                       [--size WxH] [--max-gpu-memory SIZE] [--no-pool] [--report FILE]\n"
+        "                       [--camera NAME|INDEX|auto] [--sky SKY] [--no-default-light] [SCENE]\n"
         "\n"
         "Reads graph file FILE and compiles it against SCENE (a .gltf/.glb path or builtin:NAME;\n"
         "default builtin:openworld) without GL: declares every pass, validates, culls, orders,\n"
         "computes lifetimes, pooled storage and barriers, and checks the sizes against the GL\n"
-        "limits given here (no GL context is made).\n"
+        "limits given here (no GL context is made). A FILE without '/' that does not exist here\n"
+        "is looked up in the graph directory, as render --graph does. The scene is lit as render\n"
+        "lights it (--sky, the file's \"sky\", the default light), since what a scene's lights\n"
+        "are decides which passes run.\n"
         "\n"
         "  --check                compile and print the execution order, the culled passes with\n"
         "                         their reasons, and the resources with their bytes (the default)\n"
@@ -33,11 +36,15 @@ cmd_graph_usage(FILE *out)
         "  --set PASS.PARAM=VALUE override a parameter, validated as in a file; may be repeated\n"
         "  --plugin PATH          load a pass plugin first; may be repeated\n"
         "  --size WxH             output image size (default 1280x720)\n"
-        "  --max-gpu-memory MIB   fail when the graph needs more GPU memory than this\n"
+        "  --max-gpu-memory SIZE  fail when the graph needs more GPU memory than this: a number\n"
+        "                         with its unit, e.g. 512M or 2G (B, K, M, G, T: powers of 1024)\n"
         "  --max-texture-size N   largest 2D texture side (default 16384)\n"
         "  --max-3d-texture-size N  largest 3D texture side (default 2048)\n"
         "  --no-pool              give every transient resource its own storage\n"
         "  --report FILE          also write the compile report as JSON (atomically)\n"
+        "  --camera NAME|INDEX|auto  the scene camera the view comes from (as render)\n"
+        "  --sky SKY              the scene's sky, as render --sky (overrides the file's \"sky\")\n"
+        "  --no-default-light     no sun and sky for a scene that nothing lights\n"
         "\n"
         "Exit codes: 0 the graph compiles, 1 failed while running (writing the report),\n"
         "2 bad usage, bad graph file (with file:line:column) or unloadable scene.\n");
@@ -46,7 +53,9 @@ cmd_graph_usage(FILE *out)
 int
 cmd_graph(int argc, char **argv)
 {
-    const char *file = NULL, *scene_source = "builtin:openworld", *report = NULL;
+    const char *file = NULL, *scene_source = "builtin:openworld", *report = NULL, *camera = NULL;
+    cg_sky sky;
+    bool sky_given = false, no_default_light = false;
     const char *sets[MAX_REPEATED] = { 0 }, *plugins[MAX_REPEATED] = { 0 };
     int set_count = 0, plugin_count = 0, width = 1280, height = 720;
     bool dot = false;
@@ -69,12 +78,11 @@ cmd_graph(int argc, char **argv)
                 return 2;
             }
         } else if (!strcmp(a, "--max-gpu-memory") && has_value) {
-            if (!app_parse_int(argv[++i], 1, 1L << 30, &v)) {
-                fprintf(stderr, "conegraph graph: --max-gpu-memory %s: expected MiB, a positive integer\n",
+            if (!app_parse_bytes(argv[++i], &options.max_gpu_memory)) {
+                fprintf(stderr, "conegraph graph: --max-gpu-memory wants " APP_BYTES_SYNTAX ", not '%s'\n",
                         argv[i]);
                 return 2;
             }
-            options.max_gpu_memory = (size_t)v << 20;
         } else if ((!strcmp(a, "--max-texture-size") || !strcmp(a, "--max-3d-texture-size")) && has_value) {
             if (!app_parse_int(argv[++i], 1, 1 << 20, &v)) {
                 fprintf(stderr, "conegraph graph: %s %s: expected a positive integer\n", a, argv[i]);
@@ -86,6 +94,17 @@ cmd_graph(int argc, char **argv)
                 options.max_texture_size_3d = (int)v;
         } else if (!strcmp(a, "--no-pool")) {
             options.no_pool = true;
+        } else if (!strcmp(a, "--no-default-light")) {
+            no_default_light = true;
+        } else if (!strcmp(a, "--camera") && has_value) {
+            camera = argv[++i];
+        } else if (!strcmp(a, "--sky") && has_value) {
+            cg_error why = { 0 };
+            if (!cg_sky_parse(argv[++i], &sky, &why)) {
+                fprintf(stderr, "conegraph graph: --sky: %s\n", why.message);
+                return 2;
+            }
+            sky_given = true;
         } else if (!strcmp(a, "--report") && has_value) {
             report = argv[++i];
         } else if (a[0] == '-') {
@@ -108,8 +127,9 @@ cmd_graph(int argc, char **argv)
      * compile that every app runs first. */
     cg_error err = { 0 };
     app_session session;
-    app_session_desc desc = { .scene = scene_source, .plugins = plugins, .plugin_count = plugin_count,
-                              .width = width, .height = height, .compile = options };
+    app_session_desc desc = { .tool = TOOL, .scene = scene_source, .camera = camera, .plugins = plugins,
+                              .plugin_count = plugin_count, .width = width, .height = height, .compile = options,
+                              .sky = sky_given ? &sky : NULL, .no_default_light = no_default_light };
     app_graph_desc graph = { .graph = file, .sets = sets, .set_count = set_count };
     bool ok = app_session_open(&session, &desc, &err) && app_session_load_graph(&session, &graph, &err) &&
               app_session_check(&session, &err);

@@ -3,6 +3,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "app_session.h"
 #include "cg/error.h"
 #include "cg/gl.h"
 #include "cg/scene.h"
@@ -13,11 +14,14 @@ void
 cmd_info_usage(FILE *out)
 {
     fprintf(out,
-            "usage: conegraph info SCENE [--gl] [--context egl|osmesa|glfw|auto]\n"
+            "usage: conegraph info SCENE [--gl] [--context egl|osmesa|glfw|auto] [--sky SKY]\n"
+            "                            [--no-default-light]\n"
             "\n"
             "Loads SCENE and prints its meshes (with their kind: heightfield or complex, who set\n"
-            "it, and the height-field distance d of eq. 5 of the hybrid cone tracing paper),\n"
-            "triangles, materials, textures, lights, cameras and world bounds.\n"
+            "it, what eq. 5 of the hybrid cone tracing paper and the normal rule say, and eq. 5's\n"
+            "height-field distance d), triangles, materials, textures, lights, cameras, sky and world bounds, lit as render\n"
+            "lights it: a scene with no light, no emissive surface and no sky is given the default\n"
+            "light (a sun and a sky: a notice on stderr, the lights marked \"added\").\n"
             "\n"
             "SCENE is a .gltf or .glb file, dem:IMAGE[?key=value&...] (a terrain from an elevation\n"
             "image, docs/scenes.md) or builtin:NAME[?key=value&...]:\n");
@@ -38,6 +42,8 @@ cmd_info_usage(FILE *out)
             "  --gl             also create a GL 4.5 core context and print its version and renderer\n"
             "  --context NAME   create the context with this backend (implies --gl; without it:\n"
             "                   CONEGRAPH_CONTEXT, else egl then osmesa)\n"
+            "  --sky SKY        the sky, as render --sky takes it\n"
+            "  --no-default-light  list the scene as it is, unlit when nothing lights it\n"
             "  -h, --help       this help\n"
             "\n"
             "Exit codes: 0 done, 1 failed while running (no GL context), 2 bad scene or usage.\n");
@@ -76,13 +82,14 @@ print_class(const cg_scene *s, int i, double *eq5_ms, cg_error *err)
     *eq5_ms += app_now_ms() - t0;
     if (c.source != CG_KIND_CLASSIFIED || s->classify.rule != CG_CLASSIFY_EQ5)
         printf("; eq. 5: %s", kind_name(eq5.kind));
-    printf("; normals: %s) d=%.3g max %.3g", eq5.instances ? kind_name(eq5.normals_up ? CG_MESH_HEIGHTFIELD : CG_MESH_COMPLEX) : "complex",
-           eq5.distance, eq5.max_distance);
+    printf("; normals: %s) d=%.3g max %.3g",
+           kind_name(eq5.instances && eq5.normals_up ? CG_MESH_HEIGHTFIELD : CG_MESH_COMPLEX), eq5.distance,
+           eq5.max_distance);
     return true;
 }
 
 static bool
-print_scene(const cg_scene *s, cg_error *err)
+print_scene(const cg_scene *s, int file_lights, cg_error *err)
 {
     printf("scene %s\n", s->name);
     printf("triangles %zu (%d meshes, %d instances)\n", cg_scene_triangle_count(s), s->mesh_count,
@@ -125,8 +132,9 @@ print_scene(const cg_scene *s, cg_error *err)
     printf("lights %d\n", s->light_count);
     for (int i = 0; i < s->light_count; i++) {
         const cg_light *l = &s->lights[i];
-        printf("  %d '%s' %s: color [%g %g %g] intensity %g", i, l->name, light_type_name(l->type),
-               l->color[0], l->color[1], l->color[2], l->intensity);
+        printf("  %d '%s' %s%s: color [%g %g %g] intensity %g", i, l->name, light_type_name(l->type),
+               i >= file_lights ? " (added: the default light)" : "", l->color[0], l->color[1], l->color[2],
+               l->intensity);
         if (l->type != CG_LIGHT_DIRECTIONAL)
             printf(" position [%g %g %g]", l->position[0], l->position[1], l->position[2]);
         if (l->type != CG_LIGHT_POINT)
@@ -137,6 +145,12 @@ print_scene(const cg_scene *s, cg_error *err)
             printf(" range %g", l->range);
         printf("\n");
     }
+    char sky[128];
+    cg_sky_format(&s->sky, sky, sizeof sky);
+    printf("sky %s%s\n", sky,
+           s->sky.type == CG_SKY_UNIFORM    ? " (uniform, W/(m^2 sr))"
+           : s->sky.type == CG_SKY_PREETHAM ? " (Preetham: turbidity, scale)"
+                                            : "");
     printf("cameras %d%s\n", s->camera_count,
            s->camera_count ? "" : " (views are framed from the bounds)");
     for (int i = 0; i < s->camera_count; i++) {
@@ -147,7 +161,8 @@ print_scene(const cg_scene *s, cg_error *err)
             char aspect[32] = "of the image";
             if (c->aspect > 0)
                 snprintf(aspect, sizeof aspect, "%g", c->aspect);
-            printf("perspective: yfov %g rad, aspect %s, znear %g, zfar %g%s", c->yfov, aspect,
+            printf("perspective: yfov %g rad, aspect %s%s, znear %g, zfar %g%s", c->yfov, aspect,
+                   c->aspect > 0 ? " (an image of another aspect widens the field of view, no stretch)" : "",
                    c->znear, c->zfar, c->zfar > 0 ? "" : " (finite far from the bounds)");
         }
         else
@@ -156,6 +171,27 @@ print_scene(const cg_scene *s, cg_error *err)
         printf(", at [%g %g %g] looking along [%g %g %g]\n", c->world[12], c->world[13], c->world[14],
                -c->world[8], -c->world[9], -c->world[10]);
     }
+    int channels = 0, moving = 0;
+    for (int a = 0; a < s->animation_count; a++)
+        channels += s->animations[a].channel_count;
+    for (int i = 0; i < s->instance_count; i++)
+        moving += s->instances[i].moving;
+    double start, end;
+    cg_scene_animation_range(s, &start, &end);
+    printf("animations %d", s->animation_count);
+    if (s->animation_count)
+        printf(" (%d channels on %d nodes, keys from %g to %g s; %d moving instances; bounds over the whole "
+               "animation)", channels, s->node_count, start, end, moving);
+    printf("\n");
+    static const char *const paths[] = { "translation", "rotation", "scale" };
+    static const char *const modes[] = { "LINEAR", "STEP", "CUBICSPLINE" };
+    for (int a = 0; a < s->animation_count; a++)
+        for (int c = 0; c < s->animations[a].channel_count; c++) {
+            const cg_anim_channel *ch = &s->animations[a].channels[c];
+            printf("  %d '%s' node '%s' %s %s, %d keys %g..%g s\n", a, s->animations[a].name,
+                   s->nodes[ch->node].name, paths[ch->path], modes[ch->interpolation], ch->key_count,
+                   ch->times[0], ch->times[ch->key_count - 1]);
+        }
     return true;
 }
 
@@ -163,11 +199,22 @@ int
 cmd_info(int argc, char **argv)
 {
     const char *source = NULL;
-    bool gl = false;
+    bool gl = false, sky_given = false, no_default_light = false;
+    cg_sky sky;
+    cg_error err = { 0 };
     cg_context_desc desc = { 0 };
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--gl")) {
             gl = true;
+        } else if (!strcmp(argv[i], "--no-default-light")) {
+            no_default_light = true;
+        } else if (!strcmp(argv[i], "--sky")) {
+            if (i + 1 >= argc || !cg_sky_parse(argv[i + 1], &sky, &err)) {
+                fprintf(stderr, "conegraph info: --sky: %s\n", i + 1 < argc ? err.message : "needs a value");
+                return 2;
+            }
+            sky_given = true;
+            i++;
         } else if (!strcmp(argv[i], "--context")) {
             if (i + 1 >= argc || !cg_context_backend_parse(argv[i + 1], &desc.backend)) {
                 fprintf(stderr, "conegraph info: --context expects egl, osmesa, glfw or auto\n");
@@ -190,12 +237,17 @@ cmd_info(int argc, char **argv)
         return 2;
     }
     cg_scene scene;
-    cg_error err = { 0 };
     if (!cg_scene_load(source, &scene, &err)) {
         fprintf(stderr, "conegraph info: %s\n", err.message);
         return cg_status_exit_code(err.status);
     }
-    bool printed = print_scene(&scene, &err);
+    int file_lights = scene.light_count;
+    if (!app_light_scene("conegraph info", &scene, sky_given ? &sky : NULL, "--sky", no_default_light, &err)) {
+        fprintf(stderr, "conegraph info: %s\n", err.message);
+        cg_scene_free(&scene);
+        return cg_status_exit_code(err.status);
+    }
+    bool printed = print_scene(&scene, file_lights, &err);
     cg_scene_free(&scene);
     if (!printed) {
         fprintf(stderr, "conegraph info: %s\n", err.message);

@@ -1,5 +1,6 @@
-/* conegraph render: loads a scene and a graph file, runs the graph for N frames and writes
- * the final image (.exr: the graph's linear `hdr` output; .png: its tonemapped `ldr`). */
+/* conegraph render: loads a scene and a graph file, runs the graph for N frames (an animated
+ * scene posed at T + k / F for frame k) and writes the final image (.exr: the graph's linear
+ * `hdr` output; .png: its tonemapped `ldr`). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -21,6 +22,7 @@ typedef struct render_options {
     app_options common;     /* scene, graph, size, camera, frames, sets, plugins, context, budget, timing */
     const char *output;
     const char *report;
+    double fps, time;       /* frame k is posed at time + k / fps */
     dump_request dumps[APP_MAX_LIST];
     int dump_count;
 } render_options;
@@ -41,9 +43,14 @@ cmd_render_usage(FILE *out)
         "                          from the graph directory). A FILE without '/' that does not\n"
         "                          exist here is looked up in the graph directory too.\n"
         "  --size WxH              image size in pixels (default 1280x720)\n"
-        "  --camera NAME|INDEX     scene camera (default: the first; framed from the bounds if none)\n"
+        APP_CAMERA_USAGE
+        APP_LIGHT_USAGE
         "  --frames N              frames to run (default 1); the image is the last frame's;\n"
         "                          progress and the median frame time go to stderr\n"
+        "  --time T                seconds into the scene's animation of the first frame\n"
+        "                          (default 0; 0..1e9)\n"
+        "  --fps F                 frames per second of animation time (default 30; above 0,\n"
+        "                          at most 1e6): frame k is posed at T + k / F\n"
         "  --report FILE           per-pass times and resource bytes as JSON (written atomically)\n"
         "  --dump PASS.OUT=FILE.exr  also write that resource of the last frame (2D: as is;\n"
         "                          3D and arrays: slices stacked top to bottom); repeatable\n"
@@ -51,7 +58,8 @@ cmd_render_usage(FILE *out)
         "  --plugin PATH           load a pass plugin (.so); repeatable. Directories in\n"
         "                          $CONEGRAPH_PLUGIN_PATH are loaded too\n"
         "  --context egl|osmesa|glfw  GL context (default: $CONEGRAPH_CONTEXT, else EGL, then OSMesa)\n"
-        "  --max-gpu-memory BYTES  refuse graphs needing more (suffixes K, M, G = 1024^n)\n"
+        "  --max-gpu-memory SIZE   refuse graphs needing more GPU memory: a number with its\n"
+        "                          unit, e.g. 512M or 2G (B, K, M, G, T: powers of 1024)\n"
         "  --timing sync|queries|none  per-pass timing: glFinish + CPU clock (default, right on\n"
         "                          llvmpipe), GL_TIMESTAMP queries read a frame late, or none\n"
         "\n"
@@ -78,6 +86,12 @@ own_option(void *user, const char *a, const char *v)
     render_options *o = user;
     if (!strcmp(a, "-o") || !strcmp(a, "--output")) {
         o->output = v;
+    } else if (!strcmp(a, "--fps")) {
+        if (!app_parse_double(v, 0, 1e6, true, &o->fps))
+            return usage_error("--fps wants frames per second above 0 and at most 1e6, not '%s'", v);
+    } else if (!strcmp(a, "--time")) {
+        if (!app_parse_double(v, 0, 1e9, false, &o->time))
+            return usage_error("--time wants seconds from 0 to 1e9, not '%s'", v);
     } else if (!strcmp(a, "--report")) {
         o->report = v;
     } else if (!strcmp(a, "--dump")) {
@@ -106,6 +120,7 @@ parse_args(int argc, char **argv, render_options *o)
     o->common.height = 720;
     o->common.frames = 1;
     o->common.timing = FG_TIMING_SYNC;
+    o->fps = 30;
     int code = app_parse_options(TOOL, argc, argv, ~0u, &o->common, own_option, o);
     if (code)
         return code;
@@ -145,7 +160,8 @@ render(const render_options *o)
     graph.reads = reads;
     graph.read_count = o->dump_count;
     cg_context_desc context = { .backend = c->backend, .width = c->width, .height = c->height, .debug = true };
-    app_run_desc run = { .frames = c->frames, .timing = c->timing, .on_frame = print_progress };
+    app_run_desc run = { .frames = c->frames, .timing = c->timing, .on_frame = print_progress,
+                         .animate = true, .time = o->time, .fps = o->fps };
     bool ok = app_session_open(&s, &desc, &err) && app_session_load_graph(&s, &graph, &err) &&
               app_session_check(&s, &err) && app_session_start_gl(&s, &context, &err) &&
               app_session_compile(&s, &err) && app_session_run(&s, &run, &stats, &err) &&
@@ -157,10 +173,13 @@ render(const render_options *o)
     int code = ok ? 0 : app_fail(TOOL, NULL, &err);
     if (ok) {
         fg_graph_print_report(s.graph, stdout);
-        fprintf(stderr, "render: %s %dx%d, graph %s, %s on %s: median frame %.1f ms over %d frame(s); wrote %s\n",
+        char when[96] = "";
+        if (cg_scene_is_animated(&s.scene))
+            snprintf(when, sizeof when, " (animated: the last at t = %g s)", s.scene.time);
+        fprintf(stderr, "render: %s %dx%d, graph %s, %s on %s: median frame %.1f ms over %d frame(s)%s; wrote %s\n",
                 s.scene.name, c->width, c->height, s.graph_path,
                 cg_context_backend_name(cg_context_get_backend(s.ctx)), cg_context_renderer(s.ctx),
-                stats.median_frame_ms, c->frames, o->output);
+                stats.median_frame_ms, c->frames, when, o->output);
     }
     app_frame_stats_free(&stats);
     app_session_close(&s);

@@ -22,7 +22,8 @@ usage(FILE *out)
         fprintf(out, "  %-10s %s\n", commands[i].name, commands[i].summary);
     fprintf(out,
             "\n"
-            "`conegraph COMMAND --help` describes each command.\n"
+            "`conegraph COMMAND --help` describes each command; `conegraph --version` is\n"
+            "`conegraph version`.\n"
             "Exit codes: 0 done, 1 failed while running, 2 bad input or usage.\n"
             "Environment: CONEGRAPH_CONTEXT (egl|osmesa|glfw), CONEGRAPH_SHADER_DIR,\n"
             "CONEGRAPH_PLUGIN_PATH, CONEGRAPH_LOG (debug|info|warn|error|silent).\n");
@@ -39,6 +40,8 @@ main(int argc, char **argv)
         usage(stdout);
         return 0;
     }
+    if (!strcmp(argv[1], "--version"))
+        return cmd_version(1, argv + 1);
     for (int i = 0; i < command_count; i++) {
         if (strcmp(argv[1], commands[i].name))
             continue;

@@ -1,6 +1,7 @@
 /* conegraph-demo: renders a graph file on a scene in a GLFW window every frame, with a fly
- * camera, the pass parameters on the keyboard (driven by the parameter tables), per-pass
- * times and GI memory in the title and on stdout. docs/demo.md describes it. */
+ * camera, the pass parameters on the keyboard and in the window's UI (both driven by the
+ * parameter tables), per-pass times, frame time and GI memory in the UI, the title and on
+ * stdout, and a viewer for every texture of the graph. docs/demo.md describes it. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -20,74 +21,14 @@
 #include "cg/gpu_scene.h"
 #include "cg/image.h"
 #include "cg/scene.h"
+#include "demo.h"
 #include "demo_camera.h"
 #include "demo_params.h"
+#include "demo_ui.h"
+#include "demo_view.h"
+#include "ui.h"
 
-#define MAX_LIST 64
-#define MAX_SHOWN 9
-#define FRAME_HISTORY 64
 #define SUN_DEGREES_PER_SECOND 20.0
-
-/* A key press given on the command line (--keys). */
-typedef struct scripted_key {
-    int key;                    /* GLFW_KEY_* */
-    int mods;                   /* GLFW_MOD_SHIFT or 0 */
-} scripted_key;
-
-typedef struct demo_options {
-    app_options common;         /* scene, graph, size, sets, plugins, timing; frames 0: until the
-                                 * window closes */
-    const char *screenshot;
-    scripted_key keys[MAX_LIST];  /* --keys: pressed one per frame from the first */
-    int key_count;
-} demo_options;
-
-/* A parameter changed by a key since the last compile, with its old text for undoing it. */
-typedef struct pending_change {
-    char pass[128];
-    char param[128];
-    char previous[256];
-} pending_change;
-
-typedef struct demo {
-    demo_options o;
-    /* Scene, registry, graph, context, GPU scene and the frame (view, size) it renders. */
-    app_session s;
-    fg_graph *graph;            /* s.graph: loaded once, compiled again after every change */
-    GLFWwindow *window;
-    fg_timing_mode timing;
-    GLuint read_fbo;
-
-    /* Camera: the scene's view until the first move or look. */
-    demo_camera cam;
-    bool flying;
-    float speed, base_speed;    /* metres per second */
-    bool dragging;
-    bool have_cursor;
-    double drag_x, drag_y;      /* the last cursor position seen */
-
-    demo_selection sel;
-    pending_change changes[MAX_LIST];
-    int change_count;
-    bool recompile;
-
-    /* Keys 1..9: the ldr output, then the graph's other 2D colour textures. */
-    char shown[MAX_SHOWN][256];
-    int shown_count;
-    int shown_index;
-
-    bool sun_moving;
-    bool screenshot_requested;
-    int screenshot_serial;
-    bool print_report;
-
-    double frame_ms[FRAME_HISTORY];
-    int frame_ms_count;
-    double *all_frame_ms;       /* --frames N: every frame, for the median */
-    double last_status;
-    char status[2048];          /* frame time, per-pass times, GI memory, size, shown resource */
-    char selection[1536];       /* the selected parameter: value, type, range, doc */
-} demo;
 
 static void
 usage(FILE *out)
@@ -96,7 +37,9 @@ usage(FILE *out)
         "usage: conegraph-demo [SCENE] [options]\n"
         "\n"
         "Opens a window and renders SCENE through a frame graph every frame, showing the\n"
-        "graph's ldr output, with a fly camera and the pass parameters on the keyboard.\n"
+        "graph's ldr output under a UI of per-pass times, frame time, GI memory, every pass\n"
+        "parameter as a control and a viewer for any texture of the graph; with a fly camera\n"
+        "and the pass parameters on the keyboard too.\n"
         "\n"
         "  SCENE                   a .gltf/.glb file or builtin:NAME[?key=value&...]\n"
         "                          (default builtin:openworld)\n"
@@ -108,22 +51,30 @@ usage(FILE *out)
         "  --plugin PATH           load a pass plugin (.so); repeatable. Directories in\n"
         "                          $CONEGRAPH_PLUGIN_PATH are loaded too\n"
         "  --frames N              run N frames, then exit (default: until the window closes)\n"
-        "  --screenshot FILE.png   where F12 writes (default conegraph-demo-N.png); with\n"
-        "                          --frames, the last frame is written there too\n"
+        "  --ui on|off             start with the UI shown (default) or hidden; F1 toggles it\n"
+        "  --view PASS.OUTPUT      open the resource viewer on this texture of the graph\n"
+        "  --screenshot FILE.png   where F12 writes the window as shown, UI included (default\n"
+        "                          conegraph-demo-N.png); with --frames, the last frame is\n"
+        "                          written there too\n"
+        "  --image-screenshot FILE.png  where Shift+F12 writes the image without the UI\n"
+        "                          (default conegraph-demo-image-N.png); with --frames, the\n"
+        "                          last frame's is written there too\n"
         "  --timing sync|queries|none  per-pass timing: glFinish + CPU clock, GL_TIMESTAMP\n"
         "                          queries read a frame late, or none (default: sync on a\n"
         "                          software renderer such as llvmpipe, queries on a GPU)\n"
         "  --keys K1,K2,...        press these keys, one per frame from the first, as if typed\n"
-        "                          (for recordings and tests): tab, shift+tab, up, down, left,\n"
-        "                          right, 1..9, r, l, p, f12, esc; w, a, s, d, q, e (optionally\n"
-        "                          shift+) are held for 0.25 s of flight\n"
+        "                          (for recordings and tests): tab, up, down, left, right,\n"
+        "                          1..9, r, l, p, f1, f12, esc, any of them after shift+; w, a,\n"
+        "                          s, d, q, e (optionally shift+) are held for 0.25 s of flight\n"
         "\n"
         "Keys: WASD fly, E/Q up/down, Shift x4 speed, left mouse drag to look, scroll for\n"
         "speed, R resets the camera; Tab/Shift+Tab pass, Up/Down parameter, Left/Right\n"
         "decrease/increase it; 1..9 shown resource; L moves the sun; P prints the per-pass\n"
-        "report; F12 screenshot; Esc quits. docs/demo.md has the details.\n"
+        "report; F1 hides or shows the UI; F12 screenshot, Shift+F12 without the UI; Esc\n"
+        "quits. Over the UI, the mouse and the keys a control takes are the UI's.\n"
+        "docs/demo.md has the details.\n"
         "\n"
-        "The selected parameter, per-pass milliseconds, frame time and GI memory are shown in\n"
+        "The selected parameter, per-pass milliseconds, frame time and GI memory are also in\n"
         "the window title and printed on stdout when they change (times once a second).\n"
         "Needs a display (DISPLAY; xvfb-run for a virtual one). Bad input (scene, graph,\n"
         "parameters, sizes) exits with 2; a failure while running, a GL error included,\n"
@@ -146,7 +97,8 @@ static const struct {
     { "left", GLFW_KEY_LEFT }, { "right", GLFW_KEY_RIGHT }, { "1", GLFW_KEY_1 }, { "2", GLFW_KEY_2 },
     { "3", GLFW_KEY_3 }, { "4", GLFW_KEY_4 }, { "5", GLFW_KEY_5 }, { "6", GLFW_KEY_6 },
     { "7", GLFW_KEY_7 }, { "8", GLFW_KEY_8 }, { "9", GLFW_KEY_9 }, { "r", GLFW_KEY_R },
-    { "l", GLFW_KEY_L }, { "p", GLFW_KEY_P }, { "f12", GLFW_KEY_F12 }, { "esc", GLFW_KEY_ESCAPE },
+    { "l", GLFW_KEY_L }, { "p", GLFW_KEY_P }, { "f1", GLFW_KEY_F1 }, { "f12", GLFW_KEY_F12 },
+    { "esc", GLFW_KEY_ESCAPE },
     { "w", GLFW_KEY_W }, { "a", GLFW_KEY_A }, { "s", GLFW_KEY_S }, { "d", GLFW_KEY_D },
     { "q", GLFW_KEY_Q }, { "e", GLFW_KEY_E },
 };
@@ -193,20 +145,29 @@ parse_keys(const char *list, demo_options *o)
     return o->key_count > 0;
 }
 
-/* --screenshot, --keys: the demo's own options. */
+/* --screenshot, --image-screenshot, --ui, --view, --keys: the demo's own options. */
 static int
 own_option(void *user, const char *a, const char *v)
 {
     demo_options *o = user;
-    if (!strcmp(a, "--screenshot")) {
+    if (!strcmp(a, "--screenshot") || !strcmp(a, "--image-screenshot")) {
         if (!app_has_extension(v, ".png"))
-            return usage_error("--screenshot writes .png files only, not '%s'", v);
-        o->screenshot = v;
+            return usage_error("--screenshot and --image-screenshot write .png files only, not '%s'", v);
+        if (!strcmp(a, "--screenshot"))
+            o->screenshot = v;
+        else
+            o->image_screenshot = v;
+    } else if (!strcmp(a, "--ui")) {
+        if (strcmp(v, "on") && strcmp(v, "off"))
+            return usage_error("--ui wants on or off, not '%s'", v);
+        o->no_ui = !strcmp(v, "off");
+    } else if (!strcmp(a, "--view")) {
+        o->view = v;
     } else if (!strcmp(a, "--keys")) {
         if (!parse_keys(v, o))
-            return usage_error("--keys wants a comma-separated list of tab, shift+tab, up, down, "
-                               "left, right, 1..9, r, l, p, f12, esc, w, a, s, d, q, e "
-                               "(at most 64), not '%s'", v);
+            return usage_error("--keys wants a comma-separated list of tab, up, down, left, right, "
+                               "1..9, r, l, p, f1, f12, esc, w, a, s, d, q, e, each optionally after "
+                               "shift+ (at most 64), not '%s'", v);
     } else {
         return -1;
     }
@@ -332,6 +293,7 @@ apply_changes(demo *d, cg_error *err)
         return true;
     }
     fprintf(stderr, "conegraph-demo: %s; change undone\n", why.message);
+    snprintf(d->notice, sizeof d->notice, "%s; change undone", why.message);
     for (int i = d->change_count - 1; i >= 0; i--) {
         const pending_change *c = &d->changes[i];
         cg_error undo = { 0 };
@@ -347,6 +309,37 @@ apply_changes(demo *d, cg_error *err)
 
 /* ------------------------------------------------------------ input */
 
+/* The slot for the next change; NULL when all are taken: what is pending is compiled first,
+ * so that every change can still be undone, and the new one is dropped. */
+static pending_change *
+next_change(demo *d)
+{
+    if (d->change_count == MAX_LIST) {
+        d->recompile = true;
+        return NULL;
+    }
+    return &d->changes[d->change_count];
+}
+
+static void
+commit_change(demo *d, pending_change *c, const fg_pass *pass, const fg_param_desc *desc)
+{
+    snprintf(c->pass, sizeof c->pass, "%s", fg_pass_name(pass));
+    snprintf(c->param, sizeof c->param, "%s", desc->name);
+    d->change_count++;
+    d->recompile = true;
+    d->notice[0] = '\0';
+    print_selection(d);
+}
+
+/* A value the table or a dependency refuses: said on stderr and in the UI, nothing changed. */
+static void
+refuse(demo *d, const char *why)
+{
+    fprintf(stderr, "conegraph-demo: %s; not changed\n", why);
+    snprintf(d->notice, sizeof d->notice, "%s; not changed", why);
+}
+
 /* Left/Right. The step lands on a value the table allows (demo_params.h), so nothing is
  * compiled to find it; a value whose dependencies fail is refused at once. The graph is
  * compiled before the next frame, and a value that still fails there (a resolution past the
@@ -354,20 +347,15 @@ apply_changes(demo *d, cg_error *err)
 static void
 adjust(demo *d, int direction)
 {
-    if (d->change_count == MAX_LIST) {
-        /* Compile what is pending first so that every change can still be undone. */
-        d->recompile = true;
-        return;
-    }
-    pending_change *c = &d->changes[d->change_count];
+    pending_change *c = next_change(d);
     fg_pass *pass;
     const fg_param_desc *desc;
-    if (!demo_selected(d->graph, &d->sel, &pass, &desc))
+    if (!c || !demo_selected(d->graph, &d->sel, &pass, &desc))
         return;
     cg_error err = { 0 };
     bool changed = false;
     if (!demo_adjust(d->graph, &d->sel, direction, &changed, c->previous, sizeof c->previous, &err)) {
-        fprintf(stderr, "conegraph-demo: %s; not changed\n", err.message);
+        refuse(d, err.message);
         return;
     }
     if (!changed) {
@@ -376,15 +364,63 @@ adjust(demo *d, int direction)
         fflush(stdout);
         return;
     }
-    snprintf(c->pass, sizeof c->pass, "%s", fg_pass_name(pass));
-    snprintf(c->param, sizeof c->param, "%s", desc->name);
-    d->change_count++;
-    d->recompile = true;
+    commit_change(d, c, pass, desc);
+}
+
+void
+demo_select(demo *d, int pass, int param)
+{
+    if (d->sel.pass == pass && d->sel.param == param)
+        return;
+    d->sel.pass = pass;
+    d->sel.param = param;
     print_selection(d);
 }
 
-static void
-show(demo *d, int index)
+void
+demo_step_param(demo *d, int pass, int param, int direction)
+{
+    d->sel.pass = pass;
+    d->sel.param = param;
+    adjust(d, direction);
+}
+
+/* A control's value: the same checks as a key's step (demo_param_set), the same undo. */
+void
+demo_set_param(demo *d, int pass, int param, const char *text)
+{
+    d->sel.pass = pass;
+    d->sel.param = param;
+    pending_change *c = next_change(d);
+    fg_pass *p;
+    const fg_param_desc *desc;
+    if (!c || !demo_selected(d->graph, &d->sel, &p, &desc))
+        return;
+    cg_error err = { 0 };
+    if (!demo_param_set(d->graph, p, desc, text, c->previous, sizeof c->previous, &err)) {
+        refuse(d, err.message);
+        return;
+    }
+    commit_change(d, c, p, desc);
+}
+
+/* Marks `source` as a graph output so that it is kept and not pooled away before the blit
+ * or the viewer reads it; the graph compiles again when it was not one. */
+static bool
+keep(demo *d, const char *source)
+{
+    cg_error err = { 0 };
+    bool added = false;
+    if (!app_session_mark_output(&d->s, source, &added, &err)) {
+        fprintf(stderr, "conegraph-demo: %s\n", err.message);
+        return false;
+    }
+    d->recompile |= added;
+    return true;
+}
+
+void
+demo_show(demo *d, int index)
 {
     if (index >= d->shown_count) {
         printf("show: no resource %d (1..%d: ", index + 1, d->shown_count);
@@ -394,18 +430,27 @@ show(demo *d, int index)
         fflush(stdout);
         return;
     }
-    d->shown_index = index;
-    /* Marked as an output so that it is kept and not pooled away before the blit. */
-    cg_error err = { 0 };
-    bool added = false;
-    if (!app_session_mark_output(&d->s, d->shown[index], &added, &err)) {
-        fprintf(stderr, "conegraph-demo: %s\n", err.message);
+    if (!keep(d, d->shown[index])) {
         d->shown_index = 0;
         return;
     }
-    d->recompile |= added;
+    d->shown_index = index;
     printf("show: %d %s%s\n", index + 1, d->shown[index],
            index ? " (raw values, clamped to [0,1] by the blit)" : "");
+    fflush(stdout);
+}
+
+void
+demo_view_resource(demo *d, const char *source)
+{
+    if (!strcmp(source, d->view_source))
+        return;
+    if (*source && !keep(d, source))
+        return;
+    snprintf(d->view_source, sizeof d->view_source, "%s", source);
+    d->view_fresh = true;
+    d->view_notice[0] = '\0';
+    printf("view: %s\n", *source ? source : "none");
     fflush(stdout);
 }
 
@@ -449,31 +494,95 @@ press(demo *d, int key, int mods, bool repeat)
         if (!repeat)
             d->print_report = true;
         break;
+    case GLFW_KEY_F1:
+        if (!repeat) {
+            d->ui_shown = !d->ui_shown;
+            printf("ui: %s\n", d->ui_shown ? "shown" : "hidden");
+            fflush(stdout);
+        }
+        break;
     case GLFW_KEY_F12:
-        if (!repeat)
-            d->screenshot_requested = true;
+        if (!repeat) {
+            if (mods & GLFW_MOD_SHIFT)
+                d->image_screenshot_requested = true;
+            else
+                d->screenshot_requested = true;
+        }
         break;
     default:
         if (key >= GLFW_KEY_1 && key <= GLFW_KEY_9 && !repeat)
-            show(d, key - GLFW_KEY_1);
+            demo_show(d, key - GLFW_KEY_1);
         break;
     }
+}
+
+/* The UI gets every event while it is shown; the demo's own action follows unless the UI
+ * has the keyboard or the mouse. */
+static ui_context *
+active_ui(const demo *d)
+{
+    return d->ui_shown ? d->ui : NULL;
+}
+
+/* Whether the cursor is over a window the UI drew in the last frame. By position, not by
+ * ImGui's WantCaptureMouse: that is updated once a frame, and a frame on llvmpipe can take
+ * longer than moving the cursor off a window and clicking. */
+static bool
+cursor_over_ui(const demo *d)
+{
+    if (!active_ui(d))
+        return false;
+    double x, y;
+    glfwGetCursorPos(d->window, &x, &y);
+    for (int i = 0; i < d->ui_window_count && i < MAX_UI_WINDOWS; i++) {
+        const ui_rect *r = &d->ui_windows[i].rect;
+        if (x >= r->x && x < r->x + r->w && y >= r->y && y < r->y + r->h)
+            return true;
+    }
+    return false;
 }
 
 static void
 on_key(GLFWwindow *window, int key, int scancode, int action, int mods)
 {
-    (void)scancode;
+    demo *d = glfwGetWindowUserPointer(window);
+    ui_context *ui = active_ui(d);
+    if (ui)
+        ui_key_event(ui, key, scancode, action, mods);
+    /* F1 always reaches the demo, so that the UI can be hidden whatever it holds. */
+    if (ui && ui_wants_keyboard(ui) && key != GLFW_KEY_F1)
+        return;
     if (action != GLFW_RELEASE)
-        press(glfwGetWindowUserPointer(window), key, mods, action == GLFW_REPEAT);
+        press(d, key, mods, action == GLFW_REPEAT);
+}
+
+static void
+on_char(GLFWwindow *window, unsigned int codepoint)
+{
+    ui_context *ui = active_ui(glfwGetWindowUserPointer(window));
+    if (ui)
+        ui_char_event(ui, codepoint);
+}
+
+static void
+on_focus(GLFWwindow *window, int focused)
+{
+    ui_context *ui = active_ui(glfwGetWindowUserPointer(window));
+    if (ui)
+        ui_focus_event(ui, focused);
 }
 
 static void
 on_mouse_button(GLFWwindow *window, int button, int action, int mods)
 {
-    (void)mods;
     demo *d = glfwGetWindowUserPointer(window);
+    ui_context *ui = active_ui(d);
+    if (ui)
+        ui_mouse_button_event(ui, button, action, mods);
     if (button != GLFW_MOUSE_BUTTON_LEFT)
+        return;
+    /* A press on a UI window is the UI's; a release always ends a look. */
+    if (action == GLFW_PRESS && cursor_over_ui(d))
         return;
     d->dragging = action == GLFW_PRESS;
 }
@@ -506,16 +615,22 @@ on_cursor(GLFWwindow *window, double x, double y)
 static void
 on_cursor_enter(GLFWwindow *window, int entered)
 {
-    (void)entered;
+    demo *d = glfwGetWindowUserPointer(window);
+    if (active_ui(d))
+        ui_cursor_enter_event(d->ui, entered);
     /* Positions from before leaving say nothing about where the cursor comes back. */
-    ((demo *)glfwGetWindowUserPointer(window))->have_cursor = false;
+    d->have_cursor = false;
 }
 
 static void
 on_scroll(GLFWwindow *window, double xoffset, double yoffset)
 {
-    (void)xoffset;
     demo *d = glfwGetWindowUserPointer(window);
+    ui_context *ui = active_ui(d);
+    if (ui)
+        ui_scroll_event(ui, xoffset, yoffset);
+    if (cursor_over_ui(d))
+        return;
     float speed = d->speed * powf(1.25f, (float)yoffset);
     /* Within 1/1000 to 1000 times the starting speed: a scroll never makes it 0 or infinite. */
     if (speed >= d->base_speed * 1e-3f && speed <= d->base_speed * 1e3f)
@@ -524,10 +639,14 @@ on_scroll(GLFWwindow *window, double xoffset, double yoffset)
     fflush(stdout);
 }
 
+/* A key held down in the window (unless it is typing into a text field of the UI) or the
+ * scripted one. */
 static bool
 held(const demo *d, const scripted_key *script, int key)
 {
-    return glfwGetKey(d->window, key) == GLFW_PRESS || (script && script->key == key);
+    const ui_context *ui = active_ui(d);
+    bool typing = ui && ui_wants_text(ui);
+    return (!typing && glfwGetKey(d->window, key) == GLFW_PRESS) || (script && script->key == key);
 }
 
 /* Flies with the keys held down (or the scripted one, held for SCRIPTED_HOLD_SECONDS). */
@@ -630,12 +749,14 @@ write_screenshot(demo *d, const char *path, cg_error *err)
     return ok;
 }
 
-static double
-median_ms(const double *values, int count)
+double
+demo_frame_median_ms(const demo *d)
 {
+    if (!d->frame_ms_count)
+        return 0;
     double sorted[FRAME_HISTORY];
-    memcpy(sorted, values, (size_t)count * sizeof *sorted);
-    return app_median(sorted, count);
+    memcpy(sorted, d->frame_ms, (size_t)d->frame_ms_count * sizeof *sorted);
+    return app_median(sorted, d->frame_ms_count);
 }
 
 /* Title and stdout: the selection, frame time, per-pass times and GI memory. */
@@ -648,7 +769,7 @@ report_status(demo *d, bool force)
     d->last_status = now;
     fg_memory_report mem;
     fg_graph_memory_report(d->graph, &mem);
-    double frame = d->frame_ms_count ? median_ms(d->frame_ms, d->frame_ms_count) : 0;
+    double frame = demo_frame_median_ms(d);
     char passes[1536] = "";
     size_t len = 0;
     const int *order;
@@ -675,13 +796,30 @@ report_status(demo *d, bool force)
     update_title(d);
 }
 
-static const char *
-screenshot_path(demo *d, char *buf, size_t size)
+/* Writes the window as it is now (with_ui: after the UI was drawn; else the image alone) to
+ * --screenshot or --image-screenshot, or to a numbered file in the current directory. */
+static bool
+take_screenshot(demo *d, bool with_ui, cg_error *err)
 {
-    if (d->o.screenshot)
-        return d->o.screenshot;
-    snprintf(buf, size, "conegraph-demo-%d.png", d->screenshot_serial++);
-    return buf;
+    const char *given = with_ui ? d->o.screenshot : d->o.image_screenshot;
+    char numbered[64];
+    if (!given)
+        snprintf(numbered, sizeof numbered, "conegraph-demo-%s%d.png", with_ui ? "" : "image-",
+                 d->screenshot_serial++);
+    const char *path = given ? given : numbered;
+    cg_error why = { 0 };
+    if (!write_screenshot(d, path, &why))
+        return cg_fail(err, why.status, "%s: %s", path, why.message);
+    snprintf(d->last_screenshot, sizeof d->last_screenshot, "%s", path);
+    bool ui = with_ui && d->ui_shown;
+    printf("screenshot: %s (%s)\n", path, ui ? "the window with the UI" : "the image without the UI");
+    /* Where the UI covers the image, for tests and for anyone comparing the two kinds. */
+    for (int i = 0; ui && i < d->ui_window_count && i < MAX_UI_WINDOWS; i++) {
+        const ui_rect *r = &d->ui_windows[i].rect;
+        printf("ui: window '%s' at %.0f,%.0f size %.0fx%.0f\n", d->ui_windows[i].title, r->x, r->y, r->w, r->h);
+    }
+    fflush(stdout);
+    return true;
 }
 
 static bool
@@ -743,14 +881,25 @@ run(demo *d)
             return app_fail(TOOL, "frame", &err);
         blit(d);
         bool last_frame = d->o.common.frames && frames_run + 1 == d->o.common.frames;
+        if (d->image_screenshot_requested || (last_frame && d->o.image_screenshot)) {
+            d->image_screenshot_requested = false;
+            if (!take_screenshot(d, false, &err))
+                return app_fail(TOOL, NULL, &err);
+        }
+        d->ui_window_count = 0;
+        if (d->ui_shown) {
+            double u0 = app_now_ms();
+            if (!demo_ui_frame(d, &err))
+                return app_fail(TOOL, "UI", &err);
+            /* As the passes are timed: the UI's GPU work included unless timed by queries. */
+            if (d->timing != FG_TIMING_QUERIES)
+                glFinish();
+            d->ui_ms = app_now_ms() - u0;
+        }
         if (d->screenshot_requested || (last_frame && d->o.screenshot)) {
-            char buf[64];
-            const char *path = screenshot_path(d, buf, sizeof buf);
             d->screenshot_requested = false;
-            if (!write_screenshot(d, path, &err))
-                return app_fail(TOOL, path, &err);
-            printf("screenshot: %s\n", path);
-            fflush(stdout);
+            if (!take_screenshot(d, true, &err))
+                return app_fail(TOOL, NULL, &err);
         }
         cg_context_swap(d->s.ctx);
         /* With sync or no timing, finish here so that the frame time is the frame's work,
@@ -790,6 +939,27 @@ run(demo *d)
     return 0;
 }
 
+/* --view: a texture this scene and graph produce (known from the compile without GL). */
+static bool
+check_view(const demo *d, const char *source, cg_error *err)
+{
+    const fg_resource_info *info = fg_graph_find_resource(d->graph, source);
+    if (info && !info->absent && info->desc.kind != FG_BUFFER)
+        return true;
+    char textures[2048] = "";
+    size_t len = 0;
+    for (int i = 0; i < fg_graph_resource_count(d->graph) && len < sizeof textures; i++) {
+        const fg_resource_info *r = fg_graph_resource_at(d->graph, i);
+        if (!r->absent && r->desc.kind != FG_BUFFER) {
+            int n = snprintf(textures + len, sizeof textures - len, "%s%s", len ? ", " : "", r->name);
+            len += n > 0 ? (size_t)n : 0;
+        }
+    }
+    return cg_fail(err, CG_ERR_USAGE, "--view %s: %s; the textures of this graph on this scene are: %s", source,
+                   !info ? "no such resource" : info->absent ? "absent for this scene" : "a buffer, not a texture",
+                   textures);
+}
+
 /* Loads and checks everything (bad input exits 2 before a window opens), opens the window,
  * runs, and tears down. */
 static int
@@ -808,6 +978,10 @@ demo_main(demo *d)
         goto done;
     }
     d->graph = d->s.graph;
+    if (d->o.view && !check_view(d, d->o.view, &err)) {
+        code = app_fail(TOOL, NULL, &err);
+        goto done;
+    }
     if (d->o.common.frames) {
         d->all_frame_ms = calloc((size_t)d->o.common.frames, sizeof *d->all_frame_ms);
         if (!d->all_frame_ms) {
@@ -826,16 +1000,28 @@ demo_main(demo *d)
     glfwSetCursorPosCallback(d->window, on_cursor);
     glfwSetCursorEnterCallback(d->window, on_cursor_enter);
     glfwSetScrollCallback(d->window, on_scroll);
+    glfwSetCharCallback(d->window, on_char);
+    glfwSetWindowFocusCallback(d->window, on_focus);
+    if (!ui_create(d->window, &d->ui, &err)) {
+        code = app_fail(TOOL, NULL, &err);
+        goto done;
+    }
+    d->ui_shown = !d->o.no_ui;
+    demo_view_create(&d->view);
     /* Frame times measure the frames, not the display's refresh. */
     glfwSwapInterval(0);
+    d->editing_pass = -1;
     d->timing = d->o.common.timing_given ? d->o.common.timing
                                   : is_software(cg_context_renderer(d->s.ctx)) ? FG_TIMING_SYNC : FG_TIMING_QUERIES;
     glCreateFramebuffers(1, &d->read_fbo);
     glfwGetFramebufferSize(d->window, &d->s.frame.width, &d->s.frame.height);
+    if (d->o.view)
+        demo_view_resource(d, d->o.view);
     if (!compile_and_prepare(d, &err)) {
         code = app_fail(TOOL, NULL, &err);
         goto done;
     }
+    d->recompile = false; /* what --view marked is in this compile already */
     float diagonal = 0;
     for (int k = 0; k < 3; k++)
         diagonal += (d->s.scene.bounds_max[k] - d->s.scene.bounds_min[k]) * (d->s.scene.bounds_max[k] - d->s.scene.bounds_min[k]);
@@ -846,14 +1032,18 @@ demo_main(demo *d)
            d->s.frame.width, d->s.frame.height, cg_context_version(d->s.ctx), cg_context_renderer(d->s.ctx),
            d->timing == FG_TIMING_SYNC ? "sync" : d->timing == FG_TIMING_QUERIES ? "queries" : "none");
     printf("keys: WASD/QE fly, drag look, scroll speed, R reset, Tab/Shift+Tab pass, Up/Down param, "
-           "Left/Right value, 1..%d show, L sun, P report, F12 screenshot, Esc quit\n", d->shown_count);
+           "Left/Right value, 1..%d show, L sun, P report, F1 UI, F12 screenshot (Shift: without the UI), "
+           "Esc quit\n", d->shown_count);
     demo_select_first(d->graph, &d->sel);
     print_selection(d);
     code = run(d);
 
 done:
     free(d->all_frame_ms);
-    /* The window's framebuffer object goes before its context. */
+    /* The window's GL objects go before its context. */
+    if (d->view.vao)
+        demo_view_destroy(&d->view);
+    ui_destroy(d->ui);
     if (d->read_fbo)
         glDeleteFramebuffers(1, &d->read_fbo);
     app_session_close(&d->s);

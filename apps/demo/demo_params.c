@@ -210,6 +210,116 @@ demo_param_format(const fg_param_desc *desc, double value, char *out, size_t siz
 }
 
 double
+demo_param_snap(const fg_param_desc *desc, double value)
+{
+    if (desc->type != FG_PARAM_INT && desc->type != FG_PARAM_FLOAT)
+        return value;
+    if (value < desc->min)
+        value = desc->min;
+    if (value > desc->max)
+        value = desc->max;
+    double step = demo_param_step_size(desc, value);
+    if (step > 0)
+        value = round(value / step) * step;
+    if (desc->type == FG_PARAM_INT)
+        value = round(value);
+    /* A bound off the grid (a range of -1..65535 stepped by 2) stays reachable. */
+    if (value < desc->min)
+        value = desc->min;
+    if (value > desc->max)
+        value = desc->max;
+    return value;
+}
+
+/* Appends the values Left/Right reach from out->values[out->count - 1] upwards; false when
+ * there are more than fit. */
+static bool
+walk_up(const fg_param_desc *desc, demo_control *out)
+{
+    for (double next; demo_param_step(desc, out->values[out->count - 1], 1, &next);) {
+        if (out->count == DEMO_CONTROL_MAX_ENTRIES)
+            return false;
+        out->values[out->count++] = next;
+    }
+    return true;
+}
+
+/* The entries of a parameter that steps along a list: the allowed values, the powers of two
+ * from the range's lower bound (a power of two), or the doublings and halvings of `value`;
+ * false when there are more than fit. */
+static bool
+list_entries(const fg_param_desc *desc, double value, demo_control *out)
+{
+    out->count = 0;
+    if (desc->allowed.count > 0) {
+        if (desc->allowed.count > DEMO_CONTROL_MAX_ENTRIES)
+            return false;
+        for (int i = 0; i < desc->allowed.count; i++)
+            out->values[out->count++] = desc->allowed.values[i];
+        return true;
+    }
+    if (doubles(desc)) {
+        /* Halving and doubling do not retrace each other (an int halves with rounding down:
+         * 100, 50, 25, 12), so the list is what Left reaches from the value, the value, and
+         * what Right reaches. */
+        double below[DEMO_CONTROL_MAX_ENTRIES];
+        int n = 0;
+        for (double v = value, next; demo_param_step(desc, v, -1, &next); v = next) {
+            if (n == DEMO_CONTROL_MAX_ENTRIES - 1)
+                return false;
+            below[n++] = next;
+        }
+        while (n > 0)
+            out->values[out->count++] = below[--n];
+        out->values[out->count++] = value;
+        return walk_up(desc, out);
+    }
+    /* Powers of two: from the range's lower bound, itself a power of two (fg_registry_add). */
+    out->values[out->count++] = desc->min;
+    return walk_up(desc, out);
+}
+
+void
+demo_param_control(const fg_param_desc *desc, double value, demo_control *out)
+{
+    memset(out, 0, sizeof *out);
+    out->current = -1;
+    out->min = desc->min;
+    out->max = desc->max;
+    switch (desc->type) {
+    case FG_PARAM_BOOL:
+        out->kind = DEMO_CONTROL_CHECKBOX;
+        return;
+    case FG_PARAM_STRING:
+        out->kind = DEMO_CONTROL_TEXT;
+        return;
+    case FG_PARAM_ENUM:
+        out->kind = DEMO_CONTROL_LIST;
+        out->count = choice_count(desc->choices);
+        if (out->count > DEMO_CONTROL_MAX_ENTRIES)
+            out->count = DEMO_CONTROL_MAX_ENTRIES;
+        for (int i = 0; i < out->count; i++)
+            out->values[i] = i;
+        out->current = (int)value < out->count ? (int)value : -1;
+        return;
+    case FG_PARAM_INT:
+    case FG_PARAM_FLOAT:
+        break;
+    }
+    if ((lists_values(desc) || doubles(desc)) && list_entries(desc, value, out)) {
+        out->kind = DEMO_CONTROL_LIST;
+        double slack = VALUE_SLACK * (fabs(value) > 1 ? fabs(value) : 1);
+        for (int i = 0; i < out->count; i++)
+            if (fabs(out->values[i] - value) <= slack)
+                out->current = i;
+        return;
+    }
+    out->kind = desc->max - desc->min <= 1000 ? DEMO_CONTROL_SLIDER : DEMO_CONTROL_DRAG;
+    out->count = 0;
+    out->step = demo_param_step_size(desc, value);
+}
+
+double
 demo_param_value(const fg_pass *pass, const fg_param_desc *desc)
 {
     switch (desc->type) {
@@ -317,6 +427,35 @@ demo_selected(const fg_graph *graph, const demo_selection *sel, fg_pass **pass, 
     return true;
 }
 
+/* The current value as text fg_graph_set_param takes back. */
+static void
+current_text(const fg_pass *pass, const fg_param_desc *desc, char *out, size_t size)
+{
+    if (desc->type == FG_PARAM_STRING)
+        snprintf(out, size, "%s", fg_param_string(pass, desc->name));
+    else
+        demo_param_format(desc, demo_param_value(pass, desc), out, size);
+}
+
+bool
+demo_param_set(fg_graph *graph, fg_pass *pass, const fg_param_desc *desc, const char *text, char *previous,
+               size_t previous_size, cg_error *err)
+{
+    current_text(pass, desc, previous, previous_size);
+    if (!fg_graph_set_param(graph, fg_pass_name(pass), desc->name, text, NULL, err))
+        return false;
+    /* What this value requires of the others (voxelize: padding below a quarter of the
+     * resolution) is in the table too: refuse the value here rather than by compiling. */
+    if (!fg_pass_check_params(pass, err)) {
+        cg_error undo = { 0 };
+        if (!fg_graph_set_param(graph, fg_pass_name(pass), desc->name, previous, NULL, &undo))
+            snprintf(err->message + strlen(err->message), sizeof err->message - strlen(err->message),
+                     " (and undoing it failed: %s)", undo.message);
+        return false;
+    }
+    return true;
+}
+
 bool
 demo_adjust(fg_graph *graph, const demo_selection *sel, int direction, bool *changed, char *previous,
             size_t previous_size, cg_error *err)
@@ -326,23 +465,13 @@ demo_adjust(fg_graph *graph, const demo_selection *sel, int direction, bool *cha
     const fg_param_desc *desc;
     if (!demo_selected(graph, sel, &pass, &desc))
         return true;
-    double value = demo_param_value(pass, desc), next;
-    if (!demo_param_step(desc, value, direction, &next))
+    double next;
+    if (!demo_param_step(desc, demo_param_value(pass, desc), direction, &next))
         return true;
     char text[256];
     demo_param_format(desc, next, text, sizeof text);
-    demo_param_format(desc, value, previous, previous_size);
-    if (!fg_graph_set_param(graph, fg_pass_name(pass), desc->name, text, NULL, err))
+    if (!demo_param_set(graph, pass, desc, text, previous, previous_size, err))
         return false;
-    /* What this value requires of the others (voxelize: padding below a quarter of the
-     * resolution) is in the table too: refuse the step here rather than by compiling. */
-    if (!fg_pass_check_params(pass, err)) {
-        cg_error undo = { 0 };
-        if (!fg_graph_set_param(graph, fg_pass_name(pass), desc->name, previous, NULL, &undo))
-            snprintf(err->message + strlen(err->message), sizeof err->message - strlen(err->message),
-                     " (and undoing it failed: %s)", undo.message);
-        return false;
-    }
     *changed = true;
     return true;
 }

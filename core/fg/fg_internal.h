@@ -206,6 +206,9 @@ struct fg_graph {
     int file_count, file_cap;
     fg_graph_output *outputs;
     int output_count, output_cap;
+    /* The graph file's "sky": the scene's sky it asks for (cg/graphfile.h). */
+    bool has_sky;
+    cg_sky sky;
 
     /* compile */
     bool compiled;

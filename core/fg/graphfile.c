@@ -379,7 +379,7 @@ read_pass(fg_graph *graph, const jpos *pos, json_t *value, const char *name, cg_
 static bool
 read_graph(fg_graph *graph, json_t *root, const jpos *top, const char *name, cg_error *err)
 {
-    static const char *const top_keys[] = { "version", "description", "passes", "outputs", NULL };
+    static const char *const top_keys[] = { "version", "description", "sky", "passes", "outputs", NULL };
     if (!check_keys(top, top_keys, "graph", name, err))
         return false;
 
@@ -397,6 +397,28 @@ read_graph(fg_graph *graph, json_t *root, const jpos *top, const char *name, cg_
         const jpos *d = member(top, "description");
         return cg_fail(err, CG_ERR_GRAPH_SCHEMA, "%s:%d:%d: \"description\": expected a string, got %s", name,
                        d->line, d->column, json_type_name(description));
+    }
+
+    /* The sky the graph asks of the scene: --sky's syntax, as a string, or a number for a
+     * grey uniform sky. */
+    json_t *sky = json_object_get(root, "sky");
+    if (sky) {
+        const jpos *sky_pos = member(top, "sky");
+        char text[256];
+        if (json_is_string(sky))
+            snprintf(text, sizeof text, "%s", json_string_value(sky));
+        else if (json_is_number(sky))
+            snprintf(text, sizeof text, "%.*s", (int)sky_pos->length, sky_pos->text);
+        else
+            return cg_fail(err, CG_ERR_GRAPH_SCHEMA,
+                           "%s:%d:%d: \"sky\": expected a string (\"none\", \"R,G,B\", \"L\" or "
+                           "\"preetham[:TURBIDITY[,SCALE]]\") or a number, got %s",
+                           name, sky_pos->line, sky_pos->column, json_type_name(sky));
+        cg_error why = { 0 };
+        if (!cg_sky_parse(text, &graph->sky, &why))
+            return cg_fail(err, CG_ERR_GRAPH_SCHEMA, "%s:%d:%d: %s", name, sky_pos->line, sky_pos->column,
+                           why.message);
+        graph->has_sky = true;
     }
 
     json_t *passes = json_object_get(root, "passes");
@@ -499,6 +521,14 @@ fg_graph_load_file(fg_graph *graph, const char *path, cg_error *err)
     bool ok = fg_graph_load_string(graph, text, path, err);
     free(text);
     return ok;
+}
+
+bool
+fg_graph_file_sky(const fg_graph *graph, cg_sky *out)
+{
+    if (graph->has_sky)
+        *out = graph->sky;
+    return graph->has_sky;
 }
 
 bool

@@ -76,20 +76,22 @@ decode(cg_oiio_transfer transfer, float gamma, float v)
 }
 
 bool
-cg_image_read(const char *path, cg_image *out, cg_error *err)
+cg_image_read_info(const char *path, cg_image *out, cg_image_file_info *info, cg_error *err)
 {
     out->width = out->height = 0;
     out->rgba = NULL;
+    memset(info, 0, sizeof *info);
     if (access(path, R_OK) != 0)
         return cg_fail(err, CG_ERR_FILE_NOT_FOUND, "%s: no such readable file", path);
     cg_oiio_transfer transfer = CG_OIIO_LINEAR;
     float gamma = 1.0f;
-    char colour_space[128];
-    if (!cg_oiio_read(path, out, &transfer, &gamma, colour_space, sizeof colour_space, err))
+    if (!cg_oiio_read(path, out, &transfer, &gamma, info->colour_space, sizeof info->colour_space, &info->bits,
+                      &info->floating, err))
         return false;
     if (transfer == CG_OIIO_OTHER)
-        cg_log_warn("%s: colour space \"%s\" is not converted: pixels are read as stored", path, colour_space);
-    if (transfer == CG_OIIO_LINEAR || transfer == CG_OIIO_OTHER)
+        cg_log_warn("%s: colour space \"%s\" is not converted: pixels are read as stored", path, info->colour_space);
+    info->display_encoded = transfer != CG_OIIO_LINEAR && transfer != CG_OIIO_OTHER;
+    if (!info->display_encoded)
         return true;
     size_t count = (size_t)out->width * out->height;
     for (size_t i = 0; i < count; i++) {
@@ -98,6 +100,13 @@ cg_image_read(const char *path, cg_image *out, cg_error *err)
             p[c] = decode(transfer, gamma, p[c]);
     }
     return true;
+}
+
+bool
+cg_image_read(const char *path, cg_image *out, cg_error *err)
+{
+    cg_image_file_info info;
+    return cg_image_read_info(path, out, &info, err);
 }
 
 typedef enum image_format { FORMAT_UNKNOWN, FORMAT_EXR, FORMAT_PNG } image_format;

@@ -39,7 +39,7 @@ transfer_of(const OIIO::ImageSpec &spec, float *gamma)
 
 bool
 read_pixels(const char *path, cg_image *out, cg_oiio_transfer *transfer, float *gamma, char *colour_space,
-            size_t colour_space_size, cg_error *err)
+            size_t colour_space_size, int *bits, bool *floating, cg_error *err)
 {
     // Colour channels as stored: PNG's alpha is unassociated and OIIO would otherwise
     // premultiply it in (lossy at 8 bits, and in encoded space).
@@ -57,6 +57,8 @@ read_pixels(const char *path, cg_image *out, cg_oiio_transfer *transfer, float *
         return cg_fail(err, CG_ERR_IMAGE_FORMAT, "%s: %dx%dx%d image with %d channels: expected a 2D image",
                        path, w, h, spec.depth, n);
     *transfer = transfer_of(spec, gamma);
+    *bits = (int)spec.format.size() * 8;
+    *floating = spec.format.is_floating_point();
     std::snprintf(colour_space, colour_space_size, "%s", spec.get_string_attribute("oiio:ColorSpace").c_str());
 
     std::vector<float> src((size_t)w * h * n);
@@ -129,10 +131,10 @@ write_pixels(const char *path, int width, int height, cg_oiio_pixel_type type, c
 // C entry points: no exception may cross into C.
 extern "C" bool
 cg_oiio_read(const char *path, cg_image *out, cg_oiio_transfer *transfer, float *gamma, char *colour_space,
-             size_t colour_space_size, cg_error *err)
+             size_t colour_space_size, int *bits, bool *floating, cg_error *err)
 {
     try {
-        return read_pixels(path, out, transfer, gamma, colour_space, colour_space_size, err);
+        return read_pixels(path, out, transfer, gamma, colour_space, colour_space_size, bits, floating, err);
     } catch (const std::bad_alloc &) {
         cg_image_free(out);
         return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "%s: out of memory reading the image", path);

@@ -36,10 +36,11 @@ typedef enum cg_oiio_pixel_type {
 /* Reads subimage 0, mip 0 of any file OIIO reads into out (allocated here) as RGBA
  * float, rows top to bottom, channel values as stored (integers normalised to [0,1],
  * no transfer function undone); grey becomes RGB, missing alpha is 1. The file's
- * oiio:ColorSpace attribute goes to colour_space (for messages). Alpha is never
- * multiplied into or divided out of the colour channels, on reading or writing. */
+ * oiio:ColorSpace attribute goes to colour_space (for messages); bits and floating: its
+ * sample type. Alpha is never multiplied into or divided out of the colour channels, on
+ * reading or writing. */
 bool cg_oiio_read(const char *path, cg_image *out, cg_oiio_transfer *transfer, float *gamma,
-                  char *colour_space, size_t colour_space_size, cg_error *err);
+                  char *colour_space, size_t colour_space_size, int *bits, bool *floating, cg_error *err);
 
 /* Writes width x height RGBA pixels to `path` in the format its extension names, stored
  * as `type`; srgb tags the file as sRGB-encoded. Writes `path` itself: atomicity is the

@@ -18,7 +18,8 @@
  * ("searches for each x the closest point y", "avg(.) denotes the average") reads as above. It is
  * a one-sided mean distance, not a Hausdorff distance, whatever the paper calls it.
  *
- * Orientation plays no part: a sheet facing down is a height field. Only the lower vertices of a
+ * Orientation plays no part: a sheet facing down is a height field. A mesh with a moving
+ * instance (an animated node) is complex, by either rule. Only the lower vertices of a
  * cliff or a skirt lie off the top surface, each by about its drop, so a terrain with a vertical
  * face keeps a small d; a mesh of two stacked layers has a whole layer a storey below the top one.
  *
@@ -569,7 +570,11 @@ cg_mesh_classify(const cg_scene *scene, int mesh_index, const cg_classify_option
         if (inst->mesh != mesh_index)
             continue;
         out->instances++;
-        out->normals_up = out->normals_up && normals_up(mesh, inst->world);
+        /* A moving instance (an animated node) would have to be a height field at every time:
+         * not proven, so its mesh is complex by either rule; d is measured as posed. */
+        if (inst->moving)
+            all_below = false;
+        out->normals_up = out->normals_up && !inst->moving && normals_up(mesh, inst->world);
         if (o.rule != CG_CLASSIFY_EQ5)
             continue;
         double d, dmax;

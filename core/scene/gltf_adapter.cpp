@@ -48,6 +48,27 @@ struct loader {
     std::vector<int> texture_map;         // glTF texture -> cg texture or -1
     std::vector<int> explicit_kind;       // per cg mesh: -1 none, else a cg_mesh_kind
     std::map<int, std::string> image_problem; // image -> why its data cannot be used
+    // The node hierarchy animation needs (visit_nodes): per glTF node, its parent, whether a
+    // channel animates it, whether it is an ancestor of an animated node, and its cg node
+    // (-1: flattened).
+    std::vector<int> parent;
+    std::vector<bool> animated, animated_below;
+    std::vector<int> node_map;
+    // The channels read (read_animations), on glTF nodes until visit_nodes maps them.
+    struct pending_animation {
+        std::string name;
+        std::vector<cg_anim_channel> channels;
+        std::vector<int> nodes;
+    };
+    std::vector<pending_animation> animations;
+    ~loader()
+    {
+        for (auto &a : animations)
+            for (auto &c : a.channels) {
+                std::free(c.times);
+                std::free(c.values);
+            }
+    }
 };
 
 std::string
@@ -771,7 +792,8 @@ check_node_graph(loader &L)
         }
     }
     // A node has one parent at most, and the nodes a scene lists are roots (glTF 2.0, 3.5.1).
-    std::vector<int> parent(nodes.size(), -1);
+    std::vector<int> &parent = L.parent;
+    parent.assign(nodes.size(), -1);
     for (size_t n = 0; n < nodes.size(); n++)
         for (int c : nodes[n].children) {
             if (parent[(size_t)c] >= 0)
@@ -791,8 +813,9 @@ check_node_graph(loader &L)
 }
 
 bool
-add_light(loader &L, int node, const double world[16])
+add_light(loader &L, int node, const double world[16], int *added)
 {
+    *added = -1;
     const tinygltf::Node &n = L.model.nodes[(size_t)node];
     auto it = n.extensions.find("KHR_lights_punctual");
     if (it == n.extensions.end())
@@ -831,12 +854,14 @@ add_light(loader &L, int node, const double world[16])
         l.position[k] = (float)world[12 + k];
         l.direction[k] = len > 0 ? (float)(d[k] / len) : (k == 1 ? -1.0f : 0.0f);
     }
-    return cg_scene_add_light(L.scene, &l, L.err) >= 0;
+    *added = cg_scene_add_light(L.scene, &l, L.err);
+    return *added >= 0;
 }
 
 bool
-add_camera(loader &L, int node, const double world[16])
+add_camera(loader &L, int node, const double world[16], int *added)
 {
+    *added = -1;
     int ci = L.model.nodes[(size_t)node].camera;
     if (ci < 0)
         return true;
@@ -865,19 +890,199 @@ add_camera(loader &L, int node, const double world[16])
         return fail(L, CG_ERR_GLTF_PARSE, "camera " + std::to_string(ci) + ": unknown type '" + gc.type + "'");
     }
     to_float(world, c.world);
-    return cg_scene_add_camera(L.scene, &c, L.err) >= 0;
+    *added = cg_scene_add_camera(L.scene, &c, L.err);
+    return *added >= 0;
 }
 
+// ------------------------------------------------------------------ animation
+
+// glTF 2.0, 3.11: a channel animates a node's translation, rotation, scale or morph target
+// weights through a sampler (key times, values, interpolation). Every channel on translation,
+// rotation or scale is read and its data checked as the validator checks it (times >= 0 and
+// increasing, min and max equal to the data, no NaN, unit rotations), whether or not its node
+// is in the default scene; channels without a node are ignored, as glTF says, and those on
+// weights too: conegraph does not read morph targets, so meshes keep their base shape.
+bool
+read_channel(loader &L, size_t ai, size_t ci, cg_anim_channel *out)
+{
+    const tinygltf::Animation &A = L.model.animations[ai];
+    const tinygltf::AnimationChannel &ch = A.channels[ci];
+    const tinygltf::AnimationSampler &sm = A.samplers[(size_t)ch.sampler];
+    std::string what = "animations[" + std::to_string(ai) + "].samplers[" + std::to_string(ch.sampler) + "]";
+    *out = cg_anim_channel{};
+    out->path = ch.target_path == "rotation" ? CG_ANIM_ROTATION
+                : ch.target_path == "scale"  ? CG_ANIM_SCALE
+                                             : CG_ANIM_TRANSLATION;
+    out->interpolation = sm.interpolation == "STEP"          ? CG_INTERP_STEP
+                         : sm.interpolation == "CUBICSPLINE" ? CG_INTERP_CUBICSPLINE
+                                                             : CG_INTERP_LINEAR;
+    bool cubic = out->interpolation == CG_INTERP_CUBICSPLINE, rotation = out->path == CG_ANIM_ROTATION;
+    accessor_view in, o;
+    if (!view_accessor(L, sm.input, what + ".input", { TINYGLTF_TYPE_SCALAR }, { TINYGLTF_COMPONENT_TYPE_FLOAT }, &in) ||
+        !check_accessor_data(L, what + ".input", sm.input, "key", in))
+        return false;
+    for (size_t k = 0; k < in.count; k++) {
+        double t = in.component(k, 0);
+        if (t < 0)
+            return fail(L, CG_ERR_GLTF_ACCESSOR,
+                        what + ".input: key " + std::to_string(k) + " is at a negative time (" + std::to_string(t) +
+                            ", accessor " + std::to_string(sm.input) + ")");
+        if (k > 0 && !(t > in.component(k - 1, 0)))
+            return fail(L, CG_ERR_GLTF_ACCESSOR,
+                        what + ".input: key " + std::to_string(k) + " at " + std::to_string(t) +
+                            " s does not come after the previous key (times must increase; accessor " +
+                            std::to_string(sm.input) + ")");
+    }
+    if (cubic && in.count < 2)
+        return fail(L, CG_ERR_GLTF_ACCESSOR, what + ": CUBICSPLINE needs 2 keys at least");
+    if (rotation) {
+        if (!view_accessor(L, sm.output, what + ".output", { TINYGLTF_TYPE_VEC4 },
+                           { TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE,
+                             TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_SHORT,
+                             TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT },
+                           &o))
+            return false;
+    } else if (!view_accessor(L, sm.output, what + ".output", { TINYGLTF_TYPE_VEC3 }, { TINYGLTF_COMPONENT_TYPE_FLOAT },
+                              &o)) {
+        return false;
+    }
+    if (!check_accessor_data(L, what + ".output", sm.output, "element", o))
+        return false;
+    size_t per_key = cubic ? 3 : 1;
+    if (o.count != in.count * per_key)
+        return fail(L, CG_ERR_GLTF_ACCESSOR,
+                    what + ".output: " + std::to_string(o.count) + " elements for " + std::to_string(in.count) +
+                        " keys (expected " + std::to_string(in.count * per_key) + ")");
+    if (rotation)
+        // The validator's tolerance for unit quaternions; CUBICSPLINE tangents are not rotations.
+        for (size_t e = cubic ? 1 : 0; e < o.count; e += per_key) {
+            double len = 0;
+            for (int c = 0; c < 4; c++)
+                len += o.component(e, c) * o.component(e, c);
+            len = std::sqrt(len);
+            if (std::fabs(len - 1) > 0.00769)
+                return fail(L, CG_ERR_GLTF_ACCESSOR,
+                            what + ".output: element " + std::to_string(e) + " is a rotation of length " +
+                                std::to_string(len) + ", not a unit quaternion (accessor " + std::to_string(sm.output) +
+                                ")");
+        }
+    if (!cg_anim_channel_alloc(out, (int)in.count, L.err))
+        return false;
+    int n = cg_anim_channel_components(out);
+    for (size_t k = 0; k < in.count; k++)
+        out->times[k] = (float)in.component(k, 0);
+    for (size_t e = 0; e < o.count; e++)
+        for (int c = 0; c < n; c++)
+            out->values[e * (size_t)n + (size_t)c] = (float)o.component(e, c);
+    return true;
+}
+
+bool
+read_animations(loader &L)
+{
+    const auto &M = L.model;
+    L.animated.assign(M.nodes.size(), false);
+    L.animated_below.assign(M.nodes.size(), false);
+    L.node_map.assign(M.nodes.size(), -1);
+    bool warned = false;
+    for (size_t a = 0; a < M.animations.size(); a++) {
+        L.animations.emplace_back();
+        auto &pending = L.animations.back();
+        pending.name = M.animations[a].name.empty() ? "animation" + std::to_string(a) : M.animations[a].name;
+        for (size_t c = 0; c < M.animations[a].channels.size(); c++) {
+            const tinygltf::AnimationChannel &ch = M.animations[a].channels[c];
+            if (ch.target_node < 0)
+                continue;
+            if (ch.target_path == "weights") {
+                if (!warned)
+                    cg_log_warn("%s: animations[%zu].channels[%zu] animates morph target weights, which conegraph "
+                                "does not read (meshes keep their base shape); such channels are ignored",
+                                L.path.c_str(), a, c);
+                warned = true;
+                continue;
+            }
+            cg_anim_channel channel;
+            if (!read_channel(L, a, c, &channel))
+                return false;
+            pending.channels.push_back(channel);
+            pending.nodes.push_back(ch.target_node);
+            L.animated[(size_t)ch.target_node] = true;
+        }
+    }
+    // The ancestors of animated nodes are kept too, so that the hierarchy above them stays.
+    for (size_t n = 0; n < M.nodes.size(); n++)
+        if (L.animated[n])
+            for (int p = L.parent[n]; p >= 0 && !L.animated_below[(size_t)p]; p = L.parent[(size_t)p])
+                L.animated_below[(size_t)p] = true;
+    return true;
+}
+
+bool
+is_identity(const double m[16])
+{
+    for (int i = 0; i < 16; i++)
+        if (m[i] != (i % 5 == 0 ? 1.0 : 0.0))
+            return false;
+    return true;
+}
+
+// The channels on nodes of the default scene become the scene's animations (the others
+// animate nothing that is drawn).
+bool
+finish_animations(loader &L)
+{
+    for (auto &pending : L.animations) {
+        cg_animation anim = {};
+        cg_copy_name(anim.name, pending.name.c_str());
+        std::vector<cg_anim_channel> kept;
+        for (size_t c = 0; c < pending.channels.size(); c++) {
+            cg_anim_channel &ch = pending.channels[c];
+            int node = L.node_map[(size_t)pending.nodes[c]];
+            if (node < 0) {
+                cg_log_debug("%s: animation '%s': a channel on %s, which is not in the default scene, ignored",
+                             L.path.c_str(), pending.name.c_str(), node_label(L, pending.nodes[c]).c_str());
+                std::free(ch.times);
+                std::free(ch.values);
+            } else {
+                ch.node = node;
+                kept.push_back(ch);
+            }
+            ch.times = ch.values = nullptr;
+        }
+        if (kept.empty())
+            continue;
+        anim.channel_count = (int)kept.size();
+        anim.channels = (cg_anim_channel *)std::malloc(sizeof(cg_anim_channel) * kept.size());
+        if (!anim.channels) {
+            for (auto &ch : kept)
+                std::free(ch.times), std::free(ch.values);
+            return fail(L, CG_ERR_OUT_OF_MEMORY, "out of memory for animation '" + pending.name + "'");
+        }
+        std::memcpy(anim.channels, kept.data(), sizeof(cg_anim_channel) * kept.size());
+        if (cg_scene_add_animation(L.scene, &anim, L.err) < 0)
+            return false;
+    }
+    return true;
+}
+
+// The default scene's nodes, depth first. A node is flattened (its meshes, lights and camera
+// placed by its world matrix) unless animation needs it: an animated node, a node under one
+// (dynamic: what hangs on it moves) and the ancestors of animated nodes are kept as cg_nodes
+// with their local transforms, except those that are not animated and whose transform is the
+// identity (what hangs on them goes to the nearest kept ancestor, so a file conegraph exports
+// loads back with the same nodes). What hangs on a dynamic node is attached to its cg node.
 bool
 visit_nodes(loader &L, const std::vector<int> &roots)
 {
     struct item {
         int node;
         double parent[16];
+        int cg_parent;
+        bool dynamic;
     };
     std::vector<item> stack;
     for (auto it = roots.rbegin(); it != roots.rend(); ++it) {
-        item r = { *it, { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 } };
+        item r = { *it, { 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 }, -1, false };
         stack.push_back(r);
     }
     while (!stack.empty()) {
@@ -887,6 +1092,30 @@ visit_nodes(loader &L, const std::vector<int> &roots)
         double local[16], world[16];
         node_local(n, local);
         mat_mul(cur.parent, local, world);
+        bool animated = L.animated[(size_t)cur.node];
+        bool dynamic = cur.dynamic || animated;
+        int here = cur.cg_parent;
+        if ((dynamic || L.animated_below[(size_t)cur.node]) && (animated || !is_identity(local))) {
+            cg_node c = cg_node_default(n.name.empty() ? ("node" + std::to_string(cur.node)).c_str() : n.name.c_str());
+            c.parent = cur.cg_parent;
+            if (n.matrix.size() == 16) {
+                c.has_matrix = true;
+                for (int i = 0; i < 16; i++)
+                    c.matrix[i] = (float)n.matrix[(size_t)i];
+            } else {
+                for (size_t i = 0; i < 3 && n.translation.size() == 3; i++)
+                    c.translation[i] = (float)n.translation[i];
+                for (size_t i = 0; i < 4 && n.rotation.size() == 4; i++)
+                    c.rotation[i] = (float)n.rotation[i];
+                for (size_t i = 0; i < 3 && n.scale.size() == 3; i++)
+                    c.scale[i] = (float)n.scale[i];
+            }
+            std::memcpy(c.world, world, sizeof world);
+            here = cg_scene_add_node(L.scene, &c, L.err);
+            if (here < 0)
+                return false;
+            L.node_map[(size_t)cur.node] = here;
+        }
         if (n.mesh >= 0) {
             if ((size_t)n.mesh >= L.model.meshes.size())
                 return fail(L, CG_ERR_GLTF_INDEX_RANGE,
@@ -897,16 +1126,24 @@ visit_nodes(loader &L, const std::vector<int> &roots)
                 return false;
             float wf[16];
             to_float(world, wf);
-            for (int m : *prims)
-                if (cg_scene_add_instance(L.scene, m, wf, L.err) < 0)
+            for (int m : *prims) {
+                int instance = cg_scene_add_instance(L.scene, m, wf, L.err);
+                if (instance < 0 || (dynamic && cg_scene_attach(L.scene, CG_ATTACH_INSTANCE, instance, here, L.err) < 0))
                     return false;
+            }
         }
-        if (!add_light(L, cur.node, world) || !add_camera(L, cur.node, world))
+        int light, camera;
+        if (!add_light(L, cur.node, world, &light) ||
+            (dynamic && light >= 0 && cg_scene_attach(L.scene, CG_ATTACH_LIGHT, light, here, L.err) < 0) ||
+            !add_camera(L, cur.node, world, &camera) ||
+            (dynamic && camera >= 0 && cg_scene_attach(L.scene, CG_ATTACH_CAMERA, camera, here, L.err) < 0))
             return false;
         for (auto c = n.children.rbegin(); c != n.children.rend(); ++c) {
             item child;
             child.node = *c;
             std::memcpy(child.parent, world, sizeof world);
+            child.cg_parent = here;
+            child.dynamic = dynamic;
             stack.push_back(child);
         }
     }
@@ -1061,7 +1298,9 @@ convert_textures(loader &L)
 // (glTF 2.0, 3.7.2.1), equal attribute counts, alignment, one use per accessor and per
 // bufferView, strides where they are needed or forbidden, POSITION bounds, and a
 // TEXCOORD_n for every texture a primitive's material samples with texCoord n.
-enum use_kind { USE_NONE, USE_VERTEX, USE_INDEX };
+// Animation samplers' accessors too (every sampler's input and output, as the validator
+// marks them): an accessor has one use, and a bufferView holds one kind of data.
+enum use_kind { USE_NONE, USE_VERTEX, USE_INDEX, USE_ANIM_INPUT, USE_ANIM_OUTPUT };
 
 bool
 attribute_format_ok(const std::string &name, const tinygltf::Accessor &a)
@@ -1118,7 +1357,8 @@ check_model(loader &L)
     std::vector<int> accessor_use(M.accessors.size(), USE_NONE), view_use(M.bufferViews.size(), USE_NONE);
     std::vector<std::vector<int>> view_vertex_accessors(M.bufferViews.size());
     auto use = [&](const std::string &what, int accessor, use_kind kind) {
-        const char *names[] = { "", "vertex attribute", "indices" };
+        const char *names[] = { "", "vertex attribute", "indices", "animation input", "animation output" };
+        const char *view_names[] = { "", "vertex attribute", "index", "animation", "animation" };
         int &u = accessor_use[(size_t)accessor];
         if (u != USE_NONE && u != kind)
             return fail(L, CG_ERR_GLTF_ACCESSOR,
@@ -1130,14 +1370,16 @@ check_model(loader &L)
             return true;
         const tinygltf::BufferView &bv = M.bufferViews[(size_t)view];
         int &vu = view_use[(size_t)view];
+        int view_kind = kind == USE_ANIM_OUTPUT ? USE_ANIM_INPUT : kind; // inputs and outputs may share a view
         int declared = bv.target == TINYGLTF_TARGET_ARRAY_BUFFER           ? USE_VERTEX
                        : bv.target == TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER ? USE_INDEX
                                                                            : USE_NONE;
-        if ((vu != USE_NONE && vu != kind) || (declared != USE_NONE && declared != kind))
+        if ((vu != USE_NONE && vu != view_kind) || (declared != USE_NONE && declared != view_kind))
             return fail(L, CG_ERR_GLTF_BUFFER,
                         what + ": bufferView " + std::to_string(view) + " holds " +
-                            names[declared != USE_NONE ? declared : vu] + " data and cannot also hold " + names[kind]);
-        vu = kind;
+                            view_names[declared != USE_NONE ? declared : vu] + " data and cannot also hold " +
+                            view_names[view_kind] + " data");
+        vu = view_kind;
         if (kind == USE_INDEX && bv.byteStride)
             return fail(L, CG_ERR_GLTF_BUFFER,
                         what + ": bufferView " + std::to_string(view) + " holds indices and must not have a byteStride");
@@ -1222,6 +1464,13 @@ check_model(loader &L)
                                         " samples TEXCOORD_" + std::to_string(u.second) +
                                         ", which the primitive does not have");
             }
+        }
+    for (size_t a = 0; a < M.animations.size(); a++)
+        for (size_t i = 0; i < M.animations[a].samplers.size(); i++) {
+            const tinygltf::AnimationSampler &sm = M.animations[a].samplers[i];
+            std::string what = "animations[" + std::to_string(a) + "].samplers[" + std::to_string(i) + "]";
+            if (!use(what + ".input", sm.input, USE_ANIM_INPUT) || !use(what + ".output", sm.output, USE_ANIM_OUTPUT))
+                return false;
         }
     return true;
 }
@@ -1389,7 +1638,7 @@ load(loader &L)
     L.mesh_done.assign(L.model.meshes.size(), false);
     std::vector<int> roots;
     return check_extensions(L) && check_model(L) && convert_textures(L) && convert_materials(L) && check_node_graph(L) &&
-           scene_roots(L, &roots) && visit_nodes(L, roots);
+           read_animations(L) && scene_roots(L, &roots) && visit_nodes(L, roots) && finish_animations(L);
 }
 
 // ------------------------------------------------------------------ export
@@ -1406,7 +1655,7 @@ append_bytes(std::vector<unsigned char> &buf, const void *data, size_t size)
 
 int
 add_accessor(tinygltf::Model &M, const void *data, size_t count, int type, int component_type, int target,
-             const float *min3 = nullptr, const float *max3 = nullptr)
+             const float *min = nullptr, const float *max = nullptr)
 {
     size_t elem = component_size(component_type) * (size_t)component_count(type);
     tinygltf::BufferView bv;
@@ -1421,9 +1670,9 @@ add_accessor(tinygltf::Model &M, const void *data, size_t count, int type, int c
     a.componentType = component_type;
     a.type = type;
     a.count = count;
-    if (min3 && max3) {
-        a.minValues.assign(min3, min3 + 3);
-        a.maxValues.assign(max3, max3 + 3);
+    if (min && max) {
+        a.minValues.assign(min, min + component_count(type));
+        a.maxValues.assign(max, max + component_count(type));
     }
     M.accessors.push_back(a);
     return (int)M.accessors.size() - 1;
@@ -1531,12 +1780,39 @@ export_meshes(const cg_scene *S, tinygltf::Model &M)
     }
 }
 
-void
+// A node holding light i of M.lights (KHR_lights_punctual), with no transform of its own.
+tinygltf::Node
+light_node(int i, const char *name)
+{
+    tinygltf::Node n;
+    n.name = name;
+    tinygltf::Value::Object ext;
+    ext["light"] = tinygltf::Value(i);
+    n.extensions["KHR_lights_punctual"] = tinygltf::Value(ext);
+    return n;
+}
+
+// Static instances, lights and cameras as root nodes with their world transforms; the kept
+// node hierarchy as nodes with their local transforms (nodes.size() onwards, in cg order),
+// and what follows a node as a child of it with no transform of its own, so that it loads
+// back attached to the same node. Returns the glTF index of cg node 0.
+int
 export_nodes(const cg_scene *S, tinygltf::Model &M)
 {
     tinygltf::Scene scene;
     scene.name = S->name;
+    std::vector<int> instance_node((size_t)S->instance_count, -1), light_node_of((size_t)S->light_count, -1),
+        camera_node((size_t)S->camera_count, -1);
+    for (int i = 0; i < S->attachment_count; i++) {
+        const cg_attachment &a = S->attachments[i];
+        std::vector<int> &on = a.kind == CG_ATTACH_INSTANCE ? instance_node
+                               : a.kind == CG_ATTACH_LIGHT  ? light_node_of
+                                                            : camera_node;
+        on[(size_t)a.index] = a.node;
+    }
     for (int i = 0; i < S->instance_count; i++) {
+        if (instance_node[(size_t)i] >= 0)
+            continue;
         tinygltf::Node n;
         n.mesh = S->instances[i].mesh;
         n.matrix.assign(S->instances[i].world, S->instances[i].world + 16);
@@ -1556,13 +1832,11 @@ export_nodes(const cg_scene *S, tinygltf::Model &M)
             l.spot.outerConeAngle = c.outer_cone_angle;
         }
         M.lights.push_back(l);
-        tinygltf::Node n;
-        n.name = c.name;
+        if (light_node_of[(size_t)i] >= 0)
+            continue;
+        tinygltf::Node n = light_node(i, c.name);
         n.translation = { c.position[0], c.position[1], c.position[2] };
         quat_from_minus_z(c.direction, &n.rotation);
-        tinygltf::Value::Object ext;
-        ext["light"] = tinygltf::Value(i);
-        n.extensions["KHR_lights_punctual"] = tinygltf::Value(ext);
         scene.nodes.push_back((int)M.nodes.size());
         M.nodes.push_back(n);
     }
@@ -1584,6 +1858,8 @@ export_nodes(const cg_scene *S, tinygltf::Model &M)
             cam.perspective.zfar = c.zfar;
         }
         M.cameras.push_back(cam);
+        if (camera_node[(size_t)i] >= 0)
+            continue;
         tinygltf::Node n;
         n.name = c.name;
         n.camera = i;
@@ -1591,8 +1867,77 @@ export_nodes(const cg_scene *S, tinygltf::Model &M)
         scene.nodes.push_back((int)M.nodes.size());
         M.nodes.push_back(n);
     }
+    int base = (int)M.nodes.size();
+    for (int i = 0; i < S->node_count; i++) {
+        const cg_node &c = S->nodes[i];
+        tinygltf::Node n;
+        n.name = c.name;
+        if (c.has_matrix) {
+            n.matrix.assign(c.matrix, c.matrix + 16);
+        } else {
+            if (c.translation[0] != 0 || c.translation[1] != 0 || c.translation[2] != 0)
+                n.translation.assign(c.translation, c.translation + 3);
+            if (c.rotation[0] != 0 || c.rotation[1] != 0 || c.rotation[2] != 0 || c.rotation[3] != 1)
+                n.rotation.assign(c.rotation, c.rotation + 4);
+            if (c.scale[0] != 1 || c.scale[1] != 1 || c.scale[2] != 1)
+                n.scale.assign(c.scale, c.scale + 3);
+        }
+        M.nodes.push_back(n);
+        if (c.parent < 0)
+            scene.nodes.push_back(base + i);
+        else
+            M.nodes[(size_t)(base + c.parent)].children.push_back(base + i);
+    }
+    for (int i = 0; i < S->attachment_count; i++) {
+        const cg_attachment &a = S->attachments[i];
+        tinygltf::Node n;
+        if (a.kind == CG_ATTACH_INSTANCE) {
+            n.mesh = S->instances[a.index].mesh;
+        } else if (a.kind == CG_ATTACH_LIGHT) {
+            n = light_node(a.index, S->lights[a.index].name);
+        } else {
+            n.name = S->cameras[a.index].name;
+            n.camera = a.index;
+        }
+        M.nodes[(size_t)(base + a.node)].children.push_back((int)M.nodes.size());
+        M.nodes.push_back(n);
+    }
     M.scenes.push_back(scene);
     M.defaultScene = 0;
+    return base;
+}
+
+// Each channel as a sampler of its own: key times (SCALAR, with the min and max glTF asks
+// of an input) and values, in bufferViews without target or stride.
+void
+export_animations(const cg_scene *S, tinygltf::Model &M, int node_base)
+{
+    static const char *const paths[] = { "translation", "rotation", "scale" };
+    static const char *const modes[] = { "LINEAR", "STEP", "CUBICSPLINE" };
+    for (int a = 0; a < S->animation_count; a++) {
+        const cg_animation &anim = S->animations[a];
+        tinygltf::Animation out;
+        out.name = anim.name;
+        for (int c = 0; c < anim.channel_count; c++) {
+            const cg_anim_channel &ch = anim.channels[c];
+            size_t keys = (size_t)ch.key_count, per_key = ch.interpolation == CG_INTERP_CUBICSPLINE ? 3 : 1;
+            tinygltf::AnimationSampler sampler;
+            sampler.input = add_accessor(M, ch.times, keys, TINYGLTF_TYPE_SCALAR, TINYGLTF_COMPONENT_TYPE_FLOAT, 0,
+                                         &ch.times[0], &ch.times[keys - 1]);
+            sampler.output = add_accessor(M, ch.values, keys * per_key,
+                                          ch.path == CG_ANIM_ROTATION ? TINYGLTF_TYPE_VEC4 : TINYGLTF_TYPE_VEC3,
+                                          TINYGLTF_COMPONENT_TYPE_FLOAT, 0);
+            sampler.interpolation = modes[ch.interpolation];
+            tinygltf::AnimationChannel channel;
+            channel.sampler = (int)out.samplers.size();
+            channel.target_node = node_base + ch.node;
+            channel.target_path = paths[ch.path];
+            out.samplers.push_back(sampler);
+            out.channels.push_back(channel);
+        }
+        if (!out.channels.empty())
+            M.animations.push_back(out);
+    }
 }
 
 bool
@@ -1682,7 +2027,7 @@ cg_scene_export_gltf(const cg_scene *scene, const char *path, cg_error *err)
         export_materials(scene, M, &uses_strength);
         export_textures(scene, M);
         export_meshes(scene, M);
-        export_nodes(scene, M);
+        export_animations(scene, M, export_nodes(scene, M));
         if (!M.lights.empty())
             M.extensionsUsed.push_back("KHR_lights_punctual");
         if (uses_strength)

@@ -889,15 +889,81 @@ check_skin(checker *c, const json_t *o)
            get_string(c, o, "name", false, NULL) && check_extensions(c, o, NULL);
 }
 
-/* Animations are not read; their references are checked so that a file conegraph accepts
- * does not point past its arrays anywhere. */
+/* Animations: the references, and what the Khronos glTF-Validator checks on the accessors a
+ * sampler names (their JSON): an input is SCALAR of FLOAT with min and max, CUBICSPLINE has
+ * two keys at least, no byteStride on an input's or output's bufferView, and per channel the
+ * output's format for its path and its count (keys, three values a key for CUBICSPLINE),
+ * no animated node with a matrix, no two channels of an animation on the same target. The
+ * data (times increasing, unit rotations, min/max) is checked in gltf_adapter.cpp. Channels
+ * on morph target weights are not read; only their references are checked. */
+
+static json_t *
+accessor_json(const checker *c, long long index)
+{
+    return json_array_get(json_object_get(c->root, "accessors"), (size_t)index);
+}
+
+/* "VEC3 of FLOAT", "VEC4 of normalized SHORT" */
+static void
+accessor_format(const json_t *a, char *buf, size_t size)
+{
+    static const int types[] = { GL_BYTE, GL_UBYTE, GL_SHORT, GL_USHORT, GL_UINT, GL_FLOAT };
+    static const char *const names[] = { "BYTE", "UNSIGNED_BYTE", "SHORT", "UNSIGNED_SHORT", "UNSIGNED_INT", "FLOAT" };
+    long long ct = json_integer_value(json_object_get(a, "componentType"));
+    const char *name = "an unknown component type";
+    for (int i = 0; i < 6; i++)
+        if (ct == types[i])
+            name = names[i];
+    snprintf(buf, size, "%s of %s%s", json_string_value(json_object_get(a, "type")),
+             json_is_true(json_object_get(a, "normalized")) ? "normalized " : "", name);
+}
+
+static bool
+accessor_is(const json_t *a, const char *type, int component_type, bool normalized)
+{
+    return !strcmp(json_string_value(json_object_get(a, "type")), type) &&
+           json_integer_value(json_object_get(a, "componentType")) == component_type &&
+           json_is_true(json_object_get(a, "normalized")) == normalized;
+}
+
+/* An animation sampler's accessor must lie in a bufferView without byteStride. */
+static bool
+check_unstrided(checker *c, const char *name, long long index)
+{
+    json_t *view = json_object_get(accessor_json(c, index), "bufferView");
+    if (!view)
+        return true;
+    json_t *bv = json_array_get(json_object_get(c->root, "bufferViews"), (size_t)json_integer_value(view));
+    if (json_object_get(bv, "byteStride"))
+        return bad(c, CG_ERR_GLTF_BUFFER, name,
+                   "accessors[%lld] lies in bufferViews[%lld], which has a byteStride; the data of animation "
+                   "samplers is tightly packed", index, (long long)json_integer_value(view));
+    return true;
+}
 
 static bool
 check_animation_sampler(checker *c, const json_t *o)
 {
     static const char *const modes[] = { "LINEAR", "STEP", "CUBICSPLINE" };
-    return get_index(c, o, "input", true, "accessors", NULL) && get_index(c, o, "output", true, "accessors", NULL) &&
-           get_enum_string(c, o, "interpolation", false, modes, 3, NULL) && check_extensions(c, o, NULL);
+    long long input, output;
+    const char *mode;
+    if (!get_index(c, o, "input", true, "accessors", &input) || !get_index(c, o, "output", true, "accessors", &output) ||
+        !get_enum_string(c, o, "interpolation", false, modes, 3, &mode) || !check_extensions(c, o, NULL))
+        return false;
+    json_t *in = accessor_json(c, input);
+    char format[96];
+    accessor_format(in, format, sizeof format);
+    if (!accessor_is(in, "SCALAR", GL_FLOAT, false))
+        return bad(c, CG_ERR_GLTF_ACCESSOR, "input", "accessors[%lld] is %s; an animation input must be SCALAR of FLOAT",
+                   input, format);
+    if (!json_object_get(in, "min") || !json_object_get(in, "max"))
+        return bad(c, CG_ERR_GLTF_ACCESSOR, "input", "accessors[%lld] must declare min and max (an animation input)",
+                   input);
+    long long keys = json_integer_value(json_object_get(in, "count"));
+    if (mode && !strcmp(mode, "CUBICSPLINE") && keys < 2)
+        return bad(c, CG_ERR_GLTF_ACCESSOR, "input", "accessors[%lld] has %lld key; CUBICSPLINE needs 2 at least",
+                   input, keys);
+    return check_unstrided(c, "input", input) && check_unstrided(c, "output", output);
 }
 
 static bool
@@ -905,17 +971,59 @@ check_animation_channel(checker *c, const json_t *o)
 {
     static const char *const paths[] = { "translation", "rotation", "scale", "weights" };
     json_t *target, *s = json_object_get(o, "sampler");
+    json_t *samplers = json_object_get(c->animation, "samplers");
+    long long sampler, node;
+    const char *path;
     if (!s)
         return missing(c, "sampler", "index");
-    if (!check_index_value(c, "sampler", s, "samplers of this animation", json_object_get(c->animation, "samplers"),
-                           NULL) ||
+    if (!check_index_value(c, "sampler", s, "samplers of this animation", samplers, &sampler) ||
         !get_object(c, o, "target", true, &target) || !check_extensions(c, o, NULL))
         return false;
     size_t mark = enter_key(c, "target");
-    bool ok = get_index(c, target, "node", false, "nodes", NULL) &&
-              get_enum_string(c, target, "path", true, paths, 4, NULL);
+    bool ok = get_index(c, target, "node", false, "nodes", &node) &&
+              get_enum_string(c, target, "path", true, paths, 4, &path) && check_extensions(c, target, NULL);
     leave(c, mark);
-    return ok;
+    if (!ok || node < 0)
+        return ok; /* without a node the channel is ignored (glTF 2.0, 3.11) */
+    /* Two channels of one animation on the same node and path. */
+    json_t *channels = json_object_get(c->animation, "channels");
+    for (size_t k = 0; k < json_array_size(channels) && json_array_get(channels, k) != o; k++) {
+        json_t *other = json_object_get(json_array_get(channels, k), "target");
+        json_t *other_node = json_object_get(other, "node");
+        if (other_node && json_integer_value(other_node) == node &&
+            !strcmp(json_string_value(json_object_get(other, "path")), path))
+            return bad(c, CG_ERR_GLTF_SCHEMA, "target", "the same node and path as channels[%zu]", k);
+    }
+    if (!strcmp(path, "weights"))
+        return true;
+    if (json_object_get(json_array_get(json_object_get(c->root, "nodes"), (size_t)node), "matrix"))
+        return bad(c, CG_ERR_GLTF_SCHEMA, "target.node",
+                   "nodes[%lld] has a matrix; only a node's translation, rotation and scale can be animated", node);
+    json_t *so = json_array_get(samplers, (size_t)sampler);
+    long long input = json_integer_value(json_object_get(so, "input"));
+    long long output = json_integer_value(json_object_get(so, "output"));
+    const char *mode = json_string_value(json_object_get(so, "interpolation"));
+    json_t *out = accessor_json(c, output);
+    bool rotation = !strcmp(path, "rotation");
+    bool format_ok = rotation ? accessor_is(out, "VEC4", GL_FLOAT, false) || accessor_is(out, "VEC4", GL_BYTE, true) ||
+                                    accessor_is(out, "VEC4", GL_UBYTE, true) || accessor_is(out, "VEC4", GL_SHORT, true) ||
+                                    accessor_is(out, "VEC4", GL_USHORT, true)
+                              : accessor_is(out, "VEC3", GL_FLOAT, false);
+    char format[96];
+    accessor_format(out, format, sizeof format);
+    if (!format_ok)
+        return bad(c, CG_ERR_GLTF_ACCESSOR, "sampler",
+                   "its output accessors[%lld] is %s; a %s output must be %s", output, format, path,
+                   rotation ? "VEC4 of FLOAT or of normalized BYTE, UNSIGNED_BYTE, SHORT or UNSIGNED_SHORT"
+                            : "VEC3 of FLOAT");
+    long long keys = json_integer_value(json_object_get(accessor_json(c, input), "count"));
+    long long expected = keys * (mode && !strcmp(mode, "CUBICSPLINE") ? 3 : 1);
+    long long count = json_integer_value(json_object_get(out, "count"));
+    if (count != expected)
+        return bad(c, CG_ERR_GLTF_ACCESSOR, "sampler",
+                   "its output accessors[%lld] has %lld elements; %lld keys of %s need %lld", output, count, keys,
+                   mode ? mode : "LINEAR", expected);
+    return true;
 }
 
 static bool

@@ -305,8 +305,17 @@ cg_scene_load(const char *source, cg_scene *out, cg_error *err)
     if (ok) {
         snprintf(out->name, sizeof out->name, "%s", source);
         out->classify = classify;
+        ok = cg_scene_validate(out, err);
+    }
+    if (ok) {
+        /* A loaded scene is posed at time 0 (before its first key: the first values). */
+        cg_scene_evaluate(out, 0.0, NULL);
+        out->revision = out->instances_revision = out->lights_revision = out->cameras_revision = 0;
+        for (int i = 0; i < out->instance_count; i++)
+            out->instances[i].revision = 0;
         cg_scene_compute_bounds(out);
-        ok = cg_scene_validate(out, err) && cg_scene_classify(out, err);
+        /* Classified as posed at time 0; a moving instance makes its mesh complex (classify.c). */
+        ok = cg_scene_classify(out, err);
     }
     if (!ok)
         cg_scene_free(out);
@@ -333,6 +342,16 @@ cg_scene_free(cg_scene *scene)
     free(scene->lights);
     free(scene->cameras);
     free(scene->mesh_class);
+    for (int a = 0; a < scene->animation_count; a++) {
+        for (int c = 0; c < scene->animations[a].channel_count; c++) {
+            free(scene->animations[a].channels[c].times);
+            free(scene->animations[a].channels[c].values);
+        }
+        free(scene->animations[a].channels);
+    }
+    free(scene->animations);
+    free(scene->nodes);
+    free(scene->attachments);
     memset(scene, 0, sizeof *scene);
 }
 
@@ -341,13 +360,18 @@ cg_scene_compute_bounds(cg_scene *scene)
 {
     bool any = false;
     double lo[3] = { 0, 0, 0 }, hi[3] = { 0, 0, 0 };
+    /* The moving instances' boxes over the animation; without them (no instance moves, or no
+     * memory for the sampling) every instance counts with its current box. */
+    double mlo[3] = { INFINITY, INFINITY, INFINITY }, mhi[3] = { -INFINITY, -INFINITY, -INFINITY };
+    bool animated = cg_scene_is_animated(scene) && cg_scene_motion_bounds(scene, mlo, mhi);
     for (int i = 0; i < scene->instance_count; i++) {
-        const cg_instance *inst = &scene->instances[i];
+        cg_instance *inst = &scene->instances[i];
         if (inst->mesh < 0 || inst->mesh >= scene->mesh_count)
             continue;
         const cg_mesh *mesh = &scene->meshes[inst->mesh];
-        if (mesh->vertex_count == 0)
+        if (mesh->vertex_count == 0 || (animated && inst->moving))
             continue;
+        double ilo[3], ihi[3];
         for (int c = 0; c < 8; c++) {
             float corner[3] = { (c & 1) ? mesh->bounds_max[0] : mesh->bounds_min[0],
                                 (c & 2) ? mesh->bounds_max[1] : mesh->bounds_min[1],
@@ -357,8 +381,20 @@ cg_scene_compute_bounds(cg_scene *scene)
             for (int k = 0; k < 3; k++) {
                 if (!any || w[k] < lo[k]) lo[k] = w[k];
                 if (!any || w[k] > hi[k]) hi[k] = w[k];
+                if (c == 0 || w[k] < ilo[k]) ilo[k] = w[k];
+                if (c == 0 || w[k] > ihi[k]) ihi[k] = w[k];
             }
             any = true;
+        }
+        for (int k = 0; k < 3; k++) {
+            inst->motion_min[k] = (float)ilo[k];
+            inst->motion_max[k] = (float)ihi[k];
+        }
+    }
+    if (animated) {
+        for (int k = 0; k < 3; k++) {
+            lo[k] = any ? fmin(lo[k], mlo[k]) : mlo[k];
+            hi[k] = any ? fmax(hi[k], mhi[k]) : mhi[k];
         }
     }
     for (int k = 0; k < 3; k++) {
@@ -456,9 +492,66 @@ validate_camera(const cg_scene *scene, int index, cg_error *err)
     return true;
 }
 
+/* Nodes parents first, attachments and channels pointing at what exists, keys in order. */
+static bool
+validate_animation(const cg_scene *scene, cg_error *err)
+{
+    const char *src = scene->name;
+    for (int i = 0; i < scene->node_count; i++) {
+        const cg_node *n = &scene->nodes[i];
+        if (n->parent < -1 || n->parent >= i)
+            return cg_fail(err, CG_ERR_GLTF_INDEX_RANGE, "%s: node %d '%s': parent %d does not come before it",
+                           src, i, n->name, n->parent);
+        if (!all_finite(n->matrix, 16) || !all_finite(n->translation, 3) || !all_finite(n->rotation, 4) ||
+            !all_finite(n->scale, 3))
+            return cg_fail(err, CG_ERR_GLTF_NONFINITE, "%s: node %d '%s': a transform is NaN or infinite", src, i,
+                           n->name);
+    }
+    static const char *const kinds[] = { "instance", "light", "camera" };
+    for (int i = 0; i < scene->attachment_count; i++) {
+        const cg_attachment *a = &scene->attachments[i];
+        int count = a->kind == CG_ATTACH_INSTANCE ? scene->instance_count
+                    : a->kind == CG_ATTACH_LIGHT  ? scene->light_count
+                                                  : scene->camera_count;
+        if ((unsigned)a->kind > CG_ATTACH_CAMERA || a->index < 0 || a->index >= count || a->node < 0 ||
+            a->node >= scene->node_count)
+            return cg_fail(err, CG_ERR_GLTF_INDEX_RANGE, "%s: attachment %d: %s %d on node %d out of range", src, i,
+                           (unsigned)a->kind <= CG_ATTACH_CAMERA ? kinds[a->kind] : "element", a->index, a->node);
+    }
+    for (int a = 0; a < scene->animation_count; a++) {
+        const cg_animation *anim = &scene->animations[a];
+        for (int c = 0; c < anim->channel_count; c++) {
+            const cg_anim_channel *ch = &anim->channels[c];
+            if (ch->node < 0 || ch->node >= scene->node_count || (unsigned)ch->path > CG_ANIM_SCALE ||
+                (unsigned)ch->interpolation > CG_INTERP_CUBICSPLINE)
+                return cg_fail(err, CG_ERR_GLTF_INDEX_RANGE, "%s: animation %d '%s' channel %d: node %d out of range",
+                               src, a, anim->name, c, ch->node);
+            if (scene->nodes[ch->node].has_matrix)
+                return cg_fail(err, CG_ERR_GLTF_SCHEMA,
+                               "%s: animation %d '%s' channel %d animates node '%s', which has a matrix", src, a,
+                               anim->name, c, scene->nodes[ch->node].name);
+            int min_keys = ch->interpolation == CG_INTERP_CUBICSPLINE ? 2 : 1;
+            if (ch->key_count < min_keys || !ch->times || !ch->values)
+                return cg_fail(err, CG_ERR_GLTF_ACCESSOR, "%s: animation %d '%s' channel %d: %d keys (at least %d)",
+                               src, a, anim->name, c, ch->key_count, min_keys);
+            for (int k = 0; k < ch->key_count; k++)
+                if (!isfinite(ch->times[k]) || ch->times[k] < 0 || (k > 0 && !(ch->times[k] > ch->times[k - 1])))
+                    return cg_fail(err, CG_ERR_GLTF_ACCESSOR,
+                                   "%s: animation %d '%s' channel %d: key time %d is %g; times must be finite, "
+                                   ">= 0 and increasing", src, a, anim->name, c, k, ch->times[k]);
+            if (!all_finite(ch->values, (size_t)ch->key_count * (size_t)cg_anim_channel_stride(ch)))
+                return cg_fail(err, CG_ERR_GLTF_NONFINITE, "%s: animation %d '%s' channel %d: a value is NaN or infinite",
+                               src, a, anim->name, c);
+        }
+    }
+    return true;
+}
+
 bool
 cg_scene_validate(const cg_scene *scene, cg_error *err)
 {
+    if (!validate_animation(scene, err))
+        return false;
     if (scene->material_count < 1)
         return cg_fail(err, CG_ERR_GLTF_PARSE, "%s: scene has no default material", scene->name);
     for (int i = 0; i < scene->material_count; i++)

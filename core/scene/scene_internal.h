@@ -5,7 +5,10 @@
  *           cg_scene_add_light, cg_scene_add_camera, cg_scene_add_texture,
  *           cg_mesh_compute_bounds, cg_mesh_generate_normals, CG_HEIGHTFIELD_MIN_NY,
  *           cg_scene_set_kind_source, cg_scene_classify, cg_dem_load, cg_builtin_scene_load,
- *           cg_gltf_load, cg_gltf_check_json, cg_copy_name.
+ *           cg_gltf_load, cg_gltf_check_json, cg_copy_name, cg_node_default,
+ *           cg_node_local, cg_scene_add_node, cg_scene_attach, cg_anim_channel_alloc,
+ *           cg_anim_channel_components, cg_anim_channel_stride, cg_scene_add_animation,
+ *           cg_scene_pose, cg_scene_motion_bounds.
  */
 #ifndef CG_SCENE_INTERNAL_H
 #define CG_SCENE_INTERNAL_H
@@ -32,6 +35,31 @@ int cg_scene_add_instance(cg_scene *scene, int mesh, const float world[16], cg_e
 int cg_scene_add_light(cg_scene *scene, const cg_light *light, cg_error *err);
 int cg_scene_add_camera(cg_scene *scene, const cg_camera *camera, cg_error *err);
 int cg_scene_add_texture(cg_scene *scene, const cg_texture *texture, cg_error *err);
+
+/* A root node named `name` with the identity transform (T 0, R identity, S 1). */
+cg_node cg_node_default(const char *name);
+/* The node's local transform: its matrix, or T x R x S (the quaternion normalised). */
+void cg_node_local(const cg_node *node, double m[16]);
+/* Appends a node (its parent must come before it); returns its index or -1. */
+int cg_scene_add_node(cg_scene *scene, const cg_node *node, cg_error *err);
+/* Makes instance, light or camera `index` follow `node` (an instance is then `moving`);
+ * returns the attachment's index or -1. */
+int cg_scene_attach(cg_scene *scene, cg_attachment_kind kind, int index, int node, cg_error *err);
+/* Components per value of a channel (4 for rotations, else 3) and floats per key (three
+ * values for CUBICSPLINE). */
+int cg_anim_channel_components(const cg_anim_channel *channel);
+int cg_anim_channel_stride(const cg_anim_channel *channel);
+/* Allocates times and values for `key_count` keys (path and interpolation set first). */
+bool cg_anim_channel_alloc(cg_anim_channel *channel, int key_count, cg_error *err);
+/* Appends an animation; the scene takes ownership of its channels and their keys (freed
+ * here on failure too). Returns its index or -1. */
+int cg_scene_add_animation(cg_scene *scene, cg_animation *animation, cg_error *err);
+/* Poses the nodes and what follows them at time t without touching the change stamps
+ * (cg_scene_evaluate and the bounds' sampling use it). */
+void cg_scene_pose(cg_scene *scene, double t);
+/* The world boxes of the moving instances over the whole animation (each instance's
+ * motion_min/max) and their union, added to lo/hi; false when no instance moves. */
+bool cg_scene_motion_bounds(cg_scene *scene, double lo[3], double hi[3]);
 
 /* A white Lambertian material with the defaults of glTF (base colour 1, roughness 1,
  * metallic 0 here since the renderer is diffuse-only, emissive strength 1). */
@@ -68,8 +96,8 @@ bool cg_gltf_load(const char *path, cg_scene *out, cg_error *err);
  * fields, ranges, enumerations, index references, asset.version (2.x; glTF 1.0 named as
  * such), extensionsRequired, buffers without uri. `glb_bin` is the size of a .glb's BIN chunk
  * (0 when it has none), -1 for a .gltf. `file` names the file in messages, which give the
- * JSON path of the field: CG_ERR_GLTF_PARSE, _VERSION, _SCHEMA, _INDEX_RANGE, _BUFFER or
- * _EXTENSION. */
+ * JSON path of the field: CG_ERR_GLTF_PARSE, _VERSION, _SCHEMA, _INDEX_RANGE, _BUFFER,
+ * _ACCESSOR (an animation sampler's accessors) or _EXTENSION. */
 bool cg_gltf_check_json(const char *file, const char *json, size_t size, long long glb_bin, cg_error *err);
 
 #ifdef __cplusplus

@@ -40,6 +40,7 @@ static const fg_param_desc path_trace_params[] = {
 
 typedef struct path_trace_state {
     const cg_scene *scene;      /* the scene pts was built from */
+    uint64_t revision;          /* its cg_scene.revision then: moved instances or lights rebuild it */
     pt_scene *pts;
     /* The last image, and what it was rendered from. */
     float *rgba;                /* rows bottom to top, ready for GL */
@@ -125,13 +126,14 @@ path_trace_execute(fg_pass *pass, path_trace_state *st, cg_error *err)
 {
     const fg_frame *frame = fg_pass_frame(pass);
     pt_settings settings = settings_of(pass);
-    if (st->scene != frame->scene) {
+    if (st->scene != frame->scene || st->revision != frame->scene->revision) {
         pt_scene_destroy(st->pts);
         st->pts = NULL;
         st->valid = false;
         if (!pt_scene_create(frame->scene, &st->pts, err))
             return false;
         st->scene = frame->scene;
+        st->revision = frame->scene->revision;
     }
     int w = frame->view.width, h = frame->view.height;
     const fg_resource_desc *out = fg_resource(pass, "radiance");

@@ -29,6 +29,16 @@ cgp_mesh_bounds(const cg_scene *scene, cg_mesh_filter filter, double lo[3], doub
         const cg_mesh *mesh = &scene->meshes[inst->mesh];
         if (!cgp_mesh_passes(mesh->kind, filter) || mesh->index_count == 0)
             continue;
+        any = true;
+        if (inst->moving) {
+            /* Its box over the whole animation, so that what is fitted to these bounds stays put
+             * from frame to frame. */
+            for (int k = 0; k < 3; k++) {
+                lo[k] = fmin(lo[k], inst->motion_min[k]);
+                hi[k] = fmax(hi[k], inst->motion_max[k]);
+            }
+            continue;
+        }
         for (int c = 0; c < 8; c++) {
             float corner[3] = {
                 (c & 1) ? mesh->bounds_max[0] : mesh->bounds_min[0],
@@ -42,7 +52,6 @@ cgp_mesh_bounds(const cg_scene *scene, cg_mesh_filter filter, double lo[3], doub
                 hi[k] = fmax(hi[k], w[k]);
             }
         }
-        any = true;
     }
     return any;
 }

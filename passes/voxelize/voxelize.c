@@ -82,6 +82,7 @@ typedef struct voxelize_state {
     float *light_positions;
     double *light_nearest;
     int light_cache_count;
+    uint64_t light_cache_revision; /* cg_scene.instances_revision the distances were found at */
 } voxelize_state;
 
 /* Where the volume lies: a cube. */
@@ -262,7 +263,7 @@ radiance_bound(voxelize_state *s, const cg_scene *scene, cg_mesh_filter filter, 
             albedo = fmax(albedo, mat->base_color[k]);
         }
     }
-    if (s->light_cache_count != scene->light_count) {
+    if (s->light_cache_count != scene->light_count || s->light_cache_revision != scene->instances_revision) {
         free(s->light_positions);
         free(s->light_nearest);
         s->light_positions = calloc((size_t)scene->light_count * 3 + 1, sizeof(float));
@@ -272,6 +273,7 @@ radiance_bound(voxelize_state *s, const cg_scene *scene, cg_mesh_filter filter, 
         for (int l = 0; l < scene->light_count; l++)
             s->light_nearest[l] = -1.0;
         s->light_cache_count = scene->light_count;
+        s->light_cache_revision = scene->instances_revision;
     }
     double irradiance = 0.0;
     for (int l = 0; l < scene->light_count; l++) {

@@ -32,7 +32,6 @@ NOT_READ = "not read by conegraph (docs/scenes.md, 'What the glTF checks leave o
 ACCEPTED = [
     ("MESH_PRIMITIVE_NO_TANGENT_SPACE", None, "normal textures and tangents are " + NOT_READ),
     ("MESH_PRIMITIVE_GENERATED_TANGENT_SPACE", None, "normal textures and tangents are " + NOT_READ),
-    (None, "/animations", "animations are " + NOT_READ),
     (None, "/skins", "skins are " + NOT_READ),
     ("NODE_SKIN_WITH_NON_SKINNED_MESH", None, "skins are " + NOT_READ),
     ("NODE_SKIN_NO_SCENE", None, "skins are " + NOT_READ),
@@ -44,9 +43,12 @@ ACCEPTED = [
     ("NODE_WEIGHTS_INVALID", None, "morph targets are " + NOT_READ),
 ]
 # Data errors on an accessor conegraph never reads (one that is not the POSITION, NORMAL,
-# TEXCOORD_0 or indices of a primitive): its data is not checked.
+# TEXCOORD_0 or indices of a primitive, nor the input or output of a sampler that a channel on
+# a node's translation, rotation or scale uses): its data is not checked.
 UNREAD_ACCESSOR = "the data of accessors conegraph does not read (TANGENT, COLOR_n, JOINTS_n, " \
-                  "WEIGHTS_n, TEXCOORD_1+, morph targets, animation, skins) is not checked"
+                  "WEIGHTS_n, TEXCOORD_1+, morph targets, samplers of morph target weights only, skins) is not checked"
+# Errors on an animation channel that animates morph target weights (ignored, with a warning).
+WEIGHTS_CHANNEL = "channels on morph target weights are " + NOT_READ
 # Data errors on an image no texture uses.
 UNUSED_IMAGE = "images no texture uses are " + NOT_READ
 
@@ -63,8 +65,27 @@ def gltf_json(path):
         return None
 
 
+def channel_path(doc, animation, channel):
+    """The target path of animations[animation].channels[channel], or None."""
+    try:
+        return doc["animations"][animation]["channels"][channel]["target"]["path"]
+    except (KeyError, IndexError, TypeError):
+        return None
+
+
 def read_accessors(doc):
     read = set()
+    for anim in doc.get("animations", []) if isinstance(doc, dict) else []:
+        samplers = anim.get("samplers", []) if isinstance(anim, dict) else []
+        for ch in anim.get("channels", []) if isinstance(anim, dict) else []:
+            target = ch.get("target", {}) if isinstance(ch, dict) else {}
+            if not isinstance(target, dict) or target.get("node") is None or target.get("path") == "weights":
+                continue
+            s = ch.get("sampler")
+            if isinstance(s, int) and 0 <= s < len(samplers) and isinstance(samplers[s], dict):
+                for key in ("input", "output"):
+                    if isinstance(samplers[s].get(key), int):
+                        read.add(samplers[s][key])
     for mesh in doc.get("meshes", []) if isinstance(doc, dict) else []:
         for prim in mesh.get("primitives", []) if isinstance(mesh, dict) else []:
             if not isinstance(prim, dict):
@@ -93,6 +114,9 @@ def explain(issue, doc):
         if (c is None or c == code) and (prefix is None or pointer.startswith(prefix)):
             return reason
     parts = pointer.split("/")
+    if len(parts) > 4 and parts[1] == "animations" and parts[3] == "channels" and parts[2].isdigit() \
+            and parts[4].isdigit() and channel_path(doc, int(parts[2]), int(parts[4])) == "weights":
+        return WEIGHTS_CHANNEL
     if code.startswith("ACCESSOR_") and len(parts) > 2 and parts[1] == "accessors" and parts[2].isdigit():
         if doc is not None and int(parts[2]) not in read_accessors(doc):
             return UNREAD_ACCESSOR
@@ -134,11 +158,15 @@ def main():
 def run(conegraph, source, cache, work):
     tests = []  # (ok, description, diagnostics)
 
-    # Every file conegraph export writes here: the built-in scenes and a loaded glTF with
-    # textures, emissive strength, lights of every type, both camera types (one with zfar
-    # left out, that is infinite), a height field.
+    # Every file conegraph export writes here: the built-in scenes (and the animated variants)
+    # and loaded glTF files with textures, emissive strength, lights of every type, both camera
+    # types (one with zfar left out, that is infinite), a height field, and animations (LINEAR,
+    # STEP, CUBICSPLINE; a light and a camera on animated nodes).
     exports = []
     sources = ["builtin:cornell", "builtin:furnace", "builtin:openworld?triangles=5000",
+               "builtin:openworld?triangles=5000&motion=sun", "builtin:openworld?triangles=5000&motion=one",
+               "builtin:openworld?triangles=5000&motion=all",
+               os.path.join(source, "tests", "fuzz", "corpus", "gltf", "animated.gltf"),
                os.path.join(source, "tests", "fuzz", "corpus", "gltf", "datauri.gltf"),
                os.path.join(source, "tests", "fuzz", "corpus", "gltf", "binary.glb"),
                os.path.join(source, "tests", "fuzz", "corpus", "gltf", "external_bin.gltf")]

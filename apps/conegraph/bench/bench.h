@@ -65,6 +65,9 @@ typedef struct bench_config {
     int scene_count;
     int width, height;
     char camera[BENCH_TEXT];
+    bool sky_given;                         /* --sky or the sweep's "sky": the scenes' sky */
+    cg_sky sky;
+    bool no_default_light;                  /* --no-default-light, or "default_light": false */
     int frames, warmup;
     int ref_spp, ref_bounces, ref_seed;
     int pt_spp[BENCH_MAX_SPP];

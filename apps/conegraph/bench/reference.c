@@ -72,54 +72,52 @@ scene_hash(const cg_scene *s)
         h = fnv1a_bytes(h, &l->inner_cone_angle, sizeof l->inner_cone_angle);
         h = fnv1a_bytes(h, &l->outer_cone_angle, sizeof l->outer_cone_angle);
     }
+    /* The sky lights the scene and is seen where no surface is (a Preetham sky follows the
+     * first directional light, hashed above). The default light is a light and a sky. */
+    h = fnv1a_bytes(h, &s->sky.type, sizeof s->sky.type);
+    h = fnv1a_bytes(h, s->sky.radiance, sizeof s->sky.radiance);
+    h = fnv1a_bytes(h, &s->sky.turbidity, sizeof s->sky.turbidity);
+    h = fnv1a_bytes(h, &s->sky.scale, sizeof s->sky.scale);
     return h;
 }
 
-/* The reference image for (scene, camera, size, spp, bounces, seed), from the cache or rendered
- * and cached. Files are keyed by a hash of all of these, the scene by its contents. */
-static bool
-reference_image(const bench_config *c, bench_scene *bs, int spp, int bounces, cg_image *out, cg_error *err)
+/* The cache file of one image of the reference for (scene, camera, size, spp, bounces, seed):
+ * `part` "full" or "direct". Files are keyed by a hash of all of these, the scene by its
+ * contents (lights and sky included), the camera by the view's matrices. */
+static void
+cache_entry(const bench_config *c, const bench_scene *bs, const char *part, char *key, size_t key_size, char *path,
+            size_t path_size)
 {
-    char key[2048];
-    struct stat st;
-    /* The view's matrices stand for the camera; the scene by the hash of its contents. */
     const cg_view *view = &bs->session.frame.view;
     uint64_t view_hash = fnv1a_bytes(0xcbf29ce484222325ull, view->inv_view_proj, sizeof view->inv_view_proj);
-    snprintf(key, sizeof key,
-             "conegraph-reference-v2|pt %d|%s|scene %016llx|view %016llx|%dx%d|spp %d|bounces %d|seed %d",
+    snprintf(key, key_size,
+             "conegraph-reference-v3|pt %d|%s|scene %016llx|view %016llx|%dx%d|spp %d|bounces %d|seed %d|%s",
              PT_RENDER_VERSION, bs->source, (unsigned long long)scene_hash(&bs->session.scene),
-             (unsigned long long)view_hash, c->width, c->height, spp, bounces, c->ref_seed);
-    char path[4096];
-    snprintf(path, sizeof path, "%s/ref-%016llx.exr", c->cache_dir, (unsigned long long)bench_hash_text(key));
-    if (stat(path, &st) == 0) {
-        if (!cg_image_read(path, out, err))
-            return false;
-        if (out->width == c->width && out->height == c->height) {
-            fprintf(stderr, "bench: %s: reference (%d spp, %d bounces) from the cache %s\n", bs->source, spp,
-                    bounces, path);
-            return true;
-        }
-        cg_image_free(out);
-    }
-    fprintf(stderr, "bench: %s: rendering the reference, %dx%d, %d spp, %d bounces\n", bs->source, c->width,
-            c->height, spp, bounces);
-    if (!cg_image_alloc(out, c->width, c->height, err))
+             (unsigned long long)view_hash, c->width, c->height, c->ref_spp, c->ref_bounces, c->ref_seed, part);
+    snprintf(path, path_size, "%s/ref-%016llx.exr", c->cache_dir, (unsigned long long)bench_hash_text(key));
+}
+
+/* 1: read from the cache; 0: not there (or of another size); -1: unreadable (err filled). */
+static int
+read_cached(const bench_config *c, const char *path, cg_image *out, cg_error *err)
+{
+    struct stat st;
+    if (stat(path, &st) != 0)
+        return 0;
+    if (!cg_image_read(path, out, err))
+        return -1;
+    if (out->width == c->width && out->height == c->height)
+        return 1;
+    cg_image_free(out);
+    return 0;
+}
+
+/* The image and, beside it, a readable note of what the hashed file holds. */
+static bool
+write_cached(const bench_config *c, const char *path, const char *key, const cg_image *img, cg_error *err)
+{
+    if (!app_make_dirs(c->cache_dir, err) || !cg_image_write(path, img, CG_EXR_FLOAT, err))
         return false;
-    pt_settings s = pt_settings_default();
-    s.spp = spp;
-    s.bounces = bounces;
-    s.seed = (uint32_t)c->ref_seed;
-    s.progress = true;
-    double t0 = app_now_ms(), cpu0 = app_cpu_ms();
-    uint64_t rays = 0;
-    if (!pt_render(bs->pts, view, &s, out->rgba, &rays, err))
-        return false;
-    double ms = app_now_ms() - t0, cpu = app_cpu_ms() - cpu0;
-    fprintf(stderr, "bench: reference took %.1f s, %.2f M rays/s (%.2f M per CPU second)\n", ms / 1e3,
-            (double)rays / ms / 1e3, (double)rays / cpu / 1e3);
-    if (!app_make_dirs(c->cache_dir, err) || !cg_image_write(path, out, CG_EXR_FLOAT, err))
-        return false;
-    /* A readable note of what the hashed file holds. */
     char note[4200];
     snprintf(note, sizeof note, "%s.txt", path);
     cg_atomic_file f;
@@ -129,6 +127,54 @@ reference_image(const bench_config *c, bench_scene *bs, int spp, int bounces, cg
     return cg_atomic_commit(&f, err);
 }
 
+/* The reference and its direct part from one trace: the direct part is the light reflected at
+ * most once (emission and sky seen; punctual lights, emitters and the sky reflected once:
+ * pt_render_parts), which is what 0 bounces gives in expectation. One trace at the reference's
+ * spp: a separate 0-bounce render needs as many samples now that emitters and the sky are
+ * sampled (only punctual lights through pixel centres are exact with 1), and its noise would
+ * not cancel in REF - REF_DIRECT as the parts' does. */
+static bool
+render_reference(const bench_config *c, bench_scene *bs, cg_error *err)
+{
+    fprintf(stderr, "bench: %s: rendering the reference, %dx%d, %d spp, %d bounces\n", bs->source, c->width,
+            c->height, c->ref_spp, c->ref_bounces);
+    enum { DIRECT_PARTS = 4 };
+    const pt_part direct_parts[DIRECT_PARTS] = { PT_PART_EMITTED, PT_PART_DIRECT_PUNCTUAL, PT_PART_DIRECT_EMITTERS,
+                                                 PT_PART_DIRECT_SKY };
+    cg_image part_images[DIRECT_PARTS] = { { 0 } };
+    float *parts[PT_PART_COUNT] = { 0 };
+    bool ok = cg_image_alloc(&bs->ref, c->width, c->height, err) &&
+              cg_image_alloc(&bs->ref_direct, c->width, c->height, err);
+    for (int k = 0; ok && k < DIRECT_PARTS; k++) {
+        ok = cg_image_alloc(&part_images[k], c->width, c->height, err);
+        if (ok)
+            parts[direct_parts[k]] = part_images[k].rgba;
+    }
+    pt_settings s = pt_settings_default();
+    s.spp = c->ref_spp;
+    s.bounces = c->ref_bounces;
+    s.seed = (uint32_t)c->ref_seed;
+    s.progress = true;
+    double t0 = app_now_ms(), cpu0 = app_cpu_ms();
+    uint64_t rays = 0;
+    ok = ok && pt_render_parts(bs->pts, &bs->session.frame.view, &s, bs->ref.rgba, parts, &rays, err);
+    if (ok) {
+        double ms = app_now_ms() - t0, cpu = app_cpu_ms() - cpu0;
+        fprintf(stderr, "bench: reference took %.1f s, %.2f M rays/s (%.2f M per CPU second)\n", ms / 1e3,
+                (double)rays / ms / 1e3, (double)rays / cpu / 1e3);
+        size_t n = (size_t)c->width * (size_t)c->height * 4;
+        for (size_t i = 0; i < n; i++) {
+            float sum = 0.0f;
+            for (int k = 0; k < DIRECT_PARTS; k++)
+                sum += part_images[k].rgba[i];
+            bs->ref_direct.rgba[i] = i % 4 == 3 ? 1.0f : sum;
+        }
+    }
+    for (int k = 0; k < DIRECT_PARTS; k++)
+        cg_image_free(&part_images[k]);
+    return ok;
+}
+
 bool
 bench_reference(const bench_config *c, bench_scene *bs, cg_error *err)
 {
@@ -136,10 +182,24 @@ bench_reference(const bench_config *c, bench_scene *bs, cg_error *err)
     if (!pt_scene_create(&bs->session.scene, &bs->pts, err))
         return false;
     bs->bvh_ms = app_now_ms() - t0;
-    /* The direct part needs 1 sample: through pixel centres with 0 bounces nothing is random. */
-    return reference_image(c, bs, c->ref_spp, c->ref_bounces, &bs->ref, err) &&
-           reference_image(c, bs, 1, 0, &bs->ref_direct, err) &&
-           cg_image_subtract(&bs->ref, &bs->ref_direct, &bs->ref_indirect, err);
+    char key[2][2048], path[2][4096];
+    cache_entry(c, bs, "full", key[0], sizeof key[0], path[0], sizeof path[0]);
+    cache_entry(c, bs, "direct", key[1], sizeof key[1], path[1], sizeof path[1]);
+    int full = read_cached(c, path[0], &bs->ref, err);
+    int direct = full == 1 ? read_cached(c, path[1], &bs->ref_direct, err) : 0;
+    if (full < 0 || direct < 0)
+        return false;
+    if (full == 1 && direct == 1) {
+        fprintf(stderr, "bench: %s: reference (%d spp, %d bounces) and its direct part from the cache %s, %s\n",
+                bs->source, c->ref_spp, c->ref_bounces, path[0], path[1]);
+    } else {
+        cg_image_free(&bs->ref);
+        cg_image_free(&bs->ref_direct);
+        if (!render_reference(c, bs, err) || !write_cached(c, path[0], key[0], &bs->ref, err) ||
+            !write_cached(c, path[1], key[1], &bs->ref_direct, err))
+            return false;
+    }
+    return cg_image_subtract(&bs->ref, &bs->ref_direct, &bs->ref_indirect, err);
 }
 
 /* The path tracer at each --pt-spp (seed other than the reference's), timed wall-clock. */

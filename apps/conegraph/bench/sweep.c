@@ -204,8 +204,8 @@ load_setting(const char *path, size_t index, const json_t *value, bench_setting 
 static int
 load_sweep_object(const char *path, const json_t *root, bench_config *c)
 {
-    static const char *const known[] = { "scenes", "size", "camera", "frames", "warmup", "reference",
-                                          "path_tracer_spp", "settings", NULL };
+    static const char *const known[] = { "scenes", "size", "camera", "sky", "default_light", "frames", "warmup",
+                                          "reference", "path_tracer_spp", "settings", NULL };
     char text[BENCH_TEXT];
     if (!json_is_object(root))
         return sweep_error(path, "expected a JSON object at the top");
@@ -226,6 +226,20 @@ load_sweep_object(const char *path, const json_t *root, bench_config *c)
     json_t *camera = json_object_get(root, "camera");
     if (camera && !(json_scalar_text(camera, text, sizeof text) && copy_text(c->camera, text)))
         return sweep_error(path, "\"camera\" must be a name or an index");
+    json_t *sky = json_object_get(root, "sky");
+    if (sky) {
+        cg_error why = { 0 };
+        if (!json_scalar_text(sky, text, sizeof text) || json_is_boolean(sky))
+            return sweep_error(path, "\"sky\" must be a string as --sky takes it (or a number)");
+        if (!cg_sky_parse(text, &c->sky, &why))
+            return sweep_error(path, "\"sky\": %s", why.message);
+        c->sky_given = true;
+    }
+    json_t *default_light = json_object_get(root, "default_light");
+    if (default_light && !json_is_boolean(default_light))
+        return sweep_error(path, "\"default_light\" must be true or false");
+    if (default_light)
+        c->no_default_light = !json_is_true(default_light);
     json_t *ref = json_object_get(root, "reference");
     if (ref && !json_is_object(ref))
         return sweep_error(path, "\"reference\" must be an object { spp, bounces, seed }");
@@ -314,6 +328,10 @@ bench_parse_args(int argc, char **argv, bench_config *c)
             c->images = true;
             continue;
         }
+        if (!strcmp(a, "--no-default-light")) {
+            c->no_default_light = true;
+            continue;
+        }
         if (!strcmp(a, "--merge")) {
             /* The directories up to the next option. */
             int before = c->merge_count;
@@ -363,6 +381,11 @@ bench_parse_args(int argc, char **argv, bench_config *c)
         } else if (!strcmp(a, "--camera")) {
             if (!copy_text(c->camera, v))
                 return usage_error("--camera '%s' is too long", v);
+        } else if (!strcmp(a, "--sky")) {
+            cg_error why = { 0 };
+            if (!cg_sky_parse(v, &c->sky, &why))
+                return usage_error("--sky: %s", why.message);
+            c->sky_given = true;
         } else if ((option = find_int_flag(int_flags, 4, a))) {
             long n;
             if (!app_parse_int(v, option->min, option->max, &n)) {
@@ -501,8 +524,9 @@ bench_validate(const bench_config *c, const bench_run *runs, int run_count, benc
     for (int s = 0; s < c->scene_count; s++) {
         bench_scene *bs = &scenes[s];
         bs->source = c->scenes[s];
-        app_session_desc desc = { .scene = bs->source, .camera = c->camera[0] ? c->camera : NULL,
-                                  .width = c->width, .height = c->height };
+        app_session_desc desc = { .tool = TOOL, .scene = bs->source, .camera = c->camera[0] ? c->camera : NULL,
+                                  .width = c->width, .height = c->height, .sky = c->sky_given ? &c->sky : NULL,
+                                  .no_default_light = c->no_default_light };
         if (!app_session_open(&bs->session, &desc, &err))
             return app_fail(TOOL, bs->source, &err);
     }

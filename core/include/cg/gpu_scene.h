@@ -59,7 +59,9 @@ void cg_gpu_scene_destroy(cg_gpu_scene *gpu);
 
 /* Draws every instance whose mesh passes `filter` with the bound program: sets the
  * model and normal matrices and material index uniforms, binds the material SSBO and
- * textures. Returns the number of triangles drawn. */
+ * textures. Returns the number of triangles drawn. The matrices come from gpu->scene's
+ * instances at every call, so a scene posed at a new time (cg_scene_evaluate) draws where it
+ * is now with nothing uploaded; only its lights need cg_gpu_scene_update_lights. */
 size_t cg_gpu_scene_draw(const cg_gpu_scene *gpu, cg_mesh_filter filter);
 
 /* Binds the light SSBO at CG_BINDING_LIGHTS. */

@@ -2,11 +2,16 @@
  *
  * Declares: cg_mesh_kind, cg_texture, cg_material, cg_mesh, cg_instance, cg_light_type,
  *           cg_light, cg_camera_type, cg_camera, cg_sky_type, cg_sky, cg_kind_source,
- *           cg_classify_rule, cg_classify_points, cg_classify_options, cg_mesh_class, cg_scene,
- *           cg_scene_load, cg_scene_free, cg_classify_defaults, cg_mesh_classify,
- *           cg_scene_export_gltf, cg_scene_compute_bounds, cg_scene_triangle_count,
- *           cg_scene_builtin_names, cg_scene_validate, cg_scene_set_sky, cg_sky_parse,
- *           cg_sky_model, cg_sky_model_init, cg_sky_model_radiance.
+ *           cg_classify_rule, cg_classify_points, cg_classify_options, cg_mesh_class, cg_node,
+ *           cg_attachment_kind, cg_attachment, cg_anim_path, cg_anim_interpolation, cg_anim_channel,
+ *           cg_animation, cg_scene, cg_scene_load, cg_scene_free, cg_classify_defaults,
+ *           cg_mesh_classify, cg_scene_export_gltf, cg_scene_compute_bounds,
+ *           cg_scene_triangle_count, cg_scene_builtin_names, cg_scene_validate, cg_scene_set_sky,
+ *           cg_sky_parse, cg_sky_model, cg_sky_model_init, cg_sky_model_radiance, cg_sky_format,
+ *           cg_sky_equal, cg_sky_is_black, cg_scene_is_lit, the CG_DEFAULT_* constants,
+ *           cg_default_sun, cg_default_sky, cg_scene_add_default_sun, cg_scene_changes,
+ *           cg_scene_evaluate, cg_scene_is_animated, cg_scene_animation_range,
+ *           cg_scene_lights_changed, cg_anim_channel_sample.
  *
  * Units and conventions (see docs/architecture.md): metres, y up, glTF 2.0.
  * Lambertian BRDF with albedo = base_color x base colour texture.
@@ -66,10 +71,15 @@ typedef struct cg_mesh {
     float bounds_min[3], bounds_max[3]; /* local space */
 } cg_mesh;
 
-/* A mesh placed in the world; glTF's node hierarchy is flattened into these. */
+/* A mesh placed in the world. glTF's node hierarchy is flattened into these, except where
+ * animation needs it (cg_node): an instance on an animated node follows it. */
 typedef struct cg_instance {
     int mesh;
-    float world[16];        /* column-major 4x4, local to world */
+    float world[16];        /* column-major 4x4, local to world, at the scene's time */
+    bool moving;            /* follows an animated node (a cg_attachment): `world` changes with time */
+    float motion_min[3], motion_max[3]; /* moving: its world box over the whole animation
+                                         * (cg_scene_compute_bounds); else the current box */
+    uint64_t revision;      /* cg_scene.revision when `world` last changed (0: never) */
 } cg_instance;
 
 typedef enum cg_light_type {
@@ -173,6 +183,70 @@ typedef struct cg_mesh_class {
     int instances;
     bool normals_up;        /* the normal rule's verdict (every instance's triangles face up) */
 } cg_mesh_class;
+/* ------------------------------------------------------------------ animation
+ *
+ * glTF 2.0 animations of node translation, rotation and scale (docs/scenes.md, "Animation").
+ * Only the nodes animation needs are kept: the animated ones, their descendants and their
+ * ancestors; every other node is flattened into the world matrices as before. Instances,
+ * lights and cameras on kept nodes follow them through cg_attachment. cg_scene_evaluate
+ * poses the scene at a time. */
+
+/* A kept glTF node. Nodes are stored parents first (parent < index). */
+typedef struct cg_node {
+    char name[CG_NAME_MAX];
+    int parent;             /* index of the parent node, or -1 */
+    bool has_matrix;        /* the local transform is `matrix` (glTF forbids animating such a node) */
+    float matrix[16];       /* column-major */
+    float translation[3];   /* local T, R, S (local = T x R x S): the rest pose, or for an */
+    float rotation[4];      /* animated property its value at the scene's time; rotation is */
+    float scale[3];         /* a unit quaternion x, y, z, w */
+    double world[16];       /* local to world at the scene's time */
+} cg_node;
+
+typedef enum cg_attachment_kind {
+    CG_ATTACH_INSTANCE,
+    CG_ATTACH_LIGHT,
+    CG_ATTACH_CAMERA
+} cg_attachment_kind;
+
+/* An instance, light or camera that follows a node: an instance's and a camera's world
+ * matrix is the node's; a light sits at the node's origin and shines down its -Z
+ * (KHR_lights_punctual). */
+typedef struct cg_attachment {
+    cg_attachment_kind kind;
+    int index;              /* into instances, lights or cameras */
+    int node;
+} cg_attachment;
+
+typedef enum cg_anim_path {
+    CG_ANIM_TRANSLATION,
+    CG_ANIM_ROTATION,
+    CG_ANIM_SCALE
+} cg_anim_path;
+
+typedef enum cg_anim_interpolation {
+    CG_INTERP_LINEAR,       /* lerp; slerp for rotations (glTF 2.0, Appendix C) */
+    CG_INTERP_STEP,
+    CG_INTERP_CUBICSPLINE   /* cubic Hermite with in- and out-tangents (glTF 2.0, Appendix C) */
+} cg_anim_interpolation;
+
+/* One animated property of one node: a glTF channel and its sampler. */
+typedef struct cg_anim_channel {
+    int node;               /* index into cg_scene.nodes */
+    cg_anim_path path;
+    cg_anim_interpolation interpolation;
+    int key_count;          /* >= 1; >= 2 for CUBICSPLINE */
+    float *times;           /* key_count times in seconds, >= 0, strictly increasing */
+    float *values;          /* per key N floats (N = 4 for rotations, x y z w; else 3), or for
+                             * CUBICSPLINE 3 x N: in-tangent, value, out-tangent */
+} cg_anim_channel;
+
+/* A glTF animation. All of a scene's animations play together, from time 0. */
+typedef struct cg_animation {
+    char name[CG_NAME_MAX];
+    cg_anim_channel *channels;
+    int channel_count;
+} cg_animation;
 
 typedef struct cg_scene {
     char name[256];         /* file path or builtin:name */
@@ -182,12 +256,23 @@ typedef struct cg_scene {
     cg_texture *textures;    int texture_count;
     cg_light *lights;        int light_count;
     cg_camera *cameras;      int camera_count;
-    float bounds_min[3], bounds_max[3]; /* world space, over all instances */
+    /* world space, over all instances; an animated scene's over the whole animation, so that
+     * volumes and shadow fits fitted to them stay put from frame to frame */
+    float bounds_min[3], bounds_max[3];
     cg_sky sky;             /* CG_SKY_NONE unless set (cg_scene_set_sky) */
     cg_classify_options classify;   /* as the source asked (cg_scene_load) */
     cg_mesh_class *mesh_class;      /* mesh_class_count entries (mesh_count after cg_scene_load);
                                      * NULL in a scene built by hand */
     int mesh_class_count;
+    cg_node *nodes;              int node_count;
+    cg_attachment *attachments;  int attachment_count;
+    cg_animation *animations;    int animation_count;
+    double time;            /* seconds: the time the scene is posed at (0 after loading) */
+    /* Change stamps for caches: `revision` counts the changes to instance worlds, lights and
+     * cameras (cg_scene_evaluate, cg_scene_lights_changed); instances_revision,
+     * lights_revision and cameras_revision (and each instance's `revision`) hold the value it
+     * had when they last changed. A cache that saw revision R rebuilds what is newer than R. */
+    uint64_t revision, instances_revision, lights_revision, cameras_revision;
 } cg_scene;
 
 /* Loads `source`: a .gltf/.glb path, "builtin:NAME" or "dem:IMAGE" (docs/scenes.md), each
@@ -211,7 +296,10 @@ bool cg_mesh_classify(const cg_scene *scene, int mesh, const cg_classify_options
  * file renamed into place. Mesh kinds are kept in mesh extras ("conegraph_kind"). */
 bool cg_scene_export_gltf(const cg_scene *scene, const char *path, cg_error *err);
 
-/* Recomputes world bounds from the instances. */
+/* Recomputes world bounds from the instances; for an animated scene, the union over the
+ * animation (sampled: posed at every key time and 15 evenly spaced times between consecutive
+ * ones, 4096 poses at most) and each moving instance's motion box; the scene is left posed at
+ * its time. Call it again after changing nodes or animations by hand. */
 void cg_scene_compute_bounds(cg_scene *scene);
 /* Triangles over all instances. */
 size_t cg_scene_triangle_count(const cg_scene *scene);
@@ -227,6 +315,32 @@ bool cg_scene_set_sky(cg_scene *scene, const cg_sky *sky, cg_error *err);
  * W/(m^2 sr)); "preetham", "preetham:T" or "preetham:T,SCALE" (defaults T 3, SCALE 1).
  * Fails with CG_ERR_USAGE naming what was expected. */
 bool cg_sky_parse(const char *text, cg_sky *out, cg_error *err);
+
+/* The sky as cg_sky_parse reads it: "none", "L" (all channels alike), "R,G,B" or
+ * "preetham:T,SCALE". */
+void cg_sky_format(const cg_sky *sky, char *out, size_t size);
+/* Whether two skies give the same radiance (the fields their type uses are equal). */
+bool cg_sky_equal(const cg_sky *a, const cg_sky *b);
+
+/* The default light (core/scene/lighting.c says why these values; docs/scenes.md): what the
+ * apps add to a scene that nothing lights, unless told not to (--no-default-light). */
+#define CG_DEFAULT_SUN_NAME "default_sun"
+#define CG_DEFAULT_SUN_IRRADIANCE 3.0f      /* W/m^2 on a surface facing it, white */
+#define CG_DEFAULT_SUN_ELEVATION_DEG 55.0   /* above the horizon (the y = 0 plane) */
+#define CG_DEFAULT_SUN_AZIMUTH_DEG 30.0     /* from +z towards +x */
+#define CG_DEFAULT_SKY_RADIANCE 0.2f        /* uniform, W/(m^2 sr) per channel */
+
+/* Whether the sky gives no light: none, a uniform radiance of 0, a Preetham scale of 0. */
+bool cg_sky_is_black(const cg_sky *sky);
+/* Whether anything lights the scene: a light, an instanced mesh whose material emits, or a sky
+ * that is not black. */
+bool cg_scene_is_lit(const cg_scene *scene);
+/* The default sun as a light, and the default sky. */
+void cg_default_sun(cg_light *out);
+void cg_default_sky(cg_sky *out);
+/* Appends the default sun to the scene's lights (last, so that lights the scene had keep their
+ * indices; a Preetham sky follows the first directional light). */
+bool cg_scene_add_default_sun(cg_scene *scene, cg_error *err);
 
 /* The sky's radiance in any direction, ready to evaluate: built once per scene. */
 typedef struct cg_sky_model {
@@ -245,6 +359,29 @@ typedef struct cg_sky_model {
 bool cg_sky_model_init(const cg_scene *scene, cg_sky_model *model, cg_error *err);
 /* Radiance arriving from the unit world direction `dir` (towards the sky), linear RGB. */
 void cg_sky_model_radiance(const cg_sky_model *model, const float dir[3], float rgb[3]);
+
+/* What one cg_scene_evaluate changed. */
+typedef struct cg_scene_changes {
+    int instances_moved;    /* instances whose world matrix changed (their `revision` says which) */
+    bool lights;            /* some light's position or direction changed */
+    bool cameras;           /* some camera's world matrix changed */
+} cg_scene_changes;
+
+/* Poses the scene at time t (seconds, finite): samples every channel (before a channel's
+ * first key its first value, after its last key its last value: no looping), recomputes the
+ * kept nodes' world matrices and, from them, the world matrices of the instances, the
+ * positions and directions of the lights and the world matrices of the cameras that follow
+ * them. Bumps the change stamps of what changed and reports it in *changes (may be NULL).
+ * A scene without animation never changes. */
+void cg_scene_evaluate(cg_scene *scene, double t, cg_scene_changes *changes);
+/* Whether any channel animates the scene. */
+bool cg_scene_is_animated(const cg_scene *scene);
+/* The first and last key time over all channels (0 and 0 without animation). */
+void cg_scene_animation_range(const cg_scene *scene, double *start, double *end);
+/* Bumps the lights' change stamp: for an app that moved or changed a light by hand. */
+void cg_scene_lights_changed(cg_scene *scene);
+/* The channel's value at time t (3 components, or 4 for a rotation: a unit quaternion). */
+void cg_anim_channel_sample(const cg_anim_channel *channel, double t, double out[4]);
 
 /* NULL-terminated list of built-in scene names, and a one-line description of each. */
 const char *const *cg_scene_builtin_names(void);

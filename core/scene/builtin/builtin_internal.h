@@ -5,7 +5,7 @@
  *           bs_rng_range, bs_value_noise, bs_fbm, mesh_builder, mb_vertex, mb_triangle,
  *           mb_flat_triangle, mb_quad, mb_box, mb_free, mb_commit, bs_identity, bs_unit_cube,
  *           bs_trs_matrix, bs_add_material, bs_look_at_world, bs_add_perspective_camera,
- *           bs_normalize3, BS_PI, and one cg_builtin_scene per scene file.
+ *           bs_normalize3, bs_quat_from_minus_z, BS_PI, and one cg_builtin_scene per scene file.
  *
  * A scene is one file defining a cg_builtin_scene; builtin.c lists them. Every scene is a
  * pure function of its parameters (no global state), so the same query gives a
@@ -43,6 +43,7 @@ typedef struct bs_param {
     bool integer;           /* then `count` holds the exact value too */
     uint64_t count;
     bool seen;
+    const char *const *choices; /* NULL-terminated names: the value is a name, `count` its index */
 } bs_param;
 
 /* Parses "key=value&..." into the specs: unknown keys, repeats, malformed or out-of-range
@@ -102,5 +103,7 @@ void bs_look_at_world(const double eye[3], const double target[3], float world[1
 bool bs_add_perspective_camera(cg_scene *scene, const char *name, const double eye[3], const double target[3],
                                float yfov, float znear, float zfar, cg_error *err);
 void bs_normalize3(float v[3]);
+/* The unit quaternion (x, y, z, w) that turns -z onto the unit vector d (a glTF light's node). */
+void bs_quat_from_minus_z(const float d[3], double q[4]);
 
 #endif

@@ -14,10 +14,10 @@ static bool
 build_furnace(cg_scene *scene, const char *query, cg_error *err)
 {
     bs_param p[] = {
-        { "scale", 1e-6, 1e7, 1, false, 0, false },
-        { "albedo", 0, 1, 0.5, false, 0, false },
-        { "radiance", 0, 1e6, 1, false, 0, false },
-        { "heightfield", 0, 1, 0, true, 0, false },
+        { "scale", 1e-6, 1e7, 1, false, 0, false, NULL },
+        { "albedo", 0, 1, 0.5, false, 0, false, NULL },
+        { "radiance", 0, 1e6, 1, false, 0, false, NULL },
+        { "heightfield", 0, 1, 0, true, 0, false, NULL },
     };
     if (!bs_parse_params("furnace", query, p, 4, err))
         return false;

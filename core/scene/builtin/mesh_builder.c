@@ -199,6 +199,20 @@ bs_add_perspective_camera(cg_scene *scene, const char *name, const double eye[3]
 }
 
 void
+bs_quat_from_minus_z(const float d[3], double q[4])
+{
+    double c = -d[2]; /* dot((0, 0, -1), d) */
+    if (c < -0.999999) { /* d = +z: half a turn about y */
+        q[0] = 0, q[1] = 1, q[2] = 0, q[3] = 0;
+        return;
+    }
+    /* axis (0, 0, -1) x d, w = 1 + c, normalised: the half-angle form. */
+    double x = d[1], y = -d[0], z = 0, w = 1 + c;
+    double len = sqrt(x * x + y * y + z * z + w * w);
+    q[0] = x / len, q[1] = y / len, q[2] = z / len, q[3] = w / len;
+}
+
+void
 bs_normalize3(float v[3])
 {
     float l = sqrtf(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);

@@ -1,6 +1,15 @@
 /* builtin:openworld: height-field terrain (most of the triangles), coloured buildings standing on it,
  * a bridge over a valley and a stone arch (space under them: no height field can hold them), a
- * sun and a camera. ?triangles=N&seed=S. */
+ * sun and a camera. ?triangles=N&seed=S&motion=none|sun|one|all&period=P.
+ *
+ * The motions are the dynamic cases the papers' methods must serve, as a glTF animation of
+ * one period P (seconds, default 20), after which the scene holds its last pose:
+ *   sun  the sun turns once about the vertical, keeping its elevation;
+ *   one  one building (the nearest to the view's centre) sinks into the ground, roof and all,
+ *        by half the period and rises again;
+ *   all  every complex object moves: each building turns once about its vertical axis (in
+ *        alternate directions), the bridge and the arch rise 3 m and come down again.
+ * Without motion (the default) the scene is what it always was, bit for bit. */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -150,6 +159,13 @@ building_triangles(const building *bd)
     return 10 + (bd->roof == ROOF_GABLE ? 6 : 0);
 }
 
+/* How far a gable roof's ridge rises above the walls (35 degrees pitch); 0 for a flat roof. */
+static double
+roof_rise(const building *bd)
+{
+    return bd->roof == ROOF_GABLE ? bd->hz * tan(35 * BS_PI / 180) : 0;
+}
+
 static void
 build_building(mesh_builder *walls, mesh_builder *roofs, const building *bd, double base)
 {
@@ -162,7 +178,7 @@ build_building(mesh_builder *walls, mesh_builder *roofs, const building *bd, dou
         return;
     /* Ridge along the local x axis, 35 degrees pitch. */
     double cs = cos(bd->yaw), sn = sin(bd->yaw);
-    double rise = bd->hz * tan(35 * BS_PI / 180);
+    double rise = roof_rise(bd);
     double local[6][3] = { { -bd->hx, top, -bd->hz }, { bd->hx, top, -bd->hz },
                            { bd->hx, top, bd->hz },   { -bd->hx, top, bd->hz },
                            { -bd->hx, top + rise, 0 }, { bd->hx, top + rise, 0 } };
@@ -250,17 +266,133 @@ build_arch(mesh_builder *b, const terrain *t, double x, double z)
     }
 }
 
+enum { MOTION_NONE, MOTION_SUN, MOTION_ONE, MOTION_ALL };
+#define OW_LIFT 3.0           /* metres the bridge and the arch rise with motion=all */
+
+static void
+free_animation(cg_animation *anim)
+{
+    for (int c = 0; c < anim->channel_count; c++) {
+        free(anim->channels[c].times);
+        free(anim->channels[c].values);
+    }
+    free(anim->channels);
+    memset(anim, 0, sizeof *anim);
+}
+
+/* Appends a channel of `keys` keys to `anim`; `values` holds keys x 3 or 4 floats. */
+static bool
+add_channel(cg_animation *anim, int node, cg_anim_path path, int keys, const float *times, const float *values,
+            cg_error *err)
+{
+    cg_anim_channel *bigger = realloc(anim->channels, sizeof *bigger * (size_t)(anim->channel_count + 1));
+    if (!bigger)
+        return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "builtin:openworld: out of memory for the animation");
+    anim->channels = bigger;
+    cg_anim_channel *ch = &anim->channels[anim->channel_count];
+    *ch = (cg_anim_channel){ .node = node, .path = path, .interpolation = CG_INTERP_LINEAR };
+    if (!cg_anim_channel_alloc(ch, keys, err))
+        return false;
+    anim->channel_count++;
+    memcpy(ch->times, times, sizeof(float) * (size_t)keys);
+    memcpy(ch->values, values, sizeof(float) * (size_t)keys * (size_t)cg_anim_channel_components(ch));
+    return true;
+}
+
+/* Hamilton product a b of quaternions (x, y, z, w). */
+static void
+quat_mul(const double a[4], const double b[4], double out[4])
+{
+    double r[4] = { a[3] * b[0] + a[0] * b[3] + a[1] * b[2] - a[2] * b[1],
+                    a[3] * b[1] - a[0] * b[2] + a[1] * b[3] + a[2] * b[0],
+                    a[3] * b[2] + a[0] * b[1] - a[1] * b[0] + a[2] * b[3],
+                    a[3] * b[3] - a[0] * b[0] - a[1] * b[1] - a[2] * b[2] };
+    memcpy(out, r, sizeof r);
+}
+
+/* A full turn about +y (sign +1) or -y starting from `rest`: keys a quarter turn apart, so that
+ * slerp between them (the shorter arc) turns at a constant rate. */
+static bool
+add_turn(cg_animation *anim, int node, const double rest[4], int sign, double period, cg_error *err)
+{
+    float times[5], values[20];
+    for (int k = 0; k < 5; k++) {
+        double half = sign * k * BS_PI / 4; /* half of k quarter turns */
+        double turn[4] = { 0, sin(half), 0, cos(half) }, q[4];
+        quat_mul(turn, rest, q);
+        times[k] = (float)(period * k / 4);
+        for (int c = 0; c < 4; c++)
+            values[4 * k + c] = (float)q[c];
+    }
+    return add_channel(anim, node, CG_ANIM_ROTATION, 5, times, values, err);
+}
+
+/* Down by `dy` (negative: up) at half the period and back. */
+static bool
+add_dip(cg_animation *anim, int node, double dy, double period, cg_error *err)
+{
+    const float times[3] = { 0, (float)(period / 2), (float)period };
+    const float values[9] = { 0, 0, 0, 0, (float)-dy, 0, 0, 0, 0 };
+    return add_channel(anim, node, CG_ANIM_TRANSLATION, 3, times, values, err);
+}
+
+/* A node whose parent is `parent`, translated by t; -1 on failure. */
+static int
+add_node(cg_scene *scene, const char *name, int parent, double tx, double ty, double tz, cg_error *err)
+{
+    cg_node n = cg_node_default(name);
+    n.parent = parent;
+    n.translation[0] = (float)tx, n.translation[1] = (float)ty, n.translation[2] = (float)tz;
+    return cg_scene_add_node(scene, &n, err);
+}
+
+/* Attaches the instance mb_commit just made to `node`. */
+static bool
+attach_last(cg_scene *scene, int node, cg_error *err)
+{
+    return cg_scene_attach(scene, CG_ATTACH_INSTANCE, scene->instance_count - 1, node, err) >= 0;
+}
+
+/* A building of its own (its walls and its roof as meshes of their own) on `node`. */
+static bool
+commit_building(cg_scene *scene, const building *bd, double base, int index, int wall_material, int roof_material,
+                int node, cg_error *err)
+{
+    mesh_builder walls = { 0 }, roof = { 0 };
+    build_building(&walls, &roof, bd, base);
+    char name[CG_NAME_MAX];
+    snprintf(name, sizeof name, "building_%d", index);
+    bool ok = mb_commit(scene, &walls, name, wall_material, CG_MESH_COMPLEX, bs_identity, err) &&
+              attach_last(scene, node, err);
+    if (ok && roof.index_count > 0) {
+        snprintf(name, sizeof name, "building_%d_roof", index);
+        ok = mb_commit(scene, &roof, name, roof_material, CG_MESH_COMPLEX, bs_identity, err) &&
+             attach_last(scene, node, err);
+    }
+    mb_free(&walls);
+    mb_free(&roof);
+    return ok;
+}
+
 static bool
 build_openworld(cg_scene *scene, const char *query, cg_error *err)
 {
+    static const char *const motions[] = { "none", "sun", "one", "all", NULL };
     bs_param p[] = {
-        { "triangles", 5000, 8000000, 200000, true, 200000, false },
-        { "seed", 0, 18446744073709551615.0, 1, true, 1, false },
+        { "triangles", 5000, 8000000, 200000, true, 200000, false, NULL },
+        { "seed", 0, 18446744073709551615.0, 1, true, 1, false, NULL },
+        { "motion", 0, 3, 0, false, 0, false, motions },
+        { "period", 0.1, 100000, 20, false, 0, false, NULL },
     };
-    if (!bs_parse_params("openworld", query, p, 2, err))
+    if (!bs_parse_params("openworld", query, p, 4, err))
         return false;
     uint64_t seed = p[1].count; /* exact: a double holds integers only below 2^53 */
     long target = (long)p[0].count;
+    int motion = (int)p[2].count;
+    double period = p[3].value;
+    if (p[3].seen && motion == MOTION_NONE)
+        return cg_fail(err, CG_ERR_SCENE_PARAM, "builtin:openworld: period=%g is given without a motion "
+                       "(motion=sun, one or all)", period);
     bs_rng r = { bs_mix64(seed ^ 0x6F70656E776F726Cull) };
 
     int m_grass = bs_add_material(scene, "grass", 0.30f, 0.42f, 0.20f, err);
@@ -329,13 +461,24 @@ build_openworld(cg_scene *scene, const char *query, cg_error *err)
 
     bool ok = build_terrain(scene, &t, m_grass, err);
     mesh_builder walls[4] = { { 0 } }, roofs = { 0 }, bridge = { 0 }, arch = { 0 };
-    for (int i = 0; i < placed; i++) {
+    /* motion=one moves the building nearest to the view's centre (the camera looks at (0, 0, -20)). */
+    int moving = -1;
+    for (int i = 0; motion == MOTION_ONE && i < placed; i++) {
+        double d = hypot(bs[i].x, bs[i].z + 20), best = moving < 0 ? INFINITY : hypot(bs[moving].x, bs[moving].z + 20);
+        if (d < best)
+            moving = i;
+    }
+    double *bases = malloc(sizeof *bases * (size_t)(placed > 0 ? placed : 1));
+    if (!bases)
+        ok = cg_fail(err, CG_ERR_OUT_OF_MEMORY, "builtin:openworld: out of memory");
+    for (int i = 0; ok && i < placed; i++) {
         building *bd = &bs[i];
         double ext = sqrt(bd->hx * bd->hx + bd->hz * bd->hz);
-        double base = terrain_min_under(&t, bd->x - ext, bd->z - ext, bd->x + ext, bd->z + ext) - 0.3;
+        bases[i] = terrain_min_under(&t, bd->x - ext, bd->z - ext, bd->x + ext, bd->z + ext) - 0.3;
         double ground = terrain_mesh_height(&t, bd->x, bd->z);
         bd->height += ground;
-        build_building(&walls[bd->colour], &roofs, bd, base);
+        if (motion != MOTION_ALL && i != moving)
+            build_building(&walls[bd->colour], &roofs, bd, bases[i]);
     }
     build_bridge(&bridge, &t);
     build_arch(&arch, &t, OW_ARCH_X, OW_ARCH_Z);
@@ -346,9 +489,44 @@ build_openworld(cg_scene *scene, const char *query, cg_error *err)
             continue;
         ok = ok && mb_commit(scene, &walls[c], wall_names[c], m_colour[c], CG_MESH_COMPLEX, bs_identity, err);
     }
-    ok = ok && mb_commit(scene, &roofs, "roofs", m_roof, CG_MESH_COMPLEX, bs_identity, err);
-    ok = ok && mb_commit(scene, &bridge, "bridge", m_stone, CG_MESH_COMPLEX, bs_identity, err);
-    ok = ok && mb_commit(scene, &arch, "arch", m_stone, CG_MESH_COMPLEX, bs_identity, err);
+    if (roofs.index_count > 0 || roofs.failed)
+        ok = ok && mb_commit(scene, &roofs, "roofs", m_roof, CG_MESH_COMPLEX, bs_identity, err);
+
+    cg_animation anim = { .name = "motion" };
+    if (ok && motion == MOTION_ONE && moving >= 0) {
+        int node = add_node(scene, "moving_building", -1, 0, 0, 0, err);
+        ok = node >= 0 &&
+             commit_building(scene, &bs[moving], bases[moving], moving, m_colour[bs[moving].colour], m_roof, node,
+                             err) &&
+             add_dip(&anim, node, bs[moving].height + roof_rise(&bs[moving]) - bases[moving], period, err);
+    }
+    /* Each building turns about the vertical through its centre: translated there, turned,
+     * translated back (its vertices are in world space). */
+    for (int i = 0; ok && motion == MOTION_ALL && i < placed; i++) {
+        char name[CG_NAME_MAX];
+        snprintf(name, sizeof name, "building_%d", i);
+        int pivot = add_node(scene, name, -1, bs[i].x, 0, bs[i].z, err);
+        snprintf(name, sizeof name, "building_%d_turn", i);
+        int turn = pivot < 0 ? -1 : add_node(scene, name, pivot, 0, 0, 0, err);
+        snprintf(name, sizeof name, "building_%d_origin", i);
+        int origin = turn < 0 ? -1 : add_node(scene, name, turn, -bs[i].x, 0, -bs[i].z, err);
+        static const double identity[4] = { 0, 0, 0, 1 };
+        ok = origin >= 0 &&
+             commit_building(scene, &bs[i], bases[i], i, m_colour[bs[i].colour], m_roof, origin, err) &&
+             add_turn(&anim, turn, identity, i % 2 ? -1 : 1, period, err);
+    }
+    int bridge_node = -1, arch_node = -1;
+    if (ok && motion == MOTION_ALL) {
+        bridge_node = add_node(scene, "bridge", -1, 0, 0, 0, err);
+        arch_node = bridge_node < 0 ? -1 : add_node(scene, "arch", -1, 0, 0, 0, err);
+        ok = arch_node >= 0 && add_dip(&anim, bridge_node, -OW_LIFT, period, err) &&
+             add_dip(&anim, arch_node, -OW_LIFT, period, err);
+    }
+    ok = ok && mb_commit(scene, &bridge, "bridge", m_stone, CG_MESH_COMPLEX, bs_identity, err) &&
+         (bridge_node < 0 || attach_last(scene, bridge_node, err));
+    ok = ok && mb_commit(scene, &arch, "arch", m_stone, CG_MESH_COMPLEX, bs_identity, err) &&
+         (arch_node < 0 || attach_last(scene, arch_node, err));
+    free(bases);
     for (int c = 0; c < 4; c++)
         mb_free(&walls[c]);
     mb_free(&roofs);
@@ -356,8 +534,10 @@ build_openworld(cg_scene *scene, const char *query, cg_error *err)
     mb_free(&arch);
     free(bs);
     free(t.height);
-    if (!ok)
+    if (!ok) {
+        free_animation(&anim);
         return false;
+    }
 
     /* The sun: low enough (37 degrees) for long shadows, from the west-south-west so the
      * shadows fall across the view; irradiance 3 W/m^2 on a surface facing it. */
@@ -365,7 +545,26 @@ build_openworld(cg_scene *scene, const char *query, cg_error *err)
                      .direction = { 0.72f, -0.60f, -0.35f } };
     bs_normalize3(sun.direction);
     cg_copy_name(sun.name, "sun");
-    if (cg_scene_add_light(scene, &sun, err) < 0)
+    int light = cg_scene_add_light(scene, &sun, err);
+    ok = light >= 0;
+    if (ok && motion == MOTION_SUN) {
+        /* The sun's node turns -Z (the way a glTF light shines) onto its direction, then about +y. */
+        cg_node n = cg_node_default("sun");
+        double rest[4];
+        bs_quat_from_minus_z(sun.direction, rest);
+        for (int c = 0; c < 4; c++)
+            n.rotation[c] = (float)rest[c];
+        int node = cg_scene_add_node(scene, &n, err);
+        ok = node >= 0 && cg_scene_attach(scene, CG_ATTACH_LIGHT, light, node, err) >= 0 &&
+             add_turn(&anim, node, rest, 1, period, err);
+    }
+    /* The scene owns the channels once added (and frees them itself if adding fails). */
+    if (ok && anim.channel_count > 0)
+        return cg_scene_add_animation(scene, &anim, err) >= 0 &&
+               bs_add_perspective_camera(scene, "overview", (const double[3]){ -150, 75, 175 },
+                                         (const double[3]){ 0, 0, -20 }, 0.9f, 0.5f, 1500.0f, err);
+    free_animation(&anim);
+    if (!ok)
         return false;
     double eye[3] = { -150, 75, 175 }, at[3] = { 0, 0, -20 };
     return bs_add_perspective_camera(scene, "overview", eye, at, 0.9f, 0.5f, 1500.0f, err);
@@ -375,6 +574,8 @@ const cg_builtin_scene cg_builtin_openworld = {
     .name = "openworld",
     .doc = "procedural open world: height-field terrain, buildings, a bridge and an arch, sun, camera; "
     "?triangles=N (5000..8000000, default 200000: the total follows N within 1%)&seed=S "
-    "(unsigned integer, default 1)",
+    "(unsigned integer, default 1)&motion=none|sun|one|all (default none: the sun turns about the vertical, "
+    "one building sinks and rises, or every complex object moves)&period=P (seconds, 0.1..100000, default 20: "
+    "the animation's length)",
     .build = build_openworld,
 };

@@ -49,6 +49,24 @@ bs_parse_params(const char *scene, const char *query, bs_param *specs, int count
         char *rest = NULL;
         errno = 0;
         double v;
+        if (spec->choices) {
+            char names[256] = "";
+            for (int i = 0; spec->choices[i]; i++) {
+                if (!strcmp(value, spec->choices[i])) {
+                    spec->count = (uint64_t)i;
+                    spec->value = i;
+                }
+                snprintf(names + strlen(names), sizeof names - strlen(names), "%s%s", i ? ", " : "",
+                         spec->choices[i]);
+            }
+            if (strcmp(value, spec->choices[spec->count]))
+                return cg_fail(err, CG_ERR_SCENE_PARAM, "builtin:%s: %s=%s: expected one of %s", scene, item,
+                               value, names);
+            if (!end)
+                break;
+            p = end + 1;
+            continue;
+        }
         if (spec->integer) {
             if (value[0] == '-' || value[0] == '+')
                 return cg_fail(err, CG_ERR_SCENE_PARAM,

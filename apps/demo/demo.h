@@ -1,0 +1,124 @@
+/* apps/demo/demo.h: the demo's state, shared by its main loop (demo.c) and its UI panels
+ * (demo_ui.c), and what the panels ask of the main loop: the same actions the keys take.
+ *
+ * Declares: scripted_key, demo_options, pending_change, demo, demo_select, demo_set_param,
+ *           demo_step_param, demo_show, demo_view_resource, demo_frame_median_ms.
+ */
+#ifndef CONEGRAPH_DEMO_H
+#define CONEGRAPH_DEMO_H
+
+#include <stdbool.h>
+
+#include "app_options.h"
+#include "app_session.h"
+#include "cg/fg.h"
+#include "demo_camera.h"
+#include "demo_params.h"
+#include "demo_view.h"
+#include "ui.h"
+
+#define MAX_LIST 64
+#define MAX_SHOWN 9
+#define FRAME_HISTORY 64
+#define MAX_UI_WINDOWS 16
+
+/* A key press given on the command line (--keys). */
+typedef struct scripted_key {
+    int key;                    /* GLFW_KEY_* */
+    int mods;                   /* GLFW_MOD_SHIFT or 0 */
+} scripted_key;
+
+typedef struct demo_options {
+    app_options common;         /* scene, graph, size, sets, plugins, timing; frames 0: until the
+                                 * window closes */
+    const char *screenshot;     /* the window as shown (F12) */
+    const char *image_screenshot; /* the image without the UI (Shift+F12) */
+    bool no_ui;                 /* start with the UI hidden (F1 shows it) */
+    const char *view;           /* the resource the viewer starts on; NULL: none */
+    scripted_key keys[MAX_LIST];  /* --keys: pressed one per frame from the first */
+    int key_count;
+} demo_options;
+
+/* A parameter changed by a key or a control since the last compile, with its old text for
+ * undoing it. */
+typedef struct pending_change {
+    char pass[128];
+    char param[128];
+    char previous[256];
+} pending_change;
+
+typedef struct demo {
+    demo_options o;
+    /* Scene, registry, graph, context, GPU scene and the frame (view, size) it renders. */
+    app_session s;
+    fg_graph *graph;            /* s.graph: loaded once, compiled again after every change */
+    void *window;               /* GLFWwindow */
+    fg_timing_mode timing;
+    GLuint read_fbo;
+
+    /* Camera: the scene's view until the first move or look. */
+    demo_camera cam;
+    bool flying;
+    float speed, base_speed;    /* metres per second */
+    bool dragging;
+    bool have_cursor;
+    double drag_x, drag_y;      /* the last cursor position seen */
+
+    demo_selection sel;
+    pending_change changes[MAX_LIST];
+    int change_count;
+    bool recompile;
+
+    /* Keys 1..9: the ldr output, then the graph's other 2D colour textures. */
+    char shown[MAX_SHOWN][256];
+    int shown_count;
+    int shown_index;
+
+    bool sun_moving;
+    bool screenshot_requested;  /* F12: the window, UI included */
+    bool image_screenshot_requested; /* Shift+F12: the image alone */
+    int screenshot_serial;
+    char last_screenshot[4096]; /* the latest path written, for the UI */
+    bool print_report;
+
+    double frame_ms[FRAME_HISTORY];
+    int frame_ms_count;
+    double *all_frame_ms;       /* --frames N: every frame, for the median */
+    double last_status;
+    char status[2048];          /* frame time, per-pass times, GI memory, size, shown resource */
+    char selection[1536];       /* the selected parameter: value, type, range, doc */
+    char notice[2200];          /* why the last change was refused or undone; "" when none */
+
+    /* The UI (F1 hides and shows it) and its resource viewer. */
+    ui_context *ui;
+    bool ui_shown;
+    double ui_ms;               /* the last frame's UI: building, viewer and drawing */
+    ui_drawn ui_windows[MAX_UI_WINDOWS]; /* where the last frame's UI windows were drawn */
+    int ui_window_count;
+    demo_view view;
+    char view_source[256];      /* the viewer's resource, "pass.output"; "" for none */
+    bool view_fresh;            /* chosen since the last draw: its settings start from the defaults */
+    char view_notice[2048];     /* why the last fit failed; "" when it did not */
+    demo_view_settings view_settings;
+    /* A slider or drag held: its value until let go, when it is set (one compile per drag). */
+    int editing_pass, editing_param;
+    double editing_value;
+    char editing_text[256];     /* a string parameter's field while it is typed into */
+} demo;
+
+/* Selects a parameter (pass in file order, its index in the pass's table) for the keys. */
+void demo_select(demo *d, int pass, int param);
+/* Sets it from text as --set would, after checking its dependencies; the graph compiles
+ * before the next frame, and a value that fails there is undone. The parameter is selected. */
+void demo_set_param(demo *d, int pass, int param, const char *text);
+/* One step up or down, as Right and Left do; the parameter is selected. */
+void demo_step_param(demo *d, int pass, int param, int direction);
+/* Shows the ldr output (0) or another of the keys' resources in the window, as keys 1..9. */
+void demo_show(demo *d, int index);
+/* Shows `source` in the viewer (marked as an output so that it is kept: a compile follows
+ * when it was not one); "" shows none. */
+void demo_view_resource(demo *d, const char *source);
+/* The median of the last frames' times; 0 before the first. */
+double demo_frame_median_ms(const demo *d);
+
+#endif

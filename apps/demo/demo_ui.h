@@ -1,0 +1,29 @@
+/* apps/demo/demo_ui.h: the demo's UI panels, drawn over the image every frame (apps/demo/ui.h):
+ * - "conegraph": the scene and size, the frame times of the last frames as a graph with their
+ *   median, the UI's own time, GI memory (and what the graph allocates), then the passes in
+ *   execution order, each with a bar of its milliseconds against the frame time, and the
+ *   culled ones greyed with the reason; the resource the window shows (keys 1..9) and the
+ *   screenshot buttons (F12, Shift+F12) with the last path written;
+ * - "parameters": every parameter of every pass as the control its table entry asks for
+ *   (demo_param_control), with - and + buttons that step it as Left and Right do; inactive
+ *   parameters (a dependency not met) greyed, the keys' selection marked, the table's line
+ *   (demo_param_describe) as a tooltip, and why the last change was refused or undone;
+ * - "resource viewer": any texture resource of the compiled graph, a level and a slice or
+ *   layer of it, through demo_view.h.
+ * Every change goes through the demo's own paths (demo.h), as a key's would.
+ *
+ * Declares: demo_ui_frame.
+ */
+#ifndef CONEGRAPH_DEMO_UI_H
+#define CONEGRAPH_DEMO_UI_H
+
+#include <stdbool.h>
+
+#include "cg/error.h"
+#include "demo.h"
+
+/* Builds and draws this frame's UI into the window's back buffer, and records where its
+ * windows are (d->ui_windows). Fails only when the viewer's shader does not build. */
+bool demo_ui_frame(demo *d, cg_error *err);
+
+#endif

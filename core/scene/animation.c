@@ -1,0 +1,506 @@
+/* core/scene/animation.c: the kept node hierarchy, glTF 2.0 animation samplers and posing a
+ * scene at a time (cg/scene.h, docs/scenes.md "Animation").
+ *
+ * Interpolation follows glTF 2.0, Appendix C ("Animation Sampler Interpolation Modes"):
+ * STEP holds a key's value until the next key; LINEAR interpolates linearly, rotations by
+ * spherical linear interpolation along the shorter arc; CUBICSPLINE is the cubic Hermite
+ * spline p(t) = (2t^3 - 3t^2 + 1) v_k + (t^3 - 2t^2 + t) m_k + (-2t^3 + 3t^2) v_k+1
+ * + (t^3 - t^2) m_k+1 with t in [0, 1] across the segment, m_k = (t_k+1 - t_k) x the
+ * out-tangent of key k and m_k+1 = (t_k+1 - t_k) x the in-tangent of key k + 1. Rotations
+ * are normalised after interpolation, as the specification asks. Before its first key a
+ * channel holds its first value and after its last key its last value. Arithmetic is in
+ * double precision; node world matrices stay in double down the hierarchy. */
+#include "cg/scene.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "scene_internal.h"
+
+/* ------------------------------------------------------------------ nodes and attachments */
+
+cg_node
+cg_node_default(const char *name)
+{
+    cg_node n = { .parent = -1, .rotation = { 0, 0, 0, 1 }, .scale = { 1, 1, 1 } };
+    cg_copy_name(n.name, name);
+    for (int i = 0; i < 4; i++)
+        n.world[5 * i] = 1.0;
+    return n;
+}
+
+void
+cg_node_local(const cg_node *node, double m[16])
+{
+    if (node->has_matrix) {
+        for (int i = 0; i < 16; i++)
+            m[i] = node->matrix[i];
+        return;
+    }
+    double x = node->rotation[0], y = node->rotation[1], z = node->rotation[2], w = node->rotation[3];
+    double len = sqrt(x * x + y * y + z * z + w * w);
+    if (len > 0) {
+        x /= len, y /= len, z /= len, w /= len;
+    } else {
+        x = y = z = 0, w = 1;
+    }
+    /* glTF 2.0, 3.5.3: local = T x R x S, column-major. */
+    double r[9] = { 1 - 2 * (y * y + z * z), 2 * (x * y + z * w), 2 * (x * z - y * w),
+                    2 * (x * y - z * w), 1 - 2 * (x * x + z * z), 2 * (y * z + x * w),
+                    2 * (x * z + y * w), 2 * (y * z - x * w), 1 - 2 * (x * x + y * y) };
+    for (int c = 0; c < 3; c++) {
+        for (int row = 0; row < 3; row++)
+            m[c * 4 + row] = r[c * 3 + row] * node->scale[c];
+        m[c * 4 + 3] = 0;
+    }
+    m[12] = node->translation[0], m[13] = node->translation[1], m[14] = node->translation[2], m[15] = 1;
+}
+
+static bool
+grow(void **array, int count, size_t size, cg_error *err, const char *what)
+{
+    void *bigger = realloc(*array, (size_t)(count + 1) * size);
+    if (!bigger)
+        return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "out of memory adding a %s to the scene", what);
+    *array = bigger;
+    return true;
+}
+
+int
+cg_scene_add_node(cg_scene *scene, const cg_node *node, cg_error *err)
+{
+    if (!grow((void **)&scene->nodes, scene->node_count, sizeof *node, err, "node"))
+        return -1;
+    scene->nodes[scene->node_count] = *node;
+    return scene->node_count++;
+}
+
+int
+cg_scene_attach(cg_scene *scene, cg_attachment_kind kind, int index, int node, cg_error *err)
+{
+    cg_attachment a = { .kind = kind, .index = index, .node = node };
+    if (!grow((void **)&scene->attachments, scene->attachment_count, sizeof a, err, "node attachment"))
+        return -1;
+    scene->attachments[scene->attachment_count] = a;
+    if (kind == CG_ATTACH_INSTANCE && index >= 0 && index < scene->instance_count)
+        scene->instances[index].moving = true;
+    return scene->attachment_count++;
+}
+
+/* ------------------------------------------------------------------ channels */
+
+int
+cg_anim_channel_components(const cg_anim_channel *channel)
+{
+    return channel->path == CG_ANIM_ROTATION ? 4 : 3;
+}
+
+int
+cg_anim_channel_stride(const cg_anim_channel *channel)
+{
+    int n = cg_anim_channel_components(channel);
+    return channel->interpolation == CG_INTERP_CUBICSPLINE ? 3 * n : n;
+}
+
+bool
+cg_anim_channel_alloc(cg_anim_channel *channel, int key_count, cg_error *err)
+{
+    channel->key_count = key_count;
+    channel->times = malloc(sizeof(float) * (size_t)(key_count > 0 ? key_count : 1));
+    channel->values = malloc(sizeof(float) * (size_t)(key_count > 0 ? key_count : 1) *
+                             (size_t)cg_anim_channel_stride(channel));
+    if (!channel->times || !channel->values) {
+        free(channel->times);
+        free(channel->values);
+        channel->times = channel->values = NULL;
+        return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "out of memory for %d animation keys", key_count);
+    }
+    return true;
+}
+
+int
+cg_scene_add_animation(cg_scene *scene, cg_animation *animation, cg_error *err)
+{
+    if (!grow((void **)&scene->animations, scene->animation_count, sizeof *animation, err, "animation")) {
+        for (int c = 0; c < animation->channel_count; c++) {
+            free(animation->channels[c].times);
+            free(animation->channels[c].values);
+        }
+        free(animation->channels);
+        memset(animation, 0, sizeof *animation);
+        return -1;
+    }
+    scene->animations[scene->animation_count] = *animation;
+    return scene->animation_count++;
+}
+
+static void
+normalize4(double q[4])
+{
+    double len = sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+    if (len > 0)
+        for (int k = 0; k < 4; k++)
+            q[k] /= len;
+    else
+        q[0] = q[1] = q[2] = 0, q[3] = 1;
+}
+
+/* glTF 2.0, Appendix C, "Spherical Linear Interpolation": along the shorter arc. */
+static void
+slerp(const float *a, const float *b, double u, double out[4])
+{
+    double d = 0;
+    for (int k = 0; k < 4; k++)
+        d += (double)a[k] * b[k];
+    double sign = d < 0 ? -1.0 : 1.0, ad = fabs(d);
+    double wa, wb;
+    if (ad > 1.0 - 1e-9) {
+        /* (Nearly) the same rotation: sin(angle) vanishes, the linear blend is exact enough. */
+        wa = 1.0 - u;
+        wb = sign * u;
+    } else {
+        double angle = acos(ad), s = sin(angle);
+        wa = sin((1.0 - u) * angle) / s;
+        wb = sign * sin(u * angle) / s;
+    }
+    for (int k = 0; k < 4; k++)
+        out[k] = wa * a[k] + wb * b[k];
+    normalize4(out);
+}
+
+void
+cg_anim_channel_sample(const cg_anim_channel *channel, double t, double out[4])
+{
+    int n = cg_anim_channel_components(channel), stride = cg_anim_channel_stride(channel);
+    bool cubic = channel->interpolation == CG_INTERP_CUBICSPLINE;
+    int value = cubic ? n : 0; /* where a key's value starts: after the in-tangent */
+    int keys = channel->key_count;
+    const float *times = channel->times, *v = channel->values;
+    out[3] = 0;
+    int k;
+    if (keys <= 1 || !(t > times[0])) {
+        k = 0;
+    } else if (t >= times[keys - 1]) {
+        k = keys - 1;
+    } else {
+        /* The segment [times[k], times[k + 1]) holding t. */
+        int lo = 0, hi = keys - 1;
+        while (hi - lo > 1) {
+            int mid = lo + (hi - lo) / 2;
+            if (times[mid] <= t)
+                lo = mid;
+            else
+                hi = mid;
+        }
+        k = lo;
+        double dt = (double)times[k + 1] - times[k], u = (t - times[k]) / dt;
+        const float *a = v + (size_t)k * stride, *b = v + (size_t)(k + 1) * stride;
+        switch (channel->interpolation) {
+        case CG_INTERP_STEP:
+            break;
+        case CG_INTERP_LINEAR:
+            if (channel->path == CG_ANIM_ROTATION) {
+                slerp(a, b, u, out);
+            } else {
+                for (int c = 0; c < n; c++)
+                    out[c] = (1.0 - u) * a[c] + u * b[c];
+            }
+            return;
+        case CG_INTERP_CUBICSPLINE: {
+            double u2 = u * u, u3 = u2 * u;
+            double h00 = 2 * u3 - 3 * u2 + 1, h10 = u3 - 2 * u2 + u, h01 = -2 * u3 + 3 * u2, h11 = u3 - u2;
+            for (int c = 0; c < n; c++)
+                out[c] = h00 * a[n + c] + h10 * dt * a[2 * n + c] + h01 * b[n + c] + h11 * dt * b[c];
+            if (channel->path == CG_ANIM_ROTATION)
+                normalize4(out);
+            return;
+        }
+        }
+    }
+    for (int c = 0; c < n; c++)
+        out[c] = v[(size_t)k * stride + value + c];
+    if (channel->path == CG_ANIM_ROTATION)
+        normalize4(out);
+}
+
+bool
+cg_scene_is_animated(const cg_scene *scene)
+{
+    for (int a = 0; a < scene->animation_count; a++)
+        if (scene->animations[a].channel_count > 0)
+            return true;
+    return false;
+}
+
+void
+cg_scene_animation_range(const cg_scene *scene, double *start, double *end)
+{
+    bool any = false;
+    *start = *end = 0;
+    for (int a = 0; a < scene->animation_count; a++)
+        for (int c = 0; c < scene->animations[a].channel_count; c++) {
+            const cg_anim_channel *ch = &scene->animations[a].channels[c];
+            if (ch->key_count < 1)
+                continue;
+            double first = ch->times[0], last = ch->times[ch->key_count - 1];
+            if (!any || first < *start)
+                *start = first;
+            if (!any || last > *end)
+                *end = last;
+            any = true;
+        }
+}
+
+/* ------------------------------------------------------------------ posing */
+
+static void
+mat_mul(const double a[16], const double b[16], double out[16])
+{
+    double r[16];
+    for (int c = 0; c < 4; c++)
+        for (int row = 0; row < 4; row++) {
+            double s = 0;
+            for (int k = 0; k < 4; k++)
+                s += a[k * 4 + row] * b[c * 4 + k];
+            r[c * 4 + row] = s;
+        }
+    memcpy(out, r, sizeof r);
+}
+
+/* What follows a node, computed from its world matrix. */
+static void
+instance_world(const cg_node *n, float world[16])
+{
+    for (int i = 0; i < 16; i++)
+        world[i] = (float)n->world[i];
+}
+
+static void
+light_pose(const cg_node *n, float position[3], float direction[3])
+{
+    /* KHR_lights_punctual: the light sits at the node's origin and shines down its -Z. */
+    const double *w = n->world;
+    double d[3] = { -w[8], -w[9], -w[10] };
+    double len = sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    for (int k = 0; k < 3; k++) {
+        position[k] = (float)w[12 + k];
+        direction[k] = len > 0 ? (float)(d[k] / len) : (k == 1 ? -1.0f : 0.0f);
+    }
+}
+
+/* Poses everything; with `changes`, stamps what changed with revision `stamp`. */
+static void
+pose(cg_scene *scene, double t, uint64_t stamp, cg_scene_changes *changes)
+{
+    for (int a = 0; a < scene->animation_count; a++)
+        for (int c = 0; c < scene->animations[a].channel_count; c++) {
+            const cg_anim_channel *ch = &scene->animations[a].channels[c];
+            cg_node *n = &scene->nodes[ch->node];
+            double v[4];
+            cg_anim_channel_sample(ch, t, v);
+            float *dst = ch->path == CG_ANIM_TRANSLATION ? n->translation
+                         : ch->path == CG_ANIM_ROTATION  ? n->rotation
+                                                         : n->scale;
+            for (int k = 0; k < cg_anim_channel_components(ch); k++)
+                dst[k] = (float)v[k];
+        }
+    for (int i = 0; i < scene->node_count; i++) {
+        cg_node *n = &scene->nodes[i];
+        double local[16];
+        cg_node_local(n, local);
+        if (n->parent >= 0)
+            mat_mul(scene->nodes[n->parent].world, local, n->world);
+        else
+            memcpy(n->world, local, sizeof local);
+    }
+    for (int i = 0; i < scene->attachment_count; i++) {
+        const cg_attachment *at = &scene->attachments[i];
+        const cg_node *n = &scene->nodes[at->node];
+        if (at->kind == CG_ATTACH_INSTANCE) {
+            cg_instance *inst = &scene->instances[at->index];
+            float w[16];
+            instance_world(n, w);
+            if (memcmp(w, inst->world, sizeof w)) {
+                memcpy(inst->world, w, sizeof w);
+                if (changes) {
+                    inst->revision = stamp;
+                    changes->instances_moved++;
+                }
+            }
+        } else if (at->kind == CG_ATTACH_LIGHT) {
+            cg_light *l = &scene->lights[at->index];
+            float p[3], d[3];
+            light_pose(n, p, d);
+            if (memcmp(p, l->position, sizeof p) || memcmp(d, l->direction, sizeof d)) {
+                memcpy(l->position, p, sizeof p);
+                memcpy(l->direction, d, sizeof d);
+                if (changes)
+                    changes->lights = true;
+            }
+        } else {
+            cg_camera *cam = &scene->cameras[at->index];
+            float w[16];
+            instance_world(n, w);
+            if (memcmp(w, cam->world, sizeof w)) {
+                memcpy(cam->world, w, sizeof w);
+                if (changes)
+                    changes->cameras = true;
+            }
+        }
+    }
+    scene->time = t;
+}
+
+void
+cg_scene_pose(cg_scene *scene, double t)
+{
+    pose(scene, t, 0, NULL);
+}
+
+void
+cg_scene_evaluate(cg_scene *scene, double t, cg_scene_changes *changes)
+{
+    cg_scene_changes local = { 0 };
+    uint64_t stamp = scene->revision + 1;
+    pose(scene, t, stamp, &local);
+    if (local.instances_moved || local.lights || local.cameras) {
+        scene->revision = stamp;
+        if (local.instances_moved)
+            scene->instances_revision = stamp;
+        if (local.lights)
+            scene->lights_revision = stamp;
+        if (local.cameras)
+            scene->cameras_revision = stamp;
+    }
+    if (changes)
+        *changes = local;
+}
+
+void
+cg_scene_lights_changed(cg_scene *scene)
+{
+    scene->lights_revision = ++scene->revision;
+}
+
+/* ------------------------------------------------------------------ bounds over the animation */
+
+static int
+compare_float(const void *a, const void *b)
+{
+    float x = *(const float *)a, y = *(const float *)b;
+    return x < y ? -1 : x > y;
+}
+
+/* The times the bounds are sampled at: every distinct key time and, between consecutive ones,
+ * up to 15 more evenly spaced (16 segments), about MOTION_SAMPLES in all (fewer between keys
+ * when there are many keys; MOTION_SAMPLES + 1 evenly spaced times when there are more distinct
+ * keys than that). */
+#define MOTION_SAMPLES 4096
+
+static double *
+motion_times(const cg_scene *scene, int *count)
+{
+    size_t keys = 0;
+    for (int a = 0; a < scene->animation_count; a++)
+        for (int c = 0; c < scene->animations[a].channel_count; c++)
+            keys += (size_t)scene->animations[a].channels[c].key_count;
+    float *all = malloc(sizeof *all * (keys ? keys : 1));
+    if (!all)
+        return NULL;
+    size_t n = 0;
+    for (int a = 0; a < scene->animation_count; a++)
+        for (int c = 0; c < scene->animations[a].channel_count; c++) {
+            const cg_anim_channel *ch = &scene->animations[a].channels[c];
+            memcpy(all + n, ch->times, sizeof *all * (size_t)ch->key_count);
+            n += (size_t)ch->key_count;
+        }
+    qsort(all, n, sizeof *all, compare_float);
+    size_t distinct = 0;
+    for (size_t i = 0; i < n; i++)
+        if (distinct == 0 || all[i] != all[distinct - 1])
+            all[distinct++] = all[i];
+    double *times = malloc(sizeof *times * (MOTION_SAMPLES + 1));
+    if (!times || distinct == 0) {
+        free(all);
+        free(times);
+        return NULL;
+    }
+    int m = 0;
+    if (distinct > MOTION_SAMPLES) {
+        for (int i = 0; i <= MOTION_SAMPLES; i++)
+            times[m++] = all[0] + ((double)all[distinct - 1] - all[0]) * i / MOTION_SAMPLES;
+    } else {
+        size_t segments = distinct - 1;
+        int per = segments ? (int)(MOTION_SAMPLES / segments) : 1;
+        per = per > 16 ? 16 : per < 1 ? 1 : per;
+        for (size_t i = 0; i < distinct; i++) {
+            times[m++] = all[i];
+            for (int s = 1; i + 1 < distinct && s < per; s++)
+                times[m++] = all[i] + ((double)all[i + 1] - all[i]) * s / per;
+        }
+    }
+    free(all);
+    *count = m;
+    return times;
+}
+
+static void
+box_add(const float world[16], const cg_mesh *mesh, double lo[3], double hi[3])
+{
+    for (int c = 0; c < 8; c++) {
+        double p[3] = { (c & 1) ? mesh->bounds_max[0] : mesh->bounds_min[0],
+                        (c & 2) ? mesh->bounds_max[1] : mesh->bounds_min[1],
+                        (c & 4) ? mesh->bounds_max[2] : mesh->bounds_min[2] };
+        for (int r = 0; r < 3; r++) {
+            double w = (double)world[r] * p[0] + (double)world[4 + r] * p[1] + (double)world[8 + r] * p[2] +
+                       world[12 + r];
+            lo[r] = fmin(lo[r], w);
+            hi[r] = fmax(hi[r], w);
+        }
+    }
+}
+
+bool
+cg_scene_motion_bounds(cg_scene *scene, double lo[3], double hi[3])
+{
+    int count = 0;
+    double *times = motion_times(scene, &count);
+    if (!times)
+        return false;
+    int n = scene->instance_count;
+    double *box = malloc(sizeof *box * 6 * (size_t)(n > 0 ? n : 1));
+    if (!box) {
+        free(times);
+        return false;
+    }
+    for (int i = 0; i < n; i++)
+        for (int k = 0; k < 3; k++)
+            box[6 * i + k] = INFINITY, box[6 * i + 3 + k] = -INFINITY;
+    double now = scene->time;
+    for (int s = 0; s < count; s++) {
+        pose(scene, times[s], 0, NULL);
+        for (int i = 0; i < n; i++) {
+            const cg_instance *inst = &scene->instances[i];
+            if (inst->moving && scene->meshes[inst->mesh].vertex_count > 0)
+                box_add(inst->world, &scene->meshes[inst->mesh], box + 6 * i, box + 6 * i + 3);
+        }
+    }
+    pose(scene, now, 0, NULL);
+    bool any = false;
+    for (int i = 0; i < n; i++) {
+        cg_instance *inst = &scene->instances[i];
+        if (!inst->moving || scene->meshes[inst->mesh].vertex_count == 0)
+            continue;
+        for (int k = 0; k < 3; k++) {
+            inst->motion_min[k] = (float)box[6 * i + k];
+            inst->motion_max[k] = (float)box[6 * i + 3 + k];
+            lo[k] = fmin(lo[k], box[6 * i + k]);
+            hi[k] = fmax(hi[k], box[6 * i + 3 + k]);
+        }
+        any = true;
+    }
+    free(box);
+    free(times);
+    return any;
+}
