@@ -456,13 +456,16 @@ trace_horizon(vec3 p, vec3 origin, vec3 dir, float tan_half, float t_start, floa
     int top = int(m.levels) - 1;
     // A cone whose footprint holds the vertical has no one horizontal direction: its terrain is
     // seen at the rim of its footprint.
-    float horizontal = length(dir.xz), elevation_axis = asin(clamp(dir.y, -1.0, 1.0));
+    float horizontal = length(dir.xz);
     bool steep = horizontal < tan_half / sqrt(1.0 + tan_half * tan_half);
     // Up across the cone: the footprint's direction towards the sky (any, for a vertical cone).
     vec3 up_across = vec3(0.0, 1.0, 0.0) - dir * dir.y;
     up_across = dot(up_across, up_across) > 1e-12 ? normalize(up_across) : vec3(1.0, 0.0, 0.0);
     vec4 acc = vec4(0.0);
-    float horizon = cell.lowest, covered = 0.0, chord_of = 0.0, lift = 0.0;
+    // The running horizon: its elevation and the tan of it (compared with the terrain's rise over
+    // the distance, so that the elevation is computed only where the horizon rises).
+    float horizon = cell.lowest, slope = slope_of(horizon), covered = 0.0, chord_of = 0.0, lift = 0.0;
+    float axis_slope = dir.y / max(horizontal, 1e-6);
     bool live3 = has_3d(), was_in3 = false, live2 = true;
     float t = t_start, t2 = t_start;
     int k = top;    // the pyramid level the skipping tries first
@@ -525,12 +528,11 @@ trace_horizon(vec3 p, vec3 origin, vec3 dir, float tan_half, float t_start, floa
                 // The ray at the horizon's elevation: terrain below it raises nothing. Along a block
                 // the axis moves away from p, so the ray is lowest at the block's near side when it
                 // rises and at its far side when it falls.
-                float slope = slope_of(horizon);
                 float lod = clamp(level_2d(m, d) + cg_hybrid_gather_block.params.z, 0.0, m.levels - 1.0);
                 int level = int(lod);
                 bool fetch = true;
                 // A cone whose axis is below the horizon may have it under the terrain: no skipping.
-                if (skip && elevation_axis >= horizon) {
+                if (skip && axis_slope >= slope) {
                     // Maximum-mipmap skipping: the coarsest pyramid block under the axis whose highest
                     // point stays below that ray is passed in one jump, to where the axis leaves it;
                     // else the next finer level is tried, down to the level sampled.
@@ -566,10 +568,10 @@ trace_horizon(vec3 p, vec3 origin, vec3 dir, float tan_half, float t_start, floa
                     // of the 3D step's trilinear one.
                     int n = max(int(m.resolution) >> level, 1);
                     vec4 texel = texelFetch(u_lightmap, clamp(ivec2(floor(uv * float(n))), ivec2(0), ivec2(n - 1)), level);
-                    float elevation = atan(texel.a - p.y, s);
-                    if (elevation > horizon) {
+                    if (texel.a - p.y > s * slope) {
                         // Every direction of the cell below the new horizon meets the terrain here:
                         // the newly covered share, with the terrain's radiance.
+                        float elevation = atan(texel.a - p.y, s);
                         float share = cell_below(cell, elevation);
                         if (share > covered) {
                             float w = min(share - covered, 1.0 - acc.a);
@@ -578,6 +580,7 @@ trace_horizon(vec3 p, vec3 origin, vec3 dir, float tan_half, float t_start, floa
                             covered = share;
                         }
                         horizon = elevation;
+                        slope = slope_of(horizon);
                     }
                     // The axis under the terrain: the footprint's part below the terrain's height (its
                     // disc seen across, vertical half extent r cos e) is covered, so that a cone whose
@@ -596,8 +599,7 @@ trace_horizon(vec3 p, vec3 origin, vec3 dir, float tan_half, float t_start, floa
                 }
                 // Done once even the highest terrain stays below the horizon's ray, and the ray no
                 // longer falls.
-                float rising = slope_of(horizon);
-                if (covered >= 1.0 || (rising >= 0.0 && m.y_max <= p.y + s * rising))
+                if (covered >= 1.0 || (slope >= 0.0 && m.y_max <= p.y + s * slope))
                     live2 = false;
             }
             t2 = next;
