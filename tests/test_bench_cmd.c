@@ -1,6 +1,9 @@
 /* `conegraph bench` end to end at a tiny size: the sweep runs, CSV, Markdown and plots are
  * written, the reference is cached, and bad input exits with 2. Not a timing test: it
  * checks the instrument, not the figures. The executable comes from $CONEGRAPH_EXE. */
+#include <dirent.h>
+#include <jansson.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -60,7 +63,7 @@ sweep_runs_and_caches_the_reference(void **state)
     /* Again: the reference and its direct part come from the cache. */
     code = run(args, out, sizeof out);
     assert_int_equal(code, 0);
-    assert_non_null(strstr(out, "reference (4 spp, 1 bounces) and its direct part from the cache"));
+    assert_non_null(strstr(out, "reference (4 spp, 1 bounces) and its parts from the cache"));
     assert_null(strstr(out, "rendering the reference"));
     /* A sky is part of the scene: it is not the cached reference (the cache keys hash it). */
     snprintf(args, sizeof args,
@@ -170,6 +173,176 @@ bad_input_exits_with_2(void **state)
     assert_int_equal(run(args, out, sizeof out), 2);
     assert_int_equal(run("bench --help", out, sizeof out), 0);
     assert_non_null(strstr(out, "usage: conegraph bench"));
+}
+
+static int csv_fields(const char *line, char fields[][512], int max);
+
+/* The rows of OUT/bench.json, and the row of `graph` (the first; NULL when none). */
+static json_t *
+load_rows(const char *dir, json_t **root)
+{
+    char path[4400];
+    snprintf(path, sizeof path, "%.4200s/bench.json", dir);
+    json_error_t jerr;
+    *root = json_load_file(path, 0, &jerr);
+    if (!*root)
+        fail_msg("%s: %s", path, jerr.text);
+    json_t *rows = json_object_get(*root, "rows");
+    assert_true(json_is_array(rows));
+    return rows;
+}
+
+static json_t *
+find_row(json_t *rows, const char *graph, const char *params)
+{
+    size_t i;
+    json_t *row;
+    json_array_foreach(rows, i, row)
+        if (!strcmp(json_string_value(json_object_get(row, "graph")), graph) &&
+            (!params || !strcmp(json_string_value(json_object_get(row, "params")), params)))
+            return row;
+    fail_msg("no row of %s %s", graph, params ? params : "");
+    return NULL;
+}
+
+/* A figure of a row's section ("gi", "direct", "full"); NAN for null. */
+static double
+figure(const json_t *row, const char *section, const char *key)
+{
+    const json_t *v = json_object_get(json_object_get(row, section), key);
+    assert_non_null(v);
+    return json_is_number(v) ? json_number_value(v) : NAN;
+}
+
+/* The cached image whose note (FILE.txt) names the reference `part` ("full", "emitted", ...). */
+static void
+cached_part(const char *cache, const char *part, char *out, size_t size)
+{
+    DIR *d = opendir(cache);
+    assert_non_null(d);
+    struct dirent *e;
+    char suffix[64];
+    snprintf(suffix, sizeof suffix, "|%s\n", part);
+    out[0] = '\0';
+    while ((e = readdir(d))) {
+        size_t len = strlen(e->d_name);
+        if (len < 8 || strcmp(e->d_name + len - 8, ".exr.txt"))
+            continue;
+        char note[4600], key[4096] = "";
+        snprintf(note, sizeof note, "%s/%s", cache, e->d_name);
+        FILE *fp = fopen(note, "r");
+        assert_non_null(fp);
+        assert_non_null(fgets(key, sizeof key, fp));
+        fclose(fp);
+        size_t kl = strlen(key), sl = strlen(suffix);
+        if (kl >= sl && !strcmp(key + kl - sl, suffix)) {
+            snprintf(out, size, "%.*s", (int)(strlen(note) - 4), note);
+            break;
+        }
+    }
+    closedir(d);
+    if (!out[0])
+        fail_msg("no cached reference part '%s' in %s", part, cache);
+}
+
+/* The GI and direct columns on a tiny sweep: a graph without GI gives GI energy 0 and nRMSE 1
+ * exactly; a GI graph's direct figures are those of the same direct pass without GI (its own
+ * direct image, read from its frame); its GI figures are plausible; the path tracer's rows are
+ * split by their own parts; the reference's cached parts against themselves give 1 and 0. */
+static void
+gi_and_direct_columns(void **state)
+{
+    (void)state;
+    static char out[1 << 16];
+    char args[32768], dir[4200], cache[4300];
+    snprintf(dir, sizeof dir, "%s/gi", cg_test_tmpdir());
+    snprintf(cache, sizeof cache, "%s/cache", dir);
+    snprintf(args, sizeof args, "bench --scene builtin:cornell --graph direct.json --graph vct.json --size 32x18 "
+             "--ref-spp 16 --pt-spp 1,4 --frames 1 --warmup 0 --out '%s'", dir);
+    int code = run(args, out, sizeof out);
+    if (code != 0)
+        fail_msg("bench exited with %d:\n%s", code, out);
+    json_t *root, *rows = load_rows(dir, &root);
+    json_t *none = find_row(rows, "direct.json", NULL), *vct = find_row(rows, "vct.json", NULL);
+    assert_true(json_is_true(json_object_get(none, "split")));
+    assert_true(figure(none, "gi", "energy") == 0.0);
+    assert_true(figure(none, "gi", "nrmse") == 1.0);
+    /* The same direct pass with the same shadow map in both graphs: the same direct image. */
+    assert_true(figure(vct, "direct", "energy") == figure(none, "direct", "energy"));
+    assert_true(figure(vct, "direct", "nrmse") == figure(none, "direct", "nrmse"));
+    assert_true(figure(none, "direct", "energy") > 0.9 && figure(none, "direct", "energy") < 1.1);
+    assert_true(figure(none, "direct", "nrmse") > 0.0 && figure(none, "direct", "nrmse") < 0.5);
+    /* vct.json gathers light: some, not wildly off (the figures are the GI's to improve). */
+    double energy = figure(vct, "gi", "energy"), nrmse = figure(vct, "gi", "nrmse");
+    if (!(energy > 0.5 && energy < 2.0 && nrmse > 0.05 && nrmse < 1.0))
+        fail_msg("vct.json GI energy %g, nRMSE %g", energy, nrmse);
+    /* The truth's rms is the reference's: the same for every row of the scene. */
+    assert_true(figure(vct, "gi", "rms_truth") == figure(none, "gi", "rms_truth"));
+    assert_true(figure(vct, "gi", "rms_truth") > 0.0);
+    /* Path tracer rows: the spot light's direct light through pixel centres has no noise, so
+     * their own direct part is the reference's; their GI part's error falls with samples. */
+    json_t *pt1 = find_row(rows, "path_trace", "spp=1 bounces=1"), *pt4 = find_row(rows, "path_trace", "spp=4 bounces=1");
+    assert_true(figure(pt1, "direct", "nrmse") < 1e-6);
+    assert_true(figure(pt4, "gi", "nrmse") < figure(pt1, "gi", "nrmse"));
+    json_t *scene = json_array_get(json_object_get(root, "scenes"), 0);
+    double lum = json_number_value(json_object_get(scene, "reference_mean_luminance"));
+    json_t *parts = json_object_get(scene, "reference_parts_mean_luminance");
+    double sum = 0.0;
+    const char *names[] = { "emitted", "direct_punctual", "direct_emitters", "direct_sky", "indirect" };
+    for (int k = 0; k < 5; k++)
+        sum += json_number_value(json_object_get(parts, names[k]));
+    assert_float_equal(sum, lum, 1e-5 * lum);
+    json_decref(root);
+
+    /* The tables: the old columns kept, the new ones named, the reference's parts described. */
+    char path[4400];
+    snprintf(path, sizeof path, "%s/bench.md", dir);
+    FILE *fp = fopen(path, "r");
+    assert_non_null(fp);
+    static char md[1 << 15];
+    md[fread(md, 1, sizeof md - 1, fp)] = '\0';
+    fclose(fp);
+    assert_non_null(strstr(md, "| indirect relMSE | indirect lum. ratio | GI energy | GI nRMSE | direct energy | "
+                               "direct nRMSE | PT ms at equal relMSE |"));
+    assert_non_null(strstr(md, "emitted 0.0%, direct punctual "));
+    assert_non_null(strstr(md, "| direct.json | - |"));
+    assert_non_null(strstr(md, "| 0.000 | 1.0000 |"));
+
+    /* The reference's cached parts: against itself, energy 1 and nRMSE 0 (compare). */
+    char full[4400], emitted[4400], punctual[4400];
+    cached_part(cache, "full", full, sizeof full);
+    cached_part(cache, "emitted", emitted, sizeof emitted);
+    cached_part(cache, "direct_punctual", punctual, sizeof punctual);
+    snprintf(args, sizeof args, "compare '%s' '%s' --direct '%s' --direct '%s' --ref-direct '%s' --ref-direct '%s' "
+             "--json", full, full, emitted, punctual, emitted, punctual);
+    assert_int_equal(cg_test_run_conegraph(args, false, out, sizeof out), 0);
+    assert_non_null(strstr(out, "\"energy\": 1, \"nrmse\": 0,"));
+
+    /* --error gi-nrmse judges by the GI part: the tables and the CSV say so. */
+    snprintf(args, sizeof args, "bench --scene builtin:cornell --graph direct.json --graph vct.json --size 32x18 "
+             "--ref-spp 16 --pt-spp 1,4 --frames 1 --warmup 0 --out '%s/by-gi' --cache '%s' --error gi-nrmse", dir,
+             cache);
+    code = run(args, out, sizeof out);
+    if (code != 0)
+        fail_msg("bench exited with %d:\n%s", code, out);
+    assert_non_null(strstr(out, "PT ms at equal GI nRMSE"));
+    assert_non_null(strstr(out, "P: on the Pareto front of GI nRMSE against time"));
+    assert_non_null(strstr(out, "and its parts from the cache"));
+    snprintf(path, sizeof path, "%s/by-gi/bench.csv", dir);
+    fp = fopen(path, "r");
+    assert_non_null(fp);
+    static char line[1 << 14], fields[32][512];
+    assert_non_null(fgets(line, sizeof line, fp));
+    assert_int_equal(csv_fields(line, fields, 32), 28);
+    assert_string_equal(fields[27], "error_metric");
+    assert_non_null(fgets(line, sizeof line, fp));
+    csv_fields(line, fields, 32);
+    assert_string_equal(fields[27], "gi-nrmse");
+    fclose(fp);
+    assert_int_equal(run("bench --error mse", out, sizeof out), 2);
+    const char *bad = cg_test_write_file("bad-error.json", "{ \"error\": \"mse\" }", 0);
+    snprintf(args, sizeof args, "bench --sweep '%s' --out '%s/x'", bad, dir);
+    assert_int_equal(run(args, out, sizeof out), 2);
 }
 
 static bool
@@ -284,11 +457,11 @@ shards_merge_into_the_unsharded_table(void **state)
     while (fgets(whole, sizeof whole, a)) {
         assert_non_null(fgets(merged, sizeof merged, b));
         int na = csv_fields(whole, fa, 32), nb = csv_fields(merged, fb, 32);
-        assert_int_equal(na, 23);
-        assert_int_equal(nb, 23);
-        /* scene .. params, gi_bytes .. indirect_lum_ratio */
-        for (int f = 0; f < 19; f++)
-            if (f != 5 && f != 6)
+        assert_int_equal(na, 28);
+        assert_int_equal(nb, 28);
+        /* scene .. params, gi_bytes .. indirect_lum_ratio, gi_energy .. error_metric */
+        for (int f = 0; f < 28; f++)
+            if (f != 5 && f != 6 && (f < 19 || f > 22))
                 assert_string_equal(fa[f], fb[f]);
         lines++;
     }
@@ -322,6 +495,7 @@ main(void)
         cmocka_unit_test(bad_input_exits_with_2),
         cmocka_unit_test(one_bad_setting_renders_and_writes_nothing),
         cmocka_unit_test(shards_merge_into_the_unsharded_table),
+        cmocka_unit_test(gi_and_direct_columns),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

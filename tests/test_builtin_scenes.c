@@ -231,6 +231,39 @@ cornell_box(void **state)
     cg_scene_free(&s);
 }
 
+/* builtin:cornell?scale=S&light_scale=K is the default box with every length times S and the
+ * spot's intensity times K S^2 (E = I / d^2 unchanged at every scale, times K). */
+static void
+cornell_scales(void **state)
+{
+    (void)state;
+    cg_scene unit, s;
+    cg_error err = { 0 };
+    assert_cg_ok(cg_scene_load("builtin:cornell", &unit, &err), &err);
+    static const struct { const char *source; double scale, light; } cases[] = {
+        { "builtin:cornell?scale=1e-6", 1e-6, 1 },
+        { "builtin:cornell?scale=1e6&light_scale=1e5", 1e6, 1e5 },
+        { "builtin:cornell?light_scale=1e-6", 1, 1e-6 },
+    };
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        double k = cases[c].scale;
+        assert_cg_ok(cg_scene_load(cases[c].source, &s, &err), &err);
+        for (int i = 0; i < 3; i++) {
+            assert_float_equal(s.bounds_min[i], unit.bounds_min[i] * k, 1e-6 * k);
+            assert_float_equal(s.bounds_max[i], unit.bounds_max[i] * k, 1e-6 * k);
+            assert_float_equal(s.lights[0].position[i], unit.lights[0].position[i] * k, 1e-6 * k);
+            assert_float_equal(s.cameras[0].world[12 + i], unit.cameras[0].world[12 + i] * k, 1e-6 * k);
+        }
+        double intensity = unit.lights[0].intensity * cases[c].light * k * k;
+        assert_float_equal(s.lights[0].intensity, intensity, 1e-6 * intensity);
+        assert_float_equal(s.cameras[0].znear, unit.cameras[0].znear * k, 1e-6 * k);
+        assert_float_equal(s.cameras[0].zfar, unit.cameras[0].zfar * k, 1e-6 * k);
+        assert_int_equal(cg_scene_triangle_count(&s), cg_scene_triangle_count(&unit));
+        cg_scene_free(&s);
+    }
+    cg_scene_free(&unit);
+}
+
 static void
 check_furnace(const char *source, double scale, float albedo, float radiance, bool heightfield)
 {
@@ -312,6 +345,7 @@ bad_names_and_parameters(void **state)
         "builtin:openworld?colour=red",      "builtin:openworld?triangles",
         "builtin:openworld?seed=1&seed=2",   "builtin:openworld?triangles=99999999999",
         "builtin:openworld?&",               "builtin:cornell?size=2",
+        "builtin:cornell?scale=0",           "builtin:cornell?light_scale=-1",
         "builtin:furnace?albedo=1.5",        "builtin:furnace?scale=0",
         "builtin:furnace?radiance=nan",      "builtin:furnace?scale=-1",
         "builtin:furnace?heightfield=2",     "builtin:furnace?heightfield=0.5",
@@ -449,6 +483,7 @@ main(void)
         cmocka_unit_test(same_seed_same_scene),
         cmocka_unit_test(openworld_has_heightfield_complex_and_space_under),
         cmocka_unit_test(cornell_box),
+        cmocka_unit_test(cornell_scales),
         cmocka_unit_test(furnace_scales),
         cmocka_unit_test(bad_names_and_parameters),
         cmocka_unit_test(export_then_load_back),

@@ -68,12 +68,18 @@ display_image_beside_linear_one_is_refused(void **state)
     assert_non_null(strstr(out, "disp-linear.exr"));
     snprintf(args, sizeof args, "compare '%s' '%s'", exr, png);
     assert_int_equal(run(args, out, sizeof out), 2);
-    /* The direct part must be of the reference's kind too. */
-    snprintf(args, sizeof args, "compare '%s' '%s' --direct '%s'", other, exr, png);
+    /* The direct parts must be of the reference's kind too, each of the images summed. */
+    snprintf(args, sizeof args, "compare '%s' '%s' --ref-direct '%s'", other, exr, png);
     assert_int_equal(run(args, out, sizeof out), 2);
+    snprintf(args, sizeof args, "compare '%s' '%s' --direct '%s' --direct '%s' --ref-direct '%s'", other, exr, exr,
+             png, exr);
+    assert_int_equal(cg_test_run_conegraph(args, true, out, sizeof out), 2);
+    assert_non_null(strstr(out, "disp.png holds 8-bit integer sRGB values"));
     snprintf(args, sizeof args, "compare '%s' '%s' --json", png, png);
     assert_int_equal(run(args, out, sizeof out), 0);
-    snprintf(args, sizeof args, "compare '%s' '%s' --direct '%s' --json", other, exr, exr);
+    snprintf(args, sizeof args, "compare '%s' '%s' --ref-direct '%s' --json", other, exr, exr);
+    assert_int_equal(run(args, out, sizeof out), 0);
+    snprintf(args, sizeof args, "compare '%s' '%s' --direct '%s' --ref-direct '%s' --json", other, exr, exr, exr);
     assert_int_equal(run(args, out, sizeof out), 0);
 }
 
@@ -101,20 +107,107 @@ offset_and_indirect_part(void **state)
     char heatmap[4200];
     snprintf(heatmap, sizeof heatmap, "%s/heat.png", cg_test_tmpdir());
     char args[20000], out[4096];
-    snprintf(args, sizeof args, "compare '%s' '%s' --direct '%s' --json --heatmap '%s'", t, r, d, heatmap);
+    snprintf(args, sizeof args, "compare '%s' '%s' --ref-direct '%s' --json --heatmap '%s'", t, r, d, heatmap);
     assert_int_equal(run(args, out, sizeof out), 0);
-    /* Offset 0.25 on 0.25: relMSE 0.0625 / (0.0625 + 0.01); indirect 0.375 against 0.125. */
+    /* Offset 0.25 on 0.25: relMSE 0.0625 / (0.0625 + 0.01); indirect 0.375 against 0.125
+     * (the reference's direct part taken from both). */
     assert_float_equal(json_number(out, "\"full\"", "rmse"), 0.25, 1e-7);
     assert_float_equal(json_number(out, "\"full\"", "relmse"), 0.0625 / 0.0725, 1e-7);
     assert_float_equal(json_number(out, "\"full\"", "lum_ratio"), 2.0, 1e-7);
     assert_float_equal(json_number(out, "\"indirect\"", "lum_ratio"), 3.0, 1e-6);
     assert_float_equal(json_number(out, "\"indirect\"", "relmse"), 0.0625 / (0.015625 + 0.01), 1e-6);
+    assert_float_equal(json_number(out, "\"indirect\"", "energy"), 3.0, 1e-6);
+    assert_float_equal(json_number(out, "\"indirect\"", "nrmse"), 2.0, 1e-6);
+    assert_non_null(strstr(out, "\"estimate\": \"TEST - REF_DIRECT\""));
+    assert_null(strstr(out, "\"direct\": {"));
     cg_image map = { 0 };
     cg_error err = { 0 };
     assert_cg_ok(cg_image_read(heatmap, &map, &err), &err);
     assert_int_equal(map.width, W);
     assert_int_equal(map.height, H);
     cg_image_free(&map);
+}
+
+/* An image whose columns x < edge hold `lit` and the others `dark` (grey), plus `add`. */
+static const char *
+write_edge(const char *name, int edge, float lit, float dark, float add)
+{
+    cg_image img = { 0 };
+    cg_error err = { 0 };
+    assert_cg_ok(cg_image_alloc(&img, W, H, &err), &err);
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            float *p = &img.rgba[4 * (y * W + x)];
+            p[0] = p[1] = p[2] = (x < edge ? lit : dark) + add;
+            p[3] = 1.0f;
+        }
+    static char paths[16][4096];
+    static int next;
+    char *path = paths[next++ % 16];
+    snprintf(path, 4096, "%s/%s", cg_test_tmpdir(), name);
+    assert_cg_ok(cg_image_write(path, &img, CG_EXR_FLOAT, &err), &err);
+    cg_image_free(&img);
+    return path;
+}
+
+/* A shadow edge two columns off in TEST's own direct light (a shadow map's step) and exactly
+ * the right indirect light 0.25 on top: with each side's own direct light taken away the
+ * indirect part is exact; with the reference's taken from both, the edge counts against it. */
+static void
+own_direct_light_cancels_shadow_edges(void **state)
+{
+    (void)state;
+    const char *ref = write_edge("edge-ref.exr", 16, 1.0f, 0.0f, 0.25f);
+    const char *rd_a = write_edge("edge-rd-a.exr", 16, 0.75f, 0.0f, 0.0f);
+    const char *rd_b = write_edge("edge-rd-b.exr", 16, 0.25f, 0.0f, 0.0f);
+    const char *test = write_edge("edge-test.exr", 18, 1.0f, 0.0f, 0.25f);
+    const char *td = write_edge("edge-td.exr", 18, 1.0f, 0.0f, 0.0f);
+    char args[30000], out[8192];
+    snprintf(args, sizeof args, "compare '%s' '%s' --direct '%s' --ref-direct '%s' --ref-direct '%s' --json", test, ref,
+             td, rd_a, rd_b);
+    assert_int_equal(run(args, out, sizeof out), 0);
+    assert_non_null(strstr(out, "\"estimate\": \"TEST - TEST_DIRECT\""));
+    assert_float_equal(json_number(out, "\"indirect\"", "energy"), 1.0, 1e-9);
+    assert_float_equal(json_number(out, "\"indirect\"", "nrmse"), 0.0, 1e-9);
+    assert_float_equal(json_number(out, "\"indirect\"", "rms_truth"), 0.25, 1e-9);
+    /* The direct parts: 18 lit columns for 16, an error of 1 on 2 of 32 columns. */
+    assert_float_equal(json_number(out, "\"direct\"", "energy"), 18.0 / 16.0, 1e-9);
+    assert_float_equal(json_number(out, "\"direct\"", "nrmse"), sqrt(2.0 / 32.0) / sqrt(0.5), 1e-9);
+    assert_float_equal(json_number(out, "\"direct\"", "rmse"), 0.25, 1e-9);
+    /* The reference's direct light taken from both: the edge's 2 columns of 1.0 are indirect error. */
+    snprintf(args, sizeof args, "compare '%s' '%s' --ref-direct '%s' --ref-direct '%s' --json", test, ref, rd_a, rd_b);
+    assert_int_equal(run(args, out, sizeof out), 0);
+    assert_float_equal(json_number(out, "\"indirect\"", "energy"), 1.25, 1e-9);
+    assert_float_equal(json_number(out, "\"indirect\"", "nrmse"), 1.0, 1e-9);
+    /* The table prints the same figures. */
+    snprintf(args, sizeof args, "compare '%s' '%s' --direct '%s' --ref-direct '%s' --ref-direct '%s'", test, ref, td,
+             rd_a, rd_b);
+    assert_int_equal(run(args, out, sizeof out), 0);
+    assert_non_null(strstr(out, "indirect"));
+    assert_non_null(strstr(out, "energy 1  nrmse 0\n"));
+    assert_non_null(strstr(out, "direct    rmse 0.25"));
+    assert_non_null(strstr(out, "energy 1.125  nrmse 0.353553\n"));
+}
+
+/* No GI (TEST is its own direct image): energy 0 and nrmse 1 exactly; the reference against
+ * itself: 1 and 0. */
+static void
+no_indirect_light_and_the_reference_itself(void **state)
+{
+    (void)state;
+    const char *ref = write_edge("none-ref.exr", 10, 0.8f, 0.1f, 0.3f);
+    const char *rd = write_edge("none-rd.exr", 12, 0.8f, 0.1f, 0.0f);
+    const char *test = write_edge("none-test.exr", 14, 0.6f, 0.05f, 0.0f);
+    char args[30000], out[8192];
+    snprintf(args, sizeof args, "compare '%s' '%s' --direct '%s' --ref-direct '%s' --json", test, ref, test, rd);
+    assert_int_equal(run(args, out, sizeof out), 0);
+    assert_true(json_number(out, "\"indirect\"", "energy") == 0.0);
+    assert_true(json_number(out, "\"indirect\"", "nrmse") == 1.0);
+    snprintf(args, sizeof args, "compare '%s' '%s' --direct '%s' --ref-direct '%s' --json", ref, ref, rd, rd);
+    assert_int_equal(run(args, out, sizeof out), 0);
+    assert_true(json_number(out, "\"indirect\"", "energy") == 1.0);
+    assert_true(json_number(out, "\"indirect\"", "nrmse") == 0.0);
+    assert_true(json_number(out, "\"direct\"", "nrmse") == 0.0);
 }
 
 static void
@@ -132,6 +225,21 @@ bad_input_exits_with_2(void **state)
     assert_int_equal(run(args, out, sizeof out), 2);
     snprintf(args, sizeof args, "compare '%s' '%s' --bogus", a, a);
     assert_int_equal(run(args, out, sizeof out), 2);
+    /* The parts: --direct without --ref-direct (it once named the reference's), a part of
+     * another size, an unreadable one, a missing value. */
+    snprintf(args, sizeof args, "compare '%s' '%s' --direct '%s'", a, a, a);
+    assert_int_equal(cg_test_run_conegraph(args, true, out, sizeof out), 2);
+    assert_non_null(strstr(out, "--ref-direct"));
+    snprintf(args, sizeof args, "compare '%s' '%s' --direct '%s' --ref-direct '%s'", a, a, b, a);
+    assert_int_equal(cg_test_run_conegraph(args, true, out, sizeof out), 2);
+    assert_non_null(strstr(out, "images must have the same size"));
+    snprintf(args, sizeof args, "compare '%s' '%s' --direct '%s' --ref-direct '%s' --ref-direct '%s'", a, a, a, a, b);
+    assert_int_equal(run(args, out, sizeof out), 2);
+    snprintf(args, sizeof args, "compare '%s' '%s' --direct '%s' --ref-direct '%s/missing.exr'", a, a, a,
+             cg_test_tmpdir());
+    assert_int_equal(run(args, out, sizeof out), 2);
+    snprintf(args, sizeof args, "compare '%s' '%s' --ref-direct", a, a);
+    assert_int_equal(run(args, out, sizeof out), 2);
     assert_int_equal(run("compare --help", out, sizeof out), 0);
     assert_non_null(strstr(out, "usage: conegraph compare"));
 }
@@ -142,6 +250,8 @@ main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(identical_images),
         cmocka_unit_test(offset_and_indirect_part),
+        cmocka_unit_test(own_direct_light_cancels_shadow_edges),
+        cmocka_unit_test(no_indirect_light_and_the_reference_itself),
         cmocka_unit_test(bad_input_exits_with_2),
         cmocka_unit_test(display_image_beside_linear_one_is_refused),
     };

@@ -1,6 +1,7 @@
 /* The demo without a window: parameter stepping from the tables (apps/demo/demo_params.c),
  * the UI's controls built from the same tables, the pass/parameter selection on a real
- * graph, the fly camera, and the command line's bad input (exit 2 before any window opens;
+ * graph, the fly camera, the animation clock and the sun key's turn (apps/demo/demo_anim.c),
+ * and the command line: --help and bad input (exit 2 before any window opens;
  * $CONEGRAPH_DEMO_EXE). */
 #include <math.h>
 #include <stdio.h>
@@ -8,6 +9,7 @@
 #include <string.h>
 #include <sys/wait.h>
 
+#include "../apps/demo/demo_anim.h"
 #include "../apps/demo/demo_camera.h"
 #include "../apps/demo/demo_params.h"
 #include "sdk/builtin.h"
@@ -645,6 +647,222 @@ test_camera(void **state)
     cg_scene_free(&scene);
 }
 
+/* The clock with --fps: frame k at T + k / F as render computes it (the same double), paused
+ * it stays, a step pauses and moves by a frame within the keys, past the end it loops. */
+static void
+test_clock_fixed_step(void **state)
+{
+    (void)state;
+    demo_clock c;
+    demo_clock_init(&c, true, 0, 4, 0.1, 3, true);
+    assert_true(c.playing);
+    assert_true(demo_clock_time(&c) == 0.1);
+    for (int k = 1; k <= 5; k++) {
+        assert_true(demo_clock_tick(&c, 123.0)); /* the wall time does not matter */
+        double want = 0.1 + k / 3.0;
+        if (demo_clock_time(&c) != want)
+            fail_msg("frame %d at %.17g, render's at %.17g", k, demo_clock_time(&c), want);
+    }
+    assert_true(demo_clock_toggle(&c));
+    assert_false(c.playing);
+    double paused = demo_clock_time(&c);
+    assert_false(demo_clock_tick(&c, 1.0));
+    assert_true(demo_clock_time(&c) == paused);
+    assert_true(demo_clock_toggle(&c));
+    demo_clock_step(&c, -1);
+    assert_false(c.playing);
+    assert_true(demo_clock_time(&c) == 0.1 + 4 / 3.0);
+    assert_float_equal(demo_clock_frame_seconds(&c), 1 / 3.0, 1e-12);
+    demo_clock_step(&c, -100);
+    assert_true(demo_clock_time(&c) == 0);
+    demo_clock_step(&c, 100);
+    assert_true(demo_clock_time(&c) == 4);
+    demo_clock_seek(&c, 2.5);
+    assert_true(demo_clock_time(&c) == 2.5);
+    demo_clock_seek(&c, -1);
+    assert_true(demo_clock_time(&c) == 0);
+    demo_clock_seek(&c, NAN);
+    assert_true(demo_clock_time(&c) == 0);
+
+    /* Looping: 3.5 and 4 are shown, 4.5 is 0.5 again, and the frames go on from there. */
+    demo_clock_init(&c, true, 0, 4, 3.5, 2, true);
+    assert_true(demo_clock_tick(&c, 0));
+    assert_true(demo_clock_time(&c) == 4);
+    assert_true(demo_clock_tick(&c, 0));
+    assert_float_equal(demo_clock_time(&c), 0.5, 1e-12);
+    assert_true(demo_clock_tick(&c, 0));
+    assert_float_equal(demo_clock_time(&c), 1.0, 1e-12);
+    /* Keys from 1 s: a time before them plays on into them. */
+    demo_clock_init(&c, true, 1, 2, 0, 2, true);
+    assert_true(demo_clock_tick(&c, 0));
+    assert_true(demo_clock_time(&c) == 0.5);
+}
+
+/* Without --fps the clock plays the wall time and steps 1/30 s; without animation it never
+ * moves, never plays, and Space says it did nothing. */
+static void
+test_clock_wall_time(void **state)
+{
+    (void)state;
+    demo_clock c;
+    demo_clock_init(&c, true, 0, 10, 2, 0, true);
+    assert_true(demo_clock_tick(&c, 0.25));
+    assert_float_equal(demo_clock_time(&c), 2.25, 1e-12);
+    assert_false(demo_clock_tick(&c, 0));
+    demo_clock_step(&c, 3);
+    assert_false(c.playing);
+    assert_float_equal(demo_clock_time(&c), 2.35, 1e-12);
+    assert_float_equal(demo_clock_frame_seconds(&c), 1 / DEMO_CLOCK_DEFAULT_FPS, 1e-12);
+    demo_clock_init(&c, true, 0, 10, 9.5, 0, false);
+    assert_false(c.playing);
+    assert_false(demo_clock_tick(&c, 1));
+    assert_true(demo_clock_toggle(&c));
+    assert_true(demo_clock_tick(&c, 1.0));
+    assert_float_equal(demo_clock_time(&c), 0.5, 1e-12);
+
+    demo_clock_init(&c, false, 0, 0, 0, 0, true);
+    assert_false(c.playing);
+    assert_false(demo_clock_toggle(&c));
+    assert_false(demo_clock_tick(&c, 1));
+    demo_clock_step(&c, 1);
+    demo_clock_seek(&c, 1);
+    assert_true(demo_clock_time(&c) == 0);
+}
+
+/* The sun's direction, for comparisons. */
+static void
+sun_direction(const cg_scene *scene, float out[3])
+{
+    for (int i = 0; i < scene->light_count; i++)
+        if (scene->lights[i].type == CG_LIGHT_DIRECTIONAL) {
+            memcpy(out, scene->lights[i].direction, sizeof(float) * 3);
+            return;
+        }
+    fail_msg("%s has no directional light", scene->name);
+}
+
+/* One frame's pose, as the demo does it: unturn, evaluate, turn. Returns demo_sun_turn's
+ * answer (the GPU scene needs the lights). */
+static bool
+pose(demo_sun *sun, cg_scene *scene, double t, bool *posed)
+{
+    cg_scene_changes changes;
+    demo_sun_unturn(sun, scene);
+    cg_scene_evaluate(scene, t, &changes);
+    if (posed)
+        *posed = changes.lights;
+    return demo_sun_turn(sun, scene, changes.lights);
+}
+
+static void
+assert_same_direction(const float a[3], const float b[3])
+{
+    for (int k = 0; k < 3; k++)
+        if (fabsf(a[k] - b[k]) > 1e-5f)
+            fail_msg("direction [%g %g %g], expected [%g %g %g]", (double)a[0], (double)a[1], (double)a[2],
+                     (double)b[0], (double)b[1], (double)b[2]);
+}
+
+/* builtin:openworld's motion=sun turns the sun about +y once a period: with a period of 18 s,
+ * 20 degrees a second, L's rate. So L's turn on the still scene for 1 s is the animation at
+ * 1 s, and on the animated scene it adds to the animation's turn. */
+static void
+test_sun_turn(void **state)
+{
+    (void)state;
+    cg_error err = { 0 };
+    cg_scene still = { 0 }, moving = { 0 }, reference = { 0 };
+    assert_cg_ok(cg_scene_load("builtin:openworld", &still, &err), &err);
+    assert_cg_ok(cg_scene_load("builtin:openworld?motion=sun&period=18", &moving, &err), &err);
+    assert_cg_ok(cg_scene_load("builtin:openworld?motion=sun&period=18", &reference, &err), &err);
+    float at1[3], at2[3], at1_5[3], got[3];
+    cg_scene_evaluate(&reference, 1, NULL);
+    sun_direction(&reference, at1);
+    cg_scene_evaluate(&reference, 2, NULL);
+    sun_direction(&reference, at2);
+    cg_scene_evaluate(&reference, 1.5, NULL);
+    sun_direction(&reference, at1_5);
+
+    demo_sun sun;
+    assert_cg_ok(demo_sun_init(&sun, &still, &err), &err);
+    assert_true(sun.any);
+    /* Still: nothing changes, nothing to upload. */
+    assert_false(pose(&sun, &still, 0, NULL));
+    demo_sun_advance(&sun, 1.0);
+    assert_true(sun.angle == 0);
+    sun.moving = true;
+    demo_sun_advance(&sun, 0.5);
+    demo_sun_advance(&sun, 0.5);
+    assert_float_equal(sun.angle, 20 * M_PI / 180, 1e-12);
+    uint64_t before = still.lights_revision;
+    assert_true(pose(&sun, &still, 0, NULL));
+    sun_direction(&still, got);
+    assert_same_direction(got, at1);
+    /* The same angle again: the lights as they were, no upload. */
+    assert_false(pose(&sun, &still, 0, NULL));
+    sun_direction(&still, got);
+    assert_same_direction(got, at1);
+    /* The demo bumps the stamp when demo_sun_turn says so; evaluate alone does not here. */
+    assert_true(still.lights_revision == before);
+    demo_sun_reset(&sun);
+    assert_false(sun.moving);
+    assert_true(pose(&sun, &still, 0, NULL));
+    cg_scene_evaluate(&reference, 0, NULL);
+    float at0[3];
+    sun_direction(&reference, at0);
+    sun_direction(&still, got);
+    assert_same_direction(got, at0);
+    demo_sun_free(&sun);
+
+    /* Animated: the turn goes on top of the pose, and a pose at the same time is no change
+     * (the animation sees its own last pose, not the turned one). */
+    assert_cg_ok(demo_sun_init(&sun, &moving, &err), &err);
+    sun.moving = true;
+    demo_sun_advance(&sun, 1.0);
+    bool posed;
+    assert_true(pose(&sun, &moving, 1, &posed));
+    assert_true(posed);
+    sun_direction(&moving, got);
+    assert_same_direction(got, at2);
+    assert_false(pose(&sun, &moving, 1, &posed));
+    assert_false(posed);
+    sun_direction(&moving, got);
+    assert_same_direction(got, at2);
+    /* A new time with the same angle: the pose changed the lights, so they go up again. */
+    demo_sun_advance(&sun, 0);
+    assert_true(pose(&sun, &moving, 0.5, &posed));
+    assert_true(posed);
+    sun_direction(&moving, got);
+    assert_same_direction(got, at1_5);
+    /* Back: the animation's own sun; the pose at the same time changed nothing, the reset did. */
+    demo_sun_reset(&sun);
+    assert_true(pose(&sun, &moving, 0.5, &posed));
+    assert_false(posed);
+    cg_scene_evaluate(&reference, 0.5, NULL);
+    float at0_5[3];
+    sun_direction(&reference, at0_5);
+    sun_direction(&moving, got);
+    assert_same_direction(got, at0_5);
+    demo_sun_free(&sun);
+
+    /* No directional light (the Cornell box's spot): nothing to turn, nothing to upload. */
+    cg_scene box = { 0 };
+    assert_cg_ok(cg_scene_load("builtin:cornell", &box, &err), &err);
+    assert_cg_ok(demo_sun_init(&sun, &box, &err), &err);
+    assert_false(sun.any);
+    sun.moving = true;
+    demo_sun_advance(&sun, 1);
+    float spot[3];
+    memcpy(spot, box.lights[0].direction, sizeof spot);
+    assert_false(pose(&sun, &box, 0, NULL));
+    assert_same_direction(box.lights[0].direction, spot);
+    demo_sun_free(&sun);
+    cg_scene_free(&box);
+    cg_scene_free(&still);
+    cg_scene_free(&moving);
+    cg_scene_free(&reference);
+}
+
 static int
 run_demo(const char *args)
 {
@@ -661,13 +879,40 @@ run_demo(const char *args)
 
 /* Bad input exits 2 before a window is asked for, so these need no display: run them with
  * DISPLAY unset, where anything that got as far as the window would exit 1 instead. */
+/* --help lists every option the demo takes: the camera's and the lighting's as render words
+ * them, the animation's. */
+static void
+test_help(void **state)
+{
+    (void)state;
+    const char *exe = getenv("CONEGRAPH_DEMO_EXE");
+    assert_non_null(exe);
+    char cmd[4200];
+    snprintf(cmd, sizeof cmd, "'%s' --help", exe);
+    FILE *p = popen(cmd, "r");
+    assert_non_null(p);
+    static char text[1 << 16];
+    size_t n = fread(text, 1, sizeof text - 1, p);
+    text[n] = '\0';
+    int status = pclose(p);
+    assert_true(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+    const char *options[] = { "--graph FILE", "--size WxH", "--camera NAME|INDEX|auto", "--from X,Y,Z",
+                              "--look-at X,Y,Z", "--fov DEG", "--sky none|", "--no-default-light", "--time T",
+                              "--fps F", "--play on|off", "--set PASS.PARAM=VALUE", "--plugin PATH",
+                              "--frames N", "--ui on|off", "--view PASS.OUTPUT", "--screenshot FILE.png",
+                              "--image-screenshot FILE.png", "--timing", "--keys", "Space plays or pauses",
+                              "[ and ]", "Shift+L" };
+    for (size_t i = 0; i < sizeof options / sizeof options[0]; i++)
+        if (!strstr(text, options[i]))
+            fail_msg("conegraph-demo --help does not list '%s'", options[i]);
+}
+
 static void
 test_bad_input(void **state)
 {
     (void)state;
     unsetenv("DISPLAY");
     unsetenv("WAYLAND_DISPLAY");
-    assert_int_equal(run_demo("--help"), 0);
     const char *cases[] = {
         "builtin:nosuchscene",
         "builtin:cornell builtin:furnace",
@@ -694,6 +939,18 @@ test_bad_input(void **state)
         "builtin:cornell --graph vct.json --view gather",
         "builtin:cornell --graph vct.json --view nosuch.output",
         "builtin:cornell --graph vct.json --view shadow.matrix",
+        "builtin:cornell --time -1",
+        "builtin:cornell --time soon",
+        "builtin:cornell --fps 0",
+        "builtin:cornell --fps -30",
+        "builtin:cornell --play maybe",
+        "builtin:cornell --keys 'space,[,],shift+],bogus'",
+        "builtin:cornell --camera nosuch",
+        "builtin:cornell --camera 3",
+        "builtin:cornell --from 1,2",
+        "builtin:cornell --look-at 0,0,x",
+        "builtin:cornell --fov 180",
+        "builtin:cornell --sky purple",
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++)
         if (run_demo(cases[i]) != 2)
@@ -719,6 +976,10 @@ main(void)
         cmocka_unit_test(test_every_control_valid),
         cmocka_unit_test(test_param_set),
         cmocka_unit_test(test_camera),
+        cmocka_unit_test(test_clock_fixed_step),
+        cmocka_unit_test(test_clock_wall_time),
+        cmocka_unit_test(test_sun_turn),
+        cmocka_unit_test(test_help),
         cmocka_unit_test(test_bad_input),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -3,11 +3,14 @@
  * finite, not black, and the same image `conegraph render` writes for the same scene,
  * graph and size (so the blit is the right way up and nothing is lost on the way); the
  * UI drawn over it where it says its windows are and nowhere else, hidden by --ui off and
- * F1, and its resource viewer on every kind of texture.
+ * F1, and its resource viewer on every kind of texture; an animated glTF played, paused
+ * and scrubbed showing render's image at the same time; the sun key seen by the path
+ * tracer and adding to an animated sun; --camera, --from, --look-at and --fov as render's.
  * Needs an X display: .ci/test runs the suite under xvfb-run; without one the program
  * reports SKIP. $CONEGRAPH_DEMO_EXE and $CONEGRAPH_EXE name the executables; the argument
  * is tests/plugin/demo_test_plugin.so. */
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -37,12 +40,13 @@ run(const char *exe_var, const char *args, const char *stdout_path)
     return WEXITSTATUS(status);
 }
 
+/* DIR/name, in one of 32 slots used in turn: a test keeps fewer paths than that at once. */
 static const char *
 tmp(const char *name)
 {
-    static char paths[8][4096];
+    static char paths[32][4096];
     static int next;
-    char *p = paths[next++ % 8];
+    char *p = paths[next++ % 32];
     snprintf(p, 4096, "%s/%s", cg_test_tmpdir(), name);
     return p;
 }
@@ -455,6 +459,216 @@ test_plugin_levels_and_gl_error(void **state)
     assert_null(f); /* stopped before the last frame's screenshot */
 }
 
+/* `conegraph render SCENE --graph GRAPH --size SIZE EXTRA -o OUT`, which must succeed. */
+static void
+render_png(const char *scene, const char *graph, const char *size, const char *extra, const char *out)
+{
+    char args[8192];
+    snprintf(args, sizeof args, "render '%s' --graph %s --size %s %s -o '%s'", scene, graph, size, extra, out);
+    assert_int_equal(run("CONEGRAPH_EXE", args, NULL), 0);
+}
+
+/* The demo's image (Shift+F12's, without the UI) after `extra`, which must succeed; its
+ * stdout in the returned text. */
+static const char *
+demo_png(const char *scene, const char *graph, const char *size, const char *extra, const char *out)
+{
+    const char *log = tmp("demo-run.txt");
+    char args[8192];
+    snprintf(args, sizeof args, "'%s' --graph %s --size %s %s --image-screenshot '%s'", scene, graph, size, extra, out);
+    assert_int_equal(run("CONEGRAPH_DEMO_EXE", args, log), 0);
+    return read_text(log);
+}
+
+static void
+expect_same(const char *what, const char *demo, const char *render)
+{
+    int worst = max_level_difference(demo, render);
+    if (worst > 1)
+        fail_msg("%s: the demo's image differs from render's by %d levels", what, worst);
+}
+
+static void
+expect_different(const char *what, const char *a, const char *b)
+{
+    int worst = max_level_difference(a, b);
+    if (worst < 20)
+        fail_msg("%s: the images differ by %d levels at most", what, worst);
+}
+
+#define ANIM_SIZE "64x36"
+
+/* An animated glTF (builtin:openworld's every moving object, exported) plays at a fixed step:
+ * frame k at T + k / F shows render's image at that time and another than the first frame's;
+ * paused it stays at the time it was paused at; [ and ] (Shift: ten frames) pause and scrub
+ * to a time whose image is render's; with the UI shown (its time slider drawn) too. */
+static void
+test_animation(void **state)
+{
+    (void)state;
+    const char *scene = tmp("moving.glb");
+    char args[8192];
+    snprintf(args, sizeof args, "export 'builtin:openworld?motion=all&period=4&triangles=20000' '%s'", scene);
+    assert_int_equal(run("CONEGRAPH_EXE", args, NULL), 0);
+    const char *at0 = tmp("anim-r0.png"), *at025 = tmp("anim-r025.png"), *at1 = tmp("anim-r1.png");
+    const char *at325 = tmp("anim-r325.png");
+    render_png(scene, "direct.json", ANIM_SIZE, "--time 0", at0);
+    render_png(scene, "direct.json", ANIM_SIZE, "--time 0.25", at025);
+    render_png(scene, "direct.json", ANIM_SIZE, "--time 1", at1);
+    render_png(scene, "direct.json", ANIM_SIZE, "--time 3.25", at325);
+    expect_different("render at 0 and 1 s", at0, at1);
+
+    /* Five frames at 4 per second: the last at 1 s. */
+    const char *played = tmp("anim-played.png");
+    const char *out = demo_png(scene, "direct.json", ANIM_SIZE, "--fps 4 --frames 5 --ui off", played);
+    assert_non_null(strstr(out, "animation: keys from 0 to 4 s"));
+    assert_non_null(strstr(out, "t = 1 s (playing)"));
+    expect_same("played to 1 s", played, at1);
+    /* --play off: the first frame's time throughout. */
+    const char *still = tmp("anim-still.png");
+    demo_png(scene, "direct.json", ANIM_SIZE, "--fps 4 --frames 3 --ui off --play off", still);
+    expect_same("not played", still, at0);
+    /* Space on the third frame: frames 2 to 4 stay at the second frame's 0.25 s. */
+    const char *paused = tmp("anim-paused.png");
+    out = demo_png(scene, "direct.json", ANIM_SIZE, "--fps 4 --frames 5 --ui off --keys tab,tab,space", paused);
+    assert_non_null(strstr(out, "animation: t = 0.25 s (paused)"));
+    expect_same("paused at 0.25 s", paused, at025);
+    /* From 0.5 s: 0.75, 1, 0.75, then ten frames on to 3.25 s; paused there, with the UI. */
+    const char *scrubbed = tmp("anim-scrubbed.png");
+    out = demo_png(scene, "direct.json", ANIM_SIZE, "--time 0.5 --fps 4 --frames 6 --keys '],],[,shift+]'",
+                   scrubbed);
+    assert_non_null(strstr(out, "animation: t = 0.75 s (paused)"));
+    assert_non_null(strstr(out, "animation: t = 3.25 s (paused)"));
+    expect_same("scrubbed to 3.25 s", scrubbed, at325);
+    /* The same in real time: a frame moves on by its wall time, so only that it moved. */
+    const char *real = tmp("anim-real.png");
+    demo_png(scene, "direct.json", ANIM_SIZE, "--time 0.5 --frames 2 --ui off --keys tab,]", real);
+    const char *at05_plus = tmp("anim-r0533.png");
+    render_png(scene, "direct.json", ANIM_SIZE, "--time 0.5 --fps 30 --frames 2", at05_plus);
+    expect_same("a step of 1/30 s without --fps", real, at05_plus);
+}
+
+/* The sun key's turn reaches the path tracer (which caches on the scene's light stamp):
+ * builtin:openworld's motion=sun turns the sun about +y once a period, with a period of 18 s
+ * at 20 degrees a second, L's rate; so 1 s of L (two frames at --fps 2) on the still scene is
+ * render's image of the animated one at 1 s, and on the animated scene playing, L adds to the
+ * animation's turn (2 s). Shift+L gives the animation back its own sun. The raster graph too. */
+static void
+test_sun_key(void **state)
+{
+    (void)state;
+    const char *still = "builtin:openworld", *moving = "builtin:openworld?motion=sun&period=18";
+    const char *pt = "reference.json --set trace.spp=4 --set trace.progress=false";
+    const char *r0 = tmp("sun-r0.png"), *r1 = tmp("sun-r1.png"), *r15 = tmp("sun-r15.png"), *r2 = tmp("sun-r2.png");
+    render_png(still, pt, "48x27", "", r0);
+    render_png(moving, pt, "48x27", "--time 1", r1);
+    render_png(moving, pt, "48x27", "--time 1.5", r15);
+    render_png(moving, pt, "48x27", "--time 2", r2);
+    expect_different("the path tracer's sun at 0 and 20 degrees", r0, r1);
+
+    const char *turned = tmp("sun-turned.png");
+    const char *out = demo_png(still, pt, "48x27", "--fps 2 --frames 3 --ui off --keys l", turned);
+    assert_non_null(strstr(out, "sun: moving"));
+    expect_same("the path tracer after 1 s of L", turned, r1);
+    const char *both = tmp("sun-both.png");
+    demo_png(moving, pt, "48x27", "--fps 2 --frames 3 --ui off --keys l", both);
+    expect_same("1 s of L on 1 s of the animated sun", both, r2);
+    /* L on frame 0, Shift+L on frame 2 (turned 10 degrees by then): the animation's 1.5 s. */
+    const char *back = tmp("sun-back.png");
+    out = demo_png(moving, pt, "48x27", "--fps 2 --frames 4 --ui off --keys l,tab,shift+l", back);
+    assert_non_null(strstr(out, "sun: back where the scene's animation has it"));
+    expect_same("L, then Shift+L", back, r15);
+
+    const char *direct = tmp("sun-direct.png"), *direct_ref = tmp("sun-direct-r1.png");
+    render_png(moving, "direct.json", "48x27", "--time 1", direct_ref);
+    demo_png(still, "direct.json", "48x27", "--fps 2 --frames 3 --ui off --keys l", direct);
+    expect_same("the raster graph after 1 s of L", direct, direct_ref);
+}
+
+/* A glTF of a grey floor seen by a camera that moves 1.5 m along +x in 2 s (translation
+ * keys at 0 and 2 s), tilted 25 degrees down; no light (the default light is added). */
+static const char *
+write_moving_camera(void)
+{
+    static const float positions[4][3] = { { -1, 0, 1 }, { 1, 0, 1 }, { 1, 0, -1 }, { -1, 0, -1 } };
+    static const float normals[4][3] = { { 0, 1, 0 }, { 0, 1, 0 }, { 0, 1, 0 }, { 0, 1, 0 } };
+    static const uint16_t indices[6] = { 0, 1, 2, 0, 2, 3 };
+    static const float times[2] = { 0, 2 };
+    static const float path[2][3] = { { 0, 1.5f, 3 }, { 1.5f, 1.5f, 3 } };
+    unsigned char bin[140] = { 0 };
+    memcpy(bin, positions, 48);
+    memcpy(bin + 48, normals, 48);
+    memcpy(bin + 96, indices, 12);
+    memcpy(bin + 108, times, 8);
+    memcpy(bin + 116, path, 24);
+    cg_test_write_file("camera_path.bin", bin, sizeof bin);
+    const char *json =
+        "{ \"asset\": { \"version\": \"2.0\" }, \"scene\": 0, \"scenes\": [ { \"nodes\": [ 0, 1 ] } ],\n"
+        "  \"nodes\": [ { \"mesh\": 0, \"name\": \"floor\" },\n"
+        "             { \"camera\": 0, \"name\": \"eye\", \"translation\": [ 0, 1.5, 3 ],\n"
+        "               \"rotation\": [ -0.21644, 0, 0, 0.97630 ] } ],\n"
+        "  \"cameras\": [ { \"type\": \"perspective\", \"perspective\": { \"yfov\": 0.8, \"znear\": 0.1 } } ],\n"
+        "  \"meshes\": [ { \"primitives\": [ { \"attributes\": { \"POSITION\": 0, \"NORMAL\": 1 }, \"indices\": 2,\n"
+        "                                    \"material\": 0 } ] } ],\n"
+        "  \"materials\": [ { \"pbrMetallicRoughness\": { \"baseColorFactor\": [ 0.6, 0.6, 0.6, 1 ], "
+        "\"metallicFactor\": 0 } } ],\n"
+        "  \"animations\": [ { \"channels\": [ { \"sampler\": 0, \"target\": { \"node\": 1, \"path\": \"translation\" } } ],\n"
+        "                    \"samplers\": [ { \"input\": 3, \"output\": 4 } ] } ],\n"
+        "  \"buffers\": [ { \"uri\": \"camera_path.bin\", \"byteLength\": 140 } ],\n"
+        "  \"bufferViews\": [ { \"buffer\": 0, \"byteOffset\": 0, \"byteLength\": 48 },\n"
+        "                   { \"buffer\": 0, \"byteOffset\": 48, \"byteLength\": 48 },\n"
+        "                   { \"buffer\": 0, \"byteOffset\": 96, \"byteLength\": 12 },\n"
+        "                   { \"buffer\": 0, \"byteOffset\": 108, \"byteLength\": 8 },\n"
+        "                   { \"buffer\": 0, \"byteOffset\": 116, \"byteLength\": 24 } ],\n"
+        "  \"accessors\": [\n"
+        "    { \"bufferView\": 0, \"componentType\": 5126, \"count\": 4, \"type\": \"VEC3\", \"min\": [ -1, 0, -1 ], "
+        "\"max\": [ 1, 0, 1 ] },\n"
+        "    { \"bufferView\": 1, \"componentType\": 5126, \"count\": 4, \"type\": \"VEC3\" },\n"
+        "    { \"bufferView\": 2, \"componentType\": 5123, \"count\": 6, \"type\": \"SCALAR\" },\n"
+        "    { \"bufferView\": 3, \"componentType\": 5126, \"count\": 2, \"type\": \"SCALAR\", \"min\": [ 0 ], "
+        "\"max\": [ 2 ] },\n"
+        "    { \"bufferView\": 4, \"componentType\": 5126, \"count\": 2, \"type\": \"VEC3\" } ] }\n";
+    return cg_test_write_file("camera_path.gltf", json, 0);
+}
+
+/* --camera, --from, --look-at and --fov give the demo render's view; the fly camera starts
+ * from it and R goes back to it. On an animated camera, --fov holds at every time. */
+static void
+test_camera_options(void **state)
+{
+    (void)state;
+    const char *view = "--from 1,2.5,4 --look-at 0,0.5,0 --fov 60";
+    const char *ref = tmp("cam-r.png"), *plain = tmp("cam-plain.png"), *flown = tmp("cam-flown.png");
+    const char *back = tmp("cam-back.png");
+    render_png("builtin:cornell", "direct.json", "48x32", view, ref);
+    render_png("builtin:cornell", "direct.json", "48x32", "", plain);
+    expect_different("--from, --look-at, --fov against the scene's camera", ref, plain);
+    char extra[512];
+    snprintf(extra, sizeof extra, "%s --frames 2 --ui off --keys shift+w", view);
+    demo_png("builtin:cornell", "direct.json", "48x32", extra, flown);
+    expect_different("flown from the view asked for", flown, ref);
+    snprintf(extra, sizeof extra, "%s --frames 3 --ui off --keys shift+w,r", view);
+    const char *out = demo_png("builtin:cornell", "direct.json", "48x32", extra, back);
+    assert_non_null(strstr(out, "camera: reset to the view of --camera, --from, --look-at, --fov"));
+    expect_same("--from, --look-at, --fov, flown and back", back, ref);
+
+    const char *framed = tmp("cam-auto.png"), *framed_ref = tmp("cam-auto-r.png");
+    render_png("builtin:cornell", "direct.json", "48x32", "--camera auto", framed_ref);
+    demo_png("builtin:cornell", "direct.json", "48x32", "--camera auto --frames 1 --ui off", framed);
+    expect_same("--camera auto", framed, framed_ref);
+
+    const char *scene = write_moving_camera();
+    const char *narrow0 = tmp("cam-move-r0.png"), *narrow1 = tmp("cam-move-r1.png"), *wide1 = tmp("cam-move-w1.png");
+    const char *shown = tmp("cam-move.png");
+    render_png(scene, "direct.json", "48x32", "--fov 30 --time 0", narrow0);
+    render_png(scene, "direct.json", "48x32", "--fov 30 --time 1", narrow1);
+    render_png(scene, "direct.json", "48x32", "--time 1", wide1);
+    expect_different("the camera at 0 and 1 s", narrow0, narrow1);
+    expect_different("--fov 30 against the camera's own", narrow1, wide1);
+    demo_png(scene, "direct.json", "48x32", "--fov 30 --fps 2 --frames 3 --ui off", shown);
+    expect_same("--fov 30 on the moving camera at 1 s", shown, narrow1);
+}
+
 int
 main(int argc, char **argv)
 {
@@ -473,6 +687,9 @@ main(int argc, char **argv)
         cmocka_unit_test(test_plugin_levels_and_gl_error),
         cmocka_unit_test(test_ui_shown),
         cmocka_unit_test(test_viewer),
+        cmocka_unit_test(test_animation),
+        cmocka_unit_test(test_sun_key),
+        cmocka_unit_test(test_camera_options),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

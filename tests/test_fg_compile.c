@@ -578,6 +578,10 @@ absent_inputs_adapt_or_cull(void **state)
     assert_false(fg_input_present(gather, "table"));
     assert_false(fg_input_present(gather, "lightmap"));
     assert_true(fg_input_present(fg_graph_find_pass(f->graph, "final"), "in"));
+    /* The source an input reads: the shorthand resolved; NULL when absent or not a slot. */
+    assert_string_equal(fg_pass_input_source(fg_graph_find_pass(f->graph, "final"), "in"), "gather.out");
+    assert_null(fg_pass_input_source(gather, "table"));
+    assert_null(fg_pass_input_source(gather, "no_such_slot"));
     assert_true(fg_graph_find_resource(f->graph, "hsat.table")->absent);
     fg_memory_report m;
     fg_graph_memory_report(f->graph, &m);
@@ -588,6 +592,7 @@ absent_inputs_adapt_or_cull(void **state)
     assert_cg_ok(compile(f), &f->err);
     assert_string_equal(order_names(f), "terrain hsat gather final");
     assert_true(fg_input_present(gather, "table"));
+    assert_string_equal(fg_pass_input_source(gather, "table"), "hsat.table");
     fg_graph_memory_report(f->graph, &m);
     assert_int_equal(m.gi_bytes, (size_t)256 * 256 * 8);
 }
@@ -678,6 +683,9 @@ in_place_update_shares_storage(void **state)
     const fg_resource_info *a = fg_graph_find_resource(f->graph, "vox.volume");
     const fg_resource_info *b = fg_graph_find_resource(f->graph, "mip.volume");
     assert_int_equal(a->storage, b->storage);
+    /* A reader of the updated volume reads the update's version. */
+    assert_string_equal(fg_pass_input_source(fg_graph_find_pass(f->graph, "gather"), "volume"), "mip.volume");
+    assert_string_equal(fg_pass_input_source(fg_graph_find_pass(f->graph, "mip"), "volume"), "vox.volume");
     fg_memory_report m;
     fg_graph_memory_report(f->graph, &m);
     assert_int_equal(m.gi_bytes, a->bytes);

@@ -201,6 +201,117 @@ subtract_gives_the_indirect_part(void **state)
     image_release(&indirect);
 }
 
+/* Half the pixels 0.25, half 0.75 (grey): mean 0.5, mean square 0.3125. */
+static void
+fill_halves(cg_image *img)
+{
+    fill_constant(img, 0.25f);
+    for (int i = 0; i < img->width * img->height / 2; i++)
+        img->rgba[4 * i + 0] = img->rgba[4 * i + 1] = img->rgba[4 * i + 2] = 0.75f;
+}
+
+static void
+part_metrics_of_a_known_pair(void **state)
+{
+    (void)state;
+    cg_image est = image_new(W, H), truth = image_new(W, H);
+    fill_halves(&truth);
+    fill_constant(&est, 0.375f);
+    cg_part_metrics m;
+    cg_error err = { 0 };
+    assert_cg_ok(cg_metrics_part(&est, &truth, &m, &err), &err);
+    /* energy 0.375 / 0.5; rmse^2 = (0.125^2 + 0.375^2) / 2 = 0.078125 against 0.3125: nrmse 0.5. */
+    assert_int_equal(m.width, W);
+    assert_int_equal(m.height, H);
+    assert_float_equal(m.energy, 0.75, 1e-12);
+    assert_float_equal(m.rmse, sqrt(0.078125), 1e-12);
+    assert_float_equal(m.rms_truth, sqrt(0.3125), 1e-12);
+    assert_float_equal(m.nrmse, 0.5, 1e-12);
+    assert_float_equal(m.mean_luminance_estimate, 0.375, 1e-12);
+    assert_float_equal(m.mean_luminance_truth, 0.5, 1e-12);
+    assert_int_equal(m.nonfinite_pixels, 0);
+    /* Colour: energy weighs luminance, nrmse the RGB channels alike. Red against green:
+     * energy 0.7152 / 0.2126, rmse^2 = 2/3 against 1/3. */
+    for (int i = 0; i < W * H; i++) {
+        float *t = &truth.rgba[4 * i], *e = &est.rgba[4 * i];
+        t[0] = 1.0f, t[1] = t[2] = 0.0f;
+        e[1] = 1.0f, e[0] = e[2] = 0.0f;
+    }
+    assert_cg_ok(cg_metrics_part(&est, &truth, &m, &err), &err);
+    assert_float_equal(m.energy, 0.7152 / 0.2126, 1e-12);
+    assert_float_equal(m.nrmse, sqrt(2.0), 1e-12);
+    image_release(&est);
+    image_release(&truth);
+}
+
+/* Leaving the part out is exactly nrmse 1 and energy 0; the truth itself exactly 0 and 1. */
+static void
+part_metrics_of_nothing_and_of_the_truth(void **state)
+{
+    (void)state;
+    cg_image zero = image_new(W, H), truth = image_new(W, H);
+    fill_pattern(&truth);
+    cg_part_metrics m;
+    cg_error err = { 0 };
+    assert_cg_ok(cg_metrics_part(&zero, &truth, &m, &err), &err);
+    assert_true(m.nrmse == 1.0);
+    assert_true(m.energy == 0.0);
+    assert_true(m.rmse == m.rms_truth);
+    assert_cg_ok(cg_metrics_part(&truth, &truth, &m, &err), &err);
+    assert_true(m.nrmse == 0.0);
+    assert_true(m.energy == 1.0);
+    image_release(&zero);
+    image_release(&truth);
+}
+
+/* A truth of 0 (a scene without indirect light): defined values, not NaN. */
+static void
+part_metrics_against_a_black_truth(void **state)
+{
+    (void)state;
+    cg_image est = image_new(W, H), truth = image_new(W, H);
+    cg_part_metrics m;
+    cg_error err = { 0 };
+    assert_cg_ok(cg_metrics_part(&est, &truth, &m, &err), &err);
+    assert_true(m.energy == 1.0);
+    assert_true(m.nrmse == 0.0);
+    est.rgba[0] = 0.5f;
+    assert_cg_ok(cg_metrics_part(&est, &truth, &m, &err), &err);
+    assert_true(isinf(m.energy) && m.energy > 0.0);
+    assert_true(isinf(m.nrmse) && m.nrmse > 0.0);
+    est.rgba[0] = -0.5f;
+    assert_cg_ok(cg_metrics_part(&est, &truth, &m, &err), &err);
+    assert_true(isinf(m.energy) && m.energy < 0.0);
+    image_release(&est);
+    image_release(&truth);
+}
+
+static void
+part_metrics_leave_nonfinite_pixels_out(void **state)
+{
+    (void)state;
+    cg_image est = image_new(W, H), truth = image_new(W, H), small = image_new(W, H + 1);
+    fill_constant(&truth, 0.5f);
+    fill_constant(&est, 0.5f);
+    est.rgba[0] = NAN;
+    truth.rgba[4 * 7 + 2] = INFINITY;
+    cg_part_metrics m;
+    cg_error err = { 0 };
+    assert_cg_ok(cg_metrics_part(&est, &truth, &m, &err), &err);
+    assert_int_equal(m.nonfinite_pixels, 2);
+    assert_true(m.nrmse == 0.0);
+    assert_true(m.energy == 1.0);
+    for (int i = 0; i < W * H; i++)
+        est.rgba[4 * i] = NAN;
+    assert_cg_ok(cg_metrics_part(&est, &truth, &m, &err), &err);
+    assert_int_equal(m.nonfinite_pixels, W * H);
+    assert_true(isnan(m.energy) && isnan(m.nrmse));
+    assert_cg_status(cg_metrics_part(&est, &small, &m, &err), &err, CG_ERR_IMAGE_FORMAT);
+    image_release(&est);
+    image_release(&truth);
+    image_release(&small);
+}
+
 static void
 heatmap_is_dark_where_equal_and_bright_where_wrong(void **state)
 {
@@ -233,6 +344,10 @@ main(void)
         cmocka_unit_test(size_mismatch_is_an_image_format_error),
         cmocka_unit_test(subtract_gives_the_indirect_part),
         cmocka_unit_test(heatmap_is_dark_where_equal_and_bright_where_wrong),
+        cmocka_unit_test(part_metrics_of_a_known_pair),
+        cmocka_unit_test(part_metrics_of_nothing_and_of_the_truth),
+        cmocka_unit_test(part_metrics_against_a_black_truth),
+        cmocka_unit_test(part_metrics_leave_nonfinite_pixels_out),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -1,8 +1,9 @@
 /* conegraph bench: the speed/accuracy/memory trade of GI settings against the path-traced
- * reference. For each scene: the reference (cached on disk), the path tracer's own error
- * against its sample count, then every graph setting of the sweep: per-pass milliseconds
- * (median over frames after warm-up), GI memory, error (full and indirect part) and the
- * equal-error speed-up over the path tracer. Writes CSV, Markdown and PNG plots.
+ * reference. For each scene: the reference and its parts (cached on disk), the path tracer's
+ * own error against its sample count, then every graph setting of the sweep: per-pass
+ * milliseconds (median over frames after warm-up), GI memory, error (full image, indirect
+ * part, the GI part and the direct part each against its own truth) and the equal-error
+ * speed-up over the path tracer. Writes CSV, Markdown and PNG plots.
  *
  * The jobs live in bench/ (bench.h): reading and validating the sweep, the reference and the
  * path tracer, measuring each setting, the analysis, the writers. This file runs them in order. */
@@ -27,21 +28,36 @@ cmd_bench_usage(FILE *out)
         "\n"
         "Measures every setting of a sweep against the path-traced reference and writes\n"
         "OUT/bench.csv, OUT/bench.md, OUT/bench.json (every row at full precision) and, per\n"
-        "scene, OUT/SCENE-time.png and OUT/SCENE-memory.png (relMSE against time per frame and\n"
-        "against GI memory: a colour per setting, a marker per combination of its varied values,\n"
-        "each point labelled with them, the Pareto front ringed in red).\n"
+        "scene, OUT/SCENE-time.png and OUT/SCENE-memory.png (the --error against time per frame\n"
+        "and against GI memory: a colour per setting, a marker per combination of its varied\n"
+        "values, each point labelled with them, the Pareto front ringed in red).\n"
         "\n"
         "Every setting is first compiled (without GL) on every scene: one bad scene, graph,\n"
         "parameter or value exits 2 before anything renders and before OUT is made.\n"
         "\n"
         "Per scene: the reference (path_trace at --ref-spp, --ref-bounces; pixel centres like the\n"
-        "raster camera) and its direct part (the light reflected at most once, from the same trace)\n"
-        "are rendered once and cached in the cache directory; the path tracer is timed at each --pt-spp against the reference; then each\n"
+        "raster camera) and its parts from the same trace (emitted, direct_punctual,\n"
+        "direct_emitters, direct_sky, indirect) are rendered once and cached in the cache\n"
+        "directory; the path tracer is timed at each --pt-spp against the reference; then each\n"
         "setting runs --warmup frames and --frames timed frames (synchronous timing: glFinish and\n"
-        "a CPU clock around each pass) and is compared with the reference: full image, and the\n"
-        "indirect part (TEST - REF_DIRECT against REF - REF_DIRECT). The equal-error speed-up is\n"
-        "the path tracer's time to reach the setting's relMSE (interpolated log-log between the\n"
-        "measured sample counts, extrapolated with the 1/N law) over the setting's frame time.\n"
+        "a CPU clock around each pass) and is compared with the reference:\n"
+        "  full      the image (relMSE, RMSE, SSIM, lum. ratio)\n"
+        "  indirect  TEST - REF_DIRECT against REF - REF_DIRECT, REF_DIRECT the light reflected at\n"
+        "            most once: the reference's direct light taken from both (shadow-map edges count)\n"
+        "  GI        the setting's GI alone, each side's own direct light taken away: its image minus\n"
+        "            its own direct image (its final composite's direct + emissive inputs, read back\n"
+        "            from the same frame) against the reference minus its emitted and direct_punctual\n"
+        "            parts (the bounces, and the once-reflected light of emitters and the sky, which\n"
+        "            reach a raster graph through its cones)\n"
+        "  direct    the setting's own direct image against emitted + direct_punctual: the raster\n"
+        "            direct pass's error (shadow map), apart from the GI's\n"
+        "  GI and direct give energy (mean luminance / the truth's: 1 is right, 0 none) and nRMSE\n"
+        "  (rmse(estimate - truth) / rms(truth): 0 is the truth, 1 no better than leaving the part\n"
+        "  out, as direct.json's GI does exactly). Path tracer rows are split by their own parts.\n"
+        "  A graph whose image is not a composite's hdr has no GI and direct figures (a notice).\n"
+        "The equal-error speed-up is the path tracer's time to reach the setting's error\n"
+        "(--error; interpolated log-log between the measured sample counts, extrapolated with the\n"
+        "1/N law of relMSE and of nRMSE squared) over the setting's frame time.\n"
         "\n"
         "  --sweep FILE.json     a sweep file (below); flags given as well override its fields,\n"
         "                        and --graph adds settings to its list\n"
@@ -63,6 +79,9 @@ cmd_bench_usage(FILE *out)
         "  --ref-spp N           reference samples per pixel (default 1024)\n"
         "  --ref-bounces N       diffuse bounces of the reference (default 1, as the GI graphs)\n"
         "  --pt-spp LIST         path tracer sample counts to time, e.g. 1,4,16,64 (default)\n"
+        "  --error relmse|gi-nrmse  the error of the plots, the Pareto fronts (P) and the\n"
+        "                        equal-error speed-up: the full image's relMSE (default) or the GI\n"
+        "                        part's nRMSE; the tables carry both either way\n"
         "  --out DIR             output directory (default bench-out)\n"
         "  --cache DIR           reference cache (default OUT/cache); entries are keyed by the\n"
         "                        scene's contents, view, size, spp, bounces, seed and tracer version\n"
@@ -81,7 +100,7 @@ cmd_bench_usage(FILE *out)
         "\n"
         "Sweep file:\n"
         "  { \"scenes\": [\"builtin:cornell\"], \"size\": \"320x180\", \"frames\": 5, \"warmup\": 2,\n"
-        "    \"camera\": \"0\", \"sky\": \"0.5,0.6,0.8\", \"default_light\": true,\n"
+        "    \"camera\": \"0\", \"sky\": \"0.5,0.6,0.8\", \"default_light\": true, \"error\": \"relmse\",\n"
         "    \"reference\": { \"spp\": 1024, \"bounces\": 1, \"seed\": 1 },\n"
         "    \"path_tracer_spp\": [1, 4, 16, 64],\n"
         "    \"settings\": [ { \"graph\": \"direct.json\" },\n"
@@ -144,14 +163,15 @@ measure_scene(const bench_config *c, const bench_run *runs, int run_count, bench
         char left[64];
         format_time_left(progress, left, sizeof left);
         const bench_row *r = &rows->rows[rows->count - 1];
-        fprintf(stderr, "bench: [%d/%d] %s %s %s: %.1f ms, GI %.1f MiB, relMSE %.5f, lum ratio %.3f; %s\n",
-                progress->done, progress->total, bs->source, r->graph, r->params, r->ms,
-                (double)r->gi_bytes / 1048576.0, r->full.rel_mse, r->full.mean_luminance_ratio, left);
+        fprintf(stderr, "bench: [%d/%d] %s %s %s: %.1f ms, GI %.1f MiB, relMSE %.5f, lum ratio %.3f, "
+                "GI energy %.3f, nRMSE %.3f; %s\n", progress->done, progress->total, bs->source, r->graph, r->params,
+                r->ms, (double)r->gi_bytes / 1048576.0, r->full.rel_mse, r->full.mean_luminance_ratio, r->gi.energy,
+                r->gi.nrmse, left);
     }
     app_session_stop_gl(&bs->session);
     if (c->shard_count > 1)
         return true;
-    bench_analyse(rows, s);
+    bench_analyse(c, rows, s);
     return bench_write_plots(c, rows, scenes, s, err);
 }
 
@@ -163,6 +183,10 @@ free_scenes(bench_scene *scenes, int count)
         cg_image_free(&scenes[s].ref);
         cg_image_free(&scenes[s].ref_direct);
         cg_image_free(&scenes[s].ref_indirect);
+        cg_image_free(&scenes[s].truth_direct);
+        cg_image_free(&scenes[s].truth_gi);
+        for (int k = 0; k < PT_PART_COUNT; k++)
+            cg_image_free(&scenes[s].ref_parts[k]);
         app_session_close(&scenes[s].session);
     }
     free(scenes);
@@ -181,8 +205,11 @@ bench(const bench_config *c)
     int code = scenes ? bench_expand_runs(c, &runs, &run_count) : 1;
     if (!scenes)
         fprintf(stderr, "%s: out of memory\n", TOOL);
-    for (int s = 0; !code && s < c->scene_count; s++)
-        scenes[s].bvh_ms = NAN;
+    for (int s = 0; !code && s < c->scene_count; s++) {
+        scenes[s].bvh_ms = scenes[s].ref_luminance = NAN;
+        for (int k = 0; k < PT_PART_COUNT; k++)
+            scenes[s].part_luminance[k] = NAN;
+    }
     /* Every setting on every scene checked before anything renders or any file is made (all of
      * the sweep in every shard, so that a bad setting stops them all). */
     if (!code)
@@ -234,7 +261,7 @@ merge(const bench_config *c)
     if (!code && !app_make_dirs(c->out_dir, &err))
         code = app_fail(TOOL, c->out_dir, &err);
     for (int s = 0; !code && s < c->scene_count; s++) {
-        bench_analyse(&rows, s);
+        bench_analyse(c, &rows, s);
         if (!bench_write_plots(c, &rows, scenes, s, &err))
             code = app_fail(TOOL, "plots", &err);
     }

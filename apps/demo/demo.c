@@ -22,13 +22,12 @@
 #include "cg/image.h"
 #include "cg/scene.h"
 #include "demo.h"
+#include "demo_anim.h"
 #include "demo_camera.h"
 #include "demo_params.h"
 #include "demo_ui.h"
 #include "demo_view.h"
 #include "ui.h"
-
-#define SUN_DEGREES_PER_SECOND 20.0
 
 static void
 usage(FILE *out)
@@ -39,7 +38,8 @@ usage(FILE *out)
         "Opens a window and renders SCENE through a frame graph every frame, showing the\n"
         "graph's ldr output under a UI of per-pass times, frame time, GI memory, every pass\n"
         "parameter as a control and a viewer for any texture of the graph; with a fly camera\n"
-        "and the pass parameters on the keyboard too.\n"
+        "and the pass parameters on the keyboard too. An animated scene plays, posed every\n"
+        "frame as conegraph render poses it at the same time.\n"
         "\n"
         "  SCENE                   a .gltf/.glb file or builtin:NAME[?key=value&...]\n"
         "                          (default builtin:openworld)\n"
@@ -47,6 +47,18 @@ usage(FILE *out)
         "                          from the graph directory); it must mark an output *.ldr\n"
         "  --size WxH              window size in pixels (default 1280x720); the graph renders\n"
         "                          at the window's framebuffer size and recompiles on resize\n"
+        APP_CAMERA_USAGE
+        "                          (the fly camera starts from the view these give; R goes\n"
+        "                          back to it)\n"
+        APP_LIGHT_USAGE
+        "  --time T                seconds into the scene's animation of the first frame\n"
+        "                          (default 0; 0..1e9)\n"
+        "  --fps F                 play at a fixed step: each frame moves the animation (and\n"
+        "                          L's turn of the sun) on by 1/F s whatever its wall time, so\n"
+        "                          that frame k shows what frame k of render --time T --fps F\n"
+        "                          does (above 0, at most 1e6). Default: real time; [ and ]\n"
+        "                          step by 1/F s (1/30 s without --fps)\n"
+        "  --play on|off           start with the animation playing (default) or paused\n"
         "  --set PASS.PARAM=VALUE  override a parameter, validated like the file; repeatable\n"
         "  --plugin PATH           load a pass plugin (.so); repeatable. Directories in\n"
         "                          $CONEGRAPH_PLUGIN_PATH are loaded too\n"
@@ -64,14 +76,17 @@ usage(FILE *out)
         "                          software renderer such as llvmpipe, queries on a GPU)\n"
         "  --keys K1,K2,...        press these keys, one per frame from the first, as if typed\n"
         "                          (for recordings and tests): tab, up, down, left, right,\n"
-        "                          1..9, r, l, p, f1, f12, esc, any of them after shift+; w, a,\n"
-        "                          s, d, q, e (optionally shift+) are held for 0.25 s of flight\n"
+        "                          1..9, r, l, p, space, [, ], f1, f12, esc, any of them after\n"
+        "                          shift+; w, a, s, d, q, e (optionally shift+) are held for\n"
+        "                          0.25 s of flight\n"
         "\n"
         "Keys: WASD fly, E/Q up/down, Shift x4 speed, left mouse drag to look, scroll for\n"
         "speed, R resets the camera; Tab/Shift+Tab pass, Up/Down parameter, Left/Right\n"
-        "decrease/increase it; 1..9 shown resource; L moves the sun; P prints the per-pass\n"
-        "report; F1 hides or shows the UI; F12 screenshot, Shift+F12 without the UI; Esc\n"
-        "quits. Over the UI, the mouse and the keys a control takes are the UI's.\n"
+        "decrease/increase it; 1..9 shown resource; Space plays or pauses the animation,\n"
+        "[ and ] step it back and forward a frame (Shift: ten), pausing; L starts or stops\n"
+        "turning the sun (on top of the animation), Shift+L puts it back; P prints the\n"
+        "per-pass report; F1 hides or shows the UI; F12 screenshot, Shift+F12 without the\n"
+        "UI; Esc quits. Over the UI, the mouse and the keys a control takes are the UI's.\n"
         "docs/demo.md has the details.\n"
         "\n"
         "The selected parameter, per-pass milliseconds, frame time and GI memory are also in\n"
@@ -98,7 +113,8 @@ static const struct {
     { "3", GLFW_KEY_3 }, { "4", GLFW_KEY_4 }, { "5", GLFW_KEY_5 }, { "6", GLFW_KEY_6 },
     { "7", GLFW_KEY_7 }, { "8", GLFW_KEY_8 }, { "9", GLFW_KEY_9 }, { "r", GLFW_KEY_R },
     { "l", GLFW_KEY_L }, { "p", GLFW_KEY_P }, { "f1", GLFW_KEY_F1 }, { "f12", GLFW_KEY_F12 },
-    { "esc", GLFW_KEY_ESCAPE },
+    { "esc", GLFW_KEY_ESCAPE }, { "space", GLFW_KEY_SPACE }, { "[", GLFW_KEY_LEFT_BRACKET },
+    { "]", GLFW_KEY_RIGHT_BRACKET },
     { "w", GLFW_KEY_W }, { "a", GLFW_KEY_A }, { "s", GLFW_KEY_S }, { "d", GLFW_KEY_D },
     { "q", GLFW_KEY_Q }, { "e", GLFW_KEY_E },
 };
@@ -145,7 +161,8 @@ parse_keys(const char *list, demo_options *o)
     return o->key_count > 0;
 }
 
-/* --screenshot, --image-screenshot, --ui, --view, --keys: the demo's own options. */
+/* --screenshot, --image-screenshot, --ui, --view, --keys, --time, --fps, --play: the demo's
+ * own options (--time and --fps as render takes them). */
 static int
 own_option(void *user, const char *a, const char *v)
 {
@@ -163,11 +180,21 @@ own_option(void *user, const char *a, const char *v)
         o->no_ui = !strcmp(v, "off");
     } else if (!strcmp(a, "--view")) {
         o->view = v;
+    } else if (!strcmp(a, "--time")) {
+        if (!app_parse_double(v, 0, 1e9, false, &o->time))
+            return usage_error("--time wants seconds from 0 to 1e9, not '%s'", v);
+    } else if (!strcmp(a, "--fps")) {
+        if (!app_parse_double(v, 0, 1e6, true, &o->fps))
+            return usage_error("--fps wants frames per second above 0 and at most 1e6, not '%s'", v);
+    } else if (!strcmp(a, "--play")) {
+        if (strcmp(v, "on") && strcmp(v, "off"))
+            return usage_error("--play wants on or off, not '%s'", v);
+        o->no_play = !strcmp(v, "off");
     } else if (!strcmp(a, "--keys")) {
         if (!parse_keys(v, o))
             return usage_error("--keys wants a comma-separated list of tab, up, down, left, right, "
-                               "1..9, r, l, p, f1, f12, esc, w, a, s, d, q, e, each optionally after "
-                               "shift+ (at most 64), not '%s'", v);
+                               "1..9, r, l, p, space, [, ], f1, f12, esc, w, a, s, d, q, e, each "
+                               "optionally after shift+ (at most 64), not '%s'", v);
     } else {
         return -1;
     }
@@ -181,8 +208,8 @@ parse_args(int argc, char **argv, demo_options *o)
     o->common.width = 1280;
     o->common.height = 720;
     int code = app_parse_options(TOOL, argc, argv,
-                                 APP_OPT_GRAPH | APP_OPT_SIZE | APP_OPT_SET | APP_OPT_PLUGIN | APP_OPT_FRAMES |
-                                 APP_OPT_TIMING, &o->common, own_option, o);
+                                 APP_OPT_GRAPH | APP_OPT_SIZE | APP_OPT_CAMERA | APP_OPT_SET | APP_OPT_PLUGIN |
+                                 APP_OPT_FRAMES | APP_OPT_TIMING, &o->common, own_option, o);
     if (!code && !o->common.scene)
         o->common.scene = "builtin:openworld";
     return code;
@@ -190,11 +217,13 @@ parse_args(int argc, char **argv, demo_options *o)
 
 /* ------------------------------------------------------------ view and graph */
 
+/* The session's view (the scene camera, as posed, or --camera, --from, --look-at, --fov's),
+ * or the fly camera's with its projection. */
 static void
 update_view(demo *d)
 {
     cg_view base;
-    cg_view_from_scene(&d->s.scene, d->s.camera, d->s.frame.width, d->s.frame.height, &base);
+    cg_view_from_spec(&d->s.scene, &d->s.view_spec, d->s.frame.width, d->s.frame.height, &base);
     if (d->flying)
         demo_camera_view(&d->cam, &d->s.scene, &base, &d->s.frame.view);
     else
@@ -454,6 +483,76 @@ demo_view_resource(demo *d, const char *source)
     fflush(stdout);
 }
 
+/* "t = 1.25 s (playing)", for stdout and the status line. */
+static void
+format_time(const demo *d, char *out, size_t size)
+{
+    snprintf(out, size, "t = %.4g s (%s)", demo_clock_time(&d->clock), d->clock.playing ? "playing" : "paused");
+}
+
+static void
+say_time(const demo *d)
+{
+    char when[96];
+    format_time(d, when, sizeof when);
+    printf("animation: %s\n", when);
+    fflush(stdout);
+}
+
+/* Keys and controls that need an animation say so on a scene without one. */
+static bool
+has_animation(const demo *d)
+{
+    if (d->clock.animated)
+        return true;
+    printf("animation: scene %s has none\n", d->s.scene.name);
+    fflush(stdout);
+    return false;
+}
+
+void
+demo_toggle_play(demo *d)
+{
+    if (has_animation(d) && demo_clock_toggle(&d->clock))
+        say_time(d);
+}
+
+void
+demo_step_time(demo *d, int frames)
+{
+    if (!has_animation(d))
+        return;
+    demo_clock_step(&d->clock, frames);
+    say_time(d);
+}
+
+void
+demo_seek_time(demo *d, double t, bool announce)
+{
+    if (!d->clock.animated)
+        return;
+    demo_clock_seek(&d->clock, t);
+    if (announce)
+        say_time(d);
+}
+
+void
+demo_sun_key(demo *d, bool reset)
+{
+    demo_sun *sun = &d->sun;
+    if (!sun->any) {
+        printf("sun: scene %s has no directional light to turn\n", d->s.scene.name);
+    } else if (reset) {
+        demo_sun_reset(sun);
+        printf("sun: back where the scene%s has it\n", d->clock.animated ? "'s animation" : "");
+    } else {
+        sun->moving = !sun->moving;
+        printf("sun: %s, turned %.1f degrees about +y%s\n", sun->moving ? "moving" : "still",
+               sun->angle * 180.0 / M_PI, d->clock.animated ? " on top of the animation" : "");
+    }
+    fflush(stdout);
+}
+
 /* A key pressed (repeat: held down, auto-repeated), from the window or from --keys. */
 static void
 press(demo *d, int key, int mods, bool repeat)
@@ -479,16 +578,25 @@ press(demo *d, int key, int mods, bool repeat)
         if (!repeat) {
             d->flying = false;
             d->speed = d->base_speed;
-            printf("camera: reset to the scene's view\n");
+            const cg_view_spec *v = &d->s.view_spec;
+            bool asked = v->from_given || v->look_at_given || v->yfov > 0 || d->o.common.camera;
+            printf("camera: reset to %s\n", asked ? "the view of --camera, --from, --look-at, --fov"
+                                                  : "the scene's view");
             fflush(stdout);
         }
         break;
     case GLFW_KEY_L:
-        if (!repeat) {
-            d->sun_moving = !d->sun_moving;
-            printf("sun: %s\n", d->sun_moving ? "moving" : "still");
-            fflush(stdout);
-        }
+        if (!repeat)
+            demo_sun_key(d, (mods & GLFW_MOD_SHIFT) != 0);
+        break;
+    case GLFW_KEY_SPACE:
+        if (!repeat)
+            demo_toggle_play(d);
+        break;
+    case GLFW_KEY_LEFT_BRACKET:
+    case GLFW_KEY_RIGHT_BRACKET:
+        /* Held down, it scrubs on with the key's repeat. */
+        demo_step_time(d, (key == GLFW_KEY_RIGHT_BRACKET ? 1 : -1) * ((mods & GLFW_MOD_SHIFT) ? 10 : 1));
         break;
     case GLFW_KEY_P:
         if (!repeat)
@@ -671,24 +779,23 @@ move_camera(demo *d, float seconds, const scripted_key *script)
     demo_camera_move(&d->cam, forward * metres, right * metres, up * metres);
 }
 
-/* Turns every directional light about world +y: the sun circles at its elevation, and
- * the shadow map, voxels and cones all follow on the next frame (nothing is baked). */
+/* Poses the scene at the clock's time through the session, as render does, with the sun
+ * key's turn on top (demo_anim.h): the light stamp is bumped when the turn changed the lights,
+ * so that passes caching on it (the path tracer) see the move, and the GPU scene gets them;
+ * the shadow map, the voxels and the cones follow on this frame (nothing is baked). */
 static bool
-move_sun(demo *d, double seconds, cg_error *err)
+pose_scene(demo *d, cg_error *err)
 {
-    float angle = (float)(seconds * SUN_DEGREES_PER_SECOND * 3.14159265358979 / 180.0);
-    float c = cosf(angle), s = sinf(angle);
-    bool any = false;
-    for (int i = 0; i < d->s.scene.light_count; i++) {
-        cg_light *l = &d->s.scene.lights[i];
-        if (l->type != CG_LIGHT_DIRECTIONAL)
-            continue;
-        float x = l->direction[0], z = l->direction[2];
-        l->direction[0] = c * x + s * z;
-        l->direction[2] = -s * x + c * z;
-        any = true;
+    cg_scene_changes changes;
+    demo_sun_unturn(&d->sun, &d->s.scene);
+    if (!app_session_set_time(&d->s, demo_clock_time(&d->clock), &changes, err))
+        return false;
+    if (demo_sun_turn(&d->sun, &d->s.scene, changes.lights)) {
+        cg_scene_lights_changed(&d->s.scene);
+        if (d->s.uploaded && !cg_gpu_scene_update_lights(&d->s.gpu, err))
+            return false;
     }
-    return !any || cg_gpu_scene_update_lights(&d->s.gpu, err);
+    return true;
 }
 
 /* ------------------------------------------------------------ frame */
@@ -787,9 +894,14 @@ report_status(demo *d, bool force)
     }
     if (len >= sizeof passes)
         len = sizeof passes - 1;
-    snprintf(d->status, sizeof d->status, "frame %.1f ms | %s ms | GI %.1f MiB | %dx%d | %s",
+    char when[112] = "";
+    if (d->clock.animated) {
+        memcpy(when, " | ", 4);
+        format_time(d, when + 3, sizeof when - 3);
+    }
+    snprintf(d->status, sizeof d->status, "frame %.1f ms | %s ms | GI %.1f MiB | %dx%d | %s%s",
              frame, passes, (double)mem.gi_bytes / (1024.0 * 1024.0), d->s.frame.width,
-             d->s.frame.height, d->shown[d->shown_index]);
+             d->s.frame.height, d->shown[d->shown_index], when);
     printf("%s\n", d->status);
     fflush(stdout);
 
@@ -859,6 +971,15 @@ run(demo *d)
         double now = app_now_ms();
         double seconds = (now - last) * 1e-3;
         last = now;
+        /* A long compile or a stall must not throw the camera, the sun or the animation far. */
+        float step = (float)(seconds < 0.25 ? seconds : 0.25);
+        /* The scene moves on between frames, not before the first (which shows --time); with
+         * --fps by exactly 1/F (frame k at T + k / F). */
+        if (frames_run > 0) {
+            double scene_step = d->o.fps > 0 ? 1.0 / d->o.fps : step;
+            demo_clock_tick(&d->clock, scene_step);
+            demo_sun_advance(&d->sun, scene_step);
+        }
         if (d->recompile) {
             double t0 = app_now_ms();
             if (!apply_changes(d, &err))
@@ -868,11 +989,9 @@ run(demo *d)
             fflush(stdout);
             report_status(d, true);
         }
-        /* A long compile or a stall must not throw the camera or the sun across the scene. */
-        float step = (float)(seconds < 0.25 ? seconds : 0.25);
         move_camera(d, step, script);
-        if (d->sun_moving && !move_sun(d, step, &err))
-            return app_fail(TOOL, "sun", &err);
+        if (!pose_scene(d, &err))
+            return app_fail(TOOL, NULL, &err);
         update_view(d);
 
         d->s.frame.index = (uint64_t)frames_run;
@@ -978,6 +1097,14 @@ demo_main(demo *d)
         goto done;
     }
     d->graph = d->s.graph;
+    /* The lights are settled now (a default sun is one of them): the sun key's base. */
+    double start, end;
+    cg_scene_animation_range(&d->s.scene, &start, &end);
+    demo_clock_init(&d->clock, cg_scene_is_animated(&d->s.scene), start, end, d->o.time, d->o.fps, !d->o.no_play);
+    if (!demo_sun_init(&d->sun, &d->s.scene, &err) || !pose_scene(d, &err)) {
+        code = app_fail(TOOL, NULL, &err);
+        goto done;
+    }
     if (d->o.view && !check_view(d, d->o.view, &err)) {
         code = app_fail(TOOL, NULL, &err);
         goto done;
@@ -1032,14 +1159,20 @@ demo_main(demo *d)
            d->s.frame.width, d->s.frame.height, cg_context_version(d->s.ctx), cg_context_renderer(d->s.ctx),
            d->timing == FG_TIMING_SYNC ? "sync" : d->timing == FG_TIMING_QUERIES ? "queries" : "none");
     printf("keys: WASD/QE fly, drag look, scroll speed, R reset, Tab/Shift+Tab pass, Up/Down param, "
-           "Left/Right value, 1..%d show, L sun, P report, F1 UI, F12 screenshot (Shift: without the UI), "
-           "Esc quit\n", d->shown_count);
+           "Left/Right value, 1..%d show, Space play/pause, [ ] step (Shift: x10), L sun (Shift: back), "
+           "P report, F1 UI, F12 screenshot (Shift: without the UI), Esc quit\n", d->shown_count);
+    if (d->clock.animated) {
+        printf("animation: keys from %g to %g s, %s; ", d->clock.start, d->clock.end,
+               d->o.fps > 0 ? "a fixed step a frame (--fps)" : "in real time");
+        say_time(d);
+    }
     demo_select_first(d->graph, &d->sel);
     print_selection(d);
     code = run(d);
 
 done:
     free(d->all_frame_ms);
+    demo_sun_free(&d->sun);
     /* The window's GL objects go before its context. */
     if (d->view.vao)
         demo_view_destroy(&d->view);

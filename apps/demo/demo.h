@@ -2,7 +2,8 @@
  * (demo_ui.c), and what the panels ask of the main loop: the same actions the keys take.
  *
  * Declares: scripted_key, demo_options, pending_change, demo, demo_select, demo_set_param,
- *           demo_step_param, demo_show, demo_view_resource, demo_frame_median_ms.
+ *           demo_step_param, demo_show, demo_view_resource, demo_toggle_play, demo_step_time,
+ *           demo_seek_time, demo_sun_key, demo_frame_median_ms.
  */
 #ifndef CONEGRAPH_DEMO_H
 #define CONEGRAPH_DEMO_H
@@ -12,6 +13,7 @@
 #include "app_options.h"
 #include "app_session.h"
 #include "cg/fg.h"
+#include "demo_anim.h"
 #include "demo_camera.h"
 #include "demo_params.h"
 #include "demo_view.h"
@@ -29,8 +31,11 @@ typedef struct scripted_key {
 } scripted_key;
 
 typedef struct demo_options {
-    app_options common;         /* scene, graph, size, sets, plugins, timing; frames 0: until the
-                                 * window closes */
+    app_options common;         /* scene, graph, size, camera, sets, plugins, timing; frames 0:
+                                 * until the window closes */
+    double time;                /* --time: seconds into the animation of the first frame */
+    double fps;                 /* --fps: a fixed step of 1/fps a frame; 0: the frame's wall time */
+    bool no_play;               /* --play off: start paused */
     const char *screenshot;     /* the window as shown (F12) */
     const char *image_screenshot; /* the image without the UI (Shift+F12) */
     bool no_ui;                 /* start with the UI hidden (F1 shows it) */
@@ -56,7 +61,8 @@ typedef struct demo {
     fg_timing_mode timing;
     GLuint read_fbo;
 
-    /* Camera: the scene's view until the first move or look. */
+    /* Camera: the session's view (the scene camera or --camera, --from, --look-at, --fov)
+     * until the first move or look. */
     demo_camera cam;
     bool flying;
     float speed, base_speed;    /* metres per second */
@@ -74,7 +80,8 @@ typedef struct demo {
     int shown_count;
     int shown_index;
 
-    bool sun_moving;
+    demo_clock clock;           /* the time the scene is posed at, playing or paused */
+    demo_sun sun;               /* L's turn of the directional lights */
     bool screenshot_requested;  /* F12: the window, UI included */
     bool image_screenshot_requested; /* Shift+F12: the image alone */
     int screenshot_serial;
@@ -118,6 +125,14 @@ void demo_show(demo *d, int index);
 /* Shows `source` in the viewer (marked as an output so that it is kept: a compile follows
  * when it was not one); "" shows none. */
 void demo_view_resource(demo *d, const char *source);
+/* Space: plays or pauses the animation (says so on stdout). */
+void demo_toggle_play(demo *d);
+/* [ and ]: pauses and moves the time by `frames` scrub steps (demo_clock_step). */
+void demo_step_time(demo *d, int frames);
+/* The UI's slider: pauses at t; `announce`: say the time on stdout (when the slider is let go). */
+void demo_seek_time(demo *d, double t, bool announce);
+/* L starts or stops turning the sun; Shift+L (reset) undoes the turn. */
+void demo_sun_key(demo *d, bool reset);
 /* The median of the last frames' times; 0 before the first. */
 double demo_frame_median_ms(const demo *d);
 

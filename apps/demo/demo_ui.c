@@ -85,6 +85,55 @@ passes(demo *d)
     }
 }
 
+/* Play and pause, a frame back and forward, the time as a slider over the animation's keys
+ * (held: the scene follows it; let go: the time is said on stdout), and the sun key's turn. */
+static void
+animation(demo *d)
+{
+    demo_clock *c = &d->clock;
+    if (c->animated) {
+        if (ui_button(c->playing ? "Pause (Space)###play" : "Play (Space)###play"))
+            demo_toggle_play(d);
+        ui_same_line();
+        if (ui_small_button("<"))
+            demo_step_time(d, -1);
+        ui_tooltip("One frame back and pause, as [ (Shift+[: ten frames).");
+        ui_same_line();
+        if (ui_small_button(">"))
+            demo_step_time(d, 1);
+        ui_tooltip("One frame forward and pause, as ] (Shift+]: ten frames).");
+        ui_same_line();
+        ui_text("t = %.3f s", demo_clock_time(c));
+        if (c->end > c->start) {
+            double t = demo_clock_time(c);
+            ui_set_next_item_width(ui_available_width() * 0.7f);
+            if (ui_slider_double("time", &t, c->start, c->end, "%.3f s", false))
+                demo_seek_time(d, t, false);
+            if (ui_last_item_edited())
+                demo_seek_time(d, t, true);
+            ui_tooltip("Scrub the animation (it pauses): the scene is posed at this time, as "
+                       "conegraph render --time poses it.");
+        }
+        if (c->fps > 0)
+            ui_text_disabled("keys %g..%g s, looping; 1/%g s a frame", c->start, c->end, c->fps);
+        else
+            ui_text_disabled("keys %g..%g s, looping; real time", c->start, c->end);
+    } else {
+        ui_text_disabled("no animation");
+    }
+    if (d->sun.any) {
+        if (ui_small_button(d->sun.moving ? "Stop sun (L)###sun" : "Turn sun (L)###sun"))
+            demo_sun_key(d, false);
+        ui_same_line();
+        if (ui_small_button("Back (Shift+L)"))
+            demo_sun_key(d, true);
+        ui_same_line();
+        ui_text_disabled("+%.1f deg", d->sun.angle * 180.0 / M_PI);
+        ui_tooltip("L turns every directional light about world +y at 20 degrees a second, on top of "
+                   "what the animation does; Shift+L puts them back where the scene has them.");
+    }
+}
+
 static void
 shown_and_screenshots(demo *d)
 {
@@ -121,6 +170,8 @@ frame_panel(demo *d, float height)
         ui_text_disabled("%s, timing %s", slash ? slash + 1 : d->s.graph_path,
                          d->timing == FG_TIMING_SYNC ? "sync" : d->timing == FG_TIMING_QUERIES ? "queries" : "none");
         frame_times(d);
+        ui_separator();
+        animation(d);
         ui_separator();
         passes(d);
         ui_separator();

@@ -2,6 +2,7 @@
  *
  *   vct-bench [SCENE] [--graph FILE] [--size WxH] [--warmup N] [--frames N]
  *             [--set pass.param=value]... [--context egl|osmesa] [-o IMAGE.png|.exr]
+ *             [--sky SKY] [--no-default-light]
  *
  * Runs the graph synchronously (glFinish + CPU clock around each pass: FG_TIMING_SYNC, the
  * only timing llvmpipe gets right), discards the warm-up frames (shader JIT), and prints the
@@ -28,11 +29,14 @@ usage(FILE *out)
     fprintf(out,
             "usage: vct-bench [SCENE] [--graph FILE] [--size WxH] [--warmup N] [--frames N]\n"
             "                 [--set pass.param=value]... [--context egl|osmesa] [-o IMAGE]\n"
+            "                 [--sky SKY] [--no-default-light]\n"
             "Per-pass median milliseconds (synchronous timing, after warm-up frames) and the\n"
             "graph's memory report. SCENE defaults to builtin:openworld, the graph to vct.json,\n"
             "the size to 640x360, 2 warm-up and 5 timed frames. -o writes the graph's ldr\n"
-            "(.png) or hdr (.exr) output of the last frame. Exit codes: 0 done, 1 failed while\n"
-            "running, 2 bad usage, scene or graph (found before anything runs).\n");
+            "(.png) or hdr (.exr) output of the last frame. The scene's lighting:\n"
+            APP_LIGHT_USAGE
+            "Exit codes: 0 done, 1 failed while running, 2 bad usage, scene or graph (found\n"
+            "before anything runs).\n");
 }
 
 static int

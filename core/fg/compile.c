@@ -1063,6 +1063,15 @@ fg_pass_cull_reason(const fg_pass *pass)
     return pass->culled ? pass->cull_reason : NULL;
 }
 
+const char *
+fg_pass_input_source(const fg_pass *pass, const char *input)
+{
+    for (int i = 0; i < pass->input_count; i++)
+        if (!strcmp(pass->inputs[i].name, input))
+            return pass->inputs[i].resource >= 0 ? pass->graph->resources[pass->inputs[i].resource].name : NULL;
+    return NULL;
+}
+
 GLbitfield
 fg_pass_barrier_bits(const fg_pass *pass)
 {

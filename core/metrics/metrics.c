@@ -191,6 +191,55 @@ cg_metrics_compute(const cg_image *test, const cg_image *ref, cg_metrics *out, c
 }
 
 bool
+cg_metrics_part(const cg_image *estimate, const cg_image *truth, cg_part_metrics *out, cg_error *err)
+{
+    memset(out, 0, sizeof *out);
+    if (!same_size(estimate, truth, "compare parts", err))
+        return false;
+    out->width = estimate->width;
+    out->height = estimate->height;
+    size_t n = (size_t)estimate->width * (size_t)estimate->height, used = 0;
+    /* se and st are summed alike, so that an all-zero estimate gives se == st exactly (d = -t,
+     * d * d = t * t) and nrmse exactly 1. */
+    double se = 0.0, st = 0.0, lum_e = 0.0, lum_t = 0.0;
+    for (size_t i = 0; i < n; i++) {
+        const float *e = &estimate->rgba[4 * i], *t = &truth->rgba[4 * i];
+        if (!pixel_finite(e) || !pixel_finite(t)) {
+            out->nonfinite_pixels++;
+            continue;
+        }
+        used++;
+        for (int c = 0; c < 3; c++) {
+            double d = (double)e[c] - (double)t[c];
+            se += d * d;
+            st += (double)t[c] * (double)t[c];
+        }
+        lum_e += cg_luminance(e);
+        lum_t += cg_luminance(t);
+    }
+    if (used == 0) {
+        out->energy = out->nrmse = out->rmse = out->rms_truth = NAN;
+        out->mean_luminance_estimate = out->mean_luminance_truth = NAN;
+        return true;
+    }
+    out->rmse = sqrt(se / (3.0 * (double)used));
+    out->rms_truth = sqrt(st / (3.0 * (double)used));
+    out->mean_luminance_estimate = lum_e / (double)used;
+    out->mean_luminance_truth = lum_t / (double)used;
+    if (out->mean_luminance_truth != 0.0)
+        out->energy = out->mean_luminance_estimate / out->mean_luminance_truth;
+    else if (out->mean_luminance_estimate == 0.0)
+        out->energy = 1.0;
+    else
+        out->energy = out->mean_luminance_estimate > 0.0 ? INFINITY : -INFINITY;
+    if (out->rms_truth > 0.0)
+        out->nrmse = out->rmse / out->rms_truth;
+    else
+        out->nrmse = out->rmse == 0.0 ? 0.0 : INFINITY;
+    return true;
+}
+
+bool
 cg_image_subtract(const cg_image *a, const cg_image *b, cg_image *out, cg_error *err)
 {
     memset(out, 0, sizeof *out);

@@ -4,9 +4,10 @@
  * Inputs: position, normal (G-buffer), volume (a mip3d'd voxelize radiance), region
  * (voxelize's block). Without a volume the pass has nothing to do and composite adapts.
  * Outputs
- *   radiance    RGBA16F: rgb = sum_k W_k L_k, the incident radiance integral E_i/pi that
+ *   radiance    RGBA32F: rgb = sum_k W_k L_k, the incident radiance integral E_i/pi that
  *               composite multiplies by the albedo; a = ambient visibility (AO).
- *   specular    RGBA16F (param specular): radiance along the mirror cone, a = its opacity.
+ *   specular    RGBA32F (param specular): radiance along the mirror cone, a = its opacity.
+ *   (fp32, as direct_light's: radiance of any brightness, no clipping at 65504.)
  *   visibility  R16F (param shadow_cone): transmittance of a cone towards one light.
  */
 #include <math.h>
@@ -91,7 +92,7 @@ cone_gather_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
                        fg_pass_name(pass), region->buffer_bytes, sizeof(cg_volume_block));
     if (!position)
         return true;
-    fg_resource_desc out = cgp_image_like(pass, position, GL_RGBA16F);
+    fg_resource_desc out = cgp_image_like(pass, position, GL_RGBA32F);
     fg_declare_output(decl, "radiance", &out, FG_ACCESS_IMAGE_STORE);
     if (fg_param_bool(pass, "specular"))
         fg_declare_output(decl, "specular", &out, FG_ACCESS_IMAGE_STORE);
@@ -143,7 +144,7 @@ cone_gather_execute(fg_pass *pass, cone_gather_state *s, cg_error *err)
         glBindSampler(CG_UNIT_ANISO + (GLuint)d, s->gather.volume_sampler);
     }
     if (s->specular)
-        glBindImageTexture(1, fg_texture(pass, "specular"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+        glBindImageTexture(1, fg_texture(pass, "specular"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     if (s->shadow_cone)
         glBindImageTexture(2, fg_texture(pass, "visibility"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
     cgp_gather_end(pass);

@@ -2,6 +2,11 @@
  * of the scene (Lambertian, DESIGN.md units: shaders/common/lights.glsl), shadowed by the
  * optional shadow map (shaders/common/shadow.glsl) for the light it serves. Point lights
  * and lights without a map are unshadowed.
+ *
+ * Output `radiance` is RGBA32F: a half float clips at 65504 W/sr/m^2 (a white surface under
+ * 2e5 W/m^2; 1e9 W/m^2 gives 3e8) and loses precision below 6e-5 (starlight's 1e-6 W/m^2 lights
+ * a white surface at 3e-7); fp32 holds 1e-38 to 3e38 at full precision for 8 more bytes a pixel
+ * (docs/architecture.md, "Radiance range").
  */
 #include <stdlib.h>
 #include <string.h>
@@ -26,7 +31,7 @@ direct_light_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
     fg_declare_input(decl, "albedo", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, true);
     if (!cgp_declare_shadow_inputs(pass, decl, err))
         return false;
-    fg_resource_desc out = cgp_image_like(pass, position, GL_RGBA16F);
+    fg_resource_desc out = cgp_image_like(pass, position, GL_RGBA32F);
     fg_declare_output(decl, "radiance", &out, FG_ACCESS_IMAGE_STORE);
     return true;
 }
@@ -52,7 +57,7 @@ direct_light_execute(fg_pass *pass, direct_light_state *st, cg_error *err)
     glBindTextureUnit(2, fg_texture(pass, "position"));
     glBindTextureUnit(3, fg_texture(pass, "normal"));
     glBindTextureUnit(4, fg_texture(pass, "albedo"));
-    glBindImageTexture(0, fg_texture(pass, "radiance"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindImageTexture(0, fg_texture(pass, "radiance"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     cgp_dispatch_2d(out->width, out->height);
     glUseProgram(0);
     return true;

@@ -3,13 +3,15 @@
  * Outputs (all the output image's size): depth (GL_DEPTH_COMPONENT32F), position
  * (RGBA32F world position, w = 1 where a surface covers the pixel, 0 on the background),
  * normal (RGBA16F world normal turned towards the camera), albedo (RGBA16F linear
- * Lambertian albedo) and emissive (RGBA16F emitted radiance).
+ * Lambertian albedo) and emissive (RGBA32F emitted radiance).
  *
  * The world position is stored rather than reconstructed from depth: a perspective fp32
  * depth buffer loses ~z^2/near x 6e-8 metres, about half a metre at 1 km with a 10 cm
  * near plane, which shadow lookups and cone origins in an open world cannot afford.
  * Albedo is 16-bit float because 8-bit linear values band in dark albedos (1/255 is 8%
- * of an albedo of 0.05), and the indirect light is multiplied by it.
+ * of an albedo of 0.05), and the indirect light is multiplied by it. Normal and albedo lie in
+ * [-1, 1] and [0, 1], where half floats keep 11 bits; emitted radiance has no such bound (the
+ * sun's disc is 2e7 W/sr/m^2) and goes in fp32, as direct_light's output.
  */
 #include <stdlib.h>
 
@@ -24,7 +26,7 @@ typedef struct gbuffer_state {
 } gbuffer_state;
 
 static const char *const color_outputs[] = { "position", "normal", "albedo", "emissive" };
-static const GLenum color_formats[] = { GL_RGBA32F, GL_RGBA16F, GL_RGBA16F, GL_RGBA16F };
+static const GLenum color_formats[] = { GL_RGBA32F, GL_RGBA16F, GL_RGBA16F, GL_RGBA32F };
 #define COLOR_OUTPUTS 4
 
 static bool

@@ -7,9 +7,13 @@
  *             (shadowed through the optional shadow map) plus emission, a = height, world y.
  *             Texels no height-field mesh covers hold black radiance at the lowest height.
  *   region    std140 block CG_HEIGHTMAP_BLOCK (common/blocks.h) for common/heightmap.glsl:
- *             where the map lies.
+ *             where the map lies and the scale that decodes its radiance.
  *   depth     the depth buffer of the raster (transient working memory, counted).
  * Inputs (optional, together): shadow (depth) and shadow_matrix (buffer) of a shadow_map pass.
+ *
+ * Radiance range: RGBA16F stores radiance / s, s = a bound on the height fields' radiance /
+ * 32768 (sdk/radiance.h), published in the region block: neither 1e9 W/m^2 clips at 65504 nor
+ * 1e-6 W/m^2 sinks into denormals. RGBA32F needs none (s = 1).
  *
  * Height precision: heights are stored as world y, not normalised. RGBA16F keeps 11
  * significant bits: on builtin:openworld (heights up to 30 m) that is 1.6 cm, but 16 m on a
@@ -24,6 +28,7 @@
 
 #include "sdk/blocks.h"
 #include "sdk/pass.h"
+#include "sdk/radiance.h"
 #include "sdk/scene.h"
 #include "sdk/shadow.h"
 #include "cg/fg.h"
@@ -47,6 +52,8 @@ typedef struct heightmap_raster_state {
     GLuint program;
     GLuint fbo;
     cgp_no_shadow no_shadow;
+    /* RGBA16F: per point/spot light, the nearest height-field surface (the radiance bound). */
+    cgp_light_distances light_distances;
 } heightmap_raster_state;
 
 typedef struct heightmap_region {
@@ -92,10 +99,18 @@ heightmap_raster_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
     return true;
 }
 
+static void
+heightmap_raster_cleanup(void *state)
+{
+    heightmap_raster_state *s = state;
+    cgp_light_distances_free(&s->light_distances);
+}
+
 static bool
 heightmap_raster_prepare(fg_pass *pass, heightmap_raster_state *s, cg_error *err)
 {
     (void)pass;
+    cgp_state_on_destroy(s, heightmap_raster_cleanup);
     s->fbo = cgp_framebuffer(s);
     cgp_no_shadow_create(s, &s->no_shadow);
     return cgp_graphics_program(s, "heightmap_raster/raster.vert", NULL, "heightmap_raster/raster.frag", NULL,
@@ -116,10 +131,22 @@ heightmap_raster_execute(fg_pass *pass, heightmap_raster_state *s, cg_error *err
     /* Depth: 0 at the top of the bounds, 1 at the bottom, with 1% slack on each side so
      * that the highest and lowest vertices are not clipped. A flat height field has no
      * extent: the slack is then 1e-6 of its height (well above a float's 6e-8 ulp, so the
-     * uniform `top` stays above it) or 1e-6 m. */
+     * uniform `top` stays above it) or of the map's width, whichever is larger: relative to
+     * the scene, not 1e-6 m. */
     double dy = region.hi[1] - region.lo[1];
-    double slack = fmax(0.01 * dy, 1e-6 * fmax(fabs(region.hi[1]), 1.0));
+    double width = fmax(region.hi[0] - region.lo[0], region.hi[2] - region.lo[2]);
+    double slack = fmax(0.01 * dy, 1e-6 * fmax(fabs(region.hi[1]), width));
     double top = region.hi[1] + slack, range = dy + 2.0 * slack;
+    /* The pre-exposure of a half-float map; radiance is averaged over texels, so a point light
+     * counts as never nearer than half a texel. */
+    double radiance_scale = 1.0;
+    if (desc->format == GL_RGBA16F) {
+        double texel = fmax(region.hi[0] - region.lo[0], region.hi[2] - region.lo[2]) / resolution;
+        double bound = 0.0;
+        if (!cgp_radiance_bound(&s->light_distances, frame->scene, CG_MESHES_HEIGHTFIELD, 0.5 * texel, &bound, err))
+            return false;
+        radiance_scale = cgp_half_float_scale(bound);
+    }
 
     glNamedFramebufferTexture(s->fbo, GL_COLOR_ATTACHMENT0, lightmap, 0);
     glNamedFramebufferTexture(s->fbo, GL_DEPTH_ATTACHMENT, fg_texture(pass, "depth"), 0);
@@ -146,6 +173,7 @@ heightmap_raster_execute(fg_pass *pass, heightmap_raster_state *s, cg_error *err
     glUniform4f(8, (float)region.lo[0], (float)region.lo[2], (float)(1.0 / (region.hi[0] - region.lo[0])),
                 (float)(1.0 / (region.hi[2] - region.lo[2])));
     glUniform2f(9, (float)top, (float)(1.0 / range));
+    glUniform1f(10, (float)radiance_scale);
     cg_gpu_scene_bind_lights(frame->gpu_scene);
     cgp_bind_shadow(pass, &s->no_shadow, 2);
     cg_gpu_scene_draw(frame->gpu_scene, CG_MESHES_HEIGHTFIELD);
@@ -158,6 +186,7 @@ heightmap_raster_execute(fg_pass *pass, heightmap_raster_state *s, cg_error *err
         .origin_texel = {(float)region.lo[0], (float)region.lo[2], (float)((region.hi[0] - region.lo[0]) / resolution),
                          (float)((region.hi[2] - region.lo[2]) / resolution)},
         .info = {(float)resolution, (float)desc->levels, (float)region.lo[1], (float)region.hi[1]},
+        .radiance = {(float)radiance_scale, 0.0f, 0.0f, 0.0f},
     };
     glNamedBufferSubData(fg_buffer(pass, "region"), 0, sizeof block, &block);
     return true;

@@ -13,7 +13,7 @@
  * and its block); lightmap + region2d (mip2d'd heightmap_raster lightmap and its block) and
  * hsat + hsat_info (an hsat pass's table and info; mode pyramid for the horizon's skipping).
  * Each group is optional; with neither lightmap the pass has nothing to do.
- * Output: radiance, RGBA16F: rgb = sum_k W_k L_k (E_i / pi, composite multiplies by the
+ * Output: radiance, RGBA32F: rgb = sum_k W_k L_k (E_i / pi, composite multiplies by the
  * albedo), a = ambient visibility. The same convention as cone_gather.
  */
 #include <math.h>
@@ -172,7 +172,7 @@ hybrid_gather_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
     }
     if (!position)
         return true;
-    fg_resource_desc out = cgp_image_like(pass, position, GL_RGBA16F);
+    fg_resource_desc out = cgp_image_like(pass, position, GL_RGBA32F);
     fg_declare_output(decl, "radiance", &out, FG_ACCESS_IMAGE_STORE);
     return true;
 }

@@ -176,7 +176,7 @@ cgp_gather_begin(const fg_pass *pass, const cgp_gather *g, const void *block, si
     glBindSampler(CG_UNIT_VOLUME, g->volume_sampler);
     glBindTextureUnit(CG_UNIT_POSITION, fg_texture(pass, "position"));
     glBindTextureUnit(CG_UNIT_NORMAL, fg_texture(pass, "normal"));
-    glBindImageTexture(0, fg_texture(pass, "radiance"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindImageTexture(0, fg_texture(pass, "radiance"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
 }
 
 void

@@ -152,9 +152,10 @@ store_view(mat4 view, mat4 proj, bool orthographic, float znear, float zfar, cg_
     b->frustum[3] = zfar;
 }
 
-/* Orthographic projection along the light that just holds the scene bounds. */
+/* Orthographic projection along the light that just holds the scene bounds; its matrix also into
+ * proj_out. */
 static void
-fit_directional(const cg_scene *scene, const cg_light *light, int resolution, cg_shadow_block *b)
+fit_directional(const cg_scene *scene, const cg_light *light, int resolution, cg_shadow_block *b, mat4 proj_out)
 {
     vec3 dir, up, center, eye, extent;
     glm_vec3_normalize_to((float *)light->direction, dir);
@@ -163,6 +164,7 @@ fit_directional(const cg_scene *scene, const cg_light *light, int resolution, cg
     glm_vec3_scale(center, 0.5f, center);
     glm_vec3_sub((float *)scene->bounds_max, (float *)scene->bounds_min, extent);
     float diagonal = glm_vec3_norm(extent);
+    /* Geometry all in one point has no size to follow and nothing to shadow: any radius serves. */
     float radius = diagonal > 0.0f ? 0.5f * diagonal : 1.0f;
     glm_vec3_scale(dir, -radius, eye);
     glm_vec3_add(center, eye, eye);
@@ -177,12 +179,15 @@ fit_directional(const cg_scene *scene, const cg_light *light, int resolution, cg
         glm_vec3_minv(lo, v, lo);
         glm_vec3_maxv(hi, v, hi);
     }
-    /* A margin so that geometry on the bounds is not clipped, nor flat scenes degenerate. */
-    float margin = fmaxf(0.01f * radius, 1e-4f);
+    /* A margin so that geometry on the bounds is not clipped, nor flat scenes degenerate: 1% of
+     * the radius, no floor in metres (a 0.1 mm floor widened the map of a millimetre scene
+     * tenfold, and its texels with it). */
+    float margin = 0.01f * radius;
     float left = lo[0] - margin, right = hi[0] + margin;
     float bottom = lo[1] - margin, top = hi[1] + margin;
     float znear = -hi[2] - margin, zfar = -lo[2] + margin;
     glm_ortho(left, right, bottom, top, znear, zfar, proj);
+    glm_mat4_copy(proj, proj_out);
 
     store_view(view, proj, true, znear, zfar, b);
     glm_vec3_negate_to(dir, b->light);
@@ -191,9 +196,9 @@ fit_directional(const cg_scene *scene, const cg_light *light, int resolution, cg
 }
 
 /* Perspective projection from the spot light covering its outer cone and reaching the
- * farthest corner of the scene bounds. */
+ * farthest corner of the scene bounds; its matrix also into proj_out. */
 static void
-fit_spot(const cg_scene *scene, const cg_light *light, int resolution, cg_shadow_block *b)
+fit_spot(const cg_scene *scene, const cg_light *light, int resolution, cg_shadow_block *b, mat4 proj_out)
 {
     vec3 dir, up, eye, target;
     glm_vec3_normalize_to((float *)light->direction, dir);
@@ -213,6 +218,7 @@ fit_spot(const cg_scene *scene, const cg_light *light, int resolution, cg_shadow
     mat4 view, proj;
     glm_lookat(eye, target, up, view);
     glm_perspective(fov, 1.0f, znear, zfar, proj);
+    glm_mat4_copy(proj, proj_out);
 
     store_view(view, proj, false, znear, zfar, b);
     glm_vec3_copy(eye, b->light);
@@ -234,10 +240,11 @@ shadow_map_execute(fg_pass *pass, shadow_map_state *st, cg_error *err)
 
     cg_shadow_block block;
     memset(&block, 0, sizeof block);
+    mat4 proj;
     if (light->type == CG_LIGHT_DIRECTIONAL)
-        fit_directional(frame->scene, light, resolution, &block);
+        fit_directional(frame->scene, light, resolution, &block, proj);
     else
-        fit_spot(frame->scene, light, resolution, &block);
+        fit_spot(frame->scene, light, resolution, &block, proj);
     block.params[0] = fg_param_float(pass, "bias");
     block.params[1] = fg_param_float(pass, "slope_bias");
     block.params[2] = (float)filter_radius[fg_param_enum(pass, "filter")];
@@ -258,7 +265,9 @@ shadow_map_execute(fg_pass *pass, shadow_map_state *st, cg_error *err)
     const float far_depth = 1.0f;
     glClearNamedFramebufferfv(st->fbo, GL_DEPTH, 0, &far_depth);
     glUseProgram(st->program);
-    glUniformMatrix4fv(8, 1, GL_FALSE, block.view_proj);
+    /* The view and the projection apart, not view_proj (shaders/shadow_map/depth.vert). */
+    glUniformMatrix4fv(8, 1, GL_FALSE, block.view);
+    glUniformMatrix4fv(12, 1, GL_FALSE, (const float *)proj);
     cg_gpu_scene_draw(frame->gpu_scene, CG_MESHES_ALL);
     glUseProgram(0);
     glDisable(GL_DEPTH_CLAMP);

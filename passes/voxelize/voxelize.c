@@ -13,14 +13,13 @@
  *
  * Cleared and rebuilt every frame, so the lightmap follows moving lights and geometry.
  */
-#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
-#include <string.h>
 
 #include "sdk/blocks.h"
 #include "sdk/pass.h"
+#include "sdk/radiance.h"
 #include "sdk/scene.h"
 #include "sdk/shadow.h"
 #include "cg/fg.h"
@@ -79,10 +78,7 @@ typedef struct voxelize_state {
     cgp_no_shadow no_shadow;
     GLenum format;
     /* Nearest-surface distance per point/spot light, recomputed when a light moves. */
-    float *light_positions;
-    double *light_nearest;
-    int light_cache_count;
-    uint64_t light_cache_revision; /* cg_scene.instances_revision the distances were found at */
+    cgp_light_distances light_distances;
 } voxelize_state;
 
 /* Where the volume lies: a cube. */
@@ -159,13 +155,12 @@ voxelize_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
     return true;
 }
 
-/* What the state holds beside its GL objects: the light cache of radiance_bound(). */
+/* What the state holds beside its GL objects: the light cache of cgp_radiance_bound(). */
 static void
 voxelize_cleanup(void *state)
 {
     voxelize_state *s = state;
-    free(s->light_positions);
-    free(s->light_nearest);
+    cgp_light_distances_free(&s->light_distances);
 }
 
 static bool
@@ -185,115 +180,6 @@ voxelize_prepare(fg_pass *pass, voxelize_state *s, cg_error *err)
                                                          "#define FORMAT rgba8\n#define FIND_MAX\n", &s->find_max, err));
 }
 
-/* Squared distance from p to triangle abc (Ericson, Real-Time Collision Detection 5.1.5). */
-static double
-point_triangle_dist2(const double p[3], const double a[3], const double b[3], const double c[3])
-{
-    double ab[3], ac[3], ap[3], q[3];
-    for (int k = 0; k < 3; k++)
-        ab[k] = b[k] - a[k], ac[k] = c[k] - a[k], ap[k] = p[k] - a[k];
-#define DOT(u, v) ((u)[0] * (v)[0] + (u)[1] * (v)[1] + (u)[2] * (v)[2])
-    double d1 = DOT(ab, ap), d2 = DOT(ac, ap);
-    double bp[3], cp[3];
-    for (int k = 0; k < 3; k++)
-        bp[k] = p[k] - b[k], cp[k] = p[k] - c[k];
-    double d3 = DOT(ab, bp), d4 = DOT(ac, bp), d5 = DOT(ab, cp), d6 = DOT(ac, cp);
-    double vc = d1 * d4 - d3 * d2, vb = d5 * d2 - d1 * d6, va = d3 * d6 - d5 * d4;
-#undef DOT
-    if (d1 <= 0 && d2 <= 0) {
-        memcpy(q, a, sizeof q);
-    } else if (d3 >= 0 && d4 <= d3) {
-        memcpy(q, b, sizeof q);
-    } else if (d6 >= 0 && d5 <= d6) {
-        memcpy(q, c, sizeof q);
-    } else if (vc <= 0 && d1 >= 0 && d3 <= 0) {
-        double v = d1 / (d1 - d3);
-        for (int k = 0; k < 3; k++) q[k] = a[k] + v * ab[k];
-    } else if (vb <= 0 && d2 >= 0 && d6 <= 0) {
-        double w = d2 / (d2 - d6);
-        for (int k = 0; k < 3; k++) q[k] = a[k] + w * ac[k];
-    } else if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
-        double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-        for (int k = 0; k < 3; k++) q[k] = b[k] + w * (c[k] - b[k]);
-    } else {
-        double denom = 1.0 / (va + vb + vc);
-        double v = vb * denom, w = vc * denom;
-        for (int k = 0; k < 3; k++) q[k] = a[k] + ab[k] * v + ac[k] * w;
-    }
-    double d2sum = 0;
-    for (int k = 0; k < 3; k++)
-        d2sum += (p[k] - q[k]) * (p[k] - q[k]);
-    return d2sum;
-}
-
-/* Distance from a point light to the nearest voxelized surface. */
-static double
-nearest_surface(const cg_scene *scene, cg_mesh_filter filter, const float light[3])
-{
-    double p[3] = {light[0], light[1], light[2]}, best = DBL_MAX;
-    for (int i = 0; i < scene->instance_count; i++) {
-        const cg_instance *inst = &scene->instances[i];
-        const cg_mesh *mesh = &scene->meshes[inst->mesh];
-        if (!cgp_mesh_passes(mesh->kind, filter))
-            continue;
-        for (uint32_t t = 0; t + 2 < mesh->index_count; t += 3) {
-            double v[3][3];
-            for (int j = 0; j < 3; j++)
-                cgp_transform_point(inst->world, &mesh->positions[3 * mesh->indices[t + j]], v[j]);
-            double d2 = point_triangle_dist2(p, v[0], v[1], v[2]);
-            if (d2 < best)
-                best = d2;
-        }
-    }
-    return sqrt(best);
-}
-
-/* An upper bound on the outgoing radiance of any voxelized surface: the brightest emission
- * plus the brightest albedo lit by every light at once, point and spot lights at their
- * nearest surface (never nearer than half a voxel, the scale at which radiance is averaged). */
-static bool
-radiance_bound(voxelize_state *s, const cg_scene *scene, cg_mesh_filter filter, double voxel,
-               double *bound, cg_error *err)
-{
-    double emission = 0.0, albedo = 0.0;
-    for (int m = 0; m < scene->material_count; m++) {
-        const cg_material *mat = &scene->materials[m];
-        for (int k = 0; k < 3; k++) {
-            emission = fmax(emission, (double)mat->emissive[k] * mat->emissive_strength);
-            albedo = fmax(albedo, mat->base_color[k]);
-        }
-    }
-    if (s->light_cache_count != scene->light_count || s->light_cache_revision != scene->instances_revision) {
-        free(s->light_positions);
-        free(s->light_nearest);
-        s->light_positions = calloc((size_t)scene->light_count * 3 + 1, sizeof(float));
-        s->light_nearest = calloc((size_t)scene->light_count + 1, sizeof(double));
-        if (!s->light_positions || !s->light_nearest)
-            return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "voxelize: light cache");
-        for (int l = 0; l < scene->light_count; l++)
-            s->light_nearest[l] = -1.0;
-        s->light_cache_count = scene->light_count;
-        s->light_cache_revision = scene->instances_revision;
-    }
-    double irradiance = 0.0;
-    for (int l = 0; l < scene->light_count; l++) {
-        const cg_light *light = &scene->lights[l];
-        double e = light->intensity * fmax(light->color[0], fmax(light->color[1], light->color[2]));
-        if (light->type != CG_LIGHT_DIRECTIONAL) {
-            float *cached = &s->light_positions[3 * l];
-            if (s->light_nearest[l] < 0.0 || memcmp(cached, light->position, 3 * sizeof(float)) != 0) {
-                memcpy(cached, light->position, 3 * sizeof(float));
-                s->light_nearest[l] = nearest_surface(scene, filter, light->position);
-            }
-            double d = fmax(s->light_nearest[l], 0.5 * voxel);
-            e /= d * d;
-        }
-        irradiance += e;
-    }
-    *bound = emission + albedo * irradiance / M_PI;
-    return true;
-}
-
 static bool
 voxelize_execute(fg_pass *pass, voxelize_state *s, cg_error *err)
 {
@@ -304,18 +190,18 @@ voxelize_execute(fg_pass *pass, voxelize_state *s, cg_error *err)
     voxel_region region;
     if (!voxelize_region(pass, scene, &region))
         return cg_fail(err, CG_ERR_PASS, "pass '%s': the voxelized meshes vanished since compile", fg_pass_name(pass));
+    /* Radiance is averaged over voxels: a point light is never nearer than half a voxel. */
     double bound = 0.0;
-    if (!radiance_bound(s, scene, filter, region.voxel, &bound, err))
+    if (!cgp_radiance_bound(&s->light_distances, scene, filter, 0.5 * region.voxel, &bound, err))
         return false;
-    /* Fixed point: FRAGMENT_HEADROOM fragments at the bound sum to 2^32. RGBA16F stores
-     * radiance itself (so a dump of the volume reads in scene units) unless the bound nears
-     * the half-float maximum (65504); RGBA8 stores radiance / (the largest radiance in the
-     * volume), found on the GPU by a first resolve dispatch. A scene with no light and no
-     * emission is black. */
+    /* Fixed point: FRAGMENT_HEADROOM fragments at the bound sum to 2^32, so its precision is
+     * bound / 2^22 at any brightness. RGBA16F stores radiance / (bound / 32768) (sdk/radiance.h),
+     * so that neither 1e9 W/m^2 clips at 65504 nor 1e-6 W/m^2 sinks into denormals and zero, and
+     * a scene k times brighter stores the same values; RGBA8 stores radiance / (the largest radiance in
+     * the volume), found on the GPU by a first resolve dispatch. Both publish their scale in the
+     * region block. A scene with no light and no emission is black. */
     double fixed_scale = bound > 0.0 ? 4294967295.0 / (bound * FRAGMENT_HEADROOM) : 1.0;
-    double radiance_scale = 1.0;
-    if (s->format != GL_RGBA8 && bound > 32768.0)
-        radiance_scale = bound / 32768.0;
+    double radiance_scale = s->format != GL_RGBA8 ? cgp_half_float_scale(bound) : 1.0;
 
     GLuint accum = fg_texture(pass, "accumulation");
     GLuint radiance = fg_texture(pass, "radiance");

@@ -70,10 +70,11 @@
     M(vec4, origin_voxel) /* xyz: world position of the minimum corner; w: voxel edge at level 0 */ \
     M(vec4, info)         /* x voxels per edge, y mip levels, z radiance scale (stored x scale = radiance) */
 
-/* Where a 2D lightmap lies (common/heightmap.glsl), a heightmap_raster pass's `region`; 32 bytes. */
+/* Where a 2D lightmap lies (common/heightmap.glsl), a heightmap_raster pass's `region`; 48 bytes. */
 #define CG_HEIGHTMAP_BLOCK(M, A)                                                                  \
     M(vec4, origin_texel) /* xy: world (x, z) of the minimum corner; zw: texel size along x and z */ \
-    M(vec4, info)         /* x texels per edge, y mip levels, z y_min, w y_max */
+    M(vec4, info)         /* x texels per edge, y mip levels, z y_min, w y_max */                 \
+    M(vec4, radiance)     /* x: radiance scale (stored rgb x scale = radiance; 1 for RGBA32F) */
 
 /* An hsat pass's `info` (common/hsat.glsl), std430; 272 bytes. */
 #define CG_HSAT_INFO_BLOCK(M, A)                                                                  \
@@ -134,7 +135,7 @@ typedef float cg_block_mat4[16];    /* column-major, as GLSL reads it */
 
 CG_C_BLOCK(cg_shadow_block, CG_SHADOW_BLOCK, 192);
 CG_C_BLOCK(cg_volume_block, CG_VOLUME_BLOCK, 32);
-CG_C_BLOCK(cg_heightmap_block, CG_HEIGHTMAP_BLOCK, 32);
+CG_C_BLOCK(cg_heightmap_block, CG_HEIGHTMAP_BLOCK, 48);
 CG_C_BLOCK(cg_hsat_info_block, CG_HSAT_INFO_BLOCK, 272);
 CG_C_BLOCK(cg_cone_set_block, CG_CONE_SET_BLOCK, 544);
 CG_C_BLOCK(cg_cone_gather_block, CG_CONE_GATHER_BLOCK, 48);

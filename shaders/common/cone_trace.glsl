@@ -206,8 +206,10 @@ cg_cone_step(sampler3D volume, CgVolume v, CgCone c, vec4 surface, CgConeSample 
     if (surface.w >= 0.0) {
         // A fractional level blends in the next coarser level, whose support is twice as
         // deep: that one must clear the plane, hence the 1 below the bound.
+        // The height in voxels is guarded, not the height in metres: a sample on or below the
+        // plane (height <= 0) gets level 0 through the clamp below, at any scene size.
         float support = 1.5 * (abs(surface.x) + abs(surface.y) + abs(surface.z));
-        lod = min(lod, log2(max(at.height, 1e-30) / (support * v.voxel_size)) - 1.0);
+        lod = min(lod, log2(max(at.height / (support * v.voxel_size), 1e-30)) - 1.0);
     }
     lod = clamp(lod, 0.0, v.levels - 1.0);
     float cell = v.voxel_size * exp2(lod);

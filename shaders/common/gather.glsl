@@ -14,7 +14,9 @@ layout(binding = CG_UNIT_VOLUME) uniform sampler3D cg_gather_volume;
 layout(binding = CG_UNIT_POSITION) uniform sampler2D cg_gather_position;
 layout(binding = CG_UNIT_NORMAL) uniform sampler2D cg_gather_normal;
 
-layout(binding = 0, rgba16f) writeonly uniform image2D cg_gather_radiance;
+// fp32: gathered radiance has the range of the scene's light (no clipping at 65504, no
+// denormals under 6e-5), as direct_light's output.
+layout(binding = 0, rgba32f) writeonly uniform image2D cg_gather_radiance;
 
 // This invocation's pixel; false past the image's edge, where there is nothing to write.
 bool
@@ -25,7 +27,7 @@ cg_gather_pixel(out ivec2 pixel)
 }
 
 // The G-buffer's surface at `pixel`, its unit normal n; false on the background (w = 0) and for
-// a degenerate normal, which gather nothing.
+// a degenerate normal, which gather nothing (the normal is a unit vector: its 1e-12 has no unit).
 bool
 cg_gather_surface(ivec2 pixel, out vec3 position, out vec3 n)
 {

@@ -7,8 +7,9 @@
 //
 // The lightmap covers the height-field meshes' xz bounds [origin, origin + texel * resolution]
 // with resolution x resolution texels (texel row j at z = origin.y + (j + 0.5) texel.y);
-// rgb = outgoing diffuse radiance, a = height as world y (not normalised: a fp32 texel keeps
-// a centimetre at 100 km; [y_min, y_max] bounds every stored height).
+// rgb = outgoing diffuse radiance / radiance_scale (1 for RGBA32F; for RGBA16F a pre-exposure,
+// a radiance bound / 32768, sdk/radiance.h), a = height as world y (not normalised: a fp32 texel keeps a
+// centimetre at 100 km; [y_min, y_max] bounds every stored height).
 #ifndef CG_COMMON_HEIGHTMAP_GLSL
 #define CG_COMMON_HEIGHTMAP_GLSL
 
@@ -20,6 +21,7 @@ struct CgHeightmap {
     float resolution;   // texels per edge at level 0
     float levels;       // mip levels present
     float y_min, y_max; // range of the heights stored (the meshes' y bounds)
+    float radiance_scale; // stored rgb x radiance_scale = radiance
 };
 
 CG_UNIFORM_BLOCK(CgHeightmapBlock, cg_heightmap_block, CG_BINDING_HEIGHTMAP, CG_HEIGHTMAP_BLOCK);
@@ -28,7 +30,7 @@ CgHeightmap
 cg_heightmap()
 {
     vec4 a = cg_heightmap_block.origin_texel, b = cg_heightmap_block.info;
-    return CgHeightmap(a.xy, a.zw, b.x, b.y, b.z, b.w);
+    return CgHeightmap(a.xy, a.zw, b.x, b.y, b.z, b.w, cg_heightmap_block.radiance.x);
 }
 
 // Hybrid eq. 9 for the 2D lightmap: a world position's normalised map coordinates

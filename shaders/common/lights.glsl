@@ -53,7 +53,16 @@ cg_light_sample(CgLight light, vec3 position)
         return s;
     }
     vec3 d = light.position_type.xyz - position;
-    float dist2 = max(dot(d, d), 1e-12);
+    float dist2 = dot(d, d);
+    // A point at the light itself (or so near that d^2 underflows) receives nothing, as in the
+    // path tracer: I / d^2 has no finite value there. No floor in square metres: 1e-12 m^2 dimmed
+    // every surface of a micrometre scene (docs/architecture.md, scale-free numerics).
+    if (!(dist2 > 0.0)) {
+        s.to_light = vec3(0.0);
+        s.distance = 0.0;
+        s.irradiance = vec3(0.0);
+        return s;
+    }
     s.distance = sqrt(dist2);
     s.to_light = d / s.distance;
     float attenuation = 1.0 / dist2;

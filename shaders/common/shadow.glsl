@@ -8,7 +8,8 @@
 //   texel * (constant + slope * min(tan(theta), 10))
 // where texel is the world size of one shadow-map texel at the receiver and theta the
 // angle between the normal and the light: scale-free, so the same defaults work for a
-// 1 m box and a 2 km terrain.
+// 1 m box and a 2 km terrain. The other constants below guard unit vectors and angles
+// (cosines, a normal's z, a ray direction whose z is -1), never lengths.
 #ifndef CG_SHADOW_GLSL
 #define CG_SHADOW_GLSL
 

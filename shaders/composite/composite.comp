@@ -59,6 +59,8 @@ main()
         radiance += texelFetch(emissive, pixel, 0).rgb;
     imageStore(hdr, pixel, vec4(radiance, 1.0));
 
-    vec3 mapped = tonemap_color(max(radiance, vec3(0.0)) * exposure_scale);
+    // Capped where every operator has long saturated, so that c^2 in the ACES fit cannot
+    // overflow to inf / inf = NaN for radiance above 1.8e19 (or a high exposure).
+    vec3 mapped = tonemap_color(min(max(radiance, vec3(0.0)) * exposure_scale, vec3(1e18)));
     imageStore(ldr, pixel, vec4(srgb_encode(mapped.r), srgb_encode(mapped.g), srgb_encode(mapped.b), 1.0));
 }

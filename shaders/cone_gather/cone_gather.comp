@@ -15,7 +15,7 @@
 #include "common/lights.glsl"
 
 #ifdef SPECULAR
-layout(binding = 1, rgba16f) writeonly uniform image2D u_specular;
+layout(binding = 1, rgba32f) writeonly uniform image2D u_specular;
 #endif
 #ifdef SHADOW_CONE
 layout(binding = 2, r16f) writeonly uniform image2D u_visibility;

@@ -11,7 +11,8 @@ layout(binding = 3) uniform sampler2D gbuffer_normal;
 layout(binding = 4) uniform sampler2D gbuffer_albedo;
 layout(binding = 5) uniform sampler2D shadow_map;
 
-layout(binding = 0, rgba16f) uniform writeonly image2D radiance;
+// fp32: radiance from starlight to sunlit snow without clipping (direct_light.c).
+layout(binding = 0, rgba32f) uniform writeonly image2D radiance;
 
 void
 main()

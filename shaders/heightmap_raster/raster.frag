@@ -13,6 +13,8 @@ layout(location = 1) in vec3 vs_normal;
 layout(location = 2) in vec2 vs_texcoord;
 
 layout(binding = 2) uniform sampler2D u_shadow_map;
+// Stored rgb = radiance / u_radiance_scale (1 for RGBA32F; heightmap_raster.c).
+layout(location = 10) uniform float u_radiance_scale;
 
 layout(location = 0) out vec4 out_texel;
 
@@ -30,5 +32,5 @@ main()
         float visibility = cg_shadow_visibility(u_shadow_map, int(i), vs_world, n);
         radiance += visibility * cg_lambert_radiance(albedo, n, s);
     }
-    out_texel = vec4(max(radiance, vec3(0.0)), vs_world.y);
+    out_texel = vec4(max(radiance, vec3(0.0)) / u_radiance_scale, vs_world.y);
 }

@@ -205,7 +205,8 @@ morphology_search(CgHeightmap m, vec3 dir, CgFittingCube cube, float lod, vec3 p
             weight_sum += wi;
         }
     }
-    s.radiance = weight_sum > 0.0 ? s.radiance / weight_sum : vec3(0.0);
+    // The lightmap's pre-exposure (common/heightmap.glsl): stored rgb x radiance_scale = radiance.
+    s.radiance = weight_sum > 0.0 ? m.radiance_scale * s.radiance / weight_sum : vec3(0.0);
     return s;
 }
 
@@ -216,7 +217,7 @@ centre_sample(CgHeightmap m, CgFittingCube cube, float lod)
     vec4 t = textureLod(u_lightmap, cg_heightmap_uv(m, cube.centre.xz), lod);
     float y0 = cube.centre.y - 0.5 * cube.side;
     float column = clamp(t.a - y0, 0.0, cube.side);
-    return Search(t.rgb, cube.side * cube.side * column, t.a > y0);
+    return Search(m.radiance_scale * t.rgb, cube.side * cube.side * column, t.a > y0);
 }
 
 // One cone by the paper's steps (see the top of the file); `origin` already offset along the
@@ -288,7 +289,7 @@ trace_paper(vec3 origin, vec3 dir, float tan_half, float t_start, float t_max)
             if (range.x > range.y || c_lo.y > range.y) {
                 in2 = false;
             } else if (abandon && c_hi.y < range.x) {
-                vec3 radiance = textureLod(u_lightmap, cg_heightmap_uv(m, cube.centre.xz), lod2).rgb;
+                vec3 radiance = m.radiance_scale * textureLod(u_lightmap, cg_heightmap_uv(m, cube.centre.xz), lod2).rgb;
                 acc.rgb += (1.0 - acc.a) * radiance;
                 acc.a = 1.0;
                 break;
@@ -575,7 +576,7 @@ trace_horizon(vec3 p, vec3 origin, vec3 dir, float tan_half, float t_start, floa
                         float share = cell_below(cell, elevation);
                         if (share > covered) {
                             float w = min(share - covered, 1.0 - acc.a);
-                            acc.rgb += w * texel.rgb;
+                            acc.rgb += w * m.radiance_scale * texel.rgb;
                             acc.a += w;
                             covered = share;
                         }
@@ -591,7 +592,7 @@ trace_horizon(vec3 p, vec3 origin, vec3 dir, float tan_half, float t_start, floa
                         float buried = disc_below(clamp((texel.a - x.y) / across, -1.0, 1.0));
                         if (buried > covered) {
                             float w = min(buried - covered, 1.0 - acc.a);
-                            acc.rgb += w * texel.rgb;
+                            acc.rgb += w * m.radiance_scale * texel.rgb;
                             acc.a += w;
                             covered = buried;
                         }

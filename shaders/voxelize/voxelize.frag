@@ -24,6 +24,10 @@ layout(location = 4) flat in vec3 gs_tri_b;
 layout(location = 5) flat in vec3 gs_tri_c;
 layout(location = 6) flat in int gs_axis;
 
+// Voxels: how far off a face a triangle still counts as on it (float rounding of voxel
+// coordinates up to the resolution, 512 x 6e-8 = 3e-5, stays below it).
+#define FACE_TOLERANCE 1e-4
+
 layout(location = 9) uniform int u_resolution;
 layout(location = 10) uniform float u_fixed_scale;
 layout(location = 12) uniform bool u_conservative;
@@ -67,8 +71,13 @@ main()
     vec2 centre = vec2(column) + 0.5;
     float z = a.z - (n.x * (centre.x - a.x) + n.y * (centre.y - a.y)) / n.z;
     float spread = u_conservative ? 0.5 * (abs(n.x) + abs(n.y)) / abs(n.z) : 0.0;
-    float z_lo = max(z - spread, min(a.z, min(b.z, c.z)));
-    float z_hi = min(z + spread, max(a.z, max(b.z, c.z)));
+    // Conservative: widened by the overlap test's tolerance, so that a triangle on a voxel face
+    // (z on an integer) reaches the voxels of both sides whatever the rounding of z; without it,
+    // which side a wall landed on followed the last bit of (world - origin) / voxel, and with it
+    // the scale of the scene (a furnace's walls lie on faces: 0.2% of its mean luminance).
+    float tolerance = u_conservative ? FACE_TOLERANCE : 0.0;
+    float z_lo = max(z - spread, min(a.z, min(b.z, c.z))) - tolerance;
+    float z_hi = min(z + spread, max(a.z, max(b.z, c.z))) + tolerance;
     int k_lo = max(int(floor(z_lo)), 0);
     int k_hi = min(int(floor(z_hi)), u_resolution - 1);
     if (k_lo > k_hi)
@@ -79,7 +88,7 @@ main()
     int slab = u_resolution;
     // A hair over half a voxel: a triangle lying exactly on a voxel face counts for both
     // voxels, whatever the rounding.
-    const vec3 half_voxel = vec3(0.5 + 1e-4);
+    const vec3 half_voxel = vec3(0.5 + FACE_TOLERANCE);
     for (int k = k_lo; k <= k_hi; k++) {
         ivec3 cell = ivec3(column, k);
         if (u_conservative && !tribox_overlap(vec3(cell) + 0.5, half_voxel, a, b, c))

@@ -57,6 +57,14 @@ check_tilted_plane(cg_context *ctx, const char *format, double height_tolerance)
     double nn = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]), ll = sqrt(l[0] * l[0] + l[1] * l[1] + l[2] * l[2]);
     double cosine = (n[0] * l[0] + n[1] * l[1] + n[2] * l[2]) / (nn * ll);
     double radiance = 0.1 + 0.5 * 3.0 * cosine / M_PI;
+    /* The region block's radiance scale decodes the stored rgb: 1 for RGBA32F, for RGBA16F a
+     * bound on the radiance / 32768 (sdk/radiance.h), so that no stored value exceeds 32768. */
+    float block[12];
+    glGetNamedBufferSubData(fg_graph_texture(r.graph, "hm.region"), 0, sizeof block, block);
+    if (!strcmp(format, "rgba32f"))
+        assert_float_equal(block[8], 1.0, 0.0);
+    else
+        assert_true(block[8] > 0.0f && radiance / block[8] <= 32768.0);
     double worst_h = 0, worst_l = 0;
     for (int j = 0; j < h; j++)
         for (int i = 0; i < w; i++) {
@@ -64,7 +72,7 @@ check_tilted_plane(cg_context *ctx, const char *format, double height_tolerance)
             double x = -4.0 + (i + 0.5) * 8.0 / w, z = -4.0 + (j + 0.5) * 8.0 / h;
             worst_h = fmax(worst_h, fabs(t[3] - tilted(x, z, NULL)));
             for (int k = 0; k < 3; k++)
-                worst_l = fmax(worst_l, fabs(t[k] - radiance) / radiance);
+                worst_l = fmax(worst_l, fabs(t[k] * block[8] - radiance) / radiance);
         }
     printf("# heightmap %s: tilted plane, worst height error %.3g m, worst radiance error %.3g (relative)\n",
            format, worst_h, worst_l);

@@ -16,37 +16,6 @@
 #include "cg/scene.h"
 #include "test_support.h"
 
-/* Scales a whole scene about the origin by k: geometry, cameras (position, clip planes,
- * orthographic extents), light positions, and the intensity of point and spot lights by k^2
- * so that E = I / d^2 stays the same. Directional irradiance and emitted radiance do not
- * depend on size, so the image must not either. */
-static void
-scale_scene(cg_scene *s, double k)
-{
-    for (int i = 0; i < s->instance_count; i++)
-        for (int c = 0; c < 4; c++)
-            for (int r = 0; r < 3; r++)
-                s->instances[i].world[c * 4 + r] = (float)(s->instances[i].world[c * 4 + r] * k);
-    for (int i = 0; i < s->light_count; i++) {
-        cg_light *l = &s->lights[i];
-        for (int c = 0; c < 3; c++)
-            l->position[c] = (float)(l->position[c] * k);
-        l->range = (float)(l->range * k);
-        if (l->type != CG_LIGHT_DIRECTIONAL)
-            l->intensity = (float)(l->intensity * k * k);
-    }
-    for (int i = 0; i < s->camera_count; i++) {
-        cg_camera *cam = &s->cameras[i];
-        for (int r = 0; r < 3; r++)
-            cam->world[12 + r] = (float)(cam->world[12 + r] * k);
-        cam->znear = (float)(cam->znear * k);
-        cam->zfar = (float)(cam->zfar * k);
-        cam->xmag = (float)(cam->xmag * k);
-        cam->ymag = (float)(cam->ymag * k);
-    }
-    cg_scene_compute_bounds(s);
-}
-
 static float *
 render_scene(const cg_scene *scene, int w, int h, const pt_settings *st)
 {
@@ -170,7 +139,7 @@ cornell_at_every_scale(void **state)
     cg_scene_free(&scene);
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         assert_cg_ok(cg_scene_load("builtin:cornell", &scene, &err), &err);
-        scale_scene(&scene, cases[i].scale);
+        cg_test_scale_scene(&scene, cases[i].scale);
         st.jitter = cases[i].jitter;
         float *img = render_scene(&scene, W, H, &st);
         cg_scene_free(&scene);
@@ -203,7 +172,7 @@ kilometre_scene_through_a_5cm_near_plane(void **state)
     cg_error err = { 0 };
     assert_cg_ok(cg_scene_load("builtin:cornell", &scene, &err), &err);
     float *ref = render_scene(&scene, W, H, &st);
-    scale_scene(&scene, 1024.0);
+    cg_test_scale_scene(&scene, 1024.0);
     scene.cameras[0].znear = 0.05f;
     float *img = render_scene(&scene, W, H, &st);
     cg_scene_free(&scene);

@@ -181,14 +181,15 @@ test_plain_rasterization_leaves_holes(void **state)
     }
 }
 
-/* A white-ish quad facing a directional light of irradiance E: every voxel it occupies
- * holds albedo E / pi + emission (DESIGN.md units), within the fixed-point and half-float
- * rounding (RGBA8: as a fraction of the published scale); voxels away from it stay empty and black. */
+/* A white-ish quad facing a directional light of irradiance E = 3 k W/m^2 and emitting 0.05 k:
+ * every voxel it occupies holds albedo E / pi + emission (DESIGN.md units), within the
+ * fixed-point and half-float rounding (RGBA8: as a fraction of the published scale), at any
+ * brightness k; voxels away from it stay empty and black. */
 static void
-check_lit_surface(cg_context *ctx, const char *format)
+check_lit_surface(cg_context *ctx, const char *format, double k)
 {
     bool rgba8 = strcmp(format, "rgba8") == 0;
-    const float albedo = 0.6f, emission = 0.05f, irradiance = 3.0f;
+    const float albedo = 0.6f, emission = (float)(0.05 * k), irradiance = (float)(3.0 * k);
     vf_scene *s = calloc(1, sizeof *s);
     assert_non_null(s);
     vf_scene_init(s, albedo, emission);
@@ -217,12 +218,16 @@ check_lit_surface(cg_context *ctx, const char *format)
     assert_float_equal(block[3], 1.0 / RES, 1e-7);
     assert_float_equal(block[4], RES, 0.0);
     assert_float_equal(block[5], 6, 0.0);
-    /* RGBA16F holds radiance itself; RGBA8 radiance over the volume's maximum, published as the scale. */
-    if (rgba8)
+    /* RGBA8 holds radiance over the volume's maximum; RGBA16F radiance over the scene's radiance
+     * bound / 32768 (sdk/radiance.h): the brightest emission plus the brightest albedo (material 0,
+     * white) lit by the sun. Each publishes its scale. */
+    if (rgba8) {
         assert_float_equal(block[6], radiance, 1e-5 * radiance);
-    else
-        assert_float_equal(block[6], 1.0, 0.0);
-    const double expected = rgba8 ? 1.0 : radiance;
+    } else {
+        double bound = emission + 1.0 * irradiance / M_PI;
+        assert_float_equal(block[6], bound / 32768.0, 1e-6 * bound / 32768.0);
+    }
+    const double expected = rgba8 ? 1.0 : radiance / block[6];
     const double tolerance = rgba8 ? 0.5 / 255.0 : 2e-3 * expected;
     int occupied = 0;
     for (int z = 0; z < RES; z++)
@@ -256,8 +261,12 @@ static void
 test_lit_surface_radiance(void **state)
 {
     cg_context *ctx = cg_test_gl_context(state);
-    check_lit_surface(ctx, "rgba16f");
-    check_lit_surface(ctx, "rgba8");
+    /* From starlight to 1e9 W/m^2: half floats hold 6.1e-5 to 65504 at full precision. */
+    static const double brightness[] = {1e-7, 1.0, 1e9};
+    for (int i = 0; i < 3; i++) {
+        check_lit_surface(ctx, "rgba16f", brightness[i]);
+        check_lit_surface(ctx, "rgba8", brightness[i]);
+    }
 }
 
 /* The `meshes` filter (the hybrid method voxelizes complex meshes only): over one region,

@@ -161,3 +161,30 @@ cg_test_run_conegraph(const char *args, bool with_stderr, char *out, size_t size
     assert_true(WIFEXITED(status));
     return WEXITSTATUS(status);
 }
+
+void
+cg_test_scale_scene(cg_scene *s, double k)
+{
+    for (int i = 0; i < s->instance_count; i++)
+        for (int c = 0; c < 4; c++)
+            for (int r = 0; r < 3; r++)
+                s->instances[i].world[c * 4 + r] = (float)(s->instances[i].world[c * 4 + r] * k);
+    for (int i = 0; i < s->light_count; i++) {
+        cg_light *l = &s->lights[i];
+        for (int c = 0; c < 3; c++)
+            l->position[c] = (float)(l->position[c] * k);
+        l->range = (float)(l->range * k);
+        if (l->type != CG_LIGHT_DIRECTIONAL)
+            l->intensity = (float)(l->intensity * k * k);
+    }
+    for (int i = 0; i < s->camera_count; i++) {
+        cg_camera *cam = &s->cameras[i];
+        for (int r = 0; r < 3; r++)
+            cam->world[12 + r] = (float)(cam->world[12 + r] * k);
+        cam->znear = (float)(cam->znear * k);
+        cam->zfar = (float)(cam->zfar * k);
+        cam->xmag = (float)(cam->xmag * k);
+        cam->ymag = (float)(cam->ymag * k);
+    }
+    cg_scene_compute_bounds(s);
+}

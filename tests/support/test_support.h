@@ -1,6 +1,6 @@
 /* tests/support/test_support.h: helpers shared by the cmocka tests.
  *
- * Declares: cg_test_tmpdir, cg_test_write_file, assert_cg_ok, assert_cg_status,
+ * Declares: cg_test_tmpdir, cg_test_write_file, cg_test_scale_scene, assert_cg_ok, assert_cg_status,
  *           cg_test_gl_setup, cg_test_gl_teardown, cg_test_gl_context, assert_no_gl_errors,
  *           cg_test_read_texture, cg_test_read_framebuffer, cg_test_skip_program.
  *
@@ -32,6 +32,7 @@
 
 #include "cg/error.h"
 #include "cg/gl.h"
+#include "cg/scene.h"
 
 /* A fresh directory under $TMPDIR for this test process, removed at exit. */
 const char *cg_test_tmpdir(void);
@@ -41,6 +42,12 @@ const char *cg_test_write_file(const char *name, const void *data, size_t size);
 /* Runs $CONEGRAPH_EXE with `args` (shell words) and returns its exit code; its stdout, and
  * its stderr too when with_stderr, goes to out (NUL-terminated, cut at size - 1). */
 int cg_test_run_conegraph(const char *args, bool with_stderr, char *out, size_t size);
+
+/* Scales a whole scene about the origin by k: geometry (instance transforms), cameras (position,
+ * clip planes, orthographic extents), light positions and ranges, and the intensity of point and
+ * spot lights by k^2 so that E = I / d^2 stays the same. Directional irradiance and emitted
+ * radiance do not depend on size, so the image must not either. Recomputes the bounds. */
+void cg_test_scale_scene(cg_scene *s, double k);
 
 /* Fails the test with the error's message when a call did not succeed. */
 #define assert_cg_ok(call, errp)                                                          \

@@ -5,20 +5,35 @@
 
 #include "bench.h"
 
-/* Path tracer time to reach relMSE `e`: log-log interpolation between the measured sample
- * counts, the 1/N law beyond them, at least 1 spp; time proportional to spp at the largest
- * count's cost per sample. */
 double
-bench_pt_time_for_error(const bench_rows *rows, int scene, double e)
+bench_error_value(const bench_row *row, bench_error error)
+{
+    if (error == BENCH_ERROR_GI_NRMSE)
+        return row->split ? row->gi.nrmse * row->gi.nrmse : NAN;
+    return row->full.rel_mse;
+}
+
+const char *
+bench_error_name(bench_error error)
+{
+    return error == BENCH_ERROR_GI_NRMSE ? "GI nRMSE" : "relMSE";
+}
+
+/* Path tracer time to reach error `e`: log-log interpolation between the measured sample
+ * counts, the 1/N law beyond them (both errors are MSE-like: relMSE, nrmse squared), at least
+ * 1 spp; time proportional to spp at the largest count's cost per sample. */
+double
+bench_pt_time_for_error(const bench_rows *rows, int scene, bench_error error, double e)
 {
     double spp[BENCH_MAX_SPP], err[BENCH_MAX_SPP], per_spp = NAN;
     int n = 0, best = 0;
     for (int i = 0; i < rows->count; i++) {
         const bench_row *r = &rows->rows[i];
-        if (r->scene != scene || !r->is_pt || !(r->full.rel_mse > 0.0) || n == BENCH_MAX_SPP)
+        double v = bench_error_value(r, error);
+        if (r->scene != scene || !r->is_pt || !(v > 0.0) || !isfinite(v) || n == BENCH_MAX_SPP)
             continue;
         spp[n] = r->spp;
-        err[n] = r->full.rel_mse;
+        err[n] = v;
         if (r->spp >= best) {
             best = r->spp;
             per_spp = r->ms / r->spp;
@@ -52,20 +67,21 @@ bench_pt_time_for_error(const bench_rows *rows, int scene, double e)
 }
 
 /* A setting is on the front when no other one is at least as good in both error and cost and
- * better in one. */
+ * better in one; one without the error (a graph bench cannot split) is on none. */
 static void
-mark_pareto(bench_rows *rows, int scene)
+mark_pareto(bench_rows *rows, int scene, bench_error error)
 {
     for (int i = 0; i < rows->count; i++) {
         bench_row *p = &rows->rows[i];
         if (p->scene != scene || p->is_pt)
             continue;
-        bool dominated_t = false, dominated_m = false;
+        double pe = bench_error_value(p, error);
+        bool dominated_t = !isfinite(pe), dominated_m = !isfinite(pe);
         for (int j = 0; j < rows->count; j++) {
             const bench_row *q = &rows->rows[j];
-            if (j == i || q->scene != scene || q->is_pt)
+            double qe = bench_error_value(q, error);
+            if (j == i || q->scene != scene || q->is_pt || !isfinite(qe))
                 continue;
-            double pe = p->full.rel_mse, qe = q->full.rel_mse;
             if (q->ms <= p->ms && qe <= pe && (q->ms < p->ms || qe < pe))
                 dominated_t = true;
             if (q->gi_bytes <= p->gi_bytes && qe <= pe && (q->gi_bytes < p->gi_bytes || qe < pe))
@@ -77,14 +93,14 @@ mark_pareto(bench_rows *rows, int scene)
 }
 
 void
-bench_analyse(bench_rows *rows, int scene)
+bench_analyse(const bench_config *c, bench_rows *rows, int scene)
 {
     for (int i = 0; i < rows->count; i++) {
         bench_row *r = &rows->rows[i];
         if (r->scene != scene || r->is_pt)
             continue;
-        r->pt_equal_ms = bench_pt_time_for_error(rows, scene, r->full.rel_mse);
+        r->pt_equal_ms = bench_pt_time_for_error(rows, scene, c->error, bench_error_value(r, c->error));
         r->speedup = r->pt_equal_ms / r->ms;
     }
-    mark_pareto(rows, scene);
+    mark_pareto(rows, scene, c->error);
 }

@@ -7,16 +7,26 @@
  *                flags and sweep file into a config, its runs, and every run compiled (without
  *                GL) on every scene before anything renders or any file is made;
  *   reference.c  bench_reference, bench_path_tracer, bench_hash_text: the path-traced reference
- *                (cached), its direct part, and the path tracer timed at each sample count
- *                (cg/pt_render.h);
- *   measure.c    bench_measure_run: one run on one scene through the app session: timings,
- *                GI memory, errors against the reference;
- *   analysis.c   bench_analyse: the equal-error speed-up over the path tracer and the Pareto fronts;
+ *                and its parts (cached), the truths made of them, and the path tracer timed at
+ *                each sample count (cg/pt_render.h);
+ *   measure.c    bench_graph_split, bench_measure_run: where a graph's own direct image is, and
+ *                one run on one scene through the app session: timings, GI memory, errors
+ *                against the reference (full image, GI part, direct part);
+ *   analysis.c   bench_analyse, bench_error_value: the equal-error speed-up over the path tracer
+ *                and the Pareto fronts, by the error --error chooses;
  *   write.c      bench_write_tables, bench_write_plots, bench_write_run_images,
  *                bench_write_reference_image, bench_slug: CSV, Markdown, PNG plots and images;
  *   shard.c      bench_in_shard, bench_scene_in_shard, bench_shard_run_count, bench_fingerprint,
  *                bench_write_json, bench_merge: --shard K/N (a job array's share of the work),
  *                bench.json (every row at full precision) and --merge of shards' bench.json.
+ *
+ * The parts of an image (docs/reference.md, "The benchmark"): a graph's own direct image is what
+ * its final composite outputs without its `indirect` input (`direct` + `emissive`), read back
+ * from the same frame; its GI part is its image minus that. The reference's parts come from
+ * the same trace (pt_render_parts): the truth of the direct image is the emitted and
+ * direct-punctual parts (what the raster direct pass and the G-buffer's emission stand for),
+ * the truth of the GI part is the reference minus them (the bounces, and the once-reflected
+ * light of emitters and the sky, which reach a raster graph through its cones).
  *
  * Units of work, for sharding: per scene, the path tracer's timings, then each run, numbered
  * scene by scene; shard K of N takes the units whose number is K-1 modulo N (so consecutive
@@ -52,6 +62,12 @@ typedef struct bench_vary {
     int count;
 } bench_vary;
 
+/* The error the plots, the Pareto fronts and the equal-error speed-up judge by (--error). */
+typedef enum bench_error {
+    BENCH_ERROR_RELMSE,                     /* full image relMSE */
+    BENCH_ERROR_GI_NRMSE,                   /* nrmse of the GI part */
+} bench_error;
+
 typedef struct bench_setting {
     char graph[BENCH_TEXT];
     char sets[BENCH_MAX_SETS][BENCH_TEXT];  /* pass.param=value, fixed for this setting */
@@ -78,6 +94,7 @@ typedef struct bench_config {
     char cache_dir[BENCH_TEXT];
     cg_context_backend backend;
     bool images;
+    bench_error error;                      /* --error; analysis only, not in the fingerprint */
     int shard, shard_count;                 /* --shard K/N, K from 1; 1/1 without */
     const char *merge[BENCH_MAX_SHARDS];    /* --merge DIR...: shards' output directories */
     int merge_count;
@@ -99,8 +116,26 @@ typedef struct bench_scene {
                                              * graph, context */
     pt_scene *pts;
     double bvh_ms;                          /* NAN until measured (a shard may skip the scene) */
-    cg_image ref, ref_direct, ref_indirect;
+    cg_image ref;
+    cg_image ref_parts[PT_PART_COUNT];      /* pt_render_parts of the same trace */
+    /* The reference's light reflected at most once (emitted + the three direct parts) and the
+     * rest: the old indirect columns, which take ref_direct from the setting's image too. */
+    cg_image ref_direct, ref_indirect;
+    /* The truths of a graph's parts: emitted + direct_punctual, and ref minus that. */
+    cg_image truth_direct, truth_gi;
+    /* Mean luminance of the reference and of each part (NAN until known): the table's line on
+     * what the truths hold; carried by bench.json for --merge. */
+    double ref_luminance, part_luminance[PT_PART_COUNT];
 } bench_scene;
+
+/* Where a graph's own direct image is read from: the composite that writes its image, its
+ * `direct` and `emissive` inputs. */
+typedef struct bench_split {
+    bool ok;                                /* false: the image is not a composite's hdr */
+    char direct[BENCH_TEXT];                /* "pass.output" */
+    char emissive[BENCH_TEXT];              /* "" when the composite has none */
+    char why[512];                          /* when !ok: what the image is */
+} bench_split;
 
 typedef struct bench_row {
     int scene;
@@ -116,8 +151,11 @@ typedef struct bench_row {
     char pass_ms[1024];
     double ms;              /* median over frames of the sum of the passes' times, or path tracer wall time */
     size_t gi_bytes, peak_bytes;
-    cg_metrics full, indirect;
-    double pt_equal_ms;     /* path tracer time at the same relMSE (estimated) */
+    cg_metrics full, indirect;      /* indirect: TEST - REF_DIRECT against REF - REF_DIRECT */
+    bool split;                     /* gi and direct measured (false: NAN) */
+    cg_part_metrics gi;             /* TEST - its own direct image against truth_gi */
+    cg_part_metrics direct;         /* its own direct image against truth_direct */
+    double pt_equal_ms;     /* path tracer time at the same error (estimated; --error) */
     double speedup;
     bool pareto_time, pareto_memory;
 } bench_row;
@@ -145,9 +183,11 @@ int bench_validate(const bench_config *c, const bench_run *runs, int run_count, 
 
 /* reference.c -------------------------------------------------------------------------------- */
 
-/* The BVH, the reference, its direct part (0 bounces) and their difference (the indirect part). */
+/* The BVH, the reference and its parts (from the cache, else one trace written to it), and
+ * what bench_scene derives from them. */
 bool bench_reference(const bench_config *c, bench_scene *bs, cg_error *err);
-/* The path tracer at each --pt-spp, timed, compared with the reference: one row each. */
+/* The path tracer at each --pt-spp, timed, compared with the reference (its own direct image:
+ * its emitted and direct-punctual parts, from the same trace): one row each. */
 bool bench_path_tracer(const bench_config *c, bench_scene *bs, int scene_index, bench_rows *rows, cg_error *err);
 
 /* FNV-1a of a text: cache keys, the sweep's fingerprint. */
@@ -157,8 +197,13 @@ uint64_t bench_hash_text(const char *text);
 
 /* A new row at the end of rows (zeroed; speed-up fields NAN), or NULL when out of memory. */
 bench_row *bench_row_add(bench_rows *rows, cg_error *err);
-/* Metrics of `test` against the reference: full image, and the indirect part. */
-bool bench_measure_errors(const bench_scene *bs, const cg_image *test, bench_row *row, cg_error *err);
+/* Metrics of `test` against the reference: full image, the indirect part (the reference's
+ * direct part taken from both), and, when `test_direct` (its own direct image) is not NULL,
+ * its GI part and its direct part against their truths (else row->split is false). */
+bool bench_measure_errors(const bench_scene *bs, const cg_image *test, const cg_image *test_direct, bench_row *row,
+                          cg_error *err);
+/* Where the loaded graph's own direct image is, from its last compile (check or compile). */
+void bench_graph_split(const app_session *s, bench_split *out);
 /* Runs `run` on the scene's session (its GL started): one row; with --images, its image and
  * error map are written. */
 bool bench_measure_run(const bench_config *c, bench_scene *bs, int scene_index, const bench_run *run,
@@ -166,11 +211,17 @@ bool bench_measure_run(const bench_config *c, bench_scene *bs, int scene_index, 
 
 /* analysis.c --------------------------------------------------------------------------------- */
 
-/* Fills pt_equal_ms, speedup and the Pareto flags of the scene's graph rows. */
-void bench_analyse(bench_rows *rows, int scene);
-/* Path tracer time to reach relMSE `e` on the scene: log-log interpolation between the measured
- * sample counts, the 1/N law beyond them, at least 1 spp. NAN without path tracer rows. */
-double bench_pt_time_for_error(const bench_rows *rows, int scene, double e);
+/* The row's error by `error`, as a quantity that falls as 1/N with a path tracer's samples:
+ * relMSE, or the GI part's nrmse squared. NAN when the row has none. */
+double bench_error_value(const bench_row *row, bench_error error);
+/* "relMSE", "GI nRMSE": for titles and tables. */
+const char *bench_error_name(bench_error error);
+/* Fills pt_equal_ms, speedup and the Pareto flags of the scene's graph rows, by c->error. */
+void bench_analyse(const bench_config *c, bench_rows *rows, int scene);
+/* Path tracer time to reach error `e` (a bench_error_value) on the scene: log-log interpolation
+ * between the measured sample counts, the 1/N law beyond them, at least 1 spp. NAN without
+ * path tracer rows. */
+double bench_pt_time_for_error(const bench_rows *rows, int scene, bench_error error, double e);
 
 /* write.c ------------------------------------------------------------------------------------ */
 
@@ -179,7 +230,7 @@ void bench_slug(const char *text, char *out, size_t size);
 /* OUT/bench.csv and OUT/bench.md (atomically); the Markdown tables also to stdout. */
 bool bench_write_tables(const bench_config *c, const bench_rows *rows, const bench_scene *scenes,
                         int scene_count, cg_error *err);
-/* OUT/SCENE-time.png and OUT/SCENE-memory.png. */
+/* OUT/SCENE-time.png and OUT/SCENE-memory.png: the error --error chooses against time and memory. */
 bool bench_write_plots(const bench_config *c, const bench_rows *rows, const bench_scene *scenes, int scene,
                        cg_error *err);
 /* OUT/SCENE-reference.png. */

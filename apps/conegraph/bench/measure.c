@@ -28,14 +28,81 @@ bench_row_add(bench_rows *rows, cg_error *err)
 }
 
 bool
-bench_measure_errors(const bench_scene *bs, const cg_image *test, bench_row *row, cg_error *err)
+bench_measure_errors(const bench_scene *bs, const cg_image *test, const cg_image *test_direct, bench_row *row,
+                     cg_error *err)
 {
-    cg_image ind = { 0 };
+    cg_image ind = { 0 }, gi = { 0 };
     if (!cg_metrics_compute(test, &bs->ref, &row->full, err))
         return false;
     bool ok = cg_image_subtract(test, &bs->ref_direct, &ind, err) &&
               cg_metrics_compute(&ind, &bs->ref_indirect, &row->indirect, err);
+    row->split = test_direct != NULL;
+    if (ok && test_direct)
+        ok = cg_image_subtract(test, test_direct, &gi, err) && cg_metrics_part(&gi, &bs->truth_gi, &row->gi, err) &&
+             cg_metrics_part(test_direct, &bs->truth_direct, &row->direct, err);
+    if (!row->split) {
+        row->gi = row->direct = (cg_part_metrics){ .energy = NAN, .nrmse = NAN, .rmse = NAN, .rms_truth = NAN,
+                                                   .mean_luminance_estimate = NAN, .mean_luminance_truth = NAN };
+    }
     cg_image_free(&ind);
+    cg_image_free(&gi);
+    return ok;
+}
+
+/* The pass named by the part of `source` ("final.hdr") before its dot. */
+static const fg_pass *
+writer_of(const fg_graph *graph, const char *source)
+{
+    char name[BENCH_TEXT];
+    snprintf(name, sizeof name, "%.*s", (int)strcspn(source, "."), source);
+    return fg_graph_find_pass(graph, name);
+}
+
+void
+bench_graph_split(const app_session *s, bench_split *out)
+{
+    memset(out, 0, sizeof *out);
+    const char *image = s->image_source;
+    const fg_pass *final = image ? writer_of(s->graph, image) : NULL;
+    const char *dot = image ? strrchr(image, '.') : NULL;
+    if (!final || strcmp(fg_pass_type_of(final)->name, "composite") || !dot || strcmp(dot + 1, "hdr")) {
+        snprintf(out->why, sizeof out->why, "its image %s is not the hdr output of a composite pass",
+                 image ? image : "(none)");
+        return;
+    }
+    const char *direct = fg_pass_input_source(final, "direct");
+    const char *emissive = fg_pass_input_source(final, "emissive");
+    if (!direct) {
+        snprintf(out->why, sizeof out->why, "its composite '%s' has no direct input", fg_pass_name(final));
+        return;
+    }
+    out->ok = true;
+    snprintf(out->direct, sizeof out->direct, "%s", direct);
+    snprintf(out->emissive, sizeof out->emissive, "%s", emissive ? emissive : "");
+}
+
+/* The graph's own direct image: composite's direct + emissive, added in float as its shader
+ * adds them (the GI term between them is left out), so that for a graph without GI the image
+ * minus this is exactly 0. */
+static bool
+read_direct_image(const app_session *s, const bench_split *split, cg_image *out, cg_error *err)
+{
+    cg_image emissive = { 0 };
+    if (!app_session_read_image(s, split->direct, false, out, err))
+        return false;
+    if (!split->emissive[0])
+        return true;
+    bool ok = app_session_read_image(s, split->emissive, false, &emissive, err);
+    if (ok && (emissive.width != out->width || emissive.height != out->height))
+        ok = cg_fail(err, CG_ERR_IMAGE_FORMAT, "%s is %dx%d, %s %dx%d", split->emissive, emissive.width,
+                     emissive.height, split->direct, out->width, out->height);
+    size_t n = ok ? (size_t)out->width * (size_t)out->height : 0;
+    for (size_t i = 0; i < n; i++) {
+        for (int c = 0; c < 3; c++)
+            out->rgba[4 * i + c] += emissive.rgba[4 * i + c];
+        out->rgba[4 * i + 3] = 1.0f;
+    }
+    cg_image_free(&emissive);
     return ok;
 }
 
@@ -69,11 +136,27 @@ bench_measure_run(const bench_config *c, bench_scene *bs, int scene_index, const
     /* Synchronous timing (glFinish and a CPU clock around each pass): right on llvmpipe. */
     app_run_desc frames = { .warmup = c->warmup, .frames = c->frames, .timing = FG_TIMING_SYNC };
     app_frame_stats stats = { 0 };
-    cg_image image = { 0 };
+    cg_image image = { 0 }, direct = { 0 };
     app_session *s = &bs->session;
-    /* Checked before anything ran (bench_validate): the compile with GL adds the context's limits. */
-    if (!app_session_load_graph(s, &graph, err) || !app_session_compile(s, err) ||
-        !app_session_run(s, &frames, &stats, err))
+    bench_split split;
+    fg_memory_report mem;
+    bool added;
+    /* Checked before anything ran (bench_validate). The graph's memory is reported as it compiles
+     * for this frame on its own; then the composite's direct and emissive inputs are kept as
+     * outputs, to be read back after the frame (outputs are never pooled, which may change the
+     * peak), and the graph is compiled again and prepared. */
+    if (!app_session_load_graph(s, &graph, err))
+        return false;
+    if (!fg_graph_compile(s->graph, &s->frame, &s->compile, err)) {
+        app_error_prefix(err, "graph");
+        return false;
+    }
+    fg_graph_memory_report(s->graph, &mem);
+    bench_graph_split(s, &split);
+    if (split.ok && (!app_session_mark_output(s, split.direct, &added, err) ||
+                     (split.emissive[0] && !app_session_mark_output(s, split.emissive, &added, err))))
+        return false;
+    if (!app_session_compile(s, err) || !app_session_run(s, &frames, &stats, err))
         return false;
     bench_row *row = bench_row_add(rows, err);
     bool ok = row != NULL;
@@ -87,17 +170,17 @@ bench_measure_run(const bench_config *c, bench_scene *bs, int scene_index, const
         snprintf(row->label, sizeof row->label, "%s", run->label);
         row->ms = stats.median_pass_sum_ms;
         format_pass_times(s->graph, &stats, row->pass_ms, sizeof row->pass_ms);
-        fg_memory_report mem;
-        fg_graph_memory_report(s->graph, &mem);
         row->gi_bytes = mem.gi_bytes;
         row->peak_bytes = mem.peak_bytes;
         ok = app_session_read_image(s, s->image_source, false, &image, err) &&
-             bench_measure_errors(bs, &image, row, err) &&
+             (!split.ok || read_direct_image(s, &split, &direct, err)) &&
+             bench_measure_errors(bs, &image, split.ok ? &direct : NULL, row, err) &&
              (!c->images || bench_write_run_images(c, bs, row, &image, err));
         if (!ok)
             rows->count--;
     }
     cg_image_free(&image);
+    cg_image_free(&direct);
     app_frame_stats_free(&stats);
     return ok;
 }

@@ -1,5 +1,6 @@
 /* bench: the path-traced reference of each scene (cached on disk) and the path tracer's own
  * error against its sample count, through cg/pt_render.h: see bench.h. */
+#include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <string.h>
@@ -82,7 +83,7 @@ scene_hash(const cg_scene *s)
 }
 
 /* The cache file of one image of the reference for (scene, camera, size, spp, bounces, seed):
- * `part` "full" or "direct". Files are keyed by a hash of all of these, the scene by its
+ * `part` "full" or a pt_part_name. Files are keyed by a hash of all of these, the scene by its
  * contents (lights and sky included), the camera by the view's matrices. */
 static void
 cache_entry(const bench_config *c, const bench_scene *bs, const char *part, char *key, size_t key_size, char *path,
@@ -119,7 +120,7 @@ write_cached(const bench_config *c, const char *path, const char *key, const cg_
     if (!app_make_dirs(c->cache_dir, err) || !cg_image_write(path, img, CG_EXR_FLOAT, err))
         return false;
     char note[4200];
-    snprintf(note, sizeof note, "%s.txt", path);
+    snprintf(note, sizeof note, "%.4095s.txt", path);
     cg_atomic_file f;
     if (!cg_atomic_open(&f, note, err))
         return false;
@@ -127,28 +128,20 @@ write_cached(const bench_config *c, const char *path, const char *key, const cg_
     return cg_atomic_commit(&f, err);
 }
 
-/* The reference and its direct part from one trace: the direct part is the light reflected at
- * most once (emission and sky seen; punctual lights, emitters and the sky reflected once:
- * pt_render_parts), which is what 0 bounces gives in expectation. One trace at the reference's
- * spp: a separate 0-bounce render needs as many samples now that emitters and the sky are
- * sampled (only punctual lights through pixel centres are exact with 1), and its noise would
- * not cancel in REF - REF_DIRECT as the parts' does. */
+/* The reference and its parts from one trace (pt_render_parts): the parts add up to the image,
+ * and their noise is the image's, so that differences of them (the truths) carry no noise of a
+ * second render. */
 static bool
 render_reference(const bench_config *c, bench_scene *bs, cg_error *err)
 {
     fprintf(stderr, "bench: %s: rendering the reference, %dx%d, %d spp, %d bounces\n", bs->source, c->width,
             c->height, c->ref_spp, c->ref_bounces);
-    enum { DIRECT_PARTS = 4 };
-    const pt_part direct_parts[DIRECT_PARTS] = { PT_PART_EMITTED, PT_PART_DIRECT_PUNCTUAL, PT_PART_DIRECT_EMITTERS,
-                                                 PT_PART_DIRECT_SKY };
-    cg_image part_images[DIRECT_PARTS] = { { 0 } };
     float *parts[PT_PART_COUNT] = { 0 };
-    bool ok = cg_image_alloc(&bs->ref, c->width, c->height, err) &&
-              cg_image_alloc(&bs->ref_direct, c->width, c->height, err);
-    for (int k = 0; ok && k < DIRECT_PARTS; k++) {
-        ok = cg_image_alloc(&part_images[k], c->width, c->height, err);
+    bool ok = cg_image_alloc(&bs->ref, c->width, c->height, err);
+    for (int k = 0; ok && k < PT_PART_COUNT; k++) {
+        ok = cg_image_alloc(&bs->ref_parts[k], c->width, c->height, err);
         if (ok)
-            parts[direct_parts[k]] = part_images[k].rgba;
+            parts[k] = bs->ref_parts[k].rgba;
     }
     pt_settings s = pt_settings_default();
     s.spp = c->ref_spp;
@@ -162,18 +155,39 @@ render_reference(const bench_config *c, bench_scene *bs, cg_error *err)
         double ms = app_now_ms() - t0, cpu = app_cpu_ms() - cpu0;
         fprintf(stderr, "bench: reference took %.1f s, %.2f M rays/s (%.2f M per CPU second)\n", ms / 1e3,
                 (double)rays / ms / 1e3, (double)rays / cpu / 1e3);
-        size_t n = (size_t)c->width * (size_t)c->height * 4;
-        for (size_t i = 0; i < n; i++) {
-            float sum = 0.0f;
-            for (int k = 0; k < DIRECT_PARTS; k++)
-                sum += part_images[k].rgba[i];
-            bs->ref_direct.rgba[i] = i % 4 == 3 ? 1.0f : sum;
-        }
     }
-    for (int k = 0; k < DIRECT_PARTS; k++)
-        cg_image_free(&part_images[k]);
     return ok;
 }
+
+/* The sum of some parts into out (allocated), in the order given, alpha 1. */
+static bool
+sum_parts(const cg_image *parts, const pt_part *which, int count, cg_image *out, cg_error *err)
+{
+    if (!cg_image_alloc(out, parts[which[0]].width, parts[which[0]].height, err))
+        return false;
+    size_t n = (size_t)out->width * (size_t)out->height * 4;
+    for (size_t i = 0; i < n; i++) {
+        float sum = 0.0f;
+        for (int k = 0; k < count; k++)
+            sum += parts[which[k]].rgba[i];
+        out->rgba[i] = i % 4 == 3 ? 1.0f : sum;
+    }
+    return true;
+}
+
+static double
+mean_luminance(const cg_image *img)
+{
+    size_t n = (size_t)img->width * (size_t)img->height;
+    double sum = 0.0;
+    for (size_t i = 0; i < n; i++)
+        sum += cg_luminance(&img->rgba[4 * i]);
+    return n ? sum / (double)n : NAN;
+}
+
+/* A graph's direct image stands for the emission it sees and the punctual lights' direct light
+ * (its G-buffer's emission and its raster direct pass). */
+static const pt_part own_direct_parts[2] = { PT_PART_EMITTED, PT_PART_DIRECT_PUNCTUAL };
 
 bool
 bench_reference(const bench_config *c, bench_scene *bs, cg_error *err)
@@ -182,50 +196,74 @@ bench_reference(const bench_config *c, bench_scene *bs, cg_error *err)
     if (!pt_scene_create(&bs->session.scene, &bs->pts, err))
         return false;
     bs->bvh_ms = app_now_ms() - t0;
-    char key[2][2048], path[2][4096];
+    enum { FILES = 1 + PT_PART_COUNT };
+    char key[FILES][2048], path[FILES][4096];
+    cg_image *images[FILES] = { &bs->ref };
     cache_entry(c, bs, "full", key[0], sizeof key[0], path[0], sizeof path[0]);
-    cache_entry(c, bs, "direct", key[1], sizeof key[1], path[1], sizeof path[1]);
-    int full = read_cached(c, path[0], &bs->ref, err);
-    int direct = full == 1 ? read_cached(c, path[1], &bs->ref_direct, err) : 0;
-    if (full < 0 || direct < 0)
-        return false;
-    if (full == 1 && direct == 1) {
-        fprintf(stderr, "bench: %s: reference (%d spp, %d bounces) and its direct part from the cache %s, %s\n",
-                bs->source, c->ref_spp, c->ref_bounces, path[0], path[1]);
-    } else {
-        cg_image_free(&bs->ref);
-        cg_image_free(&bs->ref_direct);
-        if (!render_reference(c, bs, err) || !write_cached(c, path[0], key[0], &bs->ref, err) ||
-            !write_cached(c, path[1], key[1], &bs->ref_direct, err))
-            return false;
+    for (int k = 0; k < PT_PART_COUNT; k++) {
+        cache_entry(c, bs, pt_part_name((pt_part)k), key[1 + k], sizeof key[1 + k], path[1 + k], sizeof path[1 + k]);
+        images[1 + k] = &bs->ref_parts[k];
     }
-    return cg_image_subtract(&bs->ref, &bs->ref_direct, &bs->ref_indirect, err);
+    int found = 1;
+    for (int i = 0; i < FILES && found == 1; i++)
+        found = read_cached(c, path[i], images[i], err);
+    if (found < 0)
+        return false;
+    if (found == 1) {
+        fprintf(stderr, "bench: %s: reference (%d spp, %d bounces) and its parts from the cache %s and beside it\n",
+                bs->source, c->ref_spp, c->ref_bounces, path[0]);
+    } else {
+        for (int i = 0; i < FILES; i++)
+            cg_image_free(images[i]);
+        if (!render_reference(c, bs, err))
+            return false;
+        for (int i = 0; i < FILES; i++)
+            if (!write_cached(c, path[i], key[i], images[i], err))
+                return false;
+    }
+    /* The light reflected at most once: what 0 bounces gives in expectation. */
+    const pt_part once[4] = { PT_PART_EMITTED, PT_PART_DIRECT_PUNCTUAL, PT_PART_DIRECT_EMITTERS, PT_PART_DIRECT_SKY };
+    if (!sum_parts(bs->ref_parts, once, 4, &bs->ref_direct, err) ||
+        !cg_image_subtract(&bs->ref, &bs->ref_direct, &bs->ref_indirect, err) ||
+        !sum_parts(bs->ref_parts, own_direct_parts, 2, &bs->truth_direct, err) ||
+        !cg_image_subtract(&bs->ref, &bs->truth_direct, &bs->truth_gi, err))
+        return false;
+    bs->ref_luminance = mean_luminance(&bs->ref);
+    for (int k = 0; k < PT_PART_COUNT; k++)
+        bs->part_luminance[k] = mean_luminance(&bs->ref_parts[k]);
+    return true;
 }
 
-/* The path tracer at each --pt-spp (seed other than the reference's), timed wall-clock. */
+/* The path tracer at each --pt-spp (seed other than the reference's), timed wall-clock; its
+ * parts come from the same trace (pt_render computes them anyway; asking costs their copy). */
 bool
 bench_path_tracer(const bench_config *c, bench_scene *bs, int scene_index, bench_rows *rows, cg_error *err)
 {
-    cg_image img = { 0 };
-    if (!cg_image_alloc(&img, c->width, c->height, err))
-        return false;
-    for (int k = 0; k < c->pt_count; k++) {
+    cg_image img = { 0 }, parts[PT_PART_COUNT] = { { 0 } }, own_direct = { 0 };
+    float *part_rgba[PT_PART_COUNT] = { 0 };
+    bool ok = cg_image_alloc(&img, c->width, c->height, err);
+    for (int k = 0; ok && k < 2; k++) {
+        ok = cg_image_alloc(&parts[own_direct_parts[k]], c->width, c->height, err);
+        part_rgba[own_direct_parts[k]] = parts[own_direct_parts[k]].rgba;
+    }
+    for (int k = 0; ok && k < c->pt_count; k++) {
         pt_settings s = pt_settings_default();
         s.spp = c->pt_spp[k];
         s.bounces = c->ref_bounces;
         s.seed = (uint32_t)c->ref_seed + 1000003u;
         double t0 = app_now_ms(), cpu0 = app_cpu_ms();
         uint64_t rays = 0;
-        if (!pt_render(bs->pts, &bs->session.frame.view, &s, img.rgba, &rays, err)) {
-            cg_image_free(&img);
-            return false;
+        if (!pt_render_parts(bs->pts, &bs->session.frame.view, &s, img.rgba, part_rgba, &rays, err)) {
+            ok = false;
+            break;
         }
         double ms = app_now_ms() - t0, cpu = app_cpu_ms() - cpu0;
         bench_row *row = bench_row_add(rows, err);
-        if (!row || !bench_measure_errors(bs, &img, row, err)) {
-            cg_image_free(&img);
-            return false;
-        }
+        ok = row && sum_parts(parts, own_direct_parts, 2, &own_direct, err) &&
+             bench_measure_errors(bs, &img, &own_direct, row, err);
+        cg_image_free(&own_direct);
+        if (!ok)
+            break;
         row->scene = scene_index;
         row->is_pt = true;
         row->run = -1;
@@ -236,9 +274,12 @@ bench_path_tracer(const bench_config *c, bench_scene *bs, int scene_index, bench
         snprintf(row->params, sizeof row->params, "spp=%d bounces=%d", s.spp, s.bounces);
         snprintf(row->pass_ms, sizeof row->pass_ms, "%.2f M rays/s, %.2f M rays per CPU second",
                  (double)rays / ms / 1e3, (double)rays / cpu / 1e3);
-        fprintf(stderr, "bench: %s path_trace %4d spp: %9.1f ms, %.2f M rays/s (%.2f M per CPU second), relMSE %.5f\n",
-                bs->source, s.spp, ms, (double)rays / ms / 1e3, (double)rays / cpu / 1e3, row->full.rel_mse);
+        fprintf(stderr, "bench: %s path_trace %4d spp: %9.1f ms, %.2f M rays/s (%.2f M per CPU second), relMSE %.5f, "
+                "GI energy %.3f, nRMSE %.3f\n", bs->source, s.spp, ms, (double)rays / ms / 1e3,
+                (double)rays / cpu / 1e3, row->full.rel_mse, row->gi.energy, row->gi.nrmse);
     }
     cg_image_free(&img);
-    return true;
+    for (int k = 0; k < PT_PART_COUNT; k++)
+        cg_image_free(&parts[k]);
+    return ok;
 }

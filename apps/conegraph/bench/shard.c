@@ -12,7 +12,8 @@
 #include "cg/fs.h"
 
 #define TOOL "conegraph bench"
-#define SHARD_FORMAT "conegraph-bench-1"
+/* 2: rows carry the GI and direct parts, scenes the reference's parts. */
+#define SHARD_FORMAT "conegraph-bench-2"
 
 bool
 bench_in_shard(const bench_config *c, int run_count, int scene, int run)
@@ -110,13 +111,35 @@ metrics_json(const cg_metrics *m)
 }
 
 static json_t *
+part_json(const cg_part_metrics *m)
+{
+    return json_pack("{s:i, s:i, s:o, s:o, s:o, s:o, s:o, s:o, s:I}", "width", m->width, "height", m->height, "energy",
+                     number(m->energy), "nrmse", number(m->nrmse), "rmse", number(m->rmse), "rms_truth",
+                     number(m->rms_truth), "mean_luminance_estimate", number(m->mean_luminance_estimate),
+                     "mean_luminance_truth", number(m->mean_luminance_truth), "nonfinite_pixels",
+                     (json_int_t)m->nonfinite_pixels);
+}
+
+static json_t *
 row_json(const bench_row *r)
 {
-    return json_pack("{s:i, s:b, s:i, s:i, s:i, s:i, s:s, s:s, s:s, s:s, s:o, s:I, s:I, s:o, s:o}", "scene", r->scene,
-                     "is_pt", r->is_pt, "spp", r->spp, "run", r->run, "setting", r->setting, "combo", r->combo,
-                     "graph", r->graph, "params", r->params, "label", r->label, "pass_ms", r->pass_ms, "ms",
-                     number(r->ms), "gi_bytes", (json_int_t)r->gi_bytes, "peak_bytes", (json_int_t)r->peak_bytes,
-                     "full", metrics_json(&r->full), "indirect", metrics_json(&r->indirect));
+    return json_pack("{s:i, s:b, s:i, s:i, s:i, s:i, s:s, s:s, s:s, s:s, s:o, s:I, s:I, s:o, s:o, s:b, s:o, s:o}",
+                     "scene", r->scene, "is_pt", r->is_pt, "spp", r->spp, "run", r->run, "setting", r->setting,
+                     "combo", r->combo, "graph", r->graph, "params", r->params, "label", r->label, "pass_ms",
+                     r->pass_ms, "ms", number(r->ms), "gi_bytes", (json_int_t)r->gi_bytes, "peak_bytes",
+                     (json_int_t)r->peak_bytes, "full", metrics_json(&r->full), "indirect", metrics_json(&r->indirect),
+                     "split", r->split, "gi", part_json(&r->gi), "direct", part_json(&r->direct));
+}
+
+/* A scene's entry: its BVH time and what its reference holds, part by part. */
+static json_t *
+scene_json(const bench_scene *bs)
+{
+    json_t *parts = json_object();
+    for (int k = 0; k < PT_PART_COUNT; k++)
+        json_object_set_new(parts, pt_part_name((pt_part)k), number(bs->part_luminance[k]));
+    return json_pack("{s:s, s:o, s:o, s:o}", "source", bs->source, "bvh_ms", number(bs->bvh_ms),
+                     "reference_mean_luminance", number(bs->ref_luminance), "reference_parts_mean_luminance", parts);
 }
 
 bool
@@ -127,8 +150,7 @@ bench_write_json(const bench_config *c, const bench_rows *rows, const bench_scen
     bench_fingerprint(c, fingerprint);
     json_t *scene_list = json_array(), *row_list = json_array();
     for (int s = 0; s < c->scene_count; s++)
-        json_array_append_new(scene_list, json_pack("{s:s, s:o}", "source", scenes[s].source, "bvh_ms",
-                                                    number(scenes[s].bvh_ms)));
+        json_array_append_new(scene_list, scene_json(&scenes[s]));
     for (int i = 0; i < rows->count; i++)
         json_array_append_new(row_list, row_json(&rows->rows[i]));
     json_t *root = json_pack("{s:s, s:s, s:[i,i], s:s, s:o, s:o}", "format", SHARD_FORMAT, "sweep", fingerprint,
@@ -181,6 +203,25 @@ read_metrics(const json_t *j, cg_metrics *m)
 }
 
 static bool
+read_part(const json_t *j, cg_part_metrics *m)
+{
+    json_t *energy, *nrmse, *rmse, *rms, *le, *lt;
+    json_int_t nonfinite;
+    if (json_unpack((json_t *)j, "{s:i, s:i, s:o, s:o, s:o, s:o, s:o, s:o, s:I}", "width", &m->width, "height",
+                    &m->height, "energy", &energy, "nrmse", &nrmse, "rmse", &rmse, "rms_truth", &rms,
+                    "mean_luminance_estimate", &le, "mean_luminance_truth", &lt, "nonfinite_pixels", &nonfinite) != 0)
+        return false;
+    m->energy = figure(energy);
+    m->nrmse = figure(nrmse);
+    m->rmse = figure(rmse);
+    m->rms_truth = figure(rms);
+    m->mean_luminance_estimate = figure(le);
+    m->mean_luminance_truth = figure(lt);
+    m->nonfinite_pixels = (size_t)nonfinite;
+    return true;
+}
+
+static bool
 copy_field(char *dst, size_t size, const char *src)
 {
     int n = snprintf(dst, size, "%s", src);
@@ -192,16 +233,18 @@ static bool
 read_row(const json_t *j, const bench_config *c, int run_count, bench_row *r)
 {
     const char *graph, *params, *label, *pass_ms;
-    json_t *ms, *full, *indirect;
+    json_t *ms, *full, *indirect, *gi_part, *direct_part;
     json_int_t gi, peak;
-    int is_pt;
+    int is_pt, split;
     memset(r, 0, sizeof *r);
-    if (json_unpack((json_t *)j, "{s:i, s:b, s:i, s:i, s:i, s:i, s:s, s:s, s:s, s:s, s:o, s:I, s:I, s:o, s:o}", "scene",
-                    &r->scene, "is_pt", &is_pt, "spp", &r->spp, "run", &r->run, "setting", &r->setting, "combo",
-                    &r->combo, "graph", &graph, "params", &params, "label", &label, "pass_ms", &pass_ms, "ms", &ms,
-                    "gi_bytes", &gi, "peak_bytes", &peak, "full", &full, "indirect", &indirect) != 0)
+    if (json_unpack((json_t *)j, "{s:i, s:b, s:i, s:i, s:i, s:i, s:s, s:s, s:s, s:s, s:o, s:I, s:I, s:o, s:o, s:b, s:o, s:o}",
+                    "scene", &r->scene, "is_pt", &is_pt, "spp", &r->spp, "run", &r->run, "setting", &r->setting,
+                    "combo", &r->combo, "graph", &graph, "params", &params, "label", &label, "pass_ms", &pass_ms, "ms",
+                    &ms, "gi_bytes", &gi, "peak_bytes", &peak, "full", &full, "indirect", &indirect, "split", &split,
+                    "gi", &gi_part, "direct", &direct_part) != 0)
         return false;
     r->is_pt = is_pt;
+    r->split = split;
     r->ms = figure(ms);
     r->gi_bytes = (size_t)gi;
     r->peak_bytes = (size_t)peak;
@@ -210,7 +253,8 @@ read_row(const json_t *j, const bench_config *c, int run_count, bench_row *r)
            (r->is_pt || (r->setting >= 0 && r->setting < c->setting_count)) &&
            copy_field(r->graph, sizeof r->graph, graph) && copy_field(r->params, sizeof r->params, params) &&
            copy_field(r->label, sizeof r->label, label) && copy_field(r->pass_ms, sizeof r->pass_ms, pass_ms) &&
-           read_metrics(full, &r->full) && read_metrics(indirect, &r->indirect);
+           read_metrics(full, &r->full) && read_metrics(indirect, &r->indirect) && read_part(gi_part, &r->gi) &&
+           read_part(direct_part, &r->direct);
 }
 
 /* Reads one shard file into rows; *shard receives its K, N. Returns 0 or 2 (printed). */
@@ -240,10 +284,16 @@ read_shard(const char *dir, const bench_config *c, int run_count, const char *fi
         code = 2;
     }
     size_t i;
+    /* A scene's figures from the first shard that rendered its reference. */
     json_array_foreach(code ? NULL : scene_list, i, value) {
         double bvh = figure(json_object_get(value, "bvh_ms"));
-        if (i < (size_t)c->scene_count && isfinite(bvh) && !isfinite(scenes[i].bvh_ms))
+        if (i < (size_t)c->scene_count && isfinite(bvh) && !isfinite(scenes[i].bvh_ms)) {
             scenes[i].bvh_ms = bvh;
+            scenes[i].ref_luminance = figure(json_object_get(value, "reference_mean_luminance"));
+            json_t *parts = json_object_get(value, "reference_parts_mean_luminance");
+            for (int k = 0; k < PT_PART_COUNT; k++)
+                scenes[i].part_luminance[k] = figure(json_object_get(parts, pt_part_name((pt_part)k)));
+        }
     }
     json_array_foreach(code ? NULL : row_list, i, value) {
         bench_row *r = bench_row_add(rows, NULL);
@@ -283,8 +333,11 @@ bench_merge(const bench_config *c, int run_count, bench_rows *rows, bench_scene 
     bench_fingerprint(c, fingerprint);
     int shard_count = 0;
     bool seen[BENCH_MAX_SHARDS] = { false };
-    for (int s = 0; s < c->scene_count; s++)
-        scenes[s].bvh_ms = NAN;
+    for (int s = 0; s < c->scene_count; s++) {
+        scenes[s].bvh_ms = scenes[s].ref_luminance = NAN;
+        for (int k = 0; k < PT_PART_COUNT; k++)
+            scenes[s].part_luminance[k] = NAN;
+    }
     renderer[0] = '\0';
     for (int i = 0; i < c->merge_count; i++) {
         int k, n;

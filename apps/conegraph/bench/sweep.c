@@ -77,6 +77,19 @@ parse_shard(const char *text, bench_config *c)
     return true;
 }
 
+/* "relmse" or "gi-nrmse" (--error, the sweep's "error"). */
+static bool
+parse_error(const char *text, bench_error *out)
+{
+    if (!strcmp(text, "relmse"))
+        *out = BENCH_ERROR_RELMSE;
+    else if (!strcmp(text, "gi-nrmse"))
+        *out = BENCH_ERROR_GI_NRMSE;
+    else
+        return false;
+    return true;
+}
+
 /* "pass.param=v1,v2,..." into a vary entry. */
 static bool
 parse_vary(const char *text, bench_vary *v)
@@ -205,7 +218,7 @@ static int
 load_sweep_object(const char *path, const json_t *root, bench_config *c)
 {
     static const char *const known[] = { "scenes", "size", "camera", "sky", "default_light", "frames", "warmup",
-                                          "reference", "path_tracer_spp", "settings", NULL };
+                                          "reference", "path_tracer_spp", "settings", "error", NULL };
     char text[BENCH_TEXT];
     if (!json_is_object(root))
         return sweep_error(path, "expected a JSON object at the top");
@@ -235,6 +248,9 @@ load_sweep_object(const char *path, const json_t *root, bench_config *c)
             return sweep_error(path, "\"sky\": %s", why.message);
         c->sky_given = true;
     }
+    json_t *error = json_object_get(root, "error");
+    if (error && !(json_is_string(error) && parse_error(json_string_value(error), &c->error)))
+        return sweep_error(path, "\"error\" must be \"relmse\" or \"gi-nrmse\"");
     json_t *default_light = json_object_get(root, "default_light");
     if (default_light && !json_is_boolean(default_light))
         return sweep_error(path, "\"default_light\" must be true or false");
@@ -394,6 +410,9 @@ bench_parse_args(int argc, char **argv, bench_config *c)
                 return usage_error(fmt, v);
             }
             *option->field = (int)n;
+        } else if (!strcmp(a, "--error")) {
+            if (!parse_error(v, &c->error))
+                return usage_error("--error wants relmse or gi-nrmse, not '%s'", v);
         } else if (!strcmp(a, "--shard")) {
             if (!parse_shard(v, c))
                 return usage_error("--shard wants K/N with 1 <= K <= N <= 4096, not '%s'", v);
@@ -544,6 +563,12 @@ bench_validate(const bench_config *c, const bench_run *runs, int run_count, benc
                          runs[i].params[0] ? " " : "", runs[i].params);
                 return app_fail(TOOL, what, &err);
             }
+            /* Once per setting: a graph whose direct image cannot be found has no GI columns. */
+            bench_split split;
+            bench_graph_split(&scenes[s].session, &split);
+            if (s == 0 && runs[i].combo == 0 && !split.ok)
+                fprintf(stderr, "%s: %s: %s, so its own direct image cannot be read: its GI and direct "
+                        "columns are left empty\n", TOOL, setting->graph, split.why);
         }
     return 0;
 }

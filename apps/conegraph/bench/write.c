@@ -39,9 +39,11 @@ write_csv(const bench_config *c, const bench_rows *rows, const bench_scene *scen
     cg_atomic_file f;
     if (!cg_atomic_open(&f, path, err))
         return false;
+    /* The columns after pareto_memory came later: appended, so that the old ones keep their places. */
     fprintf(f.fp, "scene,width,height,method,params,ms,pass_ms,gi_bytes,peak_bytes,rmse,relmse,ssim,max_error,"
                   "lum_ratio,nonfinite,indirect_rmse,indirect_relmse,indirect_ssim,indirect_lum_ratio,"
-                  "pt_equal_error_ms,speedup,pareto_time,pareto_memory\n");
+                  "pt_equal_error_ms,speedup,pareto_time,pareto_memory,gi_energy,gi_nrmse,direct_energy,"
+                  "direct_nrmse,error_metric\n");
     for (int i = 0; i < rows->count; i++) {
         const bench_row *r = &rows->rows[i];
         csv_field(f.fp, scenes[r->scene].source);
@@ -51,26 +53,60 @@ write_csv(const bench_config *c, const bench_rows *rows, const bench_scene *scen
         csv_field(f.fp, r->params);
         fprintf(f.fp, ",%.3f,", r->ms);
         csv_field(f.fp, r->pass_ms);
-        fprintf(f.fp, ",%zu,%zu,%.6g,%.6g,%.6f,%.6g,%.6f,%zu,%.6g,%.6g,%.6f,%.6f,%.3f,%.3f,%d,%d\n", r->gi_bytes,
-                r->peak_bytes, r->full.rmse, r->full.rel_mse, r->full.ssim, r->full.max_error,
+        fprintf(f.fp, ",%zu,%zu,%.6g,%.6g,%.6f,%.6g,%.6f,%zu,%.6g,%.6g,%.6f,%.6f,%.3f,%.3f,%d,%d,%.6g,%.6g,%.6g,%.6g,%s\n",
+                r->gi_bytes, r->peak_bytes, r->full.rmse, r->full.rel_mse, r->full.ssim, r->full.max_error,
                 r->full.mean_luminance_ratio, r->full.nonfinite_pixels, r->indirect.rmse, r->indirect.rel_mse,
                 r->indirect.ssim, r->indirect.mean_luminance_ratio, r->pt_equal_ms, r->speedup,
-                !r->is_pt && r->pareto_time, !r->is_pt && r->pareto_memory);
+                !r->is_pt && r->pareto_time, !r->is_pt && r->pareto_memory, r->gi.energy, r->gi.nrmse,
+                r->direct.energy, r->direct.nrmse, c->error == BENCH_ERROR_GI_NRMSE ? "gi-nrmse" : "relmse");
     }
     return cg_atomic_commit(&f, err);
+}
+
+/* A figure for the Markdown table: "-" when there is none (NaN), "inf" for an infinite one
+ * (an energy or nRMSE against a truth of 0). */
+static const char *
+cell(char *buf, size_t size, const char *fmt, double v)
+{
+    if (isnan(v))
+        snprintf(buf, size, "-");
+    else if (isinf(v))
+        snprintf(buf, size, "%sinf", v < 0 ? "-" : "");
+    else
+        snprintf(buf, size, fmt, v);
+    return buf;
+}
+
+/* What the reference holds, part by part: the truths of the GI and direct columns. */
+static void
+write_reference_parts(FILE *fp, const bench_scene *bs)
+{
+    if (!isfinite(bs->ref_luminance) || !(bs->ref_luminance > 0.0))
+        return;
+    fprintf(fp, "Reference mean luminance %.4g: emitted %.1f%%, direct punctual %.1f%%, direct emitters %.1f%%, "
+                "direct sky %.1f%%, indirect %.1f%%. A graph's direct image (its final composite's direct + emissive) "
+                "is judged against emitted + direct punctual; its GI part (its image minus that) against the rest.\n\n",
+            bs->ref_luminance, 100.0 * bs->part_luminance[PT_PART_EMITTED] / bs->ref_luminance,
+            100.0 * bs->part_luminance[PT_PART_DIRECT_PUNCTUAL] / bs->ref_luminance,
+            100.0 * bs->part_luminance[PT_PART_DIRECT_EMITTERS] / bs->ref_luminance,
+            100.0 * bs->part_luminance[PT_PART_DIRECT_SKY] / bs->ref_luminance,
+            100.0 * bs->part_luminance[PT_PART_INDIRECT] / bs->ref_luminance);
 }
 
 static void
 write_markdown_table(FILE *fp, const bench_config *c, const bench_rows *rows, const bench_scene *scenes, int s)
 {
+    const char *error = bench_error_name(c->error);
     fprintf(fp, "### %s, %dx%d\n\n", scenes[s].source, c->width, c->height);
     fprintf(fp, "Reference: path_trace, %d spp, %d bounce(s), seed %d (BVH build %.0f ms). "
                 "Times: median of %d frames after %d warm-up, synchronous. "
-                "P: on the Pareto front of relMSE against time (t) or GI memory (m).\n\n",
-            c->ref_spp, c->ref_bounces, c->ref_seed, scenes[s].bvh_ms, c->frames, c->warmup);
+                "P: on the Pareto front of %s against time (t) or GI memory (m).\n\n",
+            c->ref_spp, c->ref_bounces, c->ref_seed, scenes[s].bvh_ms, c->frames, c->warmup, error);
+    write_reference_parts(fp, &scenes[s]);
     fprintf(fp, "| method | parameters | ms | GI MiB | relMSE | RMSE | SSIM | lum. ratio | indirect relMSE | "
-                "indirect lum. ratio | PT ms at equal relMSE | speed-up | P | per pass (ms) |\n");
-    fprintf(fp, "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|\n");
+                "indirect lum. ratio | GI energy | GI nRMSE | direct energy | direct nRMSE | PT ms at equal %s | "
+                "speed-up | P | per pass (ms) |\n", error);
+    fprintf(fp, "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|\n");
     for (int i = 0; i < rows->count; i++) {
         const bench_row *r = &rows->rows[i];
         if (r->scene != s)
@@ -83,10 +119,14 @@ write_markdown_table(FILE *fp, const bench_config *c, const bench_rows *rows, co
             snprintf(equal, sizeof equal, "%.0f", r->pt_equal_ms);
             snprintf(speed, sizeof speed, "%.1fx", r->speedup);
         }
-        fprintf(fp, "| %s | %s | %.1f | %.1f | %.5f | %.5f | %.4f | %.3f | %.5f | %.3f | %s | %s | %s | %s |\n",
+        char ge[32], gn[32], de[32], dn[32];
+        fprintf(fp, "| %s | %s | %.1f | %.1f | %.5f | %.5f | %.4f | %.3f | %.5f | %.3f | %s | %s | %s | %s | %s | %s | "
+                    "%s | %s |\n",
                 r->graph, r->params[0] ? r->params : "-", r->ms, (double)r->gi_bytes / 1048576.0, r->full.rel_mse,
                 r->full.rmse, r->full.ssim, r->full.mean_luminance_ratio, r->indirect.rel_mse,
-                r->indirect.mean_luminance_ratio, equal, speed, pareto, r->pass_ms);
+                r->indirect.mean_luminance_ratio, cell(ge, sizeof ge, "%.3f", r->gi.energy),
+                cell(gn, sizeof gn, "%.4f", r->gi.nrmse), cell(de, sizeof de, "%.3f", r->direct.energy),
+                cell(dn, sizeof dn, "%.4f", r->direct.nrmse), equal, speed, pareto, r->pass_ms);
     }
     fprintf(fp, "\n");
 }
@@ -135,9 +175,16 @@ static const float palette[10][3] = {
     { 0.74f, 0.74f, 0.13f }, { 0.09f, 0.75f, 0.81f },
 };
 
-/* Per scene: relMSE against time (one series per setting, a marker per combination of its
- * varied values and a label naming them; the path tracer's curve; the Pareto front) and
- * against GI memory. */
+/* The error a plot shows: relMSE, or the GI part's nrmse (not squared: the table's figure). */
+static double
+plot_error(const bench_row *r, bench_error error)
+{
+    return error == BENCH_ERROR_GI_NRMSE ? (r->split ? r->gi.nrmse : NAN) : r->full.rel_mse;
+}
+
+/* Per scene: the error --error chooses against time (one series per setting, a marker per
+ * combination of its varied values and a label naming them; the path tracer's curve; the Pareto
+ * front) and against GI memory. */
 bool
 bench_write_plots(const bench_config *c, const bench_rows *rows, const bench_scene *scenes, int s, cg_error *err)
 {
@@ -162,7 +209,7 @@ bench_write_plots(const bench_config *c, const bench_rows *rows, const bench_sce
                 if (r->scene != s || r->is_pt || r->setting != k)
                     continue;
                 x[used] = time_axis ? r->ms : (double)r->gi_bytes / 1048576.0;
-                y[used] = r->full.rel_mse;
+                y[used] = plot_error(r, c->error);
                 markers[used] = (plot_marker)(r->combo % PLOT_MARKER_COUNT);
                 labels[used++] = r->label;
             }
@@ -180,11 +227,11 @@ bench_write_plots(const bench_config *c, const bench_rows *rows, const bench_sce
                 continue;
             if (r->is_pt && time_axis) {
                 px[pn] = r->ms;
-                py[pn++] = r->full.rel_mse;
+                py[pn++] = plot_error(r, c->error);
             }
             if (!r->is_pt && (time_axis ? r->pareto_time : r->pareto_memory)) {
                 fx[fn] = time_axis ? r->ms : (double)r->gi_bytes / 1048576.0;
-                fy[fn++] = r->full.rel_mse;
+                fy[fn++] = plot_error(r, c->error);
             }
         }
         if (pn > 0)
@@ -193,12 +240,12 @@ bench_write_plots(const bench_config *c, const bench_rows *rows, const bench_sce
         series[series_count++] = (plot_series){ .name = "Pareto front", .color = { 0.85f, 0.1f, 0.1f }, .x = fx,
                                                 .y = fy, .count = fn, .line = true, .ring = true };
         char title[512], path[4096], scene_slug[BENCH_TEXT];
-        snprintf(title, sizeof title, "%s %dx%d: relMSE vs %s", scenes[s].source, c->width, c->height,
-                 time_axis ? "time" : "GI memory");
+        snprintf(title, sizeof title, "%s %dx%d: %s vs %s", scenes[s].source, c->width, c->height,
+                 bench_error_name(c->error), time_axis ? "time" : "GI memory");
         bench_slug(scenes[s].source, scene_slug, sizeof scene_slug);
         snprintf(path, sizeof path, "%s/%s-%s.png", c->out_dir, scene_slug, time_axis ? "time" : "memory");
         plot_desc plot = { .title = title, .xlabel = time_axis ? "time per frame (ms)" : "GI memory (MiB)",
-                           .ylabel = "relMSE", .logx = time_axis, .logy = true, .series = series,
+                           .ylabel = bench_error_name(c->error), .logx = time_axis, .logy = true, .series = series,
                            .series_count = series_count };
         ok = plot_write_png(&plot, path, err);
     }

@@ -300,6 +300,11 @@ fg_pass *fg_graph_pass_at(const fg_graph *graph, int index);       /* file order
 fg_pass *fg_graph_find_pass(const fg_graph *graph, const char *name);
 bool fg_pass_is_culled(const fg_pass *pass);
 const char *fg_pass_cull_reason(const fg_pass *pass);              /* NULL when live */
+/* The resource ("pass.output") input slot `input` of `pass` reads, as the last compile resolved
+ * the file's shorthand ("gbuf" for "gbuf.albedo") and in-place versions; NULL when the pass
+ * declares no such input or it is unconnected or absent. An app that reads a pass's inputs
+ * back (bench: the final composite's direct light) finds them by it. */
+const char *fg_pass_input_source(const fg_pass *pass, const char *input);
 /* Execution order: number of live passes; order[i] is an index into file order. */
 int fg_graph_order(const fg_graph *graph, const int **order);
 /* Memory barrier bits issued before this pass. */

@@ -1,7 +1,8 @@
 /* cg/metrics.h: image error metrics against a reference, and an error heat map.
  *
  * Declares: cg_metrics, CG_RELMSE_EPSILON, CG_SSIM_WINDOW, CG_SSIM_SIGMA, CG_SSIM_K1, CG_SSIM_K2,
- *           cg_metrics_compute, cg_image_subtract, cg_metrics_heatmap, cg_luminance.
+ *           cg_metrics_compute, cg_part_metrics, cg_metrics_part, cg_image_subtract,
+ *           cg_metrics_heatmap, cg_luminance.
  *
  * Both images are linear float RGBA of the same size; alpha is ignored. A pixel counts
  * as non-finite when any of its RGB channels in TEST or REF is NaN or infinite; such
@@ -22,6 +23,18 @@
  *   max_error  largest |t - r| over pixels and RGB channels.
  *   mean_luminance_ratio  mean Y(test) / mean Y(ref) over the finite pixels; 1 when both
  *              means are 0, +inf when only the reference's is. It catches energy errors.
+ *
+ * One part of an image against the same part of the truth (cg_metrics_part): the indirect
+ * light a GI method adds (its image minus its own direct image) against the reference's
+ * (the reference minus its own direct part), or a direct part against the reference's:
+ *   energy     mean Y(estimate) / mean Y(truth) over the finite pixels: 1 is the right amount
+ *              of light, 0 none. When the truth's mean is 0: 1 if the estimate's is 0 too,
+ *              else +inf or -inf by the sign of the estimate's mean.
+ *   nrmse      rmse(estimate - truth) / rms(truth), over pixels and RGB channels, where
+ *              rms(truth) = rmse(0 - truth) is the error of leaving the part out: 0 is the truth,
+ *              1 no better than leaving the part out (an all-zero estimate gives exactly 1).
+ *              When rms(truth) is 0: 0 if the estimate is 0 wherever the truth is, else +inf.
+ * Both are NaN when no pixel is finite in both images.
  */
 #ifndef CG_METRICS_H
 #define CG_METRICS_H
@@ -56,6 +69,21 @@ double cg_luminance(const float *rgb);
 
 /* Fails with CG_ERR_IMAGE_FORMAT when the sizes differ or an image is empty. */
 bool cg_metrics_compute(const cg_image *test, const cg_image *ref, cg_metrics *out, cg_error *err);
+
+/* One part of an image against the same part of the truth: see the definitions above. */
+typedef struct cg_part_metrics {
+    int width, height;
+    double energy;                  /* mean Y(estimate) / mean Y(truth) */
+    double nrmse;                   /* rmse / rms_truth */
+    double rmse;                    /* rmse(estimate - truth) over pixels and RGB channels */
+    double rms_truth;               /* rmse(0 - truth): the error of leaving the part out */
+    double mean_luminance_estimate;
+    double mean_luminance_truth;
+    size_t nonfinite_pixels;        /* pixels left out because either image is not finite there */
+} cg_part_metrics;
+
+/* Fails with CG_ERR_IMAGE_FORMAT when the sizes differ or an image is empty. */
+bool cg_metrics_part(const cg_image *estimate, const cg_image *truth, cg_part_metrics *out, cg_error *err);
 
 /* out = a - b per channel (alpha = 1): the indirect part of an image given its direct part.
  * Allocates out; fails with CG_ERR_IMAGE_FORMAT when the sizes differ. */

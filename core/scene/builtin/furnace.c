@@ -16,7 +16,7 @@ build_furnace(cg_scene *scene, const char *query, cg_error *err)
     bs_param p[] = {
         { "scale", 1e-6, 1e7, 1, false, 0, false, NULL },
         { "albedo", 0, 1, 0.5, false, 0, false, NULL },
-        { "radiance", 0, 1e6, 1, false, 0, false, NULL },
+        { "radiance", 0, 1e12, 1, false, 0, false, NULL },
         { "heightfield", 0, 1, 0, true, 0, false, NULL },
     };
     if (!bs_parse_params("furnace", query, p, 4, err))
@@ -63,7 +63,7 @@ const cg_builtin_scene cg_builtin_furnace = {
     .name = "furnace",
     .doc = "closed box with inward normals for energy tests: every surface has albedo A and emits "
     "radiance L, camera at the centre; ?scale=S (metres, 1e-6..1e7, default 1)&albedo=A "
-    "(0..1, default 0.5)&radiance=L (0..1e6, default 1)&heightfield=H (0 or 1, default 0: the floor "
+    "(0..1, default 0.5)&radiance=L (0..1e12, default 1)&heightfield=H (0 or 1, default 0: the floor "
     "a height-field mesh of its own, for the hybrid graphs' 2D lightmap)",
     .build = build_furnace,
 };

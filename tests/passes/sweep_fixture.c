@@ -1,0 +1,108 @@
+#include "sweep_fixture.h"
+
+#include <dirent.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cg/scene.h"
+#include "test_support.h"
+#include "vct_fixture.h"
+
+static int
+compare_names(const void *a, const void *b)
+{
+    return strcmp(a, b);
+}
+
+int
+sf_list_graphs(char names[SF_MAX_GRAPHS][256])
+{
+    const char *dir = getenv("CONEGRAPH_GRAPH_DIR");
+    if (!dir)
+        fail_msg("CONEGRAPH_GRAPH_DIR is not set");
+    DIR *d = opendir(dir);
+    if (!d)
+        fail_msg("cannot open %s", dir);
+    int n = 0;
+    for (struct dirent *e; (e = readdir(d));) {
+        size_t len = strlen(e->d_name);
+        if (len > 5 && !strcmp(e->d_name + len - 5, ".json") && n < SF_MAX_GRAPHS && len < 256)
+            snprintf(names[n++], 256, "%.*s", (int)(len - 5), e->d_name);
+    }
+    closedir(d);
+    qsort(names, (size_t)n, sizeof names[0], compare_names);
+    return n;
+}
+
+cg_image
+sf_render(const char *source, const char *graph, const char *const *overrides, int width, int height)
+{
+    return sf_render_placed(source, 1.0, 0.0, graph, overrides, width, height);
+}
+
+/* Moves the whole scene by d along each axis. */
+static void
+move_scene(cg_scene *s, double d)
+{
+    for (int i = 0; i < s->instance_count; i++)
+        for (int r = 0; r < 3; r++)
+            s->instances[i].world[12 + r] = (float)(s->instances[i].world[12 + r] + d);
+    for (int i = 0; i < s->light_count; i++)
+        for (int r = 0; r < 3; r++)
+            s->lights[i].position[r] = (float)(s->lights[i].position[r] + d);
+    for (int i = 0; i < s->camera_count; i++)
+        for (int r = 0; r < 3; r++)
+            s->cameras[i].world[12 + r] = (float)(s->cameras[i].world[12 + r] + d);
+    cg_scene_compute_bounds(s);
+}
+
+cg_image
+sf_render_placed(const char *source, double scale, double offset, const char *graph, const char *const *overrides,
+                 int width, int height)
+{
+    cg_scene scene;
+    cg_error err = {0};
+    assert_cg_ok(cg_scene_load(source, &scene, &err), &err);
+    if (scale != 1.0)
+        cg_test_scale_scene(&scene, scale);
+    if (offset != 0.0)
+        move_scene(&scene, offset);
+    char file[300];
+    snprintf(file, sizeof file, "%s.json", graph);
+    vf_runner r;
+    vf_start_file(&r, &scene, width, height, file, overrides);
+    vf_frame(&r);
+    GLuint hdr = fg_graph_texture(r.graph, "final.hdr");
+    assert_true(hdr != 0);
+    cg_image img = {0};
+    img.rgba = cg_test_read_texture(hdr, 0, &img.width, &img.height, NULL);
+    vf_stop(&r);
+    cg_scene_free(&scene);
+    return img;
+}
+
+size_t
+sf_nonfinite(const cg_image *img)
+{
+    size_t n = 0;
+    for (size_t i = 0; i < (size_t)img->width * (size_t)img->height; i++)
+        for (int c = 0; c < 3; c++)
+            n += !isfinite(img->rgba[4 * i + c]);
+    return n;
+}
+
+cg_metrics
+sf_compare(const cg_image *test, const cg_image *ref, double divide)
+{
+    cg_image scaled = {0};
+    cg_error err = {0};
+    assert_cg_ok(cg_image_alloc(&scaled, test->width, test->height, &err), &err);
+    for (size_t i = 0; i < (size_t)test->width * (size_t)test->height * 4; i++)
+        scaled.rgba[i] = (float)(test->rgba[i] / divide);
+    cg_metrics m;
+    assert_cg_ok(cg_metrics_compute(&scaled, ref, &m, &err), &err);
+    cg_image_free(&scaled);
+    return m;
+}

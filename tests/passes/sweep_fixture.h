@@ -1,0 +1,36 @@
+/* tests/passes/sweep_fixture.h: one graph file on one scene, rendered in this process, for the
+ * tests that render the same scene many times over (test_scale_sweep.c, test_radiance_range.c).
+ *
+ * Declares: SF_MAX_GRAPHS, sf_list_graphs, sf_render, sf_render_placed, sf_nonfinite, sf_compare.
+ */
+#ifndef CG_TEST_SWEEP_FIXTURE_H
+#define CG_TEST_SWEEP_FIXTURE_H
+
+#include <stddef.h>
+
+#include "cg/image.h"
+#include "cg/metrics.h"
+
+#define SF_MAX_GRAPHS 64
+
+/* The graph files of $CONEGRAPH_GRAPH_DIR (names without ".json"), sorted; returns how many. */
+int sf_list_graphs(char names[SF_MAX_GRAPHS][256]);
+
+/* `final.hdr` of graphs/GRAPH.json on the scene `source` at width x height, one frame, with
+ * `overrides` ("pass.param=value", NULL-terminated, may be NULL): linear RGBA, rows bottom to
+ * top. Fails the test on any error. The caller frees with cg_image_free. */
+cg_image sf_render(const char *source, const char *graph, const char *const *overrides, int width, int height);
+
+/* The same with the scene scaled about the origin by `scale` after loading (cg_test_scale_scene:
+ * lights keep their irradiance), for scenes without a scale parameter, then moved by `offset`
+ * metres along each axis (geometry, lights and cameras). */
+cg_image sf_render_placed(const char *source, double scale, double offset, const char *graph,
+                          const char *const *overrides, int width, int height);
+
+/* RGB values of the image that are NaN or infinite. */
+size_t sf_nonfinite(const cg_image *img);
+
+/* The metrics of `test` against `ref`, `test` divided by `divide` first (1: as it is). */
+cg_metrics sf_compare(const cg_image *test, const cg_image *ref, double divide);
+
+#endif
