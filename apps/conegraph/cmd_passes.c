@@ -67,6 +67,19 @@ default_text(const fg_param_desc *p, char *buf, size_t size)
     }
 }
 
+/* What both listings print of a parameter beside its name, type and doc. */
+typedef struct param_texts {
+    char def[256], values[512], depends[512];
+} param_texts;
+
+static void
+describe(const fg_param_desc *p, param_texts *x)
+{
+    default_text(p, x->def, sizeof x->def);
+    fg_param_values_text(p, x->values, sizeof x->values);
+    fg_param_dependency_text(p, x->depends, sizeof x->depends);
+}
+
 /* Markdown table cells may not contain '|': escape it. */
 static void
 markdown_cell(const char *s)
@@ -103,19 +116,17 @@ print_markdown(const fg_registry *registry)
                "|---|---|---|---|---|\n");
         for (int k = 0; k < t->param_count; k++) {
             const fg_param_desc *p = &t->params[k];
-            char def[256], values[512], depends[512];
-            default_text(p, def, sizeof def);
-            fg_param_values_text(p, values, sizeof values);
-            fg_param_dependency_text(p, depends, sizeof depends);
+            param_texts x;
+            describe(p, &x);
             printf("| `%s` | %s | `", p->name, type_name(p->type));
-            markdown_cell(def);
+            markdown_cell(x.def);
             printf("` | ");
-            markdown_cell(values);
+            markdown_cell(x.values);
             printf(" | ");
             markdown_cell(p->doc);
-            if (depends[0]) {
+            if (x.depends[0]) {
                 printf(" (*");
-                markdown_cell(depends);
+                markdown_cell(x.depends);
                 printf("*)");
             }
             printf(" |\n");
@@ -131,12 +142,10 @@ print_text(const fg_registry *registry)
         printf("%s%s%s\n  %s\n", i ? "\n" : "", t->name, t->side_effect ? " (side effect)" : "", t->doc);
         for (int k = 0; k < t->param_count; k++) {
             const fg_param_desc *p = &t->params[k];
-            char def[256], values[512], depends[512];
-            default_text(p, def, sizeof def);
-            fg_param_values_text(p, values, sizeof values);
-            fg_param_dependency_text(p, depends, sizeof depends);
-            printf("  %-16s %-6s default %-8s %-24s %s%s%s%s\n", p->name, type_name(p->type), def, values,
-                   p->doc, depends[0] ? " [" : "", depends, depends[0] ? "]" : "");
+            param_texts x;
+            describe(p, &x);
+            printf("  %-16s %-6s default %-8s %-24s %s%s%s%s\n", p->name, type_name(p->type), x.def, x.values,
+                   p->doc, x.depends[0] ? " [" : "", x.depends, x.depends[0] ? "]" : "");
         }
     }
 }

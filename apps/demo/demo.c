@@ -373,13 +373,22 @@ refuse(demo *d, const char *why)
  * compiled to find it; a value whose dependencies fail is refused at once. The graph is
  * compiled before the next frame, and a value that still fails there (a resolution past the
  * GL limits) is undone by apply_changes. */
+/* The change a step or a control is about to make to the selected parameter: a slot to undo
+ * it from, the pass and the parameter; false when there is nothing selected or no slot left. */
+static bool
+begin_change(demo *d, pending_change **c, fg_pass **pass, const fg_param_desc **desc)
+{
+    *c = next_change(d);
+    return *c && demo_selected(d->graph, &d->sel, pass, desc);
+}
+
 static void
 adjust(demo *d, int direction)
 {
-    pending_change *c = next_change(d);
+    pending_change *c;
     fg_pass *pass;
     const fg_param_desc *desc;
-    if (!c || !demo_selected(d->graph, &d->sel, &pass, &desc))
+    if (!begin_change(d, &c, &pass, &desc))
         return;
     cg_error err = { 0 };
     bool changed = false;
@@ -420,10 +429,10 @@ demo_set_param(demo *d, int pass, int param, const char *text)
 {
     d->sel.pass = pass;
     d->sel.param = param;
-    pending_change *c = next_change(d);
+    pending_change *c;
     fg_pass *p;
     const fg_param_desc *desc;
-    if (!c || !demo_selected(d->graph, &d->sel, &p, &desc))
+    if (!begin_change(d, &c, &p, &desc))
         return;
     cg_error err = { 0 };
     if (!demo_param_set(d->graph, p, desc, text, c->previous, sizeof c->previous, &err)) {

@@ -372,35 +372,39 @@ param_count(const fg_graph *graph, int pass)
     return fg_pass_type_of(fg_graph_pass_at(graph, pass))->param_count;
 }
 
+/* The first pass with parameters from `start` on, going `step` (+1 or -1) and wrapping round, or
+ * -1 where no pass has any. */
+static int
+pass_with_params(const fg_graph *graph, int start, int step)
+{
+    int n = fg_graph_pass_count(graph);
+    for (int k = 0; k < n; k++) {
+        int p = ((start + step * k) % n + n) % n;
+        if (param_count(graph, p) > 0)
+            return p;
+    }
+    return -1;
+}
+
 void
 demo_select_first(const fg_graph *graph, demo_selection *sel)
 {
-    sel->pass = -1;
-    sel->param = -1;
-    for (int p = 0; p < fg_graph_pass_count(graph); p++)
-        if (param_count(graph, p) > 0) {
-            sel->pass = p;
-            sel->param = 0;
-            return;
-        }
+    sel->pass = pass_with_params(graph, 0, 1);
+    sel->param = sel->pass < 0 ? -1 : 0;
 }
 
 void
 demo_select_pass(const fg_graph *graph, demo_selection *sel, int direction)
 {
-    int n = fg_graph_pass_count(graph);
     if (sel->pass < 0) {
         demo_select_first(graph, sel);
         return;
     }
     int step = direction < 0 ? -1 : 1;
-    for (int k = 1; k <= n; k++) {
-        int p = ((sel->pass + step * k) % n + n) % n;
-        if (param_count(graph, p) > 0) {
-            sel->pass = p;
-            sel->param = 0;
-            return;
-        }
+    int p = pass_with_params(graph, sel->pass + step, step);
+    if (p >= 0) {
+        sel->pass = p;
+        sel->param = 0;
     }
 }
 
