@@ -229,7 +229,6 @@ hybrid_gather_prepare(fg_pass *pass, hybrid_gather_state *s, cg_error *err)
 static bool
 hybrid_gather_execute(fg_pass *pass, hybrid_gather_state *s, cg_error *err)
 {
-    (void)err;
     cg_hybrid_gather_block *block = &s->block;
     *block = (cg_hybrid_gather_block){
         .maps = {s->has_3d},
@@ -255,8 +254,9 @@ hybrid_gather_execute(fg_pass *pass, hybrid_gather_state *s, cg_error *err)
         block->box3_hi[k] = (float)hi[k];
     }
 
-    cgp_gather_begin(pass, &s->gather, block, sizeof *block, s->has_3d ? fg_texture(pass, "volume") : 0,
-                     s->has_3d ? fg_buffer(pass, "region") : s->empty_block);
+    if (!cgp_gather_begin(pass, &s->gather, block, sizeof *block, s->has_3d ? fg_texture(pass, "volume") : 0,
+                          s->has_3d ? fg_buffer(pass, "region") : s->empty_block, err))
+        return false;
     glBindBufferBase(GL_UNIFORM_BUFFER, CG_BINDING_HEIGHTMAP, s->has_2d ? fg_buffer(pass, "region2d") : s->empty_block);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_HSAT,
                      s->has_2d ? fg_buffer(pass, "hsat_info") : s->empty_block);

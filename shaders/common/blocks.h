@@ -4,7 +4,7 @@
  *
  * Provides: CG_BINDING_* and CG_UNIT_* numbers; the member lists CG_*_BLOCK(M, A); in C the
  *           structs cg_shadow_block, cg_volume_block, cg_heightmap_block, cg_hsat_info_block,
- *           cg_cone_set_block, cg_cone_gather_block, cg_hybrid_gather_block; in GLSL the
+ *           cg_cone_set_block, cg_cone_gather_block, cg_hybrid_gather_block, cg_sky_block; in GLSL the
  *           declarations CG_UNIFORM_BLOCK() and CG_STORAGE_BLOCK() that consumers write once.
  *
  * A block is a member list, CG_NAME_BLOCK(M, A), that calls M(type, name) for each member and
@@ -40,6 +40,7 @@
 #define CG_BINDING_HEIGHTMAP 4          /* CG_HEIGHTMAP_BLOCK, a heightmap_raster pass's `region` */
 #define CG_BINDING_CONES 7              /* CG_CONE_SET_BLOCK, the cone set and march of a gather */
 #define CG_BINDING_GATHER 8             /* a gather pass's own switches (CG_*_GATHER_BLOCK) */
+#define CG_BINDING_SKY 10               /* CG_SKY_BLOCK, the baked sky (sdk/sky.h, common/sky.glsl) */
 
 /* ---- texture units of the gather passes (cone_gather, hybrid_gather) */
 #define CG_UNIT_VOLUME 0                /* the mipped 3D lightmap */
@@ -48,6 +49,8 @@
 #define CG_UNIT_ANISO 3                 /* 3..8: mip3d's directional chains px nx py ny pz nz */
 #define CG_UNIT_LIGHTMAP2D 9            /* the mipped 2D lightmap */
 #define CG_UNIT_HSAT 10                 /* the HSAT tables */
+/* ---- texture units of every pass that reads the sky (the gathers, composite) */
+#define CG_UNIT_SKY 11                  /* the baked sky (sdk/sky.h): lat-long x cone aperture, 3D */
 
 /* The most cones a diffuse set holds (sdk/cone.h: CGP_CONE_MAX). */
 #define CG_CONE_SET_MAX 16
@@ -111,6 +114,11 @@
     A(vec4, cell_width, CG_CONE_SET_MAX / 4) /* per cone: the half width (radians) of a quadrature point's band */ \
     A(vec4, cells, CG_CONE_SET_MAX * CG_HYBRID_CELL_POINTS) /* xyz: tangent-space quadrature points of each cone's cell */
 
+/* The baked sky (common/sky.glsl), uploaded by cgp_sky_bind (sdk/sky.h); 16 bytes. */
+#define CG_SKY_BLOCK(M, A)                                                                        \
+    M(vec4, info)         /* x: 1 a sky is baked (0: none, nothing is added), y: aperture layers, */ \
+                          /* z: half angle of layer 1 (radians; layer k > 0: z 2^(k-1)) */
+
 #ifdef __STDC__
 /* ---- C: one struct per block (sdk/blocks.h includes <stdint.h> first: the shader loader
  * expands every #include, also under #ifdef, and knows no system headers) */
@@ -140,6 +148,7 @@ CG_C_BLOCK(cg_hsat_info_block, CG_HSAT_INFO_BLOCK, 272);
 CG_C_BLOCK(cg_cone_set_block, CG_CONE_SET_BLOCK, 544);
 CG_C_BLOCK(cg_cone_gather_block, CG_CONE_GATHER_BLOCK, 48);
 CG_C_BLOCK(cg_hybrid_gather_block, CG_HYBRID_GATHER_BLOCK, 3264);
+CG_C_BLOCK(cg_sky_block, CG_SKY_BLOCK, 16);
 
 #else
 /* ---- GLSL: the declaration of a block, written once by its consumer */

@@ -650,9 +650,12 @@ main()
         // VI.B's self-influence: the cones start off the surface by the coarser of the two xels.
         float xel = has_3d() ? max(v.voxel_size, cg_heightmap_xel(m)) : cg_heightmap_xel(m);
         vec3 origin = position + n * (march.start_offset * xel);
-        for (int k = 0; k < cg_cone_count(); k++)
-            cg_cone_accumulate(diffuse, k, trace_paper(origin, cg_cone_direction(frame, k), cg_cone_tan_half(k),
-                                                       xel, t_max));
+        // What each cone left open, past the volume and the terrain, sees the sky (common/sky.glsl).
+        for (int k = 0; k < cg_cone_count(); k++) {
+            vec3 dir = cg_cone_direction(frame, k);
+            cg_cone_accumulate(diffuse, k, cg_sky_gather(trace_paper(origin, dir, cg_cone_tan_half(k), xel, t_max), dir,
+                                                         cg_cone_tan_half(k)));
+        }
 #else
         // The 3D march starts as cone_gather's (start_offset voxels off the surface); the horizon
         // is seen from the surface point itself.
@@ -660,10 +663,12 @@ main()
         vec3 origin = position + n * (march.start_offset * voxel);
         bool own_voxels = !(cg_hybrid_gather_block.levels.y != 0 && on_height_field(m, position, n));
         vec4 surface = own_voxels ? vec4(n, march.start_offset * voxel) : vec4(n, -1.0);
-        for (int k = 0; k < cg_cone_count(); k++)
-            cg_cone_accumulate(diffuse, k, trace_horizon(position, origin, cg_cone_direction(frame, k),
-                                                         cg_cone_tan_half(k), voxel, t_max, surface,
-                                                         cell_of(k, frame)));
+        for (int k = 0; k < cg_cone_count(); k++) {
+            vec3 dir = cg_cone_direction(frame, k);
+            cg_cone_accumulate(diffuse, k, cg_sky_gather(trace_horizon(position, origin, dir, cg_cone_tan_half(k), voxel,
+                                                                       t_max, surface, cell_of(k, frame)),
+                                                         dir, cg_cone_tan_half(k)));
+        }
 #endif
 #else
         // No 2D lightmap: the VCT gather, the very function cone_gather calls.
