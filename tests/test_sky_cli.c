@@ -120,13 +120,15 @@ box_under_the_sky(void **state)
         assert_int_equal(cg_test_run_conegraph(args, false, out, sizeof out), 0);
         assert_true(json_number(out, "\"full\"", "rmse") == 0.0);
         assert_true(json_number(out, "\"full\"", "mean_luminance_ref") > 0.1);
-        /* Measured at 64x36, 256 spp: vct.json 0.558, hybrid.json 0.663 (at 96x54: 0.551, 0.651).
+        /* Measured at 64x36, 256 spp: vct.json 0.558, hybrid.json 0.555 (hybrid.json's march is
+         * cone_gather's here, no height field: step 0.5 at the matched level; 0.663 with its
+         * earlier step 0.25 and lod_bias -2).
          * The sky enters through the open front only, and the max-filtered coarse levels of
          * the volume (mip3d opacity max, graphs/vct.json) over-occlude the cones that graze the
          * opening (docs/vct.md). The bounds hold the measured figures with a margin of 0.1 for
          * the noise of the truth and the platform, and fail for a sky left out (0) or gathered
          * through the walls (above 1). */
-        const double measured = g == 0 ? 0.558 : 0.663;
+        const double measured = g == 0 ? 0.558 : 0.555;
         if (fabs(f.gi_energy - measured) > 0.1)
             fail_msg("%s: GI energy %.4f, measured %.3f (0.1 allowed)", graphs[g], f.gi_energy, measured);
     }
@@ -143,10 +145,10 @@ open_world_under_the_sky(void **state)
     static const char *const graphs[] = {"vct.json", "hybrid.json"};
     for (int g = 0; g < 2; g++) {
         sky_figures f = measure(scene, "0.3", graphs[g], ref, ref_direct);
-        /* Issue 11's bar: within 7% of the path tracer's mean luminance (measured 0.981 and 0.988). */
+        /* Issue 11's bar: within 7% of the path tracer's mean luminance (measured 0.981 and 0.984). */
         assert_true(fabs(f.full_lum_ratio - 1.0) < 0.07);
         /* GI energy against the reference's bounces plus its once-reflected sky light, measured
-         * 0.916 (vct.json) and 0.945 (hybrid.json): the cone tracers miss the sky light
+         * 0.916 (vct.json) and 0.927 (hybrid.json): the cone tracers miss the sky light
          * reflected twice; 0.1 allowed around 0.93. */
         assert_true(fabs(f.gi_energy - 0.93) < 0.1);
     }

@@ -2,8 +2,8 @@
  * (hybrid paper V.B, "multi-resolution sampling" of height-field meshes).
  *
  * Outputs
- *   lightmap  2D, resolution^2, RGBA32F (default) or RGBA16F, full mip chain declared (mip2d
- *             fills levels 1..): rgb = outgoing diffuse radiance of the direct light
+ *   lightmap  2D, resolution^2, RGBA32F (default) or RGBA16F, `levels` mip levels declared (0:
+ *             the full chain; mip2d fills levels 1..): rgb = outgoing diffuse radiance of the direct light
  *             (shadowed through the optional shadow map) plus emission, a = height, world y.
  *             Texels no height-field mesh covers hold black radiance at the lowest height.
  *   region    std140 block CG_HEIGHTMAP_BLOCK (common/blocks.h) for common/heightmap.glsl:
@@ -57,6 +57,9 @@ static const fg_param_desc heightmap_params[] = {
     { .name = "resolution", .type = FG_PARAM_INT, .default_value = 1024, .min = 16, .max = 8192,
       .power_of_two = true,
       .doc = "texels per edge of the 2D lightmap at level 0" },
+    { .name = "levels", .type = FG_PARAM_INT, .default_value = 0, .min = 0, .max = 14,
+      .doc = "mip levels declared, from the finest (0: the full chain to 1 x 1); the paper's 2048^2 in 11 levels "
+             "stops at 2 x 2" },
     { .name = "format", .type = FG_PARAM_ENUM, .default_value = FORMAT_RGBA32F, .choices = "rgba16f|rgba32f",
       .doc = "texel format; rgba32f keeps heights to 24 bits (rgba16f: 11 bits, centimetres at 30 m, metres at 10 km)" },
     { .name = "cache", .type = FG_PARAM_BOOL, .default_value = 1,
@@ -121,6 +124,7 @@ heightmap_raster_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
 {
     const fg_frame *frame = fg_pass_frame(pass);
     int resolution = fg_param_int(pass, "resolution");
+    int full = fg_mip_levels(resolution, resolution, 1), levels = fg_param_int(pass, "levels");
     if (!cgp_declare_shadow_inputs(pass, decl, err))
         return false;
     heightmap_region region;
@@ -133,7 +137,7 @@ heightmap_raster_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
         .kind = FG_TEXTURE_2D,
         .format = fg_param_enum(pass, "format") == FORMAT_RGBA16F ? GL_RGBA16F : GL_RGBA32F,
         .width = resolution, .height = resolution, .depth = 1,
-        .levels = fg_mip_levels(resolution, resolution, 1),
+        .levels = levels > 0 && levels < full ? levels : full,
         .gi = true,
     };
     fg_declare_output(decl, "lightmap", &lightmap,

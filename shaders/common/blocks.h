@@ -98,10 +98,21 @@
     M(vec4, tan_half)     /* x: specular cone, y: shadow cone */                                  \
     M(ivec4, shadow)      /* x: index of the light the shadow cone points at */
 
-/* hybrid_gather's switches; 32 bytes. */
+/* Quadrature points per cone cell in hybrid_gather's horizon method. */
+#define CG_HYBRID_CELL_POINTS 12
+
+/* hybrid_gather's parameters (passes/hybrid_gather/hybrid_gather.c); 3264 bytes. */
 #define CG_HYBRID_GATHER_BLOCK(M, A)                                                              \
     M(ivec4, maps)        /* x: a 3D lightmap is bound */                                          \
-    M(ivec4, switches)    /* x: eq. 11 (else eq. 10), y: occlusion (0 eq. 16, 1 eq. 17), z: 2D DDA, w: HSAT skipping */
+    M(ivec4, switches)    /* x: eq. 11 (else eq. 10), y: occlusion (0 eq. 16, 1 eq. 17), z: the morphology search, w: skipping */ \
+    M(ivec4, paper)       /* x: abandon buried cubes, y: the Case-1 latch, z: the paper's mix case, w: sub-mesh levels below eq. 8 */ \
+    M(ivec4, paper2)      /* x: backface culling, y: normal/cone weighting, z: contiguous cubes (else step x d) */ \
+    M(ivec4, levels)      /* x: 3D levels used (0: all), y: no surface cap on the height field, z: eq. 8 itself (else one finer) */ \
+    M(vec4, params)       /* x: bounding-ball threshold (level-0 voxels), y: terrain step, z: terrain lod bias */ \
+    M(vec4, box3_lo)      /* xyz: the 3D lightmap's box of eq. 12 (the complex meshes' bounds in the volume) */ \
+    M(vec4, box3_hi)                                                                              \
+    A(vec4, cell_width, CG_CONE_SET_MAX / 4) /* per cone: the half width (radians) of a quadrature point's band */ \
+    A(vec4, cells, CG_CONE_SET_MAX * CG_HYBRID_CELL_POINTS) /* xyz: tangent-space quadrature points of each cone's cell */
 
 /* The baked sky (common/sky.glsl), uploaded by cgp_sky_bind (sdk/sky.h); 16 bytes. */
 #define CG_SKY_BLOCK(M, A)                                                                        \
@@ -136,7 +147,7 @@ CG_C_BLOCK(cg_heightmap_block, CG_HEIGHTMAP_BLOCK, 48);
 CG_C_BLOCK(cg_hsat_info_block, CG_HSAT_INFO_BLOCK, 272);
 CG_C_BLOCK(cg_cone_set_block, CG_CONE_SET_BLOCK, 544);
 CG_C_BLOCK(cg_cone_gather_block, CG_CONE_GATHER_BLOCK, 48);
-CG_C_BLOCK(cg_hybrid_gather_block, CG_HYBRID_GATHER_BLOCK, 32);
+CG_C_BLOCK(cg_hybrid_gather_block, CG_HYBRID_GATHER_BLOCK, 3264);
 CG_C_BLOCK(cg_sky_block, CG_SKY_BLOCK, 16);
 
 #else
