@@ -16,7 +16,8 @@
  *   bounded  bool; low, high floats [-100, 100] that matter only while bounded, high > low;
  *   margin   float [0, 100], below 0.25 x resolution
  * execute() clears each colour texture output to `value` with glClearTexImage and counts
- * its calls in the pass state (an int).
+ * its calls in the pass state (an int); on odd calls since prepare it reports "execute N"
+ * (fg_pass_report_rebuilt), on even ones nothing.
  */
 #ifndef CG_TEST_FG_TEST_PASS_H
 #define CG_TEST_FG_TEST_PASS_H

@@ -84,6 +84,8 @@ graph_runs_and_is_timed(void **state)
         frame.index = (uint64_t)f;
         assert_cg_ok(fg_graph_execute(graph, &frame, FG_TIMING_SYNC, &err), &err);
         acc_textures[f] = fg_graph_texture(graph, "acc.out");
+        /* What a pass rebuilt: its words of this frame, cleared before the next execute. */
+        assert_string_equal(fg_pass_rebuilt(fg_graph_find_pass(graph, "a")), f == 0 ? "execute 1" : "");
     }
     /* Read as "@previous" after its writer ran: two textures, one per frame parity. */
     assert_int_not_equal(acc_textures[0], acc_textures[1]);
@@ -127,6 +129,10 @@ graph_runs_and_is_timed(void **state)
     assert_non_null(report);
     assert_int_equal(json_array_size(json_object_get(report, "passes")), 6);
     assert_int_equal(json_integer_value(json_object_get(report, "frames")), 3);
+    /* Three frames since the second prepare (a new state): the third call's words. */
+    json_t *first = json_array_get(json_object_get(report, "passes"), 0);
+    assert_string_equal(json_string_value(json_object_get(first, "name")), "a");
+    assert_string_equal(json_string_value(json_object_get(first, "rebuilt")), "execute 3");
     json_t *memory = json_object_get(report, "memory");
     fg_memory_report m;
     fg_graph_memory_report(graph, &m);

@@ -82,6 +82,7 @@ blocks_have_the_c_layout_in_glsl(void **state)
     CHECK_BLOCK("CgConeSet", cg_cone_set_block, CG_CONE_SET_BLOCK, GL_UNIFORM_BLOCK, GL_UNIFORM);
     CHECK_BLOCK("CgConeGather", cg_cone_gather_block, CG_CONE_GATHER_BLOCK, GL_UNIFORM_BLOCK, GL_UNIFORM);
     CHECK_BLOCK("CgHybridGather", cg_hybrid_gather_block, CG_HYBRID_GATHER_BLOCK, GL_UNIFORM_BLOCK, GL_UNIFORM);
+    CHECK_BLOCK("CgSkyBlock", cg_sky_block, CG_SKY_BLOCK, GL_UNIFORM_BLOCK, GL_UNIFORM);
     CHECK_BLOCK("CgHsatInfo", cg_hsat_info_block, CG_HSAT_INFO_BLOCK, GL_SHADER_STORAGE_BLOCK, GL_BUFFER_VARIABLE);
     glDeleteProgram(layout_program);
     assert_no_gl_errors(ctx);

@@ -532,8 +532,10 @@ heightfield_classification(void **state)
     } cases[] = {
         { "up", "[{\"mesh\":0}]", "", CG_MESH_HEIGHTFIELD },
         { "mirrored", "[{\"mesh\":0,\"scale\":[-1,1,1]}]", "", CG_MESH_HEIGHTFIELD },
-        { "flipped", "[{\"mesh\":0,\"rotation\":[1,0,0,0]}]", "", CG_MESH_COMPLEX },
-        { "one_flipped_instance", "[{\"mesh\":0},{\"mesh\":0,\"rotation\":[1,0,0,0]}]", "", CG_MESH_COMPLEX },
+        /* Eq. 5 is purely geometric: a sheet facing down is a height field (the normal rule,
+         * tests/test_classify.c, says complex). */
+        { "flipped", "[{\"mesh\":0,\"rotation\":[1,0,0,0]}]", "", CG_MESH_HEIGHTFIELD },
+        { "one_flipped_instance", "[{\"mesh\":0},{\"mesh\":0,\"rotation\":[1,0,0,0]}]", "", CG_MESH_HEIGHTFIELD },
         { "standing", "[{\"mesh\":0,\"rotation\":[0,0,0.70710678,0.70710678]}]", "", CG_MESH_COMPLEX },
         { "tagged", "[{\"mesh\":0}]", ",\"extras\":{\"conegraph_kind\":\"complex\"}", CG_MESH_COMPLEX },
         { "tagged_flipped", "[{\"mesh\":0,\"rotation\":[1,0,0,0]}]",

@@ -1,4 +1,5 @@
 /* conegraph info: what a scene holds, and with --gl what GL context it would render with. */
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -6,6 +7,7 @@
 #include "cg/error.h"
 #include "cg/gl.h"
 #include "cg/scene.h"
+#include "app_common.h"
 #include "commands.h"
 
 void
@@ -15,14 +17,25 @@ cmd_info_usage(FILE *out)
             "usage: conegraph info SCENE [--gl] [--context egl|osmesa|glfw|auto] [--sky SKY]\n"
             "                            [--no-default-light]\n"
             "\n"
-            "Loads SCENE and prints its meshes (with their kind: heightfield or complex),\n"
-            "triangles, materials, textures, lights, cameras, sky and world bounds, lit as render\n"
+            "Loads SCENE and prints its meshes (with their kind: heightfield or complex, who set\n"
+            "it, what eq. 5 of the hybrid cone tracing paper and the normal rule say, and eq. 5's\n"
+            "height-field distance d), triangles, materials, textures, lights, cameras, sky and world bounds, lit as render\n"
             "lights it: a scene with no light, no emissive surface and no sky is given the default\n"
             "light (a sun and a sky: a notice on stderr, the lights marked \"added\").\n"
             "\n"
-            "SCENE is a .gltf or .glb file, or builtin:NAME[?key=value&...]:\n");
+            "SCENE is a .gltf or .glb file, dem:IMAGE[?key=value&...] (a terrain from an elevation\n"
+            "image, docs/scenes.md) or builtin:NAME[?key=value&...]:\n");
     for (const char *const *n = cg_scene_builtin_names(); *n; n++)
         fprintf(out, "  builtin:%s\n      %s\n", *n, cg_scene_builtin_doc(*n));
+    fprintf(out,
+            "\n"
+            "Every SCENE takes the classification keys (after '?', '&' between them):\n"
+            "  classify=eq5|normals    eq. 5 (default) or every triangle facing up\n"
+            "  eq5_resolution=N        samples along the box's longer side (default %d)\n"
+            "  eq5_threshold=T         a height field when d < T (default %g)\n"
+            "  eq5_points=vertices|centroids   eq. 5's points (default vertices)\n"
+            "A glTF mesh's extras \"conegraph_kind\": \"heightfield\" or \"complex\" set its kind.\n",
+            CG_EQ5_DEFAULT_RESOLUTION, CG_EQ5_DEFAULT_THRESHOLD);
     fprintf(out,
             "\n"
             "options:\n"
@@ -42,25 +55,67 @@ light_type_name(cg_light_type t)
     return t == CG_LIGHT_DIRECTIONAL ? "directional" : t == CG_LIGHT_POINT ? "point" : "spot";
 }
 
-static void
-print_scene(const cg_scene *s, int file_lights)
+static const char *
+kind_name(cg_mesh_kind kind)
+{
+    return kind == CG_MESH_HEIGHTFIELD ? "heightfield" : "complex";
+}
+
+/* The kind of mesh i, who set it, eq. 5's d (computed again here, for every mesh: also where
+ * the kind was given or the normal rule decided, and so that the time of eq. 5 is measured) and
+ * the normal rule's verdict. */
+static bool
+print_class(const cg_scene *s, int i, double *eq5_ms, cg_error *err)
+{
+    const cg_mesh *m = &s->meshes[i];
+    cg_mesh_class c = { .kind = m->kind, .source = CG_KIND_CLASSIFIED, .distance = NAN, .max_distance = NAN };
+    if (i < s->mesh_class_count)
+        c = s->mesh_class[i];
+    static const char *const sources[] = { "classified", "glTF extras", "set by the scene" };
+    printf("%s (%s", kind_name(m->kind), sources[c.source]);
+    cg_mesh_class eq5;
+    cg_classify_options o = s->classify;
+    o.rule = CG_CLASSIFY_EQ5;
+    double t0 = app_now_ms();
+    if (!cg_mesh_classify(s, i, &o, &eq5, err))
+        return false;
+    *eq5_ms += app_now_ms() - t0;
+    if (c.source != CG_KIND_CLASSIFIED || s->classify.rule != CG_CLASSIFY_EQ5)
+        printf("; eq. 5: %s", kind_name(eq5.kind));
+    printf("; normals: %s) d=%.3g max %.3g",
+           kind_name(eq5.instances && eq5.normals_up ? CG_MESH_HEIGHTFIELD : CG_MESH_COMPLEX), eq5.distance,
+           eq5.max_distance);
+    return true;
+}
+
+static bool
+print_scene(const cg_scene *s, int file_lights, cg_error *err)
 {
     printf("scene %s\n", s->name);
     printf("triangles %zu (%d meshes, %d instances)\n", cg_scene_triangle_count(s), s->mesh_count,
            s->instance_count);
     printf("bounds [%g %g %g] .. [%g %g %g] m\n", s->bounds_min[0], s->bounds_min[1], s->bounds_min[2],
            s->bounds_max[0], s->bounds_max[1], s->bounds_max[2]);
+    cg_classify_options o;
+    cg_classify_defaults(&o, &s->classify);
+    printf("classification %s: eq. 5 resolution %d, threshold %g, %s, %d threads\n",
+           o.rule == CG_CLASSIFY_EQ5 ? "eq5" : "normals", o.resolution, o.threshold,
+           o.points == CG_CLASSIFY_CENTROIDS ? "centroids" : "vertices", o.threads);
     printf("meshes %d\n", s->mesh_count);
+    double eq5_ms = 0;
     for (int i = 0; i < s->mesh_count; i++) {
         const cg_mesh *m = &s->meshes[i];
         int instances = 0;
         for (int k = 0; k < s->instance_count; k++)
             instances += s->instances[k].mesh == i;
-        printf("  %d '%s' %s: %u triangles, %u vertices, material %d, %d instance%s%s\n", i, m->name,
-               m->kind == CG_MESH_HEIGHTFIELD ? "heightfield" : "complex", m->index_count / 3,
+        printf("  %d '%s' ", i, m->name);
+        if (!print_class(s, i, &eq5_ms, err))
+            return false;
+        printf(": %u triangles, %u vertices, material %d, %d instance%s%s\n", m->index_count / 3,
                m->vertex_count, m->material, instances, instances == 1 ? "" : "s",
                m->texcoords ? ", texcoords" : "");
     }
+    printf("eq. 5 over the %d meshes: %.0f ms\n", s->mesh_count, eq5_ms);
     printf("materials %d\n", s->material_count);
     for (int i = 0; i < s->material_count; i++) {
         const cg_material *m = &s->materials[i];
@@ -137,6 +192,7 @@ print_scene(const cg_scene *s, int file_lights)
                    s->nodes[ch->node].name, paths[ch->path], modes[ch->interpolation], ch->key_count,
                    ch->times[0], ch->times[ch->key_count - 1]);
         }
+    return true;
 }
 
 int
@@ -191,8 +247,12 @@ cmd_info(int argc, char **argv)
         cg_scene_free(&scene);
         return cg_status_exit_code(err.status);
     }
-    print_scene(&scene, file_lights);
+    bool printed = print_scene(&scene, file_lights, &err);
     cg_scene_free(&scene);
+    if (!printed) {
+        fprintf(stderr, "conegraph info: %s\n", err.message);
+        return cg_status_exit_code(err.status);
+    }
     if (!gl)
         return 0;
     cg_context *ctx;

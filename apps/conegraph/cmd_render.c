@@ -10,6 +10,7 @@
 #include "app_session.h"
 #include "cg/error.h"
 #include "cg/fg.h"
+#include "cg/fs.h"
 #include "cg/gl.h"
 #include "commands.h"
 
@@ -22,6 +23,7 @@ typedef struct render_options {
     app_options common;     /* scene, graph, size, camera, frames, sets, plugins, context, budget, timing */
     const char *output;
     const char *report;
+    const char *pass_costs;  /* --pass-costs FILE.csv */
     double fps, time;       /* frame k is posed at time + k / fps */
     dump_request dumps[APP_MAX_LIST];
     int dump_count;
@@ -52,6 +54,8 @@ cmd_render_usage(FILE *out)
         "  --fps F                 frames per second of animation time (default 30; above 0,\n"
         "                          at most 1e6): frame k is posed at T + k / F\n"
         "  --report FILE           per-pass times and resource bytes as JSON (written atomically)\n"
+        "  --pass-costs FILE.csv   every frame's per-pass times and what each pass rebuilt\n"
+        "                          (frame,time,pass,type,ms,rebuilt; written atomically)\n"
         "  --dump PASS.OUT=FILE.exr  also write that resource of the last frame (2D: as is;\n"
         "                          3D and arrays: slices stacked top to bottom); repeatable\n"
         "  --set PASS.PARAM=VALUE  override a parameter, validated like the file; repeatable\n"
@@ -94,6 +98,10 @@ own_option(void *user, const char *a, const char *v)
             return usage_error("--time wants seconds from 0 to 1e9, not '%s'", v);
     } else if (!strcmp(a, "--report")) {
         o->report = v;
+    } else if (!strcmp(a, "--pass-costs")) {
+        if (!app_has_extension(v, ".csv"))
+            return usage_error("--pass-costs writes a .csv file, not '%s'", v);
+        o->pass_costs = v;
     } else if (!strcmp(a, "--dump")) {
         const char *eq = strchr(v, '=');
         if (!eq || eq == v || !eq[1] || (size_t)(eq - v) >= sizeof o->dumps[0].source)
@@ -133,12 +141,68 @@ parse_args(int argc, char **argv, render_options *o)
     return 0;
 }
 
+/* What the per-frame callback sees: the session, and the --pass-costs rows so far (in memory
+ * until the run is over, so that a failed run leaves no file). */
+typedef struct render_progress {
+    app_session *s;
+    char *costs;
+    size_t costs_size;
+    FILE *costs_fp;         /* open_memstream over costs; NULL without --pass-costs */
+} render_progress;
+
+/* A CSV field: quoted, with its quotes doubled. */
+static void
+csv_text(FILE *fp, const char *text)
+{
+    fputc('"', fp);
+    for (const char *c = text; *c; c++) {
+        if (*c == '"')
+            fputc('"', fp);
+        fputc(*c, fp);
+    }
+    fputc('"', fp);
+}
+
+/* The frame line on stderr (with what each pass that said so rebuilt), and the frame's rows
+ * of --pass-costs. */
 static void
 print_progress(void *user, int frame, int frames, double ms)
 {
-    (void)user;
-    if (frames > 1)
-        fprintf(stderr, "render: frame %d/%d %.1f ms\n", frame + 1, frames, ms);
+    render_progress *p = user;
+    fg_graph *graph = p->s->graph;
+    if (frames > 1) {
+        fprintf(stderr, "render: frame %d/%d %.1f ms", frame + 1, frames, ms);
+        for (int i = 0; i < fg_graph_pass_count(graph); i++) {
+            const fg_pass *pass = fg_graph_pass_at(graph, i);
+            if (!fg_pass_is_culled(pass) && fg_pass_rebuilt(pass)[0])
+                fprintf(stderr, "; %s: %s", fg_pass_name(pass), fg_pass_rebuilt(pass));
+        }
+        fputc('\n', stderr);
+    }
+    if (!p->costs_fp)
+        return;
+    for (int i = 0; i < fg_graph_pass_count(graph); i++) {
+        const fg_pass *pass = fg_graph_pass_at(graph, i);
+        if (fg_pass_is_culled(pass))
+            continue;
+        fprintf(p->costs_fp, "%d,%.17g,%s,%s,%.6f,", frame, p->s->scene.time, fg_pass_name(pass),
+                fg_pass_type_of(pass)->name, fg_pass_milliseconds(pass));
+        csv_text(p->costs_fp, fg_pass_rebuilt(pass));
+        fputc('\n', p->costs_fp);
+    }
+}
+
+static bool
+write_pass_costs(const char *path, render_progress *p, cg_error *err)
+{
+    if (!p->costs_fp || fflush(p->costs_fp) != 0)
+        return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "%s: out of memory for the per-pass rows", path);
+    cg_atomic_file f;
+    if (!cg_atomic_open(&f, path, err))
+        return false;
+    fputs("frame,time,pass,type,ms,rebuilt\n", f.fp);
+    fwrite(p->costs, 1, p->costs_size, f.fp);
+    return cg_atomic_commit(&f, err);
 }
 
 /* Bad input (scene, graph, parameters, read-backs) exits 2 from app_session_check, before
@@ -160,8 +224,11 @@ render(const render_options *o)
     graph.reads = reads;
     graph.read_count = o->dump_count;
     cg_context_desc context = { .backend = c->backend, .width = c->width, .height = c->height, .debug = true };
+    render_progress progress = { .s = &s };
+    if (o->pass_costs)
+        progress.costs_fp = open_memstream(&progress.costs, &progress.costs_size);
     app_run_desc run = { .frames = c->frames, .timing = c->timing, .on_frame = print_progress,
-                         .animate = true, .time = o->time, .fps = o->fps };
+                         .user = &progress, .animate = true, .time = o->time, .fps = o->fps };
     bool ok = app_session_open(&s, &desc, &err) && app_session_load_graph(&s, &graph, &err) &&
               app_session_check(&s, &err) && app_session_start_gl(&s, &context, &err) &&
               app_session_compile(&s, &err) && app_session_run(&s, &run, &stats, &err) &&
@@ -170,6 +237,11 @@ render(const render_options *o)
         ok = app_session_write_image(&s, o->dumps[i].source, false, o->dumps[i].path, CG_EXR_FLOAT, &err);
     if (ok && o->report)
         ok = fg_graph_write_report_json(s.graph, o->report, &err);
+    if (ok && o->pass_costs)
+        ok = write_pass_costs(o->pass_costs, &progress, &err);
+    if (progress.costs_fp)
+        fclose(progress.costs_fp);
+    free(progress.costs);
     int code = ok ? 0 : app_fail(TOOL, NULL, &err);
     if (ok) {
         fg_graph_print_report(s.graph, stdout);

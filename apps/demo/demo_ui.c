@@ -45,8 +45,8 @@ frame_times(demo *d)
     ui_text_disabled("  UI %.1f ms of the frame", d->ui_ms);
 }
 
-/* Live passes in execution order with their times as bars of the frame time, then the
- * culled ones, greyed, with the reason. */
+/* Live passes in execution order with their times as bars of the frame time (and, greyed, what
+ * a pass said it rebuilt), then the culled ones, greyed, with the reason. */
 static void
 passes(demo *d)
 {
@@ -72,6 +72,12 @@ passes(demo *d)
         ui_bar(ms > 0 && whole > 0 ? (float)(ms / whole) : 0.0f, label);
         const fg_pass_type *type = fg_pass_type_of(pass);
         ui_tooltip(type->doc ? type->doc : type->name);
+        /* What a caching pass redid this frame (fg_pass_report_rebuilt), under its bar. */
+        if (fg_pass_rebuilt(pass)[0]) {
+            ui_push_dim(true);
+            ui_text_wrapped("  %s", fg_pass_rebuilt(pass));
+            ui_pop_dim();
+        }
     }
     for (int p = 0; p < fg_graph_pass_count(d->graph); p++) {
         const fg_pass *pass = fg_graph_pass_at(d->graph, p);

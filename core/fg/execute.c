@@ -228,6 +228,7 @@ fg_graph_prepare(fg_graph *graph, cg_error *err)
     for (int k = 0; k < graph->order_count; k++) {
         fg_pass *pass = graph->passes[graph->order[k]];
         pass->ms = -1;
+        pass->rebuilt[0] = '\0';
         if (!pass->type->prepare) {
             pass->prepared = true;
             continue;
@@ -305,6 +306,7 @@ fg_graph_execute(fg_graph *graph, const fg_frame *frame, fg_timing_mode timing, 
             glQueryCounter(pass->queries[slot][0], GL_TIMESTAMP);
         }
         cg_error local = { 0 };
+        pass->rebuilt[0] = '\0';
         if (!pass->type->execute(pass, pass->state, &local)) {
             if (local.status == CG_OK)
                 return cg_fail(err, CG_ERR_PASS, "pass '%s' (type %s): execute failed without a reason",

@@ -167,6 +167,7 @@ struct fg_pass {
     void *state;
     bool prepared;
     double ms;
+    char rebuilt[FG_REBUILT_MAX]; /* fg_pass_report_rebuilt during the last execute */
     GLuint queries[FG_QUERY_RING][2];
     bool query_issued[FG_QUERY_RING];
 };

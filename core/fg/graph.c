@@ -1,5 +1,6 @@
 /* Building a graph: pass instances, parameter values, connections, marked outputs;
  * and what a pass reads of itself (parameters, name, frame). */
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -310,6 +311,21 @@ const fg_frame *
 fg_pass_frame(const fg_pass *pass)
 {
     return &pass->graph->frame;
+}
+
+void
+fg_pass_report_rebuilt(fg_pass *pass, const char *format, ...)
+{
+    va_list args;
+    va_start(args, format);
+    vsnprintf(pass->rebuilt, sizeof pass->rebuilt, format, args);
+    va_end(args);
+}
+
+const char *
+fg_pass_rebuilt(const fg_pass *pass)
+{
+    return pass->rebuilt;
 }
 
 static const char *

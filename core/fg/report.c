@@ -110,8 +110,8 @@ fg_graph_print_report(const fg_graph *graph, FILE *out)
         } else {
             snprintf(a, sizeof a, "-");
         }
-        fprintf(out, "%-4d %-20s %-16s %10s  0x%x\n", k, pass->name, pass->type->name, a,
-                (unsigned)pass->barrier_bits);
+        fprintf(out, "%-4d %-20s %-16s %10s  0x%x%s%s\n", k, pass->name, pass->type->name, a,
+                (unsigned)pass->barrier_bits, pass->rebuilt[0] ? "  rebuilt: " : "", pass->rebuilt);
     }
     if (timed)
         fprintf(out, "%-4s %-20s %-16s %10.3f\n", "", "total", "", total);
@@ -161,6 +161,7 @@ report_json(const fg_graph *graph)
             json_object_set_new(j, "cull_reason", json_string(pass->cull_reason));
         json_object_set_new(j, "ms", pass->ms >= 0 ? json_real(pass->ms) : json_null());
         json_object_set_new(j, "barrier_bits", json_integer((json_int_t)pass->barrier_bits));
+        json_object_set_new(j, "rebuilt", pass->rebuilt[0] ? json_string(pass->rebuilt) : json_null());
         json_array_append_new(passes, j);
     }
     json_object_set_new(root, "passes", passes);

@@ -4,6 +4,7 @@
 #include "cg/gpu_scene.h"
 
 #include <math.h>
+#include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -182,8 +183,12 @@ pack_material(const cg_material *m, gpu_material *out)
 bool
 cg_gpu_scene_upload(const cg_scene *scene, cg_gpu_scene *out, cg_error *err)
 {
+    /* Uploads run on the thread whose GL context is current; an atomic keeps the counter
+     * unique should two threads with two contexts upload at once. */
+    static atomic_uint_fast64_t uploads;
     memset(out, 0, sizeof *out);
     out->scene = scene;
+    out->generation = (uint64_t)atomic_fetch_add(&uploads, 1) + 1;
     if (scene->mesh_count > 0) {
         out->meshes = calloc((size_t)scene->mesh_count, sizeof *out->meshes);
         if (!out->meshes)

@@ -2071,13 +2071,12 @@ cg_gltf_load(const char *path, cg_scene *out, cg_error *err)
         L.scene = out;
         L.err = err;
         ok = load(L);
-        if (ok)
-            for (int m = 0; m < out->mesh_count; m++) {
-                int k = L.explicit_kind[(size_t)m];
-                out->meshes[m].kind = k >= 0 ? (cg_mesh_kind)k
-                                             : cg_scene_mesh_is_heightfield(out, m) ? CG_MESH_HEIGHTFIELD
-                                                                                    : CG_MESH_COMPLEX;
-            }
+        // cg_scene_load classifies the meshes that carry no kind of their own.
+        for (int m = 0; ok && m < out->mesh_count; m++) {
+            int k = L.explicit_kind[(size_t)m];
+            out->meshes[m].kind = k >= 0 ? (cg_mesh_kind)k : CG_MESH_COMPLEX;
+            ok = cg_scene_set_kind_source(out, m, k >= 0 ? CG_KIND_EXTRAS : CG_KIND_CLASSIFIED, err);
+        }
     } catch (const std::bad_alloc &) {
         ok = cg_fail(err, CG_ERR_OUT_OF_MEMORY, "%s: out of memory", path);
     } catch (const std::exception &e) {

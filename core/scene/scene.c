@@ -1,16 +1,6 @@
-/* core/scene/scene.c: scene loading dispatch (file or built-in), freeing, bounds, validation,
- * and the height-field classification of meshes.
- *
- * Height-field rule (hybrid paper 3.1 sorts meshes into height fields and complex meshes):
- * a mesh is CG_MESH_HEIGHTFIELD when it has at least one instance and, for every instance,
- * every triangle of non-zero area faces up in world space: its unit geometric normal
- * (counter-clockwise winding, flipped when the instance transform mirrors) has
- * y > CG_HEIGHTFIELD_MIN_NY (1e-3, i.e. slopes below about 89.94 degrees). Such a surface
- * has no overhang, no vertical wall and no underside, so each (x, z) sees it at most once
- * where the triangles do not overlap in plan: y = h(x, z). The rule does not detect two
- * separate up-facing layers stacked above each other (a floor above a floor); meshes like
- * that should carry the "conegraph_kind": "complex" extra, which always wins. An instance that
- * moves with an animation makes its mesh complex unless the extra says otherwise.
+/* core/scene/scene.c: scene loading dispatch (file, built-in or DEM, with the classification
+ * keys of the source's query), freeing, bounds, validation. The height-field classification of
+ * meshes is classify.c's.
  */
 #include "cg/scene.h"
 
@@ -176,54 +166,104 @@ transform_point(const float m[16], const float p[3], double out[3])
         out[r] = (double)m[r] * p[0] + (double)m[4 + r] * p[1] + (double)m[8 + r] * p[2] + m[12 + r];
 }
 
-static double
-upper_3x3_determinant(const float m[16])
-{
-    return (double)m[0] * ((double)m[5] * m[10] - (double)m[9] * m[6]) -
-           (double)m[4] * ((double)m[1] * m[10] - (double)m[9] * m[2]) +
-           (double)m[8] * ((double)m[1] * m[6] - (double)m[5] * m[2]);
-}
-
-bool
-cg_scene_mesh_is_heightfield(const cg_scene *scene, int mesh_index)
-{
-    const cg_mesh *mesh = &scene->meshes[mesh_index];
-    bool instanced = false;
-    for (int i = 0; i < scene->instance_count; i++) {
-        const cg_instance *inst = &scene->instances[i];
-        if (inst->mesh != mesh_index)
-            continue;
-        instanced = true;
-        /* A moving instance would have to face up at every time: not proven, so complex. */
-        if (inst->moving)
-            return false;
-        /* glTF 3.7.4: a transform with a negative determinant reverses the winding. */
-        double facing = upper_3x3_determinant(inst->world) < 0 ? -1.0 : 1.0;
-        for (uint32_t t = 0; t + 2 < mesh->index_count; t += 3) {
-            double p[3][3];
-            for (int v = 0; v < 3; v++)
-                transform_point(inst->world, mesh->positions + 3 * (size_t)mesh->indices[t + v], p[v]);
-            double e1[3], e2[3];
-            for (int k = 0; k < 3; k++) {
-                e1[k] = p[1][k] - p[0][k];
-                e2[k] = p[2][k] - p[0][k];
-            }
-            double n[3] = { e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
-                            e1[0] * e2[1] - e1[1] * e2[0] };
-            double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-            if (!(len > 0))
-                continue; /* no area: covers nothing and has no orientation */
-            if (!(facing * n[1] / len > CG_HEIGHTFIELD_MIN_NY))
-                return false;
-        }
-    }
-    return instanced;
-}
-
 static bool
 has_prefix(const char *s, const char *prefix)
 {
     return strncmp(s, prefix, strlen(prefix)) == 0;
+}
+
+/* The classification keys of a source's query (cg/scene.h): parsed into *o and left out of
+ * `rest` (the other "key=value" pairs, '&'-joined, for the loader; rest holds strlen(query) + 1). */
+static bool
+take_classify_keys(const char *source, const char *query, char *rest, cg_classify_options *o, cg_error *err)
+{
+    rest[0] = '\0';
+    bool seen[4] = { false };
+    for (const char *p = query; p && *p;) {
+        const char *end = strchr(p, '&');
+        size_t len = end ? (size_t)(end - p) : strlen(p);
+        char item[1100];
+        if (len == 0)
+            return cg_fail(err, CG_ERR_SCENE_PARAM, "%s: malformed parameter list (an empty item)", source);
+        if (len >= sizeof item)
+            return cg_fail(err, CG_ERR_SCENE_PARAM, "%s: parameter '%.40s...' too long", source, p);
+        memcpy(item, p, len);
+        item[len] = '\0';
+        p = end ? end + 1 : p + len;
+        static const char *const keys[4] = { "classify", "eq5_resolution", "eq5_threshold", "eq5_points" };
+        char *eq = strchr(item, '=');
+        int key = -1;
+        for (int k = 0; eq && k < 4; k++)
+            if ((size_t)(eq - item) == strlen(keys[k]) && !strncmp(item, keys[k], strlen(keys[k])))
+                key = k;
+        if (key < 0) {
+            if (rest[0])
+                strcat(rest, "&");
+            strcat(rest, item);
+            continue;
+        }
+        if (seen[key])
+            return cg_fail(err, CG_ERR_SCENE_PARAM, "%s: parameter '%s' given twice", source, keys[key]);
+        seen[key] = true;
+        const char *v = eq + 1;
+        char *tail = NULL;
+        bool ok = true;
+        if (key == 0) {
+            ok = !strcmp(v, "eq5") || !strcmp(v, "normals");
+            o->rule = !strcmp(v, "normals") ? CG_CLASSIFY_NORMALS : CG_CLASSIFY_EQ5;
+        } else if (key == 1) {
+            long n = strtol(v, &tail, 10);
+            ok = v[0] && !*tail && n >= 2 && n <= CG_EQ5_MAX_RESOLUTION;
+            o->resolution = (int)n;
+        } else if (key == 2) {
+            double t = strtod(v, &tail);
+            ok = v[0] && !*tail && isfinite(t) && t > 0;
+            o->threshold = t;
+        } else {
+            ok = !strcmp(v, "vertices") || !strcmp(v, "centroids");
+            o->points = !strcmp(v, "centroids") ? CG_CLASSIFY_CENTROIDS : CG_CLASSIFY_VERTICES;
+        }
+        if (!ok) {
+            static const char *const expected[4] = { "eq5 or normals", "an integer from 2 to 8192",
+                                                     "a finite number > 0", "vertices or centroids" };
+            return cg_fail(err, CG_ERR_SCENE_PARAM, "%s: %s=%s: expected %s", source, keys[key], v, expected[key]);
+        }
+    }
+    return true;
+}
+
+static bool
+is_file(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    if (f)
+        fclose(f);
+    return f != NULL;
+}
+
+bool
+cg_scene_set_kind_source(cg_scene *scene, int mesh, cg_kind_source source, cg_error *err)
+{
+    if (scene->mesh_class_count < scene->mesh_count) {
+        cg_mesh_class *bigger = realloc(scene->mesh_class, (size_t)scene->mesh_count * sizeof *bigger);
+        if (!bigger)
+            return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "%s: out of memory", scene->name);
+        memset(bigger + scene->mesh_class_count, 0,
+               (size_t)(scene->mesh_count - scene->mesh_class_count) * sizeof *bigger);
+        scene->mesh_class = bigger;
+        scene->mesh_class_count = scene->mesh_count;
+    }
+    scene->mesh_class[mesh].source = source;
+    return true;
+}
+
+static bool
+mark_all(cg_scene *scene, cg_kind_source source, cg_error *err)
+{
+    for (int m = 0; m < scene->mesh_count; m++)
+        if (!cg_scene_set_kind_source(scene, m, source, err))
+            return false;
+    return true;
 }
 
 bool
@@ -231,23 +271,40 @@ cg_scene_load(const char *source, cg_scene *out, cg_error *err)
 {
     memset(out, 0, sizeof *out);
     if (!source || !source[0])
-        return cg_fail(err, CG_ERR_USAGE, "no scene given (a .gltf/.glb path or builtin:NAME)");
-    bool ok;
-    if (has_prefix(source, "builtin:")) {
-        const char *spec = source + strlen("builtin:");
-        const char *q = strchr(spec, '?');
-        char name[64];
-        size_t len = q ? (size_t)(q - spec) : strlen(spec);
-        if (len >= sizeof name)
-            len = sizeof name - 1;
-        memcpy(name, spec, len);
-        name[len] = '\0';
-        ok = cg_builtin_scene_load(name, q ? q + 1 : NULL, out, err);
-    } else {
-        ok = cg_gltf_load(source, out, err);
+        return cg_fail(err, CG_ERR_USAGE, "no scene given (a .gltf/.glb path, builtin:NAME or dem:IMAGE)");
+    /* The query: after the '?' of a built-in or DEM source, or of a file name that is not itself
+     * an existing file (so that a file whose name holds a '?' still loads). */
+    const char *q = strchr(source, '?');
+    bool builtin = has_prefix(source, "builtin:"), dem = has_prefix(source, "dem:");
+    if (q && !builtin && !dem && is_file(source))
+        q = NULL;
+    size_t len = q ? (size_t)(q - source) : strlen(source);
+    char *path = malloc(len + 1), *rest = malloc((q ? strlen(q) : 0) + 1);
+    if (!path || !rest) {
+        free(path);
+        free(rest);
+        return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "out of memory loading '%s'", source);
     }
+    memcpy(path, source, len);
+    path[len] = '\0';
+    cg_classify_options classify = { 0 };
+    bool ok = take_classify_keys(source, q ? q + 1 : NULL, rest, &classify, err);
+    if (ok && builtin) {
+        ok = cg_builtin_scene_load(path + strlen("builtin:"), rest[0] ? rest : NULL, out, err) &&
+             mark_all(out, CG_KIND_SCENE, err);
+    } else if (ok && dem) {
+        ok = cg_dem_load(path + strlen("dem:"), rest[0] ? rest : NULL, out, err);
+    } else if (ok && rest[0]) {
+        ok = cg_fail(err, CG_ERR_SCENE_PARAM, "%s: unknown parameter '%s' (a glTF file takes classify, "
+                     "eq5_resolution, eq5_threshold, eq5_points)", source, rest);
+    } else if (ok) {
+        ok = cg_gltf_load(path, out, err);
+    }
+    free(path);
+    free(rest);
     if (ok) {
         snprintf(out->name, sizeof out->name, "%s", source);
+        out->classify = classify;
         ok = cg_scene_validate(out, err);
     }
     if (ok) {
@@ -257,6 +314,8 @@ cg_scene_load(const char *source, cg_scene *out, cg_error *err)
         for (int i = 0; i < out->instance_count; i++)
             out->instances[i].revision = 0;
         cg_scene_compute_bounds(out);
+        /* Classified as posed at time 0; a moving instance makes its mesh complex (classify.c). */
+        ok = cg_scene_classify(out, err);
     }
     if (!ok)
         cg_scene_free(out);
@@ -282,6 +341,7 @@ cg_scene_free(cg_scene *scene)
     free(scene->textures);
     free(scene->lights);
     free(scene->cameras);
+    free(scene->mesh_class);
     for (int a = 0; a < scene->animation_count; a++) {
         for (int c = 0; c < scene->animations[a].channel_count; c++) {
             free(scene->animations[a].channels[c].times);

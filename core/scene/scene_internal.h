@@ -1,10 +1,11 @@
-/* core/scene/scene_internal.h: helpers shared by the scene loaders (scene.c, builtin/ (one file per scene),
- * gltf_adapter.cpp). Not a public header: passes and apps use cg/scene.h only.
+/* core/scene/scene_internal.h: helpers shared by the scene loaders (scene.c, classify.c, dem.c,
+ * builtin/ (one file per scene), gltf_adapter.cpp). Not a public header: passes and apps use cg/scene.h only.
  *
  * Declares: cg_scene_add_material, cg_scene_add_mesh, cg_scene_add_instance,
  *           cg_scene_add_light, cg_scene_add_camera, cg_scene_add_texture,
- *           cg_mesh_compute_bounds, cg_mesh_generate_normals, cg_scene_classify_mesh,
- *           cg_builtin_scene_load, cg_gltf_load, cg_gltf_check_json, cg_copy_name, cg_node_default,
+ *           cg_mesh_compute_bounds, cg_mesh_generate_normals, CG_HEIGHTFIELD_MIN_NY,
+ *           cg_scene_set_kind_source, cg_scene_classify, cg_dem_load, cg_builtin_scene_load,
+ *           cg_gltf_load, cg_gltf_check_json, cg_copy_name, cg_node_default,
  *           cg_node_local, cg_scene_add_node, cg_scene_attach, cg_anim_channel_alloc,
  *           cg_anim_channel_components, cg_anim_channel_stride, cg_scene_add_animation,
  *           cg_scene_pose, cg_scene_motion_bounds.
@@ -70,16 +71,24 @@ void cg_mesh_compute_bounds(cg_mesh *mesh);
  * A vertex used by no triangle with non-zero area gets (0, 1, 0). */
 bool cg_mesh_generate_normals(cg_mesh *mesh, cg_error *err);
 
-/* The height-field rule (see scene.c): true when every instance of the mesh places every
- * triangle of non-zero area facing up (world normal y > CG_HEIGHTFIELD_MIN_NY). */
+/* The normal rule's bound (classify.c): every triangle's world normal has y above it. */
 #define CG_HEIGHTFIELD_MIN_NY 1e-3f
-bool cg_scene_mesh_is_heightfield(const cg_scene *scene, int mesh);
+/* Records who gave mesh `mesh` its kind (scene->mesh_class grows to mesh_count entries, new
+ * ones CG_KIND_CLASSIFIED). */
+bool cg_scene_set_kind_source(cg_scene *scene, int mesh, cg_kind_source source, cg_error *err);
+/* Classifies (cg_mesh_classify, with scene->classify) every mesh whose kind source is
+ * CG_KIND_CLASSIFIED and sets its kind; the others keep theirs. Called by cg_scene_load. */
+bool cg_scene_classify(cg_scene *scene, cg_error *err);
+
+/* A height-field scene from a DEM image, "dem:PATH?key=value&..." (dem.c, docs/scenes.md); query
+ * may be NULL. */
+bool cg_dem_load(const char *path, const char *query, cg_scene *out, cg_error *err);
 
 /* "NAME" and "key=value&..." (query may be NULL) of a "builtin:" source. */
 bool cg_builtin_scene_load(const char *name, const char *query, cg_scene *out, cg_error *err);
 
-/* Loads a .gltf or .glb file (the adapter decides by magic). Mesh kinds come from the
- * "conegraph_kind" extra when present, else from cg_scene_mesh_is_heightfield. */
+/* Loads a .gltf or .glb file (the adapter decides by magic). A mesh with a "conegraph_kind"
+ * extra gets that kind (source CG_KIND_EXTRAS); cg_scene_load classifies the others. */
 bool cg_gltf_load(const char *path, cg_scene *out, cg_error *err);
 
 /* Checks the JSON of a glTF file (a .gltf, or a .glb's JSON chunk) as the Khronos

@@ -118,7 +118,6 @@ tan_half_degrees(double full_degrees)
 static bool
 cone_gather_execute(fg_pass *pass, cone_gather_state *s, cg_error *err)
 {
-    (void)err;
     const fg_frame *frame = fg_pass_frame(pass);
     double roughness = fg_param_float(pass, "roughness");
     const cg_cone_gather_block block = {
@@ -128,7 +127,9 @@ cone_gather_execute(fg_pass *pass, cone_gather_state *s, cg_error *err)
         .shadow = {fg_param_int(pass, "shadow_light")},
     };
 
-    cgp_gather_begin(pass, &s->gather, &block, sizeof block, fg_texture(pass, "volume"), fg_buffer(pass, "region"));
+    if (!cgp_gather_begin(pass, &s->gather, &block, sizeof block, fg_texture(pass, "volume"),
+                          fg_buffer(pass, "region"), err))
+        return false;
     if (frame->gpu_scene)
         cg_gpu_scene_bind_lights(frame->gpu_scene);
     if (s->specular)

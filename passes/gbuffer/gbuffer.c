@@ -12,10 +12,18 @@
  * of an albedo of 0.05), and the indirect light is multiplied by it. Normal and albedo lie in
  * [-1, 1] and [0, 1], where half floats keep 11 bits; emitted radiance has no such bound (the
  * sun's disc is 2e7 W/sr/m^2) and goes in fp32, as direct_light's output.
+ *
+ * The background: where no surface covers the pixel, `emissive` holds the scene's sky in the
+ * pixel's view direction (alpha stays 0), the emission the camera sees there, as the path
+ * tracer's `emitted` part holds it; so composite shows it, and a graph's own direct image
+ * (composite's direct + emissive, what `compare --direct` and bench take) holds it as the
+ * reference's does. It is the pass SDK's baked sky (sdk/sky.h, layer 0), the texture the cone
+ * tracers gather; with no sky nothing is dispatched.
  */
 #include <stdlib.h>
 
 #include "sdk/pass.h"
+#include "sdk/sky.h"
 #include "cg/fg.h"
 #include "cg/gpu_scene.h"
 #include "cg/shader.h"
@@ -23,6 +31,8 @@
 typedef struct gbuffer_state {
     GLuint program;
     GLuint fbo;
+    GLuint sky_program;     /* 0 until a frame has a sky */
+    cgp_sky sky;
 } gbuffer_state;
 
 static const char *const color_outputs[] = { "position", "normal", "albedo", "emissive" };
@@ -51,7 +61,36 @@ gbuffer_prepare(fg_pass *pass, gbuffer_state *st, cg_error *err)
         GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3,
     };
     glNamedFramebufferDrawBuffers(st->fbo, COLOR_OUTPUTS, draw_buffers);
+    cgp_sky_prepare(st, &st->sky);
     return cgp_graphics_program(st, "gbuffer/gbuffer.vert", NULL, "gbuffer/gbuffer.frag", NULL, &st->program, err);
+}
+
+/* The sky where no surface is (see the top of this file). */
+static bool
+background_sky(fg_pass *pass, gbuffer_state *st, cg_error *err)
+{
+    const fg_frame *frame = fg_pass_frame(pass);
+    if (!cgp_sky_update(st, &st->sky, frame->scene, err))
+        return false;
+    if (!st->sky.present)
+        return true;
+    if (!st->sky_program &&
+        !cgp_compute_program(st, "gbuffer/sky.comp", NULL, &st->sky_program, err))
+        return false;
+    /* The draw's writes reach the image loads below. */
+    glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    glUseProgram(st->sky_program);
+    cgp_sky_bind(&st->sky);
+    glUniformMatrix4fv(0, 1, GL_FALSE, frame->view.inv_proj);
+    glUniformMatrix4fv(1, 1, GL_FALSE, frame->view.inv_view);
+    glUniform1i(2, frame->view.orthographic);
+    glBindImageTexture(0, fg_texture(pass, "emissive"), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+    cgp_dispatch_2d(frame->width, frame->height);
+    cgp_sky_unbind();
+    glUseProgram(0);
+    /* Readers sample the attachment the frame graph knows as written by rendering. */
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_FRAMEBUFFER_BARRIER_BIT);
+    return true;
 }
 
 static bool
@@ -86,10 +125,11 @@ gbuffer_execute(fg_pass *pass, gbuffer_state *st, cg_error *err)
     glUseProgram(0);
     glDisable(GL_DEPTH_TEST);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    return true;
+    return background_sky(pass, st, err);
 }
 
 CGP_PASS(gbuffer, CGP_NO_PARAMS,
          "The visible surface of each pixel of the output image: depth, world position "
          "(w = 1 where covered), world normal facing the camera, linear albedo and emitted "
-         "radiance. Deferred shading's G-buffer; the VCT paper's cones start from it.");
+         "radiance, and on the background the scene's sky as the emission the camera sees. "
+         "Deferred shading's G-buffer; the VCT paper's cones start from it.");

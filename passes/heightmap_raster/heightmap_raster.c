@@ -2,14 +2,30 @@
  * (hybrid paper V.B, "multi-resolution sampling" of height-field meshes).
  *
  * Outputs
- *   lightmap  2D, resolution^2, RGBA32F (default) or RGBA16F, full mip chain declared (mip2d
- *             fills levels 1..): rgb = outgoing diffuse radiance of the direct light
+ *   lightmap  2D, resolution^2, RGBA32F (default) or RGBA16F, `levels` mip levels declared (0:
+ *             the full chain; mip2d fills levels 1..): rgb = outgoing diffuse radiance of the direct light
  *             (shadowed through the optional shadow map) plus emission, a = height, world y.
  *             Texels no height-field mesh covers hold black radiance at the lowest height.
  *   region    std140 block CG_HEIGHTMAP_BLOCK (common/blocks.h) for common/heightmap.glsl:
  *             where the map lies and the scale that decodes its radiance.
  *   depth     the depth buffer of the raster (transient working memory, counted).
+ *   geometry_position, geometry_normal, geometry_albedo, geometry_emission (cache=true only)
+ *             2D, resolution^2, RGBA32F, persistent: the surface attributes under each texel
+ *             (shaders/heightmap_raster/raster.frag), kept across frames.
  * Inputs (optional, together): shadow (depth) and shadow_matrix (buffer) of a shadow_map pass.
+ *
+ * Caching (cache=true, the default): the texels are split into geometry and light. The
+ * geometry (position, normal, albedo, emission of the surface under each texel) is rasterized
+ * into persistent textures only when it may have changed: the first frame after prepare, or
+ * when a height-field instance's world matrix, revision, mesh or material, the set of
+ * instances, the scene, the GPU scene's upload (cg_gpu_scene.generation) or the map's region
+ * differ from the last build, compared by value (a world changed by hand without a revision
+ * still rebuilds; any doubt rebuilds). The light is recomputed every frame by a compute pass
+ * over the texels (relight.comp), at a cost that follows texels, not triangles, with the
+ * formula the lit raster uses (common/surface_light.glsl) on the values it would use, so that
+ * a cached frame equals a rebuilt one bit for bit. cache=false is the paper's full rebuild:
+ * every frame rasterizes the meshes and lights them in the raster. The pass says which it did
+ * through fg_pass_report_rebuilt.
  *
  * Radiance range: RGBA16F stores radiance / s, s = a bound on the height fields' radiance /
  * 32768 (sdk/radiance.h), published in the region block: neither 1e9 W/m^2 clips at 65504 nor
@@ -41,21 +57,57 @@ static const fg_param_desc heightmap_params[] = {
     { .name = "resolution", .type = FG_PARAM_INT, .default_value = 1024, .min = 16, .max = 8192,
       .power_of_two = true,
       .doc = "texels per edge of the 2D lightmap at level 0" },
+    { .name = "levels", .type = FG_PARAM_INT, .default_value = 0, .min = 0, .max = 14,
+      .doc = "mip levels declared, from the finest (0: the full chain to 1 x 1); the paper's 2048^2 in 11 levels "
+             "stops at 2 x 2" },
     { .name = "format", .type = FG_PARAM_ENUM, .default_value = FORMAT_RGBA32F, .choices = "rgba16f|rgba32f",
       .doc = "texel format; rgba32f keeps heights to 24 bits (rgba16f: 11 bits, centimetres at 30 m, metres at 10 km)" },
+    { .name = "cache", .type = FG_PARAM_BOOL, .default_value = 1,
+      .doc = "keep the rasterized geometry across frames, re-rasterize it only when a height-field "
+             "instance changed and relight every texel each frame; false: rasterize and light "
+             "everything every frame (the paper's rebuild)" },
 };
 
-typedef struct heightmap_raster_state {
-    GLuint program;
-    GLuint fbo;
-    cgp_no_shadow no_shadow;
-    /* RGBA16F: per point/spot light, the nearest height-field surface (the radiance bound). */
-    cgp_light_distances light_distances;
-} heightmap_raster_state;
+/* The kept surface attributes (raster.frag with CG_HEIGHTMAP_GEOMETRY, colour attachments in
+ * this order). */
+static const char *const geometry_outputs[] = {
+    "geometry_position", "geometry_normal", "geometry_albedo", "geometry_emission",
+};
+enum { GEOMETRY_TARGETS = 4 };
+
+/* What a height-field instance was when the geometry was rasterized. */
+typedef struct built_instance {
+    int index, mesh;
+    float world[16];
+    uint64_t revision;
+    cg_mesh mesh_data;          /* its counts, arrays, kind and bounds */
+    cg_material material;
+} built_instance;
 
 typedef struct heightmap_region {
     double lo[3], hi[3];    /* world bounds of the height-field instances */
 } heightmap_region;
+
+typedef struct heightmap_raster_state {
+    bool cache;
+    GLuint program;         /* cache=false: the lit raster; cache=true: the geometry raster */
+    GLuint relight;         /* cache=true: relight.comp */
+    GLuint fbo;
+    cgp_no_shadow no_shadow;
+    /* RGBA16F: per point/spot light, the nearest height-field surface (the radiance bound). */
+    cgp_light_distances light_distances;
+
+    /* cache=true: what the kept geometry was rasterized from (built = false: nothing yet). */
+    bool built;
+    const cg_scene *scene;
+    const cg_gpu_scene *gpu_scene;
+    uint64_t generation;    /* the GPU scene's upload */
+    int instance_count, resolution;
+    heightmap_region region;
+    built_instance *instances;
+    int built_count, built_cap;
+    uint64_t builds;        /* geometry rasterizations since prepare */
+} heightmap_raster_state;
 
 /* World bounds of the height-field instances; false when there is none or all lie in a
  * line or a point seen from above (no area to rasterize). */
@@ -72,6 +124,7 @@ heightmap_raster_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
 {
     const fg_frame *frame = fg_pass_frame(pass);
     int resolution = fg_param_int(pass, "resolution");
+    int full = fg_mip_levels(resolution, resolution, 1), levels = fg_param_int(pass, "levels");
     if (!cgp_declare_shadow_inputs(pass, decl, err))
         return false;
     heightmap_region region;
@@ -79,14 +132,26 @@ heightmap_raster_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
         fg_declare_nothing_to_do(decl, "the scene has no height-field mesh (with area seen from above)");
         return true;
     }
+    bool cache = fg_param_bool(pass, "cache");
     fg_resource_desc lightmap = {
         .kind = FG_TEXTURE_2D,
         .format = fg_param_enum(pass, "format") == FORMAT_RGBA16F ? GL_RGBA16F : GL_RGBA32F,
         .width = resolution, .height = resolution, .depth = 1,
-        .levels = fg_mip_levels(resolution, resolution, 1),
+        .levels = levels > 0 && levels < full ? levels : full,
         .gi = true,
     };
-    fg_declare_output(decl, "lightmap", &lightmap, FG_ACCESS_ATTACHMENT | FG_ACCESS_TRANSFER);
+    fg_declare_output(decl, "lightmap", &lightmap,
+                      cache ? FG_ACCESS_IMAGE_STORE : FG_ACCESS_ATTACHMENT | FG_ACCESS_TRANSFER);
+    if (cache) {
+        /* Kept across frames: persistent storage is never pooled, so nothing else writes it
+         * between two frames. RGBA32F so that the relight sees the very values the lit
+         * raster would compute with. */
+        fg_resource_desc geometry = cgp_image_2d(GL_RGBA32F, resolution, resolution);
+        geometry.persistent = true;
+        geometry.gi = true;
+        for (int i = 0; i < GEOMETRY_TARGETS; i++)
+            fg_declare_output(decl, geometry_outputs[i], &geometry, FG_ACCESS_ATTACHMENT | FG_ACCESS_TRANSFER);
+    }
     fg_resource_desc block = cgp_buffer_desc(sizeof(cg_heightmap_block));
     fg_declare_output(decl, "region", &block, FG_ACCESS_TRANSFER);
     fg_resource_desc depth = cgp_image_2d(GL_DEPTH_COMPONENT32F, resolution, resolution);
@@ -100,59 +165,134 @@ heightmap_raster_cleanup(void *state)
 {
     heightmap_raster_state *s = state;
     cgp_light_distances_free(&s->light_distances);
+    free(s->instances);
 }
 
 static bool
 heightmap_raster_prepare(fg_pass *pass, heightmap_raster_state *s, cg_error *err)
 {
-    (void)pass;
     cgp_state_on_destroy(s, heightmap_raster_cleanup);
+    s->cache = fg_param_bool(pass, "cache");
     s->fbo = cgp_framebuffer(s);
     cgp_no_shadow_create(s, &s->no_shadow);
-    return cgp_graphics_program(s, "heightmap_raster/raster.vert", NULL, "heightmap_raster/raster.frag", NULL,
-                                &s->program, err);
+    if (!s->cache)
+        return cgp_graphics_program(s, "heightmap_raster/raster.vert", NULL, "heightmap_raster/raster.frag", NULL,
+                                    &s->program, err);
+    const fg_resource_desc *desc = fg_resource(pass, "lightmap");
+    char defines[64];
+    snprintf(defines, sizeof defines, "#define LIGHTMAP_FORMAT %s\n",
+             desc && desc->format == GL_RGBA16F ? "rgba16f" : "rgba32f");
+    return cgp_graphics_program(s, "heightmap_raster/raster.vert", NULL, "heightmap_raster/raster.frag",
+                                "#define CG_HEIGHTMAP_GEOMETRY\n", &s->program, err) &&
+           cgp_compute_program(s, "heightmap_raster/relight.comp", defines, &s->relight, err);
 }
 
+/* Whether a height-field instance is as it was at the build: its world matrix, its revision,
+ * its mesh (counts, arrays, kind, bounds) and its material, compared by value. */
 static bool
-heightmap_raster_execute(fg_pass *pass, heightmap_raster_state *s, cg_error *err)
+instance_unchanged(const cg_scene *scene, const built_instance *b)
+{
+    if (b->index >= scene->instance_count)
+        return false;
+    const cg_instance *inst = &scene->instances[b->index];
+    if (inst->mesh != b->mesh || inst->revision != b->revision ||
+        memcmp(inst->world, b->world, sizeof b->world) || b->mesh >= scene->mesh_count)
+        return false;
+    const cg_mesh *mesh = &scene->meshes[b->mesh];
+    return !memcmp(mesh, &b->mesh_data, sizeof *mesh) && mesh->material >= 0 &&
+           mesh->material < scene->material_count &&
+           !memcmp(&scene->materials[mesh->material], &b->material, sizeof b->material);
+}
+
+/* Why the kept geometry must be rasterized again this frame, or NULL when it is up to date.
+ * Any doubt rebuilds: what is compared is everything the geometry raster reads. */
+static const char *
+geometry_stale(const heightmap_raster_state *s, const fg_frame *frame, const heightmap_region *region,
+               int resolution)
+{
+    const cg_scene *scene = frame->scene;
+    if (!s->built)
+        return "first frame";
+    if (scene != s->scene || frame->gpu_scene != s->gpu_scene ||
+        frame->gpu_scene->generation != s->generation || scene->instance_count != s->instance_count)
+        return "scene uploaded again";
+    if (resolution != s->resolution || memcmp(region, &s->region, sizeof *region))
+        return "region moved";
+    int n = 0;
+    for (int i = 0; i < scene->instance_count; i++) {
+        const cg_instance *inst = &scene->instances[i];
+        if (inst->mesh < 0 || inst->mesh >= scene->mesh_count ||
+            !cgp_mesh_passes(scene->meshes[inst->mesh].kind, CG_MESHES_HEIGHTFIELD))
+            continue;
+        if (n >= s->built_count || s->instances[n].index != i || !instance_unchanged(scene, &s->instances[n]))
+            return "a height-field instance changed";
+        n++;
+    }
+    return n == s->built_count ? NULL : "a height-field instance changed";
+}
+
+/* Records what the geometry was rasterized from. */
+static bool
+remember_build(heightmap_raster_state *s, const fg_frame *frame, const heightmap_region *region, int resolution,
+               cg_error *err)
+{
+    const cg_scene *scene = frame->scene;
+    s->built = false;
+    s->built_count = 0;
+    for (int i = 0; i < scene->instance_count; i++) {
+        const cg_instance *inst = &scene->instances[i];
+        const cg_mesh *mesh = &scene->meshes[inst->mesh];
+        if (!cgp_mesh_passes(mesh->kind, CG_MESHES_HEIGHTFIELD))
+            continue;
+        if (s->built_count == s->built_cap) {
+            int cap = s->built_cap ? 2 * s->built_cap : 8;
+            built_instance *grown = realloc(s->instances, sizeof *grown * (size_t)cap);
+            if (!grown)
+                return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "out of memory for %d height-field instances", cap);
+            s->instances = grown;
+            s->built_cap = cap;
+        }
+        built_instance *b = &s->instances[s->built_count++];
+        memset(b, 0, sizeof *b);
+        b->index = i;
+        b->mesh = inst->mesh;
+        memcpy(b->world, inst->world, sizeof b->world);
+        b->revision = inst->revision;
+        /* memcpy, not assignment: memcmp then compares the padding too, byte for byte. */
+        memcpy(&b->mesh_data, mesh, sizeof *mesh);
+        if (mesh->material >= 0 && mesh->material < scene->material_count)
+            memcpy(&b->material, &scene->materials[mesh->material], sizeof b->material);
+    }
+    s->scene = scene;
+    s->gpu_scene = frame->gpu_scene;
+    s->generation = frame->gpu_scene->generation;
+    s->instance_count = scene->instance_count;
+    s->resolution = resolution;
+    s->region = *region;
+    s->built = true;
+    return true;
+}
+
+/* Rasterizes the height-field meshes from above into the framebuffer as attached: the lit
+ * texels (cache=false) or the surface attributes (cache=true), after clearing to `clears`. */
+static void
+raster(const fg_pass *pass, heightmap_raster_state *s, const heightmap_region *region, int resolution,
+       double radiance_scale, const float (*clears)[4], int targets)
 {
     const fg_frame *frame = fg_pass_frame(pass);
-    heightmap_region region;
-    if (!heightfield_bounds(frame->scene, &region))
-        return cg_fail(err, CG_ERR_PASS, "pass '%s': the height-field meshes vanished since compile",
-                       fg_pass_name(pass));
-    const fg_resource_desc *desc = fg_resource(pass, "lightmap");
-    int resolution = desc->width;
-    GLuint lightmap = fg_texture(pass, "lightmap");
     /* Depth: 0 at the top of the bounds, 1 at the bottom, with 1% slack on each side so
      * that the highest and lowest vertices are not clipped. A flat height field has no
      * extent: the slack is then 1e-6 of its height (well above a float's 6e-8 ulp, so the
      * uniform `top` stays above it) or of the map's width, whichever is larger: relative to
      * the scene, not 1e-6 m. */
-    double dy = region.hi[1] - region.lo[1];
-    double width = fmax(region.hi[0] - region.lo[0], region.hi[2] - region.lo[2]);
-    double slack = fmax(0.01 * dy, 1e-6 * fmax(fabs(region.hi[1]), width));
-    double top = region.hi[1] + slack, range = dy + 2.0 * slack;
-    /* The pre-exposure of a half-float map; radiance is averaged over texels, so a point light
-     * counts as never nearer than half a texel. */
-    double radiance_scale = 1.0;
-    if (desc->format == GL_RGBA16F) {
-        double texel = fmax(region.hi[0] - region.lo[0], region.hi[2] - region.lo[2]) / resolution;
-        double bound = 0.0;
-        if (!cgp_radiance_bound(&s->light_distances, frame->scene, CG_MESHES_HEIGHTFIELD, 0.5 * texel, &bound, err))
-            return false;
-        radiance_scale = cgp_half_float_scale(bound);
-    }
+    double dy = region->hi[1] - region->lo[1];
+    double width = fmax(region->hi[0] - region->lo[0], region->hi[2] - region->lo[2]);
+    double slack = fmax(0.01 * dy, 1e-6 * fmax(fabs(region->hi[1]), width));
+    double top = region->hi[1] + slack, range = dy + 2.0 * slack;
 
-    glNamedFramebufferTexture(s->fbo, GL_COLOR_ATTACHMENT0, lightmap, 0);
-    glNamedFramebufferTexture(s->fbo, GL_DEPTH_ATTACHMENT, fg_texture(pass, "depth"), 0);
-    glNamedFramebufferDrawBuffer(s->fbo, GL_COLOR_ATTACHMENT0);
-    if (glCheckNamedFramebufferStatus(s->fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-        return cg_fail(err, CG_ERR_GL, "pass '%s': lightmap framebuffer incomplete", fg_pass_name(pass));
-    /* Texels no mesh covers: no radiance, at the lowest height (nothing rises there). */
-    const float clear[4] = {0.0f, 0.0f, 0.0f, (float)region.lo[1]};
     const float clear_depth = 1.0f;
-    glClearNamedFramebufferfv(s->fbo, GL_COLOR, 0, clear);
+    for (int i = 0; i < targets; i++)
+        glClearNamedFramebufferfv(s->fbo, GL_COLOR, i, clears[i]);
     glClearNamedFramebufferfv(s->fbo, GL_DEPTH, 0, &clear_depth);
 
     GLint viewport[4];
@@ -166,17 +306,112 @@ heightmap_raster_execute(fg_pass *pass, heightmap_raster_state *s, cg_error *err
     glDisable(GL_BLEND);
 
     glUseProgram(s->program);
-    glUniform4f(8, (float)region.lo[0], (float)region.lo[2], (float)(1.0 / (region.hi[0] - region.lo[0])),
-                (float)(1.0 / (region.hi[2] - region.lo[2])));
+    glUniform4f(8, (float)region->lo[0], (float)region->lo[2], (float)(1.0 / (region->hi[0] - region->lo[0])),
+                (float)(1.0 / (region->hi[2] - region->lo[2])));
     glUniform2f(9, (float)top, (float)(1.0 / range));
-    glUniform1f(10, (float)radiance_scale);
-    cg_gpu_scene_bind_lights(frame->gpu_scene);
-    cgp_bind_shadow(pass, &s->no_shadow, 2);
+    if (!s->cache) {
+        glUniform1f(10, (float)radiance_scale);
+        cg_gpu_scene_bind_lights(frame->gpu_scene);
+        cgp_bind_shadow(pass, &s->no_shadow, 2);
+    }
     cg_gpu_scene_draw(frame->gpu_scene, CG_MESHES_HEIGHTFIELD);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
     glDisable(GL_DEPTH_TEST);
     glUseProgram(0);
+}
+
+static bool
+framebuffer_complete(const fg_pass *pass, const heightmap_raster_state *s, cg_error *err)
+{
+    if (glCheckNamedFramebufferStatus(s->fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        return cg_fail(err, CG_ERR_GL, "pass '%s': lightmap framebuffer incomplete", fg_pass_name(pass));
+    return true;
+}
+
+/* cache=true: rasterizes the surface attributes when they may have changed, then relights
+ * every texel. */
+static bool
+execute_cached(fg_pass *pass, heightmap_raster_state *s, const heightmap_region *region, int resolution,
+               double radiance_scale, cg_error *err)
+{
+    const fg_frame *frame = fg_pass_frame(pass);
+    const char *why = geometry_stale(s, frame, region, resolution);
+    if (why) {
+        static const GLenum buffers[GEOMETRY_TARGETS] = {
+            GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3,
+        };
+        for (int i = 0; i < GEOMETRY_TARGETS; i++)
+            glNamedFramebufferTexture(s->fbo, buffers[i], fg_texture(pass, geometry_outputs[i]), 0);
+        glNamedFramebufferTexture(s->fbo, GL_DEPTH_ATTACHMENT, fg_texture(pass, "depth"), 0);
+        glNamedFramebufferDrawBuffers(s->fbo, GEOMETRY_TARGETS, buffers);
+        if (!framebuffer_complete(pass, s, err))
+            return false;
+        /* Texels no mesh covers: position.w = 0 (the relight writes black at the lowest height). */
+        static const float zero[GEOMETRY_TARGETS][4] = {{0.0f}};
+        raster(pass, s, region, resolution, radiance_scale, zero, GEOMETRY_TARGETS);
+        if (!remember_build(s, frame, region, resolution, err))
+            return false;
+        s->builds++;
+    }
+
+    glUseProgram(s->relight);
+    glUniform1f(10, (float)radiance_scale);
+    glUniform1f(11, (float)region->lo[1]);
+    cg_gpu_scene_bind_lights(frame->gpu_scene);
+    cgp_bind_shadow(pass, &s->no_shadow, 2);
+    for (int i = 0; i < GEOMETRY_TARGETS; i++)
+        glBindTextureUnit(3 + (GLuint)i, fg_texture(pass, geometry_outputs[i]));
+    const fg_resource_desc *desc = fg_resource(pass, "lightmap");
+    glBindImageTexture(0, fg_texture(pass, "lightmap"), 0, GL_FALSE, 0, GL_WRITE_ONLY, desc->format);
+    /* The geometry raster's attachments are read as textures right after: framebuffer writes
+     * are visible to later commands without a barrier. */
+    cgp_dispatch_2d(resolution, resolution);
+    for (int i = 0; i < GEOMETRY_TARGETS; i++)
+        glBindTextureUnit(3 + (GLuint)i, 0);
+    glUseProgram(0);
+
+    fg_pass_report_rebuilt(pass, "geometry %s%s%s; light %d texels relit (%llu geometry build%s since prepare)",
+                           why ? "rasterized (" : "kept", why ? why : "", why ? ")" : "",
+                           resolution * resolution, (unsigned long long)s->builds, s->builds == 1 ? "" : "s");
+    return true;
+}
+
+static bool
+heightmap_raster_execute(fg_pass *pass, heightmap_raster_state *s, cg_error *err)
+{
+    const fg_frame *frame = fg_pass_frame(pass);
+    heightmap_region region;
+    if (!heightfield_bounds(frame->scene, &region))
+        return cg_fail(err, CG_ERR_PASS, "pass '%s': the height-field meshes vanished since compile",
+                       fg_pass_name(pass));
+    const fg_resource_desc *desc = fg_resource(pass, "lightmap");
+    int resolution = desc->width;
+    /* The pre-exposure of a half-float map; radiance is averaged over texels, so a point light
+     * counts as never nearer than half a texel. */
+    double radiance_scale = 1.0;
+    if (desc->format == GL_RGBA16F) {
+        double texel = fmax(region.hi[0] - region.lo[0], region.hi[2] - region.lo[2]) / resolution;
+        double bound = 0.0;
+        if (!cgp_radiance_bound(&s->light_distances, frame->scene, CG_MESHES_HEIGHTFIELD, 0.5 * texel, &bound, err))
+            return false;
+        radiance_scale = cgp_half_float_scale(bound);
+    }
+
+    if (s->cache) {
+        if (!execute_cached(pass, s, &region, resolution, radiance_scale, err))
+            return false;
+    } else {
+        glNamedFramebufferTexture(s->fbo, GL_COLOR_ATTACHMENT0, fg_texture(pass, "lightmap"), 0);
+        glNamedFramebufferTexture(s->fbo, GL_DEPTH_ATTACHMENT, fg_texture(pass, "depth"), 0);
+        glNamedFramebufferDrawBuffer(s->fbo, GL_COLOR_ATTACHMENT0);
+        if (!framebuffer_complete(pass, s, err))
+            return false;
+        /* Texels no mesh covers: no radiance, at the lowest height (nothing rises there). */
+        const float clear[1][4] = {{0.0f, 0.0f, 0.0f, (float)region.lo[1]}};
+        raster(pass, s, &region, resolution, radiance_scale, clear, 1);
+        fg_pass_report_rebuilt(pass, "geometry and light rasterized (cache=false)");
+    }
 
     const cg_heightmap_block block = {
         .origin_texel = {(float)region.lo[0], (float)region.lo[2], (float)((region.hi[0] - region.lo[0]) / resolution),
@@ -192,4 +427,7 @@ CGP_PASS(heightmap_raster, CGP_PARAMS(heightmap_params),
          "Rasterizes the scene's height-field meshes from above (orthographic, looking down -y) "
          "into a 2D lightmap over their xz bounds (hybrid paper V.B): rgb = outgoing diffuse "
          "radiance of the direct light, shadowed through the optional shadow map, plus emission; "
-         "alpha = height (world y). Nothing to do for a scene without height-field meshes.");
+         "alpha = height (world y). With cache=true the meshes' surface attributes are kept across "
+         "frames, re-rasterized only when a height-field instance changed, and relit every frame "
+         "by a compute pass over the texels; cache=false rasterizes and lights everything every "
+         "frame. Nothing to do for a scene without height-field meshes.");

@@ -2,20 +2,21 @@
  * through a 3D lightmap of the complex meshes and a 2D lightmap of the height-field meshes.
  *
  * A separate pass rather than a mode of cone_gather, each shader reading as one method, but
- * no copy of it: both take the 3D steps of shaders/common/cone_trace.glsl (cg_cone_step, here
- * at the sample position of eq. 15) and share the pass SDK's cgp_gather (cone set, blocks,
- * bindings). Without the 2D branch (a scene with no height field, where the graph culls
- * heightmap_raster, mip2d and hsat) the shader compiles without HAS_2D and runs the very VCT
- * gather of cone_gather.
+ * no copy of it: both take the 3D steps of shaders/common/cone_trace.glsl (cg_cone_step) and
+ * share the pass SDK's cgp_gather (cone set, blocks, bindings). Without the 2D branch (a scene
+ * with no height field, where the graph culls heightmap_raster, mip2d and hsat) the shader
+ * compiles without HAS_2D and runs the very VCT gather of cone_gather. With it, `method`
+ * chooses the paper's steps (METHOD_PAPER) or ours, the horizon (shaders/hybrid_gather/
+ * hybrid_gather.comp describes both; docs/hybrid.md measures them).
  *
  * Inputs: position, normal (G-buffer, required); volume + region (mip3d'd voxelize radiance
- * and its block, or a voxel_light pass's surface voxels with sides and normals: sdk/cone.h's
- * cgp_gather_declare_volume, the 3D model cg_cone_step samples); lightmap + region2d (mip2d'd heightmap_raster lightmap and its block) and
- * hsat + hsat_info (an hsat pass's table and info). Each group is optional; with neither
- * lightmap the pass has nothing to do.
+ * and its block); lightmap + region2d (mip2d'd heightmap_raster lightmap and its block) and
+ * hsat + hsat_info (an hsat pass's table and info; mode pyramid for the horizon's skipping).
+ * Each group is optional; with neither lightmap the pass has nothing to do.
  * Output: radiance, RGBA32F: rgb = sum_k W_k L_k (E_i / pi, composite multiplies by the
  * albedo), a = ambient visibility. The same convention as cone_gather.
  */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -23,12 +24,19 @@
 #include "sdk/pass.h"
 #include "sdk/sampler.h"
 #include "sdk/cone.h"
+#include "sdk/scene.h"
 #include "cg/fg.h"
 #include "cg/gpu_scene.h"
 #include "cg/shader.h"
 
+enum { METHOD_PAPER, METHOD_HORIZON };
+enum { LEVEL_MATCHED, LEVEL_EQ8 };
+enum { CAP_COMPLEX, CAP_ALL };
 enum { CUBE_EQ11, CUBE_EQ10 };
 enum { OCCLUSION_EQ16, OCCLUSION_EQ17 };
+enum { MIX_PAPER, MIX_SEQUENTIAL };
+enum { ADVANCE_CUBE, ADVANCE_STEP };
+enum { BOX_MESHES, BOX_VOLUME };
 
 static const fg_param_desc hybrid_gather_params[] = {
     { .name = "cones", .type = FG_PARAM_INT, .default_value = 6, .min = 1, .max = 16,
@@ -37,24 +45,73 @@ static const fg_param_desc hybrid_gather_params[] = {
     { .name = "aperture", .type = FG_PARAM_FLOAT, .min = 0, .max = 150,
       .step = 5,
       .doc = "full apex angle of the diffuse cones in degrees; 0: per cone, the cone with its cell's solid angle" },
-    { .name = "step", .type = FG_PARAM_FLOAT, .default_value = 0.25, .min = 0.05, .max = 4,
-      .doc = "step length as a fraction of the cone diameter" },
+    { .name = "method", .type = FG_PARAM_ENUM, .default_value = METHOD_HORIZON, .choices = "paper|horizon",
+      .doc = "paper: the steps of hybrid VI in the paper's order (fitting cubes, eq. 12-17, morphology search); "
+             "horizon: cone_gather's 3D march and the terrain's horizon over each cone's cell (docs/hybrid.md)" },
+    { .name = "step", .type = FG_PARAM_FLOAT, .default_value = 0.5, .min = 0.05, .max = 4,
+      .doc = "step length as a fraction of the cone diameter (3D steps as cone_gather's; method=paper with "
+             "advance=step)" },
     { .name = "start_offset", .type = FG_PARAM_FLOAT, .default_value = 1.5, .min = 0, .max = 16,
-      .doc = "xels the cone origin is moved along the normal (the coarser of voxel and 2D texel)" },
-    { .name = "lod_bias", .type = FG_PARAM_FLOAT, .default_value = -2, .min = -4, .max = 4,
+      .doc = "xels the cone origin is moved along the normal (paper: the coarser of voxel and 2D texel; horizon: "
+             "voxels, as cone_gather)" },
+    { .name = "level", .type = FG_PARAM_ENUM, .default_value = LEVEL_MATCHED, .choices = "matched|eq8",
+      .doc = "mip level of both lightmaps: eq8 = hybrid eq. 8 itself; matched = one level finer, cone_gather's "
+             "(its sample's spread matches the cone's footprint)" },
+    { .name = "lod_bias", .type = FG_PARAM_FLOAT, .default_value = 0, .min = -4, .max = 4,
       .step = 0.25,
-      .doc = "added to the 3D lightmap's matched level (one below hybrid eq. 8, as cone_gather) and to the 2D "
-             "lightmap's eq. 8" },
+      .doc = "added to the level of both lightmaps (see level)" },
+    { .name = "levels3d", .type = FG_PARAM_INT, .default_value = 0, .min = 0, .max = 16,
+      .doc = "levels of the 3D lightmap used, from the finest (0: all): the paper's 128^3 in 7 levels" },
     { .name = "max_distance", .type = FG_PARAM_FLOAT, .min = 0, .max = 1e9,
       .doc = "metres a cone travels at most; 0: the maps' diagonal" },
-    { .name = "cube", .type = FG_PARAM_ENUM, .default_value = CUBE_EQ11, .choices = "eq11|eq10",
-      .doc = "fitting cube: eq. 11 for cones off the axes (eq. 10 on them, the paper), or eq. 10's inscribed cube always" },
-    { .name = "occlusion", .type = FG_PARAM_ENUM, .default_value = OCCLUSION_EQ16, .choices = "eq16|eq17",
-      .doc = "height-field occlusion per step: eq. 16 (newly covered part of the section) or eq. 17 (d / t)" },
-    { .name = "dda", .type = FG_PARAM_BOOL, .default_value = 1,
-      .doc = "walk the 2D lightmap along the cone's projection by a 2D DDA (else one sample at the cube's centre)" },
+    { .name = "box3d", .type = FG_PARAM_ENUM, .default_value = BOX_MESHES, .choices = "meshes|volume",
+      .doc = "the 3D lightmap's box of eq. 12: the complex meshes' bounds (the paper's; the cubic volume has "
+             "empty space around them) or the whole volume (a volume of all meshes)" },
     { .name = "skip", .type = FG_PARAM_BOOL, .default_value = 1,
-      .doc = "skip steps above the highest terrain under the cube (HSAT)" },
+      .doc = "skip empty space over the terrain: paper: a cube above the highest terrain under it (HSAT, VI.A); "
+             "horizon: every block of the min-max pyramid that cannot raise the horizon, hierarchically" },
+    { .name = "terrain_step", .type = FG_PARAM_FLOAT, .default_value = 0.25, .min = 0.05, .max = 4,
+      .active_when = "method=horizon",
+      .doc = "spacing of the terrain samples as a fraction of the cone diameter" },
+    { .name = "terrain_lod_bias", .type = FG_PARAM_FLOAT, .default_value = -2, .min = -6, .max = 4, .step = 0.25,
+      .active_when = "method=horizon",
+      .doc = "added to the 2D lightmap's level for the terrain samples: finer heights find the ridges' tops "
+             "that a footprint-wide mean flattens" },
+    { .name = "surface_cap", .type = FG_PARAM_ENUM, .default_value = CAP_COMPLEX, .choices = "complex|all",
+      .active_when = "method=horizon",
+      .doc = "where cone_gather's level cap near the surface applies: complex = only on points off the height "
+             "field (a terrain point has no voxels of its own), all = everywhere" },
+    { .name = "cube", .type = FG_PARAM_ENUM, .default_value = CUBE_EQ11, .choices = "eq11|eq10",
+      .active_when = "method=paper",
+      .doc = "fitting cube: eq. 11 for cones off the axes (eq. 10 on them, the paper), or eq. 10's inscribed cube always" },
+    { .name = "advance", .type = FG_PARAM_ENUM, .default_value = ADVANCE_CUBE, .choices = "cube|step",
+      .active_when = "method=paper",
+      .doc = "the next step: where the fitting cube ends along the axis (contiguous cubes), or step x diameter" },
+    { .name = "ball_threshold", .type = FG_PARAM_FLOAT, .default_value = 0.5, .min = 0, .max = 16,
+      .active_when = "method=paper",
+      .doc = "VI.B: no 3D sample where the cube's intersection with the 3D lightmap has a bounding ball of a "
+             "smaller radius (level-0 voxels)" },
+    { .name = "abandon", .type = FG_PARAM_BOOL, .default_value = 1, .active_when = "method=paper",
+      .doc = "VI.A: a cube below the lowest terrain under it (HSAT) ends the cone, lit by the terrain" },
+    { .name = "latch", .type = FG_PARAM_BOOL, .default_value = 1, .active_when = "method=paper",
+      .doc = "VI.C: once a cube lies inside the 3D lightmap, Case 1 only for the rest of the cone" },
+    { .name = "dda", .type = FG_PARAM_BOOL, .default_value = 1, .active_when = "method=paper",
+      .doc = "VI.B's morphology search (segmentation, DDA over sub-meshes, backface culling, dynamic distance, "
+             "weighting); else one sample at the cube's centre" },
+    { .name = "dda_refine", .type = FG_PARAM_INT, .default_value = 1, .min = 0, .max = 4,
+      .active_when = "method=paper",
+      .doc = "sub-meshes of the search: texels this many levels below the 2D level (at most 8 per side)" },
+    { .name = "backface", .type = FG_PARAM_BOOL, .default_value = 1, .active_when = "method=paper",
+      .doc = "VI.B: sub-meshes facing away from the cone add no radiance" },
+    { .name = "weighting", .type = FG_PARAM_BOOL, .default_value = 1, .active_when = "method=paper",
+      .doc = "VI.B: sub-mesh radiance weighted by max(0, -n.v) (the normal and the cone direction)" },
+    { .name = "occlusion", .type = FG_PARAM_ENUM, .default_value = OCCLUSION_EQ17, .choices = "eq16|eq17",
+      .active_when = "method=paper",
+      .doc = "Case 2: eq. 16 (h2 A2 - h1 A1) / (h2 A2) or eq. 17 (step diameter / distance)" },
+    { .name = "mix", .type = FG_PARAM_ENUM, .default_value = MIX_PAPER, .choices = "paper|sequential",
+      .active_when = "method=paper",
+      .doc = "VI.C mix case: paper = the 3D sample's opacity raises the heights inside the 3D lightmap's "
+             "projection before Case 2; sequential = 3D then 2D, each on its own" },
 };
 
 typedef struct hybrid_gather_state {
@@ -62,6 +119,7 @@ typedef struct hybrid_gather_state {
     GLuint map_sampler, table_sampler;
     GLuint empty_block;     /* bound where a map is absent, so no block is left unbound */
     bool has_2d, has_3d;
+    cg_hybrid_gather_block block;   /* 3 KiB: kept here rather than on the stack */
 } hybrid_gather_state;
 
 static bool
@@ -79,21 +137,31 @@ hybrid_gather_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
 {
     const fg_resource_desc *position = fg_declare_input(decl, "position", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, true);
     fg_declare_input(decl, "normal", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, true);
-    const fg_resource_desc *volume, *region;
-    if (!cgp_gather_declare_volume(pass, decl, &volume, &region, err))
-        return false;
+    const fg_resource_desc *volume = fg_declare_input(decl, "volume", FG_TEXTURE_3D, FG_ACCESS_SAMPLED, false);
+    const fg_resource_desc *region = fg_declare_input(decl, "region", FG_BUFFER, FG_ACCESS_UNIFORM, false);
     const fg_resource_desc *lightmap = fg_declare_input(decl, "lightmap2d", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, false);
     const fg_resource_desc *region2d = fg_declare_input(decl, "region2d", FG_BUFFER, FG_ACCESS_UNIFORM, false);
     const fg_resource_desc *hsat = fg_declare_input(decl, "hsat", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, false);
     const fg_resource_desc *hsat_info = fg_declare_input(decl, "hsat_info", FG_BUFFER, FG_ACCESS_STORAGE, false);
+    if (volume && !region)
+        return cg_fail(err, CG_ERR_GRAPH_MISSING_INPUT,
+                       "pass '%s': input 'volume' needs input 'region' (a voxelize pass's output 'region')",
+                       fg_pass_name(pass));
     if (lightmap && (!region2d || !hsat || !hsat_info))
         return cg_fail(err, CG_ERR_GRAPH_MISSING_INPUT,
                        "pass '%s': input 'lightmap2d' needs 'region2d' (heightmap_raster's 'region'), "
                        "'hsat' and 'hsat_info' (an hsat pass's 'table' and 'info')", fg_pass_name(pass));
+    if (region && !check_buffer(pass, region, "region", sizeof(cg_volume_block), "a voxelize 'region'", err))
+        return false;
     if (lightmap &&
         (!check_buffer(pass, region2d, "region2d", sizeof(cg_heightmap_block), "a heightmap_raster 'region'", err) ||
          !check_buffer(pass, hsat_info, "hsat_info", sizeof(cg_hsat_info_block), "an hsat 'info'", err)))
         return false;
+    if (lightmap && hsat && fg_param_enum(pass, "method") == METHOD_HORIZON && fg_param_bool(pass, "skip") &&
+        hsat->format != GL_RG32UI)
+        return cg_fail(err, CG_ERR_GRAPH_INCOMPATIBLE,
+                       "pass '%s': method=horizon skips with the min-max pyramid: connect an hsat pass with "
+                       "mode=pyramid (or set skip=false)", fg_pass_name(pass));
     if (lightmap && hsat && hsat->levels < lightmap->levels)
         return cg_fail(err, CG_ERR_GRAPH_INCOMPATIBLE,
                        "pass '%s': input 'hsat' has %d levels, the lightmap %d: connect the hsat of this lightmap",
@@ -109,6 +177,38 @@ hybrid_gather_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
     return true;
 }
 
+/* The horizon method's quadrature of each cone's cell (sdk/cone.h: a polar band [lo, hi] split
+ * into equal azimuth sectors, one per cone of the ring): CG_HYBRID_CELL_POINTS directions of equal
+ * cosine weight, 3 polar bands of equal sin^2 (the cosine weight of a band is its share of
+ * sin^2) by 4 azimuths, tangent space (z = normal), and the half width of a point's band of
+ * polar angles, by which the shader smooths the share below a horizon. */
+static void
+cell_points(const cgp_cone_set *set, cg_hybrid_gather_block *b)
+{
+    enum { POLAR = 3, AZIMUTH = CG_HYBRID_CELL_POINTS / 3 };
+    for (int k = 0; k < set->count; k++) {
+        const cgp_cone *c = &set->cones[k];
+        int in_ring = 0;
+        for (int j = 0; j < set->count; j++)
+            in_ring += set->cones[j].cell_lo == c->cell_lo;
+        double sector = 2.0 * M_PI / in_ring;
+        double phi0 = atan2(c->direction[1], c->direction[0]);
+        double s_lo = sin(c->cell_lo) * sin(c->cell_lo), s_hi = sin(c->cell_hi) * sin(c->cell_hi);
+        for (int i = 0; i < POLAR; i++) {
+            double theta = asin(sqrt(s_lo + (i + 0.5) * (s_hi - s_lo) / POLAR));
+            for (int j = 0; j < AZIMUTH; j++) {
+                double phi = phi0 + sector * ((j + 0.5) / AZIMUTH - 0.5);
+                float *q = b->cells[k * CG_HYBRID_CELL_POINTS + i * AZIMUTH + j];
+                q[0] = (float)(sin(theta) * cos(phi));
+                q[1] = (float)(sin(theta) * sin(phi));
+                q[2] = (float)cos(theta);
+                q[3] = 0.0f;
+            }
+        }
+        b->cell_width[k / 4][k % 4] = (float)(0.5 * (c->cell_hi - c->cell_lo) / POLAR);
+    }
+}
+
 static bool
 hybrid_gather_prepare(fg_pass *pass, hybrid_gather_state *s, cg_error *err)
 {
@@ -119,22 +219,44 @@ hybrid_gather_prepare(fg_pass *pass, hybrid_gather_state *s, cg_error *err)
     s->table_sampler = cgp_sampler_table(s);
     static const cg_hsat_info_block zero;
     s->empty_block = cgp_buffer(s, sizeof zero, &zero, 0);
-    return cgp_gather_prepare(s, pass, &s->gather, "hybrid_gather/hybrid_gather.comp",
-                              s->has_2d ? "#define HAS_2D\n" : NULL, sizeof(cg_hybrid_gather_block), err);
+    const char *defines = !s->has_2d ? NULL
+                          : fg_param_enum(pass, "method") == METHOD_PAPER ? "#define HAS_2D\n#define METHOD_PAPER\n"
+                                                                          : "#define HAS_2D\n";
+    return cgp_gather_prepare(s, pass, &s->gather, "hybrid_gather/hybrid_gather.comp", defines,
+                              sizeof(cg_hybrid_gather_block), err);
 }
 
 static bool
 hybrid_gather_execute(fg_pass *pass, hybrid_gather_state *s, cg_error *err)
 {
-    (void)err;
-    const cg_hybrid_gather_block block = {
+    cg_hybrid_gather_block *block = &s->block;
+    *block = (cg_hybrid_gather_block){
         .maps = {s->has_3d},
         .switches = {fg_param_enum(pass, "cube") == CUBE_EQ11, fg_param_enum(pass, "occlusion"),
                      fg_param_bool(pass, "dda"), fg_param_bool(pass, "skip")},
+        .paper = {fg_param_bool(pass, "abandon"), fg_param_bool(pass, "latch"), fg_param_enum(pass, "mix") == MIX_PAPER,
+                  fg_param_int(pass, "dda_refine")},
+        .paper2 = {fg_param_bool(pass, "backface"), fg_param_bool(pass, "weighting"),
+                   fg_param_enum(pass, "advance") == ADVANCE_CUBE},
+        .levels = {fg_param_int(pass, "levels3d"), fg_param_enum(pass, "surface_cap") == CAP_COMPLEX,
+                   fg_param_enum(pass, "level") == LEVEL_EQ8},
+        .params = {fg_param_float(pass, "ball_threshold"), fg_param_float(pass, "terrain_step"),
+                   fg_param_float(pass, "terrain_lod_bias")},
     };
+    cell_points(&s->gather.set, block);
+    /* Eq. 12's box: the complex meshes' bounds; the shader keeps its part inside the volume. */
+    double lo[3] = { -1e30, -1e30, -1e30 }, hi[3] = { 1e30, 1e30, 1e30 };
+    if (fg_param_enum(pass, "box3d") == BOX_MESHES && !cgp_mesh_bounds(fg_pass_frame(pass)->scene, CG_MESHES_COMPLEX, lo, hi))
+        for (int k = 0; k < 3; k++)
+            lo[k] = 1e30, hi[k] = -1e30;    /* no complex mesh: the box is empty */
+    for (int k = 0; k < 3; k++) {
+        block->box3_lo[k] = (float)lo[k];
+        block->box3_hi[k] = (float)hi[k];
+    }
 
-    cgp_gather_begin(pass, &s->gather, &block, sizeof block, s->has_3d ? fg_texture(pass, "volume") : 0,
-                     s->has_3d ? fg_buffer(pass, "region") : s->empty_block);
+    if (!cgp_gather_begin(pass, &s->gather, block, sizeof *block, s->has_3d ? fg_texture(pass, "volume") : 0,
+                          s->has_3d ? fg_buffer(pass, "region") : s->empty_block, err))
+        return false;
     glBindBufferBase(GL_UNIFORM_BUFFER, CG_BINDING_HEIGHTMAP, s->has_2d ? fg_buffer(pass, "region2d") : s->empty_block);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_HSAT,
                      s->has_2d ? fg_buffer(pass, "hsat_info") : s->empty_block);
@@ -150,10 +272,12 @@ hybrid_gather_execute(fg_pass *pass, hybrid_gather_state *s, cg_error *err)
 }
 
 CGP_PASS(hybrid_gather, CGP_PARAMS(hybrid_gather_params),
-         "Indirect diffuse light by hybrid cone tracing (hybrid paper VI): per step an "
-         "axis-aligned fitting cube (eq. 10-11) tested against the 3D lightmap's box (eq. 12) "
-         "and the terrain's height range from HSAT (eq. 13-14, empty space skipped), the 3D "
-         "lightmap sampled at the intersection's centre (eq. 15) by cone_gather's step (matched "
-         "level of eq. 8, surface cap, coverage compositing), the 2D lightmap walked by a DDA, "
-         "occlusion by eq. 16 or 17. Cone weights integrate the cosine lobe to 1. Without a 2D "
-         "lightmap: the VCT march of cone_gather.");
+         "Indirect diffuse light by hybrid cone tracing (hybrid paper VI) through a 3D lightmap of the "
+         "complex meshes and a 2D lightmap of the height fields. method=paper: the paper's steps in its "
+         "order: fitting cubes (eq. 10-11), the 3D lightmap's box (eq. 12, the Case-1 latch), HSAT skip "
+         "and abandon (eq. 13-14), the 3D sample at the intersection's centre (eq. 15, bounding-ball "
+         "threshold), the morphology search (Fig. 5 segmentation, DDA, backface culling, dynamic "
+         "distance, normal weighting), eq. 16 or 17, the mix case. method=horizon (ours): cone_gather's "
+         "3D march and the terrain's horizon over each cone's cell, empty spans skipped hierarchically "
+         "with the min-max pyramid. Cone weights integrate the cosine lobe to 1. Without a 2D lightmap: "
+         "the VCT march of cone_gather.");

@@ -260,13 +260,18 @@ cgp_gather_prepare(void *state, const fg_pass *pass, cgp_gather *g, const char *
     g->volume_sampler = cgp_sampler_volume(state);
     g->cone_block = cgp_uniform_buffer(state, sizeof(cg_cone_set_block));
     g->gather_block = cgp_uniform_buffer(state, gather_bytes);
+    g->state = state;
+    cgp_sky_prepare(state, &g->sky);
     return true;
 }
 
-void
-cgp_gather_begin(const fg_pass *pass, const cgp_gather *g, const void *block, size_t gather_bytes, GLuint volume,
-                 GLuint region)
+bool
+cgp_gather_begin(const fg_pass *pass, cgp_gather *g, const void *block, size_t gather_bytes, GLuint volume,
+                 GLuint region, cg_error *err)
 {
+    if (!cgp_sky_update(g->state, &g->sky, fg_pass_frame(pass)->scene, err))
+        return false;
+    cgp_sky_bind(&g->sky);
     glUseProgram(g->program);
     cgp_cone_upload(pass, &g->set, g->cone_block);
     cgp_uniform_upload(g->gather_block, CG_BINDING_GATHER, block, gather_bytes);
@@ -278,6 +283,7 @@ cgp_gather_begin(const fg_pass *pass, const cgp_gather *g, const void *block, si
     glBindTextureUnit(CG_UNIT_POSITION, fg_texture(pass, "position"));
     glBindTextureUnit(CG_UNIT_NORMAL, fg_texture(pass, "normal"));
     glBindImageTexture(0, fg_texture(pass, "radiance"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    return true;
 }
 
 void
@@ -287,6 +293,7 @@ cgp_gather_end(const fg_pass *pass)
     cgp_dispatch_2d(out->width, out->height);
     glBindSampler(CG_UNIT_VOLUME, 0);
     cgp_gather_bind_volume(pass, cgp_gather_volume_model(pass), 0, true);
+    cgp_sky_unbind();
     glUseProgram(0);
 }
 

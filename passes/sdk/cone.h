@@ -25,6 +25,7 @@
 #include "cg/error.h"
 #include "cg/fg.h"
 #include "sdk/blocks.h"
+#include "sdk/sky.h"
 
 #define CGP_CONE_MAX CG_CONE_SET_MAX
 /* The sizes of the sets cgp_cone_set_make makes, as a list for parameter tables:
@@ -97,7 +98,9 @@ const char *cgp_gather_volume_define(cgp_volume_model model);
 /* What every cone gather's state holds, and its frame around the dispatch: the G-buffer inputs
  * `position` and `normal` at CG_UNIT_POSITION and CG_UNIT_NORMAL, the 3D lightmap at
  * CG_UNIT_VOLUME (trilinear, zero outside), the cone set at CG_BINDING_CONES and the pass's own
- * block at CG_BINDING_GATHER, and the output image `radiance` (RGBA16F) at image unit 0. */
+ * block at CG_BINDING_GATHER, the scene's baked sky at CG_UNIT_SKY and CG_BINDING_SKY (sdk/sky.h,
+ * read by common/sky.glsl's cg_sky_gather at the end of each cone), and the output image
+ * `radiance` (RGBA32F) at image unit 0. */
 typedef struct cgp_gather {
     cgp_cone_set set;
     cgp_volume_model model;
@@ -105,6 +108,8 @@ typedef struct cgp_gather {
     GLuint volume_sampler;
     GLuint cone_block;      /* CG_CONE_SET_BLOCK */
     GLuint gather_block;    /* the pass's block */
+    void *state;            /* the pass state that owns these objects */
+    cgp_sky sky;            /* baked once per change of the frame's scene's sky */
 } cgp_gather;
 
 /* In prepare(): the cone set of the parameter `cones`, the volume model of the inputs, the compute
@@ -113,10 +118,11 @@ typedef struct cgp_gather {
 bool cgp_gather_prepare(void *state, const fg_pass *pass, cgp_gather *g, const char *shader, const char *defines,
                         size_t gather_bytes, cg_error *err);
 /* In execute(): uses the program, uploads the cone set and the pass's block (`gather_bytes` at
- * `block`), binds the G-buffer, `volume` with its `region` block (either may be 0), the model's
- * other volumes (cgp_gather_bind_volume) and `radiance`. */
-void cgp_gather_begin(const fg_pass *pass, const cgp_gather *g, const void *block, size_t gather_bytes,
-                      GLuint volume, GLuint region);
+ * `block`), bakes the sky if it changed (cgp_sky_update; fails as it does), binds the G-buffer,
+ * `volume` with its `region` block (either may be 0), the model's other volumes
+ * (cgp_gather_bind_volume), the sky and `radiance`. */
+bool cgp_gather_begin(const fg_pass *pass, cgp_gather *g, const void *block, size_t gather_bytes, GLuint volume,
+                      GLuint region, cg_error *err);
 /* Binds the model's volumes beside `volume` (the directional chains at CG_UNIT_ANISO.., or `sides`
  * and `normals` at CG_UNIT_SIDES and CG_UNIT_NORMALS) with `sampler`; with unbind, unbinds them. */
 void cgp_gather_bind_volume(const fg_pass *pass, cgp_volume_model model, GLuint sampler, bool unbind);

@@ -19,8 +19,8 @@
  * and a cone gather of V_N at a pixel holds every path of up to N reflections between the pixel
  * and any source (emitter or punctual light), as path_trace with `bounces` N: an emitter's light
  * reaches the pixel's gather directly (0 reflections), a punctual light's through D (1), and each
- * G adds one more to both. Where no voxelized mesh emits, G(V_0) = 0 and the first gather is
- * skipped (V_1 = D): N - 1 gathers, N otherwise; each gather is followed by the mip chain
+ * G adds one more to both. Where no voxelized mesh emits and no sky shines, G(V_0) = 0 and the
+ * first gather is skipped (V_1 = D): N - 1 gathers, N otherwise; each gather is followed by the mip chain
  * (mip.comp) of the new light.
  */
 #include <math.h>
@@ -32,6 +32,7 @@
 #include "sdk/pass.h"
 #include "sdk/sampler.h"
 #include "sdk/shadow.h"
+#include "sdk/sky.h"
 #include "cg/fg.h"
 #include "cg/gpu_scene.h"
 #include "cg/shader.h"
@@ -63,6 +64,7 @@ typedef struct voxel_light_state {
     GLuint cone_block;
     cgp_cone_set set;
     cgp_no_shadow no_shadow;
+    cgp_sky sky;            /* the scene's sky, which the gathers at the voxels see (common/sky.glsl) */
     bool gathers;           /* the transient bounce resources exist */
 } voxel_light_state;
 
@@ -74,10 +76,13 @@ list_capacity(int resolution)
     return (GLuint)((size_t)resolution * (size_t)resolution * (size_t)resolution / 4);
 }
 
-/* Whether any mesh that a voxelize pass may have voxelized emits (emission in the volume). */
+/* Whether any mesh that a voxelize pass may have voxelized emits (emission in the volume), or a
+ * sky lights the voxels: then G(V_0) is not 0 (the header's recursion). */
 static bool
 scene_emits(const cg_scene *scene)
 {
+    if (!cg_sky_is_black(&scene->sky))
+        return true;
     for (int i = 0; i < scene->material_count; i++) {
         const cg_material *m = &scene->materials[i];
         if (m->emissive_strength > 0.0f && (m->emissive[0] > 0.0f || m->emissive[1] > 0.0f || m->emissive[2] > 0.0f))
@@ -148,6 +153,7 @@ voxel_light_prepare(fg_pass *pass, voxel_light_state *s, cg_error *err)
 {
     s->gathers = fg_resource(pass, "voxels") != NULL;
     cgp_no_shadow_create(s, &s->no_shadow);
+    cgp_sky_prepare(s, &s->sky);
     s->sampler = cgp_sampler_volume(s);
     s->cone_block = cgp_uniform_buffer(s, sizeof(cg_cone_set_block));
     if (!cgp_cone_set_make(fg_param_int(pass, "bounce_cones"), &s->set))
@@ -218,8 +224,9 @@ gather(const fg_pass *pass, const voxel_light_state *s, int resolution)
     glDispatchComputeIndirect(0);
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
-    for (GLuint unit = 0; unit <= CG_UNIT_NORMALS; unit++)
-        glBindSampler(unit, 0);
+    glBindSampler(CG_UNIT_VOLUME, 0);
+    glBindSampler(CG_UNIT_SIDES, 0);
+    glBindSampler(CG_UNIT_NORMALS, 0);
     /* inject.comp reads the geometry and the gathered light at units 0..5 again. */
     glBindTextureUnit(CG_UNIT_SIDES, 0);
     glBindTextureUnit(CG_UNIT_NORMALS, 0);
@@ -237,7 +244,6 @@ bind_inject_inputs(const fg_pass *pass, const voxel_light_state *s)
 static bool
 voxel_light_execute(fg_pass *pass, voxel_light_state *s, cg_error *err)
 {
-    (void)err;
     const fg_frame *frame = fg_pass_frame(pass);
     int resolution = fg_resource(pass, "radiance")->width;
     int bounces = fg_param_int(pass, "bounces");
@@ -258,12 +264,20 @@ voxel_light_execute(fg_pass *pass, voxel_light_state *s, cg_error *err)
     bind_inject_inputs(pass, s);
     inject(pass, s, resolution, skip_first, false, s->gathers);
     mip(pass, s, resolution);
+    /* What a cone of a gather at the voxels leaves open sees the sky, as the screen's gather. */
+    if (count > 0) {
+        if (!cgp_sky_update(s, &s->sky, frame->scene, err))
+            return false;
+        cgp_sky_bind(&s->sky);
+    }
     for (int b = 0; b < count; b++) {
         gather(pass, s, resolution);
         bind_inject_inputs(pass, s);
         inject(pass, s, resolution, true, true, false);
         mip(pass, s, resolution);
     }
+    if (count > 0)
+        cgp_sky_unbind();
     for (GLuint unit = 0; unit < 7; unit++)
         glBindTextureUnit(unit, 0);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_VOXEL_LIST, 0);

@@ -4,7 +4,7 @@
  *
  * Provides: CG_BINDING_* and CG_UNIT_* numbers; the member lists CG_*_BLOCK(M, A); in C the
  *           structs cg_shadow_block, cg_volume_block, cg_heightmap_block, cg_hsat_info_block,
- *           cg_cone_set_block, cg_cone_gather_block, cg_hybrid_gather_block,
+ *           cg_cone_set_block, cg_cone_gather_block, cg_hybrid_gather_block, cg_sky_block,
  *           cg_voxel_list_block; in GLSL the
  *           declarations CG_UNIFORM_BLOCK() and CG_STORAGE_BLOCK() that consumers write once.
  *
@@ -42,6 +42,7 @@
 #define CG_BINDING_HEIGHTMAP 4          /* CG_HEIGHTMAP_BLOCK, a heightmap_raster pass's `region` */
 #define CG_BINDING_CONES 7              /* CG_CONE_SET_BLOCK, the cone set and march of a gather */
 #define CG_BINDING_GATHER 8             /* a gather pass's own switches (CG_*_GATHER_BLOCK) */
+#define CG_BINDING_SKY 10               /* CG_SKY_BLOCK, the baked sky (sdk/sky.h, common/sky.glsl) */
 
 /* ---- texture units of the gather passes (cone_gather, hybrid_gather) */
 #define CG_UNIT_VOLUME 0                /* the mipped 3D lightmap */
@@ -50,8 +51,10 @@
 #define CG_UNIT_ANISO 3                 /* 3..8: mip3d's directional chains px nx py ny pz nz */
 #define CG_UNIT_LIGHTMAP2D 9            /* the mipped 2D lightmap */
 #define CG_UNIT_HSAT 10                 /* the HSAT tables */
-#define CG_UNIT_SIDES 11                /* surface voxels (voxel_light): w beta, w delta, -, alpha_y */
-#define CG_UNIT_NORMALS 12              /* surface voxels (voxel_light): w N, alpha_z */
+/* ---- texture units of every pass that reads the sky (the gathers, composite) */
+#define CG_UNIT_SKY 11                  /* the baked sky (sdk/sky.h): lat-long x cone aperture, 3D */
+#define CG_UNIT_SIDES 12                /* surface voxels (voxel_light): w beta, w delta, -, alpha_y */
+#define CG_UNIT_NORMALS 13              /* surface voxels (voxel_light): w N, alpha_z */
 
 /* The most cones a diffuse set holds (sdk/cone.h: CGP_CONE_MAX). */
 #define CG_CONE_SET_MAX 16
@@ -105,10 +108,26 @@
 #define CG_VOXEL_LIST_BLOCK(M, A)                                                                 \
     M(uvec4, dispatch)    /* x groups of 64 voxels, y = z = 1, w voxels listed */
 
-/* hybrid_gather's switches; 32 bytes. */
+/* Quadrature points per cone cell in hybrid_gather's horizon method. */
+#define CG_HYBRID_CELL_POINTS 12
+
+/* hybrid_gather's parameters (passes/hybrid_gather/hybrid_gather.c); 3264 bytes. */
 #define CG_HYBRID_GATHER_BLOCK(M, A)                                                              \
     M(ivec4, maps)        /* x: a 3D lightmap is bound */                                          \
-    M(ivec4, switches)    /* x: eq. 11 (else eq. 10), y: occlusion (0 eq. 16, 1 eq. 17), z: 2D DDA, w: HSAT skipping */
+    M(ivec4, switches)    /* x: eq. 11 (else eq. 10), y: occlusion (0 eq. 16, 1 eq. 17), z: the morphology search, w: skipping */ \
+    M(ivec4, paper)       /* x: abandon buried cubes, y: the Case-1 latch, z: the paper's mix case, w: sub-mesh levels below eq. 8 */ \
+    M(ivec4, paper2)      /* x: backface culling, y: normal/cone weighting, z: contiguous cubes (else step x d) */ \
+    M(ivec4, levels)      /* x: 3D levels used (0: all), y: no surface cap on the height field, z: eq. 8 itself (else one finer) */ \
+    M(vec4, params)       /* x: bounding-ball threshold (level-0 voxels), y: terrain step, z: terrain lod bias */ \
+    M(vec4, box3_lo)      /* xyz: the 3D lightmap's box of eq. 12 (the complex meshes' bounds in the volume) */ \
+    M(vec4, box3_hi)                                                                              \
+    A(vec4, cell_width, CG_CONE_SET_MAX / 4) /* per cone: the half width (radians) of a quadrature point's band */ \
+    A(vec4, cells, CG_CONE_SET_MAX * CG_HYBRID_CELL_POINTS) /* xyz: tangent-space quadrature points of each cone's cell */
+
+/* The baked sky (common/sky.glsl), uploaded by cgp_sky_bind (sdk/sky.h); 16 bytes. */
+#define CG_SKY_BLOCK(M, A)                                                                        \
+    M(vec4, info)         /* x: 1 a sky is baked (0: none, nothing is added), y: aperture layers, */ \
+                          /* z: half angle of layer 1 (radians; layer k > 0: z 2^(k-1)) */
 
 #ifdef __STDC__
 /* ---- C: one struct per block (sdk/blocks.h includes <stdint.h> first: the shader loader
@@ -138,7 +157,8 @@ CG_C_BLOCK(cg_heightmap_block, CG_HEIGHTMAP_BLOCK, 48);
 CG_C_BLOCK(cg_hsat_info_block, CG_HSAT_INFO_BLOCK, 272);
 CG_C_BLOCK(cg_cone_set_block, CG_CONE_SET_BLOCK, 544);
 CG_C_BLOCK(cg_cone_gather_block, CG_CONE_GATHER_BLOCK, 48);
-CG_C_BLOCK(cg_hybrid_gather_block, CG_HYBRID_GATHER_BLOCK, 32);
+CG_C_BLOCK(cg_hybrid_gather_block, CG_HYBRID_GATHER_BLOCK, 3264);
+CG_C_BLOCK(cg_sky_block, CG_SKY_BLOCK, 16);
 CG_C_BLOCK(cg_voxel_list_block, CG_VOXEL_LIST_BLOCK, 16);
 
 #else

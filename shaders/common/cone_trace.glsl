@@ -28,6 +28,7 @@
 
 #include "common/blocks.h"
 #include "common/volume.glsl"
+#include "common/sky.glsl"
 
 #define CG_CONE_OPAQUE 0.999
 
@@ -422,7 +423,8 @@ cg_cone_reach(CgVolume v, float max_distance)
 }
 
 // The diffuse gather of one surface point (VCT paper 3.2.1; hybrid eq. 3-4) with the cone set
-// of cg_cone_set_block, frame = the point's tangent frame. Returns sum_k W_k L_k (rgb) and the
+// of cg_cone_set_block, frame = the point's tangent frame. Returns sum_k W_k L_k (rgb; L_k with the
+// sky seen through what cone k left open, cg_sky_gather) and the
 // ambient visibility sum_k W_k (1 - a_k) (a). cone_gather and hybrid_gather (without a 2D
 // lightmap) both call this, so that they agree bit for bit. `height`: the origin's height above
 // the surface (start_offset voxels), which cg_cone_trace_surface keeps every sample off.
@@ -435,7 +437,9 @@ cg_cone_gather_diffuse(sampler3D volume, CgVolume v, vec3 origin, mat3 frame, fl
     for (int k = 0; k < cg_cone_count(); k++) {
         CgCone cone = CgCone(origin, cg_cone_direction(frame, k), cg_cone_tan_half(k), v.voxel_size, t_max,
                              march.step, march.lod_bias);
-        cg_cone_accumulate(diffuse, k, cg_cone_trace_surface(volume, v, cone, surface));
+        // What the cone left open sees the sky (common/sky.glsl).
+        cg_cone_accumulate(diffuse, k, cg_sky_gather(cg_cone_trace_surface(volume, v, cone, surface), cone.direction,
+                                                     cone.tan_half));
     }
     return diffuse;
 }

@@ -56,7 +56,8 @@ main()
         vec3 view = normalize(position - cg_cone_gather_block.camera.xyz);
         CgCone mirror = CgCone(origin, reflect(view, n), cg_cone_gather_block.tan_half.x, v.voxel_size, t_max,
                                march.step, march.lod_bias);
-        specular = cg_cone_trace_surface(cg_gather_volume, v, mirror, surface);
+        specular = cg_sky_gather(cg_cone_trace_surface(cg_gather_volume, v, mirror, surface), mirror.direction,
+                                 mirror.tan_half);
 #endif
 #ifdef SHADOW_CONE
         int light = cg_cone_gather_block.shadow.x;

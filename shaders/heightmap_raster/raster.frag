@@ -1,22 +1,39 @@
-// heightmap_raster: one texel of the 2D lightmap (hybrid paper V.B): rgb = outgoing diffuse
-// radiance of the direct light at the surface point under the texel centre (shadowed
-// through the shadow map when there is one) plus emission, a = its height (world y).
-// The lighting is voxelize.frag's, through the same common/lights.glsl and shadow.glsl,
-// so the 2D and the 3D lightmap agree where they meet.
+// heightmap_raster: one texel of the height-field meshes seen from above (hybrid paper V.B),
+// the surface point under the texel centre.
+//
+// Without CG_HEIGHTMAP_GEOMETRY (cache=false, the paper's rebuild): the texel of the 2D
+// lightmap itself, rgb = outgoing diffuse radiance of the direct light (shadowed through the
+// shadow map when there is one) plus emission (common/surface_light.glsl), a = height (world y).
+// The lighting is voxelize.frag's, through the same common/lights.glsl and shadow.glsl, so the
+// 2D and the 3D lightmap agree where they meet.
+//
+// With CG_HEIGHTMAP_GEOMETRY (cache=true): the surface attributes that lighting needs, kept
+// across frames and relit every frame by relight.comp, which computes the very same
+// cg_surface_radiance from them:
+//   0 position  xyz = world position, w = 1 (0 where no mesh covers the texel: the clear)
+//   1 normal    xyz = unit normal of the upper side
+//   2 albedo    rgb
+//   3 emission  rgb
 #version 450 core
 #include "common/scene.glsl"
-#include "common/lights.glsl"
-#include "common/shadow.glsl"
+#include "common/surface_light.glsl"
 
 layout(location = 0) in vec3 vs_world;
 layout(location = 1) in vec3 vs_normal;
 layout(location = 2) in vec2 vs_texcoord;
 
+#ifdef CG_HEIGHTMAP_GEOMETRY
+layout(location = 0) out vec4 out_position;
+layout(location = 1) out vec4 out_normal;
+layout(location = 2) out vec4 out_albedo;
+layout(location = 3) out vec4 out_emission;
+#else
 layout(binding = 2) uniform sampler2D u_shadow_map;
 // Stored rgb = radiance / u_radiance_scale (1 for RGBA32F; heightmap_raster.c).
 layout(location = 10) uniform float u_radiance_scale;
 
 layout(location = 0) out vec4 out_texel;
+#endif
 
 void
 main()
@@ -26,11 +43,14 @@ main()
     if (n.y < 0.0)
         n = -n;
     vec3 albedo = cg_material_albedo(cg_material_index, vs_texcoord).rgb;
-    vec3 radiance = cg_material_emissive(cg_material_index, vs_texcoord);
-    for (uint i = 0u; i < cg_light_count(); i++) {
-        CgLightSample s = cg_light_sample(cg_lights[i], vs_world);
-        float visibility = cg_shadow_visibility(u_shadow_map, int(i), vs_world, n);
-        radiance += visibility * cg_lambert_radiance(albedo, n, s);
-    }
-    out_texel = vec4(max(radiance, vec3(0.0)) / u_radiance_scale, vs_world.y);
+    vec3 emission = cg_material_emissive(cg_material_index, vs_texcoord);
+#ifdef CG_HEIGHTMAP_GEOMETRY
+    out_position = vec4(vs_world, 1.0);
+    out_normal = vec4(n, 0.0);
+    out_albedo = vec4(albedo, 0.0);
+    out_emission = vec4(emission, 0.0);
+#else
+    vec3 radiance = cg_surface_radiance(u_shadow_map, vs_world, n, albedo, emission);
+    out_texel = vec4(radiance / u_radiance_scale, vs_world.y);
+#endif
 }

@@ -1,24 +1,36 @@
-// hybrid_gather: indirect light of every G-buffer pixel by hybrid cone tracing (hybrid
-// paper VI) through a mipped 3D lightmap of the complex meshes and a mipped 2D lightmap of
-// the height-field meshes with its min/max height tables (HSAT).
+// hybrid_gather: indirect light of every G-buffer pixel by hybrid cone tracing (hybrid cone
+// tracing paper, section VI) through a mipped 3D lightmap of the complex meshes and a mipped 2D
+// lightmap of the height-field meshes with its min/max height tables (HSAT).
 //
-// Diffuse cones and weights as cone_gather (hybrid eq. 3-4: the weights integrate the
-// cosine lobe to 1, passes/sdk/cone.c); the output is sum_k W_k L_k (rgb) and the ambient
-// visibility (a), which composite multiplies by the albedo.
+// Diffuse cones and weights as cone_gather (eq. 3-4: the weights integrate the cosine lobe to 1,
+// passes/sdk/cone.c); the output is sum_k W_k L_k (rgb) and the ambient visibility (a), which
+// composite multiplies by the albedo.
 //
 // Without a 2D lightmap (HAS_2D undefined) the gather is cg_cone_gather_diffuse(), the VCT
-// gather, so a scene without terrain gathers exactly what cone_gather does. With one, each step
-// of a cone is an axis-aligned fitting cube (eq. 10-11, common/fitting_cube.glsl) and:
-//   3D (Case 1): the cube meets the 3D lightmap's box (eq. 12) -> cg_cone_step(), the VCT
-//     step, samples the intersection's geometric centre (eq. 15) at the matched level of the
-//     cone's diameter (eq. 8, one level finer: common/cone_trace.glsl), capped near the
-//     surface the cone leaves, and composites it over its span; the cone advances by that span.
-//   2D (Case 2): the cube meets the height field's box -> HSAT gives the terrain's height
-//     range under the cube's xz footprint; a cube above the highest terrain is empty space
-//     and skipped; otherwise the 2D lightmap at its level of eq. 8 is walked along the
-//     cone's projection by a 2D DDA, and the part of the cube below the terrain (its
-//     coverage) occludes and lights the cone (eq. 16, or eq. 17 by a switch).
-//   Mixed: 3D first, then 2D, in the same step (the paper's mix case).
+// gather, so a scene without terrain gathers exactly what cone_gather does. With one, two
+// methods (the pass's `method`, a define):
+//
+// METHOD_PAPER, the steps of section VI in the paper's order (trace_paper): per step an
+//   axis-aligned fitting cube (eq. 10-11); the cube against the 3D lightmap's box (eq. 12), with
+//   the latch of VI.C (once the cube lies inside the box, Case 1 only); the terrain's height range
+//   under the cube by HSAT (eq. 13-14): skipped above the highest terrain, abandoned below the
+//   lowest (VI.A); the 3D sample at the intersection's centre (eq. 15) unless its bounding ball
+//   is below a threshold (VI.B), composited as Case 1 (VI.C); the 2D sample by the morphology
+//   search of VI.B (projection segmentation of Fig. 5, sub-meshes visited by a DDA along the
+//   cone's projected direction with backface culling and dynamic distance, their radiance
+//   weighted by the normal and the cone direction); the terrain's occlusion by eq. 16 or eq. 17
+//   (Case 2), after the 3D sample in a mixed step, whose 3D opacity raises the heights inside
+//   the 3D lightmap's projection (the mix case); the next cube where this one ends.
+//
+// METHOD_HORIZON, ours (trace_horizon): the 3D lightmap is marched by cone_gather's own step
+//   (cg_cone_step along the axis: the VCT march, so that a region without terrain gathers what
+//   cone_gather gathers), and the terrain by its horizon: a height field blocks every direction
+//   below the highest elevation at which it is seen from the surface point, so the part of the
+//   cone's cell (cosine-weighted) below the running horizon is covered by the terrain where the
+//   horizon rose, with its radiance. Empty spans, where no terrain can raise the horizon, are
+//   skipped hierarchically with the min-max pyramid (HSAT mode pyramid), as maximum mipmaps do;
+//   a point on the height field itself has no voxels of its own, so its 3D steps need no cap
+//   near the surface (cg_cone_step's `surface` left out) and take the full steps.
 #version 450 core
 #include "common/cone_trace.glsl"
 #include "common/gather.glsl"
@@ -31,7 +43,7 @@
 layout(binding = CG_UNIT_LIGHTMAP2D) uniform sampler2D u_lightmap;
 layout(binding = CG_UNIT_HSAT) uniform usampler2D u_hsat;
 
-// The cone set and march: cg_cone_set_block (common/cone_trace.glsl); the hybrid's switches:
+// The cone set and march: cg_cone_set_block (common/cone_trace.glsl); the hybrid's own:
 CG_UNIFORM_BLOCK(CgHybridGather, cg_hybrid_gather_block, CG_BINDING_GATHER, CG_HYBRID_GATHER_BLOCK);
 
 bool
@@ -42,9 +54,43 @@ has_3d()
 
 #define OCCLUSION_EQ16 0
 #define OCCLUSION_EQ17 1
-#define DDA_MAX_CELLS 16
+#define PI 3.14159265358979
 
 #ifdef HAS_2D
+// The 3D lightmap as the gather uses it: at most `levels3d` levels (0: all).
+CgVolume
+hybrid_volume()
+{
+    CgVolume v = cg_volume();
+    if (cg_hybrid_gather_block.levels.x > 0)
+        v.levels = min(v.levels, float(cg_hybrid_gather_block.levels.x));
+    return v;
+}
+
+// The level offsets of the 3D step and of the 2D lightmap: cg_cone_step reads the matched level,
+// one below eq. 8 (common/cone_trace.glsl); `level = eq8` asks for eq. 8 itself in both maps.
+float
+bias_3d()
+{
+    return cg_cone_march().lod_bias + (cg_hybrid_gather_block.levels.z != 0 ? 1.0 : 0.0);
+}
+
+// Eq. 8 for the 2D lightmap (xelworldsize = the texel), or one level finer (matched), plus the bias.
+float
+level_2d(CgHeightmap m, float d)
+{
+    float offset = cg_hybrid_gather_block.levels.z != 0 ? 0.0 : -1.0;
+    return clamp(log2(d / cg_heightmap_xel(m)) + offset + cg_cone_march().lod_bias, 0.0, m.levels - 1.0);
+}
+
+// Eq. 12's 3D lightmap box: the complex meshes' bounds inside the volume.
+void
+box_3d(CgVolume v, out vec3 lo, out vec3 hi)
+{
+    lo = max(v.origin, cg_hybrid_gather_block.box3_lo.xyz);
+    hi = min(v.origin + vec3(cg_volume_extent(v)), cg_hybrid_gather_block.box3_hi.xyz);
+}
+
 // Exit distance of the ray from the box, -1 when it misses (slab test).
 float
 ray_box_exit(vec3 o, vec3 d, vec3 lo, vec3 hi)
@@ -56,85 +102,142 @@ ray_box_exit(vec3 o, vec3 d, vec3 lo, vec3 hi)
     return leave >= max(enter, 0.0) ? leave : -1.0;
 }
 
-// The occluded part of the step's cross-section (A in eq. 16, an area): the section is the
-// disc whose vertical diameter is [y0, y1], and the part below the terrain height h a circular
-// segment, u = the height of h across the disc in radii: (u sqrt(1 - u^2) + asin u) / pi + 1/2.
-// A disc half under the terrain is half covered, as the linear fraction of [y0, y1] would say, but
-// a disc whose centre is under it is covered faster (u = 1/2: 0.80, not 0.75); the linear reading
-// let a cone grazing a floor into a wall stay partly open (docs/hybrid.md, the furnace).
-float
-coverage(float h, float y0, float y1)
+// The 2D lightmap's box: its xz bounds, from its lowest to its highest height.
+void
+map_box(CgHeightmap m, out vec3 lo, out vec3 hi)
 {
-    // y1 > y0 for every cube (its side is at least the finest xel); a zero-height section (an
-    // underflowed side) is covered when the terrain reaches it. No floor in metres.
-    if (!(y1 > y0))
-        return h >= y0 ? 1.0 : 0.0;
-    float u = clamp(2.0 * (h - y0) / (y1 - y0) - 1.0, -1.0, 1.0);
-    return clamp(0.5 + (u * sqrt(1.0 - u * u) + asin(u)) / 3.14159265358979, 0.0, 1.0);
+    lo = vec3(m.origin.x, m.y_min, m.origin.y);
+    hi = vec3(m.origin.x + m.texel.x * m.resolution, m.y_max, m.origin.y + m.texel.y * m.resolution);
 }
 
-// The terrain in one step: rgb = stored radiance of the most occluding texel, a = its coverage of
-// the cube's vertical extent. The DDA walks the texels of level `level` that the cone axis
-// crosses between t0 and t1 (Amanatides and Woo 1987); at each, the cube is centred on the
-// axis height there. When one texel occludes, later ones count only where they rise higher
-// (the paper's "dynamic distance": the previous height decides whether a sample is kept).
+#ifdef METHOD_PAPER
+// ------------------------------------------------------------------------------ the paper's steps
+
+// What the morphology search found in one step (VI.B).
+struct Search {
+    vec3 radiance;      // the weighted radiance of the retained sub-meshes
+    float volume;       // the terrain's volume inside the cube: occluded area x average height (eq. 16's h A)
+    bool occludes;      // some sub-mesh rises into the cube
+};
+
+// Height and radiance of sub-mesh `cell` of level `level`; a cell outside the map has no terrain.
 vec4
-terrain_sample(CgHeightmap m, vec3 origin, vec3 dir, float t0, float t1, CgFittingCube cube, float lod)
+sub_mesh(ivec2 cell, int level, int n)
 {
-    float half_side = 0.5 * cube.side;
-    if (cg_hybrid_gather_block.switches.z == 0) {   // no DDA: one sample at the cube's centre
-        vec4 s = textureLod(u_lightmap, cg_heightmap_uv(m, cube.centre.xz), lod);
-        return vec4(s.rgb, coverage(s.a, cube.centre.y - half_side, cube.centre.y + half_side));
+    if (any(lessThan(cell, ivec2(0))) || any(greaterThanEqual(cell, ivec2(n))))
+        return vec4(0.0, 0.0, 0.0, -1e30);
+    return texelFetch(u_lightmap, cell, level);
+}
+
+// VI.B, the morphology search over the cube's vertical projection F:
+// 1. Fig. 5: F is cut by the edge lines of the 3D lightmap's projection P into at most 3 x 3
+//    segments; a sub-mesh belongs to the inner segment F n P (the mix case: its height is raised
+//    to the 3D sample's fill of the cube, y0 + a3 S, when `mix` is the paper's) or to an outer one.
+// 2. The segments are subdivided into sub-meshes: the texels of level Lv2 - dda_refine (at most
+//    8 per side: coarser where F is wider).
+// 3. A DDA along the cone's projected direction w visits them front to back, line by line across
+//    w. A sub-mesh below the cube's bottom is not sampled. Dynamic distance: on each line a
+//    sub-mesh is retained only where it rises above the previous occluding height. Backface
+//    culling: a sub-mesh whose normal (from the heights around it) faces away from the cone's
+//    origin adds no radiance (it still occludes). Its radiance, the texel's (the centre point's),
+//    is weighted by the normal and the cone direction, max(0, -n.v).
+Search
+morphology_search(CgHeightmap m, vec3 dir, CgFittingCube cube, float lod, vec3 p_lo, vec3 p_hi, float a3)
+{
+    Search s = Search(vec3(0.0), 0.0, false);
+    vec3 c_lo = cube.centre - 0.5 * cube.side, c_hi = cube.centre + 0.5 * cube.side;
+    int level = max(int(lod) - cg_hybrid_gather_block.paper.w, 0);
+    ivec2 a, b;
+    vec2 cs;
+    for (;; level++) {
+        cs = m.texel * float(1 << level);
+        a = ivec2(floor((c_lo.xz - m.origin) / cs));
+        b = ivec2(floor((c_hi.xz - m.origin) / cs));
+        if (all(lessThanEqual(b - a, ivec2(7))) || level >= int(m.levels) - 1)
+            break;
     }
-    int level = int(lod);
+    b = min(b, a + 7);
     int n = max(int(m.resolution) >> level, 1);
-    vec2 cell_size = m.texel * float(1 << level);
-    vec3 p0 = origin + dir * t0;
-    vec2 a = (p0.xz - m.origin) / cell_size;
-    vec2 span = dir.xz * (t1 - t0) / cell_size;     // texels crossed over the step (1e30: never, in texels)
-    ivec2 cell = ivec2(floor(a));
-    ivec2 stride = ivec2(sign(span));
-    vec2 inv = vec2(span.x != 0.0 ? 1.0 / abs(span.x) : 1e30, span.y != 0.0 ? 1.0 / abs(span.y) : 1e30);
-    // Parameter s in [0,1] along the step at which the walk crosses the next cell edge.
-    vec2 next = vec2(span.x > 0.0 ? (floor(a.x) + 1.0 - a.x) : (a.x - floor(a.x)),
-                     span.y > 0.0 ? (floor(a.y) + 1.0 - a.y) : (a.y - floor(a.y))) * inv;
-    float s_in = 0.0;
-    vec4 best = vec4(0.0);
-    for (int i = 0; i < DDA_MAX_CELLS && s_in < 1.0; i++) {
-        float s_out = min(min(next.x, next.y), 1.0);
-        // A cell outside the map reads the border texel, as the cube-centre sample's
-        // clamp-to-edge sampler does: the box test let the cube in because it overlaps the map,
-        // and skipping such cells left its section open under the terrain's edge.
-        vec4 texel = texelFetch(u_lightmap, clamp(cell, ivec2(0), ivec2(n - 1)), level);
-        float y = p0.y + dir.y * (t1 - t0) * 0.5 * (s_in + s_out);
-        float o = coverage(texel.a, y - half_side, y + half_side);
-        if (o > best.a)
-            best = vec4(texel.rgb, o);
-        if (next.x < next.y) {
-            cell.x += stride.x;
-            next.x += inv.x;
-        } else {
-            cell.y += stride.y;
-            next.y += inv.y;
+    vec2 w = dir.xz;
+    // The DDA's axes: the major one along w's larger component, in w's direction.
+    bool x_major = abs(w.x) >= abs(w.y);
+    int major_sign = (x_major ? w.x : w.y) >= 0.0 ? 1 : -1, minor_sign = (x_major ? w.y : w.x) >= 0.0 ? 1 : -1;
+    int major_count = x_major ? b.x - a.x + 1 : b.y - a.y + 1, minor_count = x_major ? b.y - a.y + 1 : b.x - a.x + 1;
+    float h_occ[8];
+    for (int k = 0; k < 8; k++)
+        h_occ[k] = -1e30;
+    bool mix_paper = cg_hybrid_gather_block.paper.z != 0, backface = cg_hybrid_gather_block.paper2.x != 0,
+         weighting = cg_hybrid_gather_block.paper2.y != 0;
+    float y0 = c_lo.y, y1 = c_hi.y;
+    float weight_sum = 0.0;
+    for (int i = 0; i < major_count; i++) {
+        int mi = major_sign > 0 ? i : major_count - 1 - i;
+        for (int j = 0; j < minor_count; j++) {
+            int mj = minor_sign > 0 ? j : minor_count - 1 - j;
+            ivec2 cell = a + (x_major ? ivec2(mi, mj) : ivec2(mj, mi));
+            vec4 t = sub_mesh(cell, level, n);
+            float h = t.a;
+            vec2 centre = m.origin + (vec2(cell) + 0.5) * cs;
+            vec2 lo = max(m.origin + vec2(cell) * cs, c_lo.xz), hi = min(m.origin + vec2(cell + 1) * cs, c_hi.xz);
+            float area = max(hi.x - lo.x, 0.0) * max(hi.y - lo.y, 0.0);
+            // Fig. 5's inner segment: where the 3D lightmap's projection holds the sub-mesh.
+            bool inner = all(greaterThanEqual(centre, p_lo.xz)) && all(lessThanEqual(centre, p_hi.xz));
+            if (mix_paper && inner && a3 > 0.0)
+                h = max(h, y0 + a3 * (y1 - y0));
+            if (h <= y0)
+                continue;   // below the sample space
+            s.occludes = true;
+            s.volume += area * (min(h, y1) - y0);
+            if (h <= h_occ[j])
+                continue;   // dynamic distance: hidden behind the previous occluder of this line
+            h_occ[j] = h;
+            // The sub-mesh's normal from the heights around it (central differences at its level).
+            float hx0 = sub_mesh(cell - ivec2(1, 0), level, n).a, hx1 = sub_mesh(cell + ivec2(1, 0), level, n).a;
+            float hz0 = sub_mesh(cell - ivec2(0, 1), level, n).a, hz1 = sub_mesh(cell + ivec2(0, 1), level, n).a;
+            hx0 = hx0 < -1e29 ? t.a : hx0, hx1 = hx1 < -1e29 ? t.a : hx1;
+            hz0 = hz0 < -1e29 ? t.a : hz0, hz1 = hz1 < -1e29 ? t.a : hz1;
+            vec3 normal = normalize(vec3(-(hx1 - hx0) / (2.0 * cs.x), 1.0, -(hz1 - hz0) / (2.0 * cs.y)));
+            float facing = -dot(normal, dir);
+            if (backface && facing <= 0.0)
+                continue;
+            float wi = weighting ? max(facing, 0.0) : 1.0;
+            s.radiance += wi * t.rgb;
+            weight_sum += wi;
         }
-        s_in = s_out;
     }
-    return best;
+    // The lightmap's pre-exposure (common/heightmap.glsl): stored rgb x radiance_scale = radiance.
+    s.radiance = weight_sum > 0.0 ? m.radiance_scale * s.radiance / weight_sum : vec3(0.0);
+    return s;
 }
 
-// One cone from a surface point (`surface` as in cg_cone_step: the normal and the origin's
-// height above the surface). Returns (radiance, coverage) as cg_cone_trace_surface does.
-vec4
-hybrid_trace(vec3 origin, vec3 dir, float tan_half, float t_start, float t_max, vec4 surface)
+// One sample at the cube's centre instead of the search (dda = false).
+Search
+centre_sample(CgHeightmap m, CgFittingCube cube, float lod)
 {
-    CgVolume v = cg_volume();
+    vec4 t = textureLod(u_lightmap, cg_heightmap_uv(m, cube.centre.xz), lod);
+    float y0 = cube.centre.y - 0.5 * cube.side;
+    float column = clamp(t.a - y0, 0.0, cube.side);
+    return Search(m.radiance_scale * t.rgb, cube.side * cube.side * column, t.a > y0);
+}
+
+// One cone by the paper's steps (see the top of the file); `origin` already offset along the
+// normal (VI.B's self-influence).
+vec4
+trace_paper(vec3 origin, vec3 dir, float tan_half, float t_start, float t_max)
+{
+    CgVolume v = hybrid_volume();
     CgHeightmap m = cg_heightmap();
     CgMarch march = cg_cone_march();
-    bool eq11 = cg_hybrid_gather_block.switches.x != 0, skip = cg_hybrid_gather_block.switches.w != 0;
+    bool eq11 = cg_hybrid_gather_block.switches.x != 0, dda = cg_hybrid_gather_block.switches.z != 0,
+         skip = cg_hybrid_gather_block.switches.w != 0;
     int occlusion = cg_hybrid_gather_block.switches.y;
-    vec3 v_lo = v.origin, v_hi = v.origin + vec3(cg_volume_extent(v));
-    vec3 m_lo = vec3(m.origin.x, m.y_min, m.origin.y);
-    vec3 m_hi = vec3(m.origin.x + m.texel.x * m.resolution, m.y_max, m.origin.y + m.texel.y * m.resolution);
+    bool abandon = cg_hybrid_gather_block.paper.x != 0, latch = cg_hybrid_gather_block.paper.y != 0,
+         advance_cube = cg_hybrid_gather_block.paper2.z != 0;
+    float ball = cg_hybrid_gather_block.params.x * v.voxel_size;
+    vec3 v_lo, v_hi;
+    box_3d(v, v_lo, v_hi);
+    vec3 m_lo, m_hi;
+    map_box(m, m_lo, m_hi);
     float xel = cg_heightmap_xel(m);
     if (has_3d())
         xel = min(xel, v.voxel_size);
@@ -142,69 +245,383 @@ hybrid_trace(vec3 origin, vec3 dir, float tan_half, float t_start, float t_max, 
     if (has_3d())
         t_leave = max(t_leave, ray_box_exit(origin, dir, v_lo, v_hi));
     float half_angle = atan(tan_half);
-    float top2 = m.levels - 1.0;
-    CgCone cone = CgCone(origin, dir, tan_half, t_start, t_max, march.step, march.lod_bias);
+    float l1 = abs(dir.x) + abs(dir.y) + abs(dir.z);
+    CgCone cone = CgCone(origin, dir, tan_half, t_start, t_max, march.step, bias_3d());
+    const vec4 no_surface = vec4(0.0, 0.0, 0.0, -1.0);  // the paper has no cap near the surface
     vec4 acc = vec4(0.0);
-    float covered = 0.0;    // part of the cone's section already below the terrain
     CgConeState state = cg_cone_state();    // what one 3D step tells the next (cg_cone_step)
+    float volume_prev = 0.0;
+    bool latched = false;
     float t = t_start;
     for (int i = 0; i < 4096 && t < t_max && acc.a < CG_CONE_OPAQUE; i++) {
         // Eq. 8's diameter, never below the finest xel: log2 of zero is -inf.
         float d = max(2.0 * tan_half * t, xel);
-        float dt = march.step * d;
         CgFittingCube cube = cg_fitting_cube(origin, dir, half_angle, t, d, eq11);
         vec3 c_lo = cube.centre - 0.5 * cube.side, c_hi = cube.centre + 0.5 * cube.side;
-        bool alive = false;
-        if (has_3d()) {
-            // Eq. 12: the cube against the 3D lightmap's box; their intersection is a box.
-            vec3 lo = max(c_lo, v_lo), hi = min(c_hi, v_hi);
-            if (all(lessThan(lo, hi))) {
-                alive = true;
-                // Eq. 15: the mean of the intersection's corners, its centre, sampled by the VCT
-                // step (matched level, surface cap, span compositing); the step then advances by
-                // the span the sample stood for, so that its coverage is exact (cg_cone_step).
-                vec3 centre = 0.5 * (lo + hi);
-                CgConeSample at = CgConeSample(centre, d, surface.w + dot(centre - origin, surface.xyz));
+        // The next cube starts where this one ends along the axis (contiguous cubes), or a step
+        // of `step` diameters.
+        float t_next = advance_cube ? max(dot(cube.centre - origin, dir) + 0.5 * cube.side * l1, t + 1e-3 * d)
+                                    : t + march.step * d;
+        cone.step_factor = (t_next - t) / d;   // the 3D step's span: this step's length
+        vec3 lo = max(c_lo, v_lo), hi = min(c_hi, v_hi);
+        bool meets3 = has_3d() && all(lessThan(lo, hi));
+        // Eq. 12's "3D lightmap contains fitting cube": from then on Case 1 only (VI.C), as long
+        // as the cone stays in the 3D lightmap.
+        if (latch && meets3 && all(greaterThanEqual(c_lo, v_lo)) && all(lessThanEqual(c_hi, v_hi)))
+            latched = true;
+        if (latched) {
+            if (!meets3)
+                break;
+            vec3 centre = 0.5 * (lo + hi);
+            cg_cone_step(cg_gather_volume, v, cone, no_surface, CgConeSample(centre, d, -1.0), v.radiance_scale, state, acc);
+            t = t_next;
+            continue;
+        }
+        // VI.B: an intersection whose bounding ball is below the threshold is not sampled.
+        bool in3 = meets3 && 0.5 * length(hi - lo) >= ball;
+        // The height field fills everything below its surface: its box reaches down without bound.
+        bool in2 = all(lessThan(max(c_lo.xz, m_lo.xz), min(c_hi.xz, m_hi.xz))) && c_lo.y <= m_hi.y;
+        float lod2 = level_2d(m, d);
+        if (in2 && skip) {
+            // VI.A: "sampling is started at the minimum height of the cone and abandoned at the
+            // maximum height": a cube above the highest terrain under it is empty space; one below
+            // the lowest is buried: the cone ends there, its open part lit by the terrain.
+            vec2 range = cg_hsat_range(u_hsat, m, c_lo.xz, c_hi.xz, int(lod2));
+            if (range.x > range.y || c_lo.y > range.y) {
+                in2 = false;
+            } else if (abandon && c_hi.y < range.x) {
+                vec3 radiance = m.radiance_scale * textureLod(u_lightmap, cg_heightmap_uv(m, cube.centre.xz), lod2).rgb;
+                acc.rgb += (1.0 - acc.a) * radiance;
+                acc.a = 1.0;
+                break;
+            }
+        }
+        if (!in3 && !in2) {
+            volume_prev = 0.0;
+            if (t > t_leave)
+                break;  // past both maps along the axis and meeting neither: nothing more to gather
+            t = t_next;
+            continue;
+        }
+        float a3 = 0.0;
+        if (in3) {
+            // Eq. 15: the intersection's geometric centre; Case 1 by the shared 3D step.
+            float before = acc.a;
+            vec3 centre = 0.5 * (lo + hi);
+            cg_cone_step(cg_gather_volume, v, cone, no_surface, CgConeSample(centre, d, -1.0), v.radiance_scale, state, acc);
+            a3 = (acc.a - before) / max(1.0 - before, 1e-6);
+        }
+        if (in2 && acc.a < CG_CONE_OPAQUE) {
+            vec3 p_lo = meets3 ? v_lo : vec3(1e30), p_hi = meets3 ? v_hi : vec3(-1e30);
+            Search s = dda ? morphology_search(m, dir, cube, lod2, p_lo, p_hi, a3) : centre_sample(m, cube, lod2);
+            float alpha;
+            if (occlusion == OCCLUSION_EQ17) {
+                // Eq. 17: a = step_diameter / current_step_length wherever the cube meets the terrain.
+                alpha = s.occludes ? min(d / t, 1.0) : 0.0;
+            } else {
+                // Eq. 16: a = (h2 A2 - h1 A1) / (h2 A2), the share of this step's occluded volume
+                // that the previous step did not have (1 at a first contact; clamped at 0 past a crest).
+                alpha = s.volume > 0.0 ? clamp((s.volume - volume_prev) / s.volume, 0.0, 1.0) : 0.0;
+                volume_prev = s.volume;
+            }
+            cg_cone_composite(acc, vec4(alpha * s.radiance, alpha));
+        } else {
+            volume_prev = 0.0;
+        }
+        t = t_next;
+    }
+    return acc;
+}
+
+#else
+// ------------------------------------------------------------------------------ ours: the horizon
+
+#define QUAD_POINTS CG_HYBRID_CELL_POINTS
+
+// The cone's cell as quadrature points of equal cosine weight (hybrid_gather.c, cell_points()):
+// their world elevations, the half width of the band of elevations each stands for, and the
+// lowest elevation of the cell (a horizon below it covers nothing).
+struct Cell {
+    float elevation[QUAD_POINTS];
+    float half_width, lowest;
+};
+
+Cell
+cell_of(int k, mat3 frame)
+{
+    Cell c;
+    c.half_width = cg_hybrid_gather_block.cell_width[k / 4][k % 4];
+    c.lowest = 0.5 * PI;
+    for (int j = 0; j < QUAD_POINTS; j++) {
+        vec3 d = frame * cg_hybrid_gather_block.cells[k * QUAD_POINTS + j].xyz;
+        c.elevation[j] = asin(clamp(d.y, -1.0, 1.0));
+        c.lowest = min(c.lowest, c.elevation[j] - c.half_width);
+    }
+    return c;
+}
+
+// The cosine-weighted share of the cell below the world elevation `horizon`: each point's band of
+// elevations covered linearly across its width, so that the share grows continuously. The
+// horizon is the one along the cone's axis, taken for the whole cell.
+float
+cell_below(Cell c, float horizon)
+{
+    float share = 0.0;
+    for (int j = 0; j < QUAD_POINTS; j++)
+        share += clamp((horizon - c.elevation[j]) / (2.0 * c.half_width) + 0.5, 0.0, 1.0);
+    return share / float(QUAD_POINTS);
+}
+
+// Max of the level-0 heights over block `cell` of pyramid level `level` (HSAT mode pyramid).
+float
+block_max(ivec2 cell, int level)
+{
+    return uintBitsToFloat(texelFetch(u_hsat, cell, level).g);
+}
+
+bool
+inside_map(vec2 uv)
+{
+    return all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0)));
+}
+
+// Where the ray o + t d meets the xz rectangle [lo, hi]: (enter, leave), enter > leave for a miss.
+vec2
+xz_interval(vec2 o, vec2 d, vec2 lo, vec2 hi)
+{
+    vec2 inv = 1.0 / d;
+    vec2 t0 = (lo - o) * inv, t1 = (hi - o) * inv;
+    vec2 tmin = min(t0, t1), tmax = max(t0, t1);
+    return vec2(max(tmin.x, tmin.y), min(tmax.x, tmax.y));
+}
+
+// Whether the point lies on the height field itself: the 2D lightmap's surface at its xz, within
+// about a texel of it, facing the same way. Such a point has no voxels of its own.
+bool
+on_height_field(CgHeightmap m, vec3 p, vec3 n)
+{
+    vec2 uv = cg_heightmap_uv(m, p.xz);
+    if (!inside_map(uv) || n.y <= 0.0)
+        return false;
+    vec2 du = vec2(1.0 / m.resolution, 0.0);
+    float h = textureLod(u_lightmap, uv, 0.0).a;
+    float hx = textureLod(u_lightmap, uv + du.xy, 0.0).a - textureLod(u_lightmap, uv - du.xy, 0.0).a;
+    float hz = textureLod(u_lightmap, uv + du.yx, 0.0).a - textureLod(u_lightmap, uv - du.yx, 0.0).a;
+    vec3 normal = normalize(vec3(-hx / (2.0 * m.texel.x), 1.0, -hz / (2.0 * m.texel.y)));
+    return abs(p.y - h) <= 2.0 * cg_heightmap_xel(m) * (1.0 + length(normal.xz) / normal.y) && dot(normal, n) > 0.9;
+}
+
+// The share of a disc below a chord at height u (in radii from its centre): a circular segment.
+float
+disc_below(float u)
+{
+    return clamp(0.5 + (u * sqrt(1.0 - u * u) + asin(u)) / PI, 0.0, 1.0);
+}
+
+// The chord height u (in radii) below which a disc has the share `below` (disc_below's inverse,
+// by Newton's method from the linear guess; f' = 2 sqrt(1 - u^2) / pi).
+float
+disc_chord(float below)
+{
+    if (below <= 0.0)
+        return -1.0;
+    if (below >= 1.0)
+        return 1.0;
+    float u = clamp(2.0 * below - 1.0, -0.999, 0.999);
+    for (int i = 0; i < 4; i++)
+        u = clamp(u - (disc_below(u) - below) * PI / (2.0 * sqrt(max(1.0 - u * u, 1e-6))), -0.9999, 0.9999);
+    return u;
+}
+
+// tan of an elevation, finite.
+float
+slope_of(float elevation)
+{
+    return tan(clamp(elevation, -0.49 * PI, 0.49 * PI));
+}
+
+// One cone: `p` the surface point, `origin` the 3D march's origin (moved off the surface as
+// cone_gather moves it), `surface` its cap (w < 0: none), `cell` its cell.
+vec4
+trace_horizon(vec3 p, vec3 origin, vec3 dir, float tan_half, float t_start, float t_max, vec4 surface, Cell cell)
+{
+    CgVolume v = hybrid_volume();
+    CgHeightmap m = cg_heightmap();
+    CgMarch march = cg_cone_march();
+    bool skip = cg_hybrid_gather_block.switches.w != 0;
+    vec3 v_lo, v_hi;
+    box_3d(v, v_lo, v_hi);
+    vec3 m_lo, m_hi;
+    map_box(m, m_lo, m_hi);
+    float xel = has_3d() ? min(v.voxel_size, cg_heightmap_xel(m)) : cg_heightmap_xel(m);
+    CgCone cone = CgCone(origin, dir, tan_half, t_start, t_max, march.step, bias_3d());
+    int top = int(m.levels) - 1;
+    // A cone whose footprint holds the vertical has no one horizontal direction: its terrain is
+    // seen at the rim of its footprint.
+    float horizontal = length(dir.xz);
+    bool steep = horizontal < tan_half / sqrt(1.0 + tan_half * tan_half);
+    // Up across the cone: the footprint's direction towards the sky (any, for a vertical cone).
+    vec3 up_across = vec3(0.0, 1.0, 0.0) - dir * dir.y;
+    up_across = dot(up_across, up_across) > 1e-12 ? normalize(up_across) : vec3(1.0, 0.0, 0.0);
+    vec4 acc = vec4(0.0);
+    CgConeState state = cg_cone_state();    // what one 3D step tells the next (cg_cone_step)
+    // The running horizon: its elevation and the tan of it (compared with the terrain's rise over
+    // the distance, so that the elevation is computed only where the horizon rises).
+    float horizon = cell.lowest, slope = slope_of(horizon), covered = 0.0, chord_of = 0.0, lift = 0.0;
+    float axis_slope = dir.y / max(horizontal, 1e-6);
+    bool live3 = has_3d(), was_in3 = false, live2 = true;
+    float t = t_start, t2 = t_start;
+    int k = top;    // the pyramid level the skipping tries first
+    // The farthest point of the 3D lightmap's box: past t_far3 / (1 - tan) a footprint cannot reach it.
+    float t_far3 = length(max(abs(v_lo - origin), abs(v_hi - origin)));
+    for (int i = 0; i < 4096 && t < t_max && acc.a < CG_CONE_OPAQUE && (live3 || live2); i++) {
+        float d = max(2.0 * tan_half * t, xel);
+        vec3 x = origin + dir * t;
+        float dt = march.step * d;
+        // The 3D lightmap: cone_gather's step wherever the footprint overlaps its box (eq. 12). The
+        // terrain below the horizon has taken the lower part of the footprint (a disc across the
+        // cone, cut by the horizon's chord): the step samples the open part, at its centroid and
+        // with its area's diameter, so that a cone whose axis has gone under the terrain still
+        // meets what its open part meets (a wall beyond the terrain's end).
+        bool in3 = false;
+        float gap3 = 1e30;
+        if (live3) {
+            // The disc's chord that leaves open what the terrain left of the cell, and the centroid
+            // of the circular segment above it, in radii from the centre (again only when the
+            // terrain covered more).
+            float open = 1.0 - covered;
+            if (covered != chord_of) {
+                float u = disc_chord(covered);
+                lift = u > -1.0 ? (2.0 / 3.0) * pow(1.0 - u * u, 1.5) / (PI * max(open, 1e-6)) : 0.0;
+                chord_of = covered;
+            }
+            vec3 x3 = x + up_across * (lift * 0.5 * d);
+            float d3 = max(d * sqrt(open), xel);
+            // The open segment's top, half a diameter above the axis: while it is in the box, the
+            // open part may still meet what the box holds.
+            vec3 top3 = x + up_across * (0.5 * d);
+            gap3 = min(length(max(max(v_lo - x3, x3 - v_hi), vec3(0.0))) - 0.5 * d3,
+                       length(max(max(v_lo - top3, top3 - v_hi), vec3(0.0))) - 1e-3 * d);
+            in3 = gap3 < 0.0 && open > 1e-3;
+            if (in3) {
+                was_in3 = true;
+                CgConeSample at = CgConeSample(x3, d3, surface.w + dot(x3 - origin, surface.xyz));
                 dt = cg_cone_step(cg_gather_volume, v, cone, surface, at, v.radiance_scale, state, acc);
+            } else if (was_in3 || open <= 1e-3 || (tan_half < 1.0 && t > t_far3 / (1.0 - tan_half))) {
+                live3 = false;  // left the box (the footprint's gap is convex in t), under the
+                                // terrain, or out of its reach
             }
         }
-        // The height field fills everything below its surface: its box reaches down without
-        // bound (a flat terrain has y_min = y_max, and a cube under it is buried, not outside).
-        if (acc.a < CG_CONE_OPAQUE && all(lessThan(max(c_lo.xz, m_lo.xz), min(c_hi.xz, m_hi.xz))) &&
-            c_lo.y <= m_hi.y) {
-            alive = true;
-            // Eq. 8 with the 2D lightmap's xel.
-            float lod = clamp(log2(d / cg_heightmap_xel(m)) + march.lod_bias, 0.0, top2);
-            bool empty = false;
-            if (skip) {
-                vec2 range = cg_hsat_range(u_hsat, m, c_lo.xz, c_hi.xz, int(lod));
-                empty = range.x > range.y || c_lo.y > range.y;
-            }
-            if (!empty) {
-                vec4 s = terrain_sample(m, origin, dir, t, t + dt, cube, lod);
-                s.rgb *= m.radiance_scale;  // the lightmap's pre-exposure (common/heightmap.glsl)
-                if (occlusion == OCCLUSION_EQ17) {
-                    // Eq. 17: a = step_diameter / current_step_length wherever the cube meets the
-                    // terrain, an opacity composited front to back.
-                    float alpha = s.a > 0.0 ? min(d / t, 1.0) : 0.0;
-                    cg_cone_composite(acc, vec4(alpha * s.rgb, alpha));
-                } else if (s.a > covered) {
-                    // Eq. 16: the newly occluded part of the section is a coverage, added as the
-                    // 3D steps add theirs (cg_cone_composite_span over one cell: w = min(new, 1 - a)):
-                    // the terrain and the voxels cover disjoint parts of the section.
-                    float fresh = s.a - covered;
-                    covered = s.a;
-                    cg_cone_composite_span(acc, vec4(fresh * s.rgb, fresh), 1.0, 1.0);
+        // The terrain, every `terrain_step` diameters, and once it covers part of the cone with every
+        // 3D step too, so that the chord the 3D step samples above follows the horizon.
+        if (live2 && (t >= t2 || (in3 && covered > 0.0)) && acc.a < CG_CONE_OPAQUE) {
+            vec2 uv = cg_heightmap_uv(m, x.xz);
+            float next = t + cg_hybrid_gather_block.params.y * d;
+            if (!inside_map(uv)) {
+                // No terrain here: on to where the axis comes over the map, or done.
+                vec2 span = xz_interval(x.xz, dir.xz, m_lo.xz, m_hi.xz);
+                if (!(span.x <= span.y) || span.y < 0.0)
+                    live2 = false;
+                else
+                    next = max(next, t + span.x + 1e-4 * d);
+            } else {
+                float s = length(x.xz - p.xz);
+                if (steep)
+                    s = max(s, 0.5 * d);
+                // The ray at the horizon's elevation: terrain below it raises nothing. Along a block
+                // the axis moves away from p, so the ray is lowest at the block's near side when it
+                // rises and at its far side when it falls.
+                float lod = clamp(level_2d(m, d) + cg_hybrid_gather_block.params.z, 0.0, m.levels - 1.0);
+                int level = int(lod);
+                bool fetch = true;
+                // A cone whose axis is below the horizon may have it under the terrain: no skipping.
+                if (skip && axis_slope >= slope) {
+                    // Maximum-mipmap skipping: the coarsest pyramid block under the axis whose highest
+                    // point stays below that ray is passed in one jump, to where the axis leaves it;
+                    // else the next finer level is tried, down to the level sampled.
+                    k = clamp(k, level, top);
+                    for (;;) {
+                        vec2 size = m.texel * float(1 << k);
+                        vec2 f = (x.xz - m.origin) / size;
+                        int n = max(int(m.resolution) >> k, 1);
+                        ivec2 c = clamp(ivec2(floor(f)), ivec2(0), ivec2(n - 1));
+                        vec2 edge = vec2(dir.x >= 0.0 ? float(c.x + 1) : float(c.x), dir.z >= 0.0 ? float(c.y + 1) : float(c.y));
+                        vec2 rate = dir.xz / size;
+                        vec2 exit = vec2(abs(rate.x) > 1e-20 ? (edge.x - f.x) / rate.x : 1e30,
+                                         abs(rate.y) > 1e-20 ? (edge.y - f.y) / rate.y : 1e30);
+                        float leave = max(min(exit.x, exit.y), 0.0);
+                        float s_ray = slope >= 0.0 ? s : length(x.xz + dir.xz * leave - p.xz);
+                        if (steep)
+                            s_ray = max(s_ray, 0.5 * d);
+                        if (block_max(c, k) > p.y + s_ray * slope) {
+                            if (k == level)
+                                break;
+                            k--;
+                            continue;
+                        }
+                        next = max(next, t + leave + 1e-4 * d);
+                        fetch = false;
+                        k = min(k + 1, top);
+                        break;
+                    }
                 }
+                if (fetch) {
+                    // The texel under the axis, unfiltered: the horizon takes the highest of the
+                    // samples, so a filter would only flatten them, and one fetch is a sixteenth
+                    // of the 3D step's trilinear one.
+                    int n = max(int(m.resolution) >> level, 1);
+                    vec4 texel = texelFetch(u_lightmap, clamp(ivec2(floor(uv * float(n))), ivec2(0), ivec2(n - 1)), level);
+                    if (texel.a - p.y > s * slope) {
+                        // Every direction of the cell below the new horizon meets the terrain here:
+                        // the newly covered share, with the terrain's radiance.
+                        float elevation = atan(texel.a - p.y, s);
+                        float share = cell_below(cell, elevation);
+                        if (share > covered) {
+                            float w = min(share - covered, 1.0 - acc.a);
+                            acc.rgb += w * m.radiance_scale * texel.rgb;
+                            acc.a += w;
+                            covered = share;
+                        }
+                        horizon = elevation;
+                        slope = slope_of(horizon);
+                    }
+                    // The axis under the terrain: the footprint's part below the terrain's height (its
+                    // disc seen across, vertical half extent r cos e) is covered, so that a cone whose
+                    // axis runs into the ground ends there, as the horizon of its one azimuth may not
+                    // tell (a cone wider than the terrain around it, a terrain ending at a wall).
+                    if (texel.a > x.y) {
+                        float across = 0.5 * d * max(horizontal, 1e-3);
+                        float buried = disc_below(clamp((texel.a - x.y) / across, -1.0, 1.0));
+                        if (buried > covered) {
+                            float w = min(buried - covered, 1.0 - acc.a);
+                            acc.rgb += w * m.radiance_scale * texel.rgb;
+                            acc.a += w;
+                            covered = buried;
+                        }
+                    }
+                }
+                // Done once even the highest terrain stays below the horizon's ray, and the ray no
+                // longer falls.
+                if (covered >= 1.0 || (slope >= 0.0 && m.y_max <= p.y + s * slope))
+                    live2 = false;
             }
+            t2 = next;
         }
-        // Past both maps along the axis and meeting neither: nothing more to gather.
-        if (!alive && t > t_leave)
-            break;
+        // Outside the 3D lightmap, on to the next terrain sample; a jump never takes the footprint
+        // into the box unseen (its gap shrinks by at most 1 + tan per unit of t).
+        if (!in3) {
+            if (!live2 && !live3)
+                break;
+            float jump = live2 ? t2 - t : 1e30;
+            if (live3)
+                jump = min(jump, max(gap3 / (1.0 + tan_half), march.step * d));
+            dt = max(jump, 1e-4 * d);
+        }
         t += dt;
     }
     return acc;
 }
+#endif
 #endif
 
 void
@@ -220,22 +637,41 @@ main()
         CgMarch march = cg_cone_march();
         diffuse = vec4(0.0);
 #ifdef HAS_2D
-        CgVolume v = cg_volume();
+        CgVolume v = hybrid_volume();
         CgHeightmap m = cg_heightmap();
-        // The coarser of the two xels: off the surface's own voxels and texels (self-influence, VI.B).
-        float xel = has_3d() ? max(v.voxel_size, cg_heightmap_xel(m)) : cg_heightmap_xel(m);
-        vec3 origin = position + n * (march.start_offset * xel);
-        vec4 surface = vec4(n, march.start_offset * xel);
-        vec3 lo = vec3(m.origin.x, m.y_min, m.origin.y);
-        vec3 hi = vec3(m.origin.x + m.texel.x * m.resolution, m.y_max, m.origin.y + m.texel.y * m.resolution);
+        vec3 lo, hi;
+        map_box(m, lo, hi);
         if (has_3d()) {
-            lo = min(lo, v.origin);
-            hi = max(hi, v.origin + vec3(cg_volume_extent(v)));
+            vec3 b_lo, b_hi;
+            box_3d(v, b_lo, b_hi);
+            lo = min(lo, b_lo);
+            hi = max(hi, b_hi);
         }
         float t_max = march.max_distance > 0.0 ? march.max_distance : length(hi - lo);
-        for (int k = 0; k < cg_cone_count(); k++)
-            cg_cone_accumulate(diffuse, k, hybrid_trace(origin, cg_cone_direction(frame, k), cg_cone_tan_half(k), xel,
-                                                        t_max, surface));
+#ifdef METHOD_PAPER
+        // VI.B's self-influence: the cones start off the surface by the coarser of the two xels.
+        float xel = has_3d() ? max(v.voxel_size, cg_heightmap_xel(m)) : cg_heightmap_xel(m);
+        vec3 origin = position + n * (march.start_offset * xel);
+        // What each cone left open, past the volume and the terrain, sees the sky (common/sky.glsl).
+        for (int k = 0; k < cg_cone_count(); k++) {
+            vec3 dir = cg_cone_direction(frame, k);
+            cg_cone_accumulate(diffuse, k, cg_sky_gather(trace_paper(origin, dir, cg_cone_tan_half(k), xel, t_max), dir,
+                                                         cg_cone_tan_half(k)));
+        }
+#else
+        // The 3D march starts as cone_gather's (start_offset voxels off the surface); the horizon
+        // is seen from the surface point itself.
+        float voxel = has_3d() ? v.voxel_size : cg_heightmap_xel(m);
+        vec3 origin = position + n * (march.start_offset * voxel);
+        bool own_voxels = !(cg_hybrid_gather_block.levels.y != 0 && on_height_field(m, position, n));
+        vec4 surface = own_voxels ? vec4(n, march.start_offset * voxel) : vec4(n, -1.0);
+        for (int k = 0; k < cg_cone_count(); k++) {
+            vec3 dir = cg_cone_direction(frame, k);
+            cg_cone_accumulate(diffuse, k, cg_sky_gather(trace_horizon(position, origin, dir, cg_cone_tan_half(k), voxel,
+                                                                       t_max, surface, cell_of(k, frame)),
+                                                         dir, cg_cone_tan_half(k)));
+        }
+#endif
 #else
         // No 2D lightmap: the VCT gather, the very function cone_gather calls.
         CgVolume v = cg_volume();

@@ -12,7 +12,7 @@
  *   pass access  fg_pass, fg_pass_name, fg_pass_type_of, fg_pass_frame, fg_param_int,
  *                fg_param_float, fg_param_bool, fg_param_enum, fg_param_string,
  *                fg_param_active, fg_pass_check_params, fg_input_present, fg_texture,
- *                fg_buffer, fg_resource
+ *                fg_buffer, fg_resource, fg_pass_report_rebuilt, fg_pass_rebuilt
  *   graph        fg_graph, fg_source_loc, fg_graph_create, fg_graph_destroy, fg_graph_add_pass,
  *                fg_graph_set_param, fg_graph_connect, fg_graph_mark_output, fg_graph_compile,
  *                fg_graph_prepare, fg_graph_execute, introspection and report functions
@@ -209,6 +209,21 @@ bool fg_input_present(const fg_pass *pass, const char *name);
 GLuint fg_texture(const fg_pass *pass, const char *name);   /* 0 when absent */
 GLuint fg_buffer(const fg_pass *pass, const char *name);    /* 0 when absent */
 const fg_resource_desc *fg_resource(const fg_pass *pass, const char *name); /* NULL when absent */
+
+/* What the pass rebuilt this frame, in a few words for a person ("geometry kept; light 262144
+ * texels"), printf-style, at most FG_REBUILT_MAX - 1 bytes (longer text is cut). A pass that
+ * keeps work across frames says here what it redid and what it kept, so that a cache can be
+ * watched at work (`render --report`, the per-frame lines, the demo's pass list). The graph
+ * clears it before each execute(): a pass that says nothing reports "". Call it during
+ * execute(). */
+#define FG_REBUILT_MAX 160
+void fg_pass_report_rebuilt(fg_pass *pass, const char *format, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+/* The last execute's text ("" when the pass said nothing or has not run). */
+const char *fg_pass_rebuilt(const fg_pass *pass);
 
 /* ---------------------------------------------------------------- registry and plugins */
 

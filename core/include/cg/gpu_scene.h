@@ -21,6 +21,7 @@
 
 #include <stdbool.h>
 #include <stddef.h>
+#include <stdint.h>
 #include <glad/gl.h>
 
 #include "cg/error.h"
@@ -52,6 +53,10 @@ typedef struct cg_gpu_scene {
     GLuint white_texture;
     GLuint light_buffer;    /* SSBO, header + std430 array of struct CgLight in lights.glsl */
     size_t bytes;           /* GPU memory held by the buffers and textures */
+    /* Unique to this upload within the process (never 0): a pass that keeps what it drew
+     * across frames compares it to see that the meshes, materials or textures were uploaded
+     * again (they may have changed in place), which no pointer can tell. */
+    uint64_t generation;
 } cg_gpu_scene;
 
 bool cg_gpu_scene_upload(const cg_scene *scene, cg_gpu_scene *out, cg_error *err);

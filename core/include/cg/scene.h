@@ -1,9 +1,11 @@
-/* cg/scene.h: the plain C scene every pass reads: glTF 2.0 files and built-in scenes.
+/* cg/scene.h: the plain C scene every pass reads: glTF 2.0 files, built-in scenes, DEM images.
  *
  * Declares: cg_mesh_kind, cg_texture, cg_material, cg_mesh, cg_instance, cg_light_type,
- *           cg_light, cg_camera_type, cg_camera, cg_sky_type, cg_sky, cg_node, cg_attachment_kind,
- *           cg_attachment, cg_anim_path, cg_anim_interpolation, cg_anim_channel, cg_animation,
- *           cg_scene, cg_scene_load, cg_scene_free, cg_scene_export_gltf, cg_scene_compute_bounds,
+ *           cg_light, cg_camera_type, cg_camera, cg_sky_type, cg_sky, cg_kind_source,
+ *           cg_classify_rule, cg_classify_points, cg_classify_options, cg_mesh_class, cg_node,
+ *           cg_attachment_kind, cg_attachment, cg_anim_path, cg_anim_interpolation, cg_anim_channel,
+ *           cg_animation, cg_scene, cg_scene_load, cg_scene_free, cg_classify_defaults,
+ *           cg_mesh_classify, cg_scene_export_gltf, cg_scene_compute_bounds,
  *           cg_scene_triangle_count, cg_scene_builtin_names, cg_scene_validate, cg_scene_set_sky,
  *           cg_sky_parse, cg_sky_model, cg_sky_model_init, cg_sky_model_radiance, cg_sky_format,
  *           cg_sky_equal, cg_sky_is_black, cg_scene_is_lit, the CG_DEFAULT_* constants,
@@ -130,6 +132,57 @@ typedef struct cg_sky {
                              * luminance Y is in kcd/m^2 (scale 1: kilo-nits) */
 } cg_sky;
 
+/* ------------------------------------------------------------ height-field classification
+ *
+ * Which meshes are height fields (hybrid cone tracing paper, section V.A): eq. 5 by default, the
+ * normal rule as an alternative (core/scene/classify.c has both; docs/scenes.md compares them).
+ * A glTF mesh's "conegraph_kind" extra ("heightfield" or "complex") and the kinds a built-in or
+ * DEM scene gives its meshes are kept as they are. */
+
+typedef enum cg_kind_source {
+    CG_KIND_CLASSIFIED = 0, /* by the classification rule, when the scene was loaded */
+    CG_KIND_EXTRAS,         /* a glTF mesh's "conegraph_kind" extra */
+    CG_KIND_SCENE           /* set by the built-in or DEM scene that made the mesh */
+} cg_kind_source;
+
+typedef enum cg_classify_rule {
+    CG_CLASSIFY_EQ5 = 0,    /* eq. 5: the mean distance of the mesh to its height-field
+                             * simplification, over the bounding box's diagonal, below a threshold */
+    CG_CLASSIFY_NORMALS     /* every triangle faces up (world normal y > 1e-3) */
+} cg_classify_rule;
+
+typedef enum cg_classify_points {
+    CG_CLASSIFY_VERTICES = 0, /* eq. 5's X: the mesh's vertices (the paper's) */
+    CG_CLASSIFY_CENTROIDS     /* the centroids of its triangles (the paper's faster option) */
+} cg_classify_points;
+
+#define CG_EQ5_DEFAULT_RESOLUTION 2048
+#define CG_EQ5_MAX_RESOLUTION 8192
+#define CG_EQ5_DEFAULT_THRESHOLD 0.001
+
+/* How meshes are classified; zero-initialised fields take the defaults. A scene source sets them
+ * with query keys (cg_scene_load): classify=eq5|normals, eq5_resolution=N, eq5_threshold=T,
+ * eq5_points=vertices|centroids. */
+typedef struct cg_classify_options {
+    cg_classify_rule rule;
+    int resolution;         /* eq. 5: samples along the bounding box's longer horizontal side
+                             * (the other side in proportion); 0: CG_EQ5_DEFAULT_RESOLUTION */
+    double threshold;       /* eq. 5: a height field when d < threshold; 0: CG_EQ5_DEFAULT_THRESHOLD */
+    cg_classify_points points;
+    int threads;            /* 0: one per core (at most 16) */
+} cg_classify_options;
+
+/* What the classification found for one mesh (cg_scene.mesh_class, cg_mesh_classify). */
+typedef struct cg_mesh_class {
+    cg_mesh_kind kind;      /* the kind the rule gives */
+    cg_kind_source source;  /* who decided the mesh's kind (cg_mesh.kind) */
+    double distance;        /* eq. 5's d of its worst instance; +inf when an instance has no area
+                             * seen from above; NaN when not computed (normal rule, kind given,
+                             * no instance) */
+    double max_distance;    /* the largest distance of one point, over the same diagonal */
+    int instances;
+    bool normals_up;        /* the normal rule's verdict (every instance's triangles face up) */
+} cg_mesh_class;
 /* ------------------------------------------------------------------ animation
  *
  * glTF 2.0 animations of node translation, rotation and scale (docs/scenes.md, "Animation").
@@ -207,6 +260,10 @@ typedef struct cg_scene {
      * volumes and shadow fits fitted to them stay put from frame to frame */
     float bounds_min[3], bounds_max[3];
     cg_sky sky;             /* CG_SKY_NONE unless set (cg_scene_set_sky) */
+    cg_classify_options classify;   /* as the source asked (cg_scene_load) */
+    cg_mesh_class *mesh_class;      /* mesh_class_count entries (mesh_count after cg_scene_load);
+                                     * NULL in a scene built by hand */
+    int mesh_class_count;
     cg_node *nodes;              int node_count;
     cg_attachment *attachments;  int attachment_count;
     cg_animation *animations;    int animation_count;
@@ -218,11 +275,21 @@ typedef struct cg_scene {
     uint64_t revision, instances_revision, lights_revision, cameras_revision;
 } cg_scene;
 
-/* Loads `source`: a .gltf/.glb path, or "builtin:NAME[?key=value&...]"
- * (e.g. "builtin:openworld?triangles=2000000&seed=7"). On failure *out is left empty
- * and err names the file and the problem. */
+/* Loads `source`: a .gltf/.glb path, "builtin:NAME" or "dem:IMAGE" (docs/scenes.md), each
+ * with an optional "?key=value&..." (e.g. "builtin:openworld?triangles=2000000&seed=7",
+ * "town.glb?eq5_threshold=0.002"); the classification keys above are taken by every kind of
+ * source. Then classifies the meshes whose kind the source does not give. On failure *out is
+ * left empty and err names the file and the problem. */
 bool cg_scene_load(const char *source, cg_scene *out, cg_error *err);
 void cg_scene_free(cg_scene *scene);
+
+/* *out = *in (or zero when in is NULL) with every default filled in; returns out. */
+const cg_classify_options *cg_classify_defaults(cg_classify_options *out, const cg_classify_options *in);
+/* Classifies mesh `mesh` of the scene by options->rule over all its instances (eq. 5's distance
+ * is computed with the eq5 rule only) and fills *out, its `source` left as it was. Fails only
+ * when out of memory. */
+bool cg_mesh_classify(const cg_scene *scene, int mesh, const cg_classify_options *options, cg_mesh_class *out,
+                      cg_error *err);
 
 /* Writes the scene as glTF 2.0 (.gltf with embedded buffers, or .glb by extension),
  * with KHR_lights_punctual and KHR_materials_emissive_strength, through a temporary

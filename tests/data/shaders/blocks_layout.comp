@@ -12,6 +12,7 @@ CG_UNIFORM_BLOCK(CgHeightmapBlock, cg_heightmap_block, CG_BINDING_HEIGHTMAP, CG_
 CG_UNIFORM_BLOCK(CgConeSet, cg_cone_set_block, CG_BINDING_CONES, CG_CONE_SET_BLOCK);
 CG_UNIFORM_BLOCK(CgConeGather, cg_cone_gather_block, CG_BINDING_GATHER, CG_CONE_GATHER_BLOCK);
 CG_UNIFORM_BLOCK(CgHybridGather, cg_hybrid_gather_block, 9, CG_HYBRID_GATHER_BLOCK);
+CG_UNIFORM_BLOCK(CgSkyBlock, cg_sky_block, CG_BINDING_SKY, CG_SKY_BLOCK);
 CG_STORAGE_BLOCK(readonly, CgHsatInfo, cg_hsat_info, CG_BINDING_HSAT, CG_HSAT_INFO_BLOCK);
 
 layout(std430, binding = 0) writeonly buffer Sink { vec4 sink; };
@@ -20,5 +21,6 @@ void
 main()
 {
     sink = cg_shadow_block.view[0] + cg_volume_block.info + cg_heightmap_block.info + cg_cone_set_block.march +
-           cg_cone_gather_block.camera + vec4(cg_hybrid_gather_block.switches) + cg_hsat_info.params;
+           cg_cone_gather_block.camera + vec4(cg_hybrid_gather_block.switches) + cg_sky_block.info +
+           cg_hsat_info.params;
 }

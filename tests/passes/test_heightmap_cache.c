@@ -1,0 +1,161 @@
+/* heightmap_raster's cache (cache=true): the kept geometry is rasterized again exactly when a
+ * height-field instance changed, the light is recomputed every frame, and a cached frame equals
+ * a frame rebuilt from nothing (cache=false) bit for bit:
+ *   - a static terrain under a turning sun: geometry kept, the relit map equals cache=false's;
+ *   - the terrain turned by hand (its world matrix changed, its revision not bumped, its bounds
+ *     the same): the geometry is rasterized again and equals a fresh cache=false map;
+ *   - the GPU scene uploaded again: rasterized again (its meshes may have changed in place).
+ * Frames after the first run fg_graph_execute directly, not vf_frame, which uploads the scene
+ * again every frame. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cg/gl.h"
+#include "hybrid_fixture.h"
+#include "test_support.h"
+
+static double
+bumpy(double x, double z, const void *user)
+{
+    (void)user;
+    return 1.0 + 0.4 * x - 0.25 * z + 0.3 * sin(1.7 * x) * cos(1.1 * z);
+}
+
+static const char graph[] =
+    "{ \"version\": 1, \"passes\": {"
+    " \"shadow\": { \"type\": \"shadow_map\", \"params\": { \"resolution\": 256 } },"
+    " \"hm\": { \"type\": \"heightmap_raster\", \"params\": { \"resolution\": 64, \"format\": \"%s\", \"cache\": %s },"
+    "   \"inputs\": { \"shadow\": \"shadow.depth\", \"shadow_matrix\": \"shadow.matrix\" } } },"
+    " \"outputs\": [ \"hm.lightmap\" ] }";
+
+static void
+make_scene(hf_scene *s)
+{
+    hf_init(s);
+    hf_material(s, 1, 0.6f, 0.05f);
+    hf_grid(s, 24, -4.0, -4.0, 8.0, bumpy, NULL);
+    const double sun[3] = {0.4, -1.0, 0.3};
+    hf_sun(s, sun, 3.0f);
+    hf_finish(s);
+}
+
+static void
+start(vf_runner *r, hf_scene *s, const char *format, bool cache)
+{
+    char json[1024];
+    snprintf(json, sizeof json, graph, format, cache ? "true" : "false");
+    vf_start(r, &s->scene, 16, 16, json, NULL);
+    vf_frame(r);
+}
+
+/* One more frame without uploading the scene again, as the apps run an animation. */
+static void
+next_frame(vf_runner *r)
+{
+    cg_error err = {0};
+    assert_cg_ok(fg_graph_execute(r->graph, &r->frame, FG_TIMING_NONE, &err), &err);
+    glMemoryBarrier(GL_ALL_BARRIER_BITS);
+    r->frame.index++;
+}
+
+static const char *
+rebuilt(const vf_runner *r)
+{
+    return fg_pass_rebuilt(fg_graph_find_pass(r->graph, "hm"));
+}
+
+/* Texels of level 0 that differ between the two runners' lightmaps. */
+static int
+differing_texels(const vf_runner *a, const vf_runner *b)
+{
+    int wa = 0, ha = 0, wb = 0, hb = 0;
+    float *ma = hf_read_2d(a, "hm.lightmap", 0, &wa, &ha);
+    float *mb = hf_read_2d(b, "hm.lightmap", 0, &wb, &hb);
+    assert_int_equal(wa, wb);
+    assert_int_equal(ha, hb);
+    int differ = 0;
+    for (int i = 0; i < wa * ha; i++)
+        differ += memcmp(&ma[4 * i], &mb[4 * i], 4 * sizeof(float)) != 0;
+    free(ma);
+    free(mb);
+    return differ;
+}
+
+/* Turns the sun about +y by `degrees`, in both scenes, and re-uploads their lights. */
+static void
+turn_sun(vf_runner *r, hf_scene *s, double degrees)
+{
+    double a = degrees * M_PI / 180.0, c = cos(a), sn = sin(a);
+    float *d = s->light.direction;
+    float x = d[0], z = d[2];
+    d[0] = (float)(c * x + sn * z);
+    d[2] = (float)(-sn * x + c * z);
+    cg_scene_lights_changed(&s->scene);
+    cg_error err = {0};
+    assert_cg_ok(cg_gpu_scene_update_lights(&r->gpu, &err), &err);
+}
+
+static void
+check_format(const char *format)
+{
+    hf_scene cached_scene, fresh_scene;
+    make_scene(&cached_scene);
+    make_scene(&fresh_scene);
+    vf_runner cached, fresh;
+    start(&cached, &cached_scene, format, true);
+    assert_non_null(strstr(rebuilt(&cached), "geometry rasterized (first frame)"));
+    start(&fresh, &fresh_scene, format, false);
+    assert_string_equal(rebuilt(&fresh), "geometry and light rasterized (cache=false)");
+    assert_int_equal(differing_texels(&cached, &fresh), 0);
+
+    /* The sun turns: the geometry is kept, the light follows. */
+    for (int k = 1; k <= 3; k++) {
+        turn_sun(&cached, &cached_scene, 40.0);
+        turn_sun(&fresh, &fresh_scene, 40.0);
+        next_frame(&cached);
+        next_frame(&fresh);
+        assert_non_null(strstr(rebuilt(&cached), "geometry kept"));
+        assert_int_equal(differing_texels(&cached, &fresh), 0);
+    }
+
+    /* The terrain turns half a turn about +y by hand: same bounds, other heights under each
+     * texel, no revision bumped. */
+    static const float half_turn[16] = {-1, 0, 0, 0, 0, 1, 0, 0, 0, 0, -1, 0, 0, 0, 0, 1};
+    memcpy(cached_scene.instances[0].world, half_turn, sizeof half_turn);
+    memcpy(fresh_scene.instances[0].world, half_turn, sizeof half_turn);
+    next_frame(&cached);
+    next_frame(&fresh);
+    assert_non_null(strstr(rebuilt(&cached), "geometry rasterized (a height-field instance changed)"));
+    assert_int_equal(differing_texels(&cached, &fresh), 0);
+    next_frame(&cached);
+    assert_non_null(strstr(rebuilt(&cached), "geometry kept"));
+
+    /* The scene uploaded again: rasterized again. */
+    vf_frame(&cached);
+    assert_non_null(strstr(rebuilt(&cached), "geometry rasterized (scene uploaded again)"));
+    printf("# heightmap_raster %s: cache=true equals cache=false bit for bit over 7 frames "
+           "(sun turning, terrain turned by hand, scene re-uploaded)\n", format);
+    vf_stop(&cached);
+    vf_stop(&fresh);
+    hf_free(&cached_scene);
+    hf_free(&fresh_scene);
+}
+
+static void
+test_cache_follows_changes(void **state)
+{
+    (void)state;
+    check_format("rgba32f");
+    check_format("rgba16f");
+}
+
+int
+main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_cache_follows_changes),
+    };
+    return cmocka_run_group_tests(tests, cg_test_gl_setup, cg_test_gl_teardown);
+}
