@@ -1,16 +1,24 @@
-/* Correctness under animation (issue: dynamic scenes at the cost of what changed): the cache
+/* Correctness under animation (issue: dynamic scenes at the cost of what changed): the caches
  * must never show stale light or geometry. `conegraph render` plays builtin:openworld with
- * motion=all (every complex object moving) and motion=sun (the sun turning) through
- * hybrid.json for several frames; the last frame must equal a fresh render at the same time
- * (relMSE below 1e-3, the issue's bound) and a run with every cache off (terrain.cache=false,
- * the paper's rebuild) on the same frames.
+ * motion=all (every complex object moving) and motion=sun (the sun turning) for several frames,
+ * through hybrid.json (heightmap_raster's kept 2D geometry) and vct.json (voxelize's kept surface
+ * volumes); the last frame must equal a fresh render at the same time (relMSE below 1e-3, the
+ * issue's bound) and a run with the cache off (terrain.cache=false, vox.cache=false: the papers'
+ * rebuild) on the same frames.
  *
- * Measured, and asserted: the images and the 2D lightmaps are equal bit for bit. They can be:
- * the only cache is heightmap_raster's kept geometry, which is rasterized by the same draw
- * whenever it is rebuilt, and its relight evaluates the lit raster's very formula
- * (common/surface_light.glsl) on the very attribute values; everything else (voxelize
- * included) is recomputed every frame, deterministically on llvmpipe. A cache that one day
- * approximates must keep the relMSE bound and may relax the bit-for-bit one, saying why.
+ * Measured, and asserted: the images (and hybrid.json's 2D lightmaps) are equal bit for bit. They
+ * can be: a kept geometry is built by the same draw whenever it is rebuilt, from the same
+ * instances (the cache rebuilds whenever one of them differs by value), and deterministically on
+ * llvmpipe; heightmap_raster's relight evaluates the lit raster's very formula
+ * (common/surface_light.glsl) on the very attribute values, and voxel_light lights the kept
+ * volumes every frame as it lights fresh ones. A cache that one day approximates (a partial
+ * re-voxelization of the moved instances, say) must keep the relMSE bound and may relax the
+ * bit-for-bit one, saying why.
+ *
+ * Also asserted from `render --pass-costs`: what the cached passes report rebuilding per frame
+ * (heightmap_raster: the geometry in the first frame only under every motion, as the terrain never
+ * moves; voxelize: in the first frame only with the sun turning, in every frame with one building
+ * moving, since it voxelizes the buildings too).
  *
  * The frames are at t = 0.5 + k / 4 (exact in binary), so the fresh render's --time 1.5 is
  * the same time as the animated run's fifth frame, to the bit.
@@ -26,18 +34,24 @@
 #include "test_support.h"
 
 #define SCENE "builtin:openworld?triangles=20000&period=4&motion="
-#define COMMON "--graph hybrid.json --size 96x54"
+#define SIZE "--size 96x54"
 
 static char out[1 << 16];
 
+/* Renders through `graph`; `lightmap` (NULL: none) gets hybrid.json's 2D lightmap. */
 static void
-render(const char *motion, const char *options, const char *name, char image[512], char lightmap[512])
+render(const char *graph, const char *motion, const char *options, const char *name, char image[512],
+       char lightmap[512])
 {
-    snprintf(image, 512, "%s/%s-%s.exr", cg_test_tmpdir(), motion, name);
-    snprintf(lightmap, 512, "%s/%s-%s-lightmap.exr", cg_test_tmpdir(), motion, name);
+    snprintf(image, 512, "%s/%s-%s-%s.exr", cg_test_tmpdir(), graph, motion, name);
+    char dump[600] = "";
+    if (lightmap) {
+        snprintf(lightmap, 512, "%s/%s-%s-%s-lightmap.exr", cg_test_tmpdir(), graph, motion, name);
+        snprintf(dump, sizeof dump, "--dump terrainmip.lightmap='%s'", lightmap);
+    }
     char args[2048];
-    snprintf(args, sizeof args, "render '" SCENE "%s' " COMMON " %s --dump terrainmip.lightmap='%s' -o '%s'",
-             motion, options, lightmap, image);
+    snprintf(args, sizeof args, "render '" SCENE "%s' --graph %s " SIZE " %s %s -o '%s'", motion, graph, options,
+             dump, image);
     int code = cg_test_run_conegraph(args, true, out, sizeof out);
     if (code != 0)
         fail_msg("%s exited %d:\n%s", args, code, out);
@@ -93,14 +107,15 @@ check_motion(const char *motion)
 {
     char animated[512], animated_map[512], fresh[512], fresh_map[512], rebuilt[512], rebuilt_map[512];
     char costs[512], options[1024];
-    snprintf(costs, sizeof costs, "%s/%s-costs.csv", cg_test_tmpdir(), motion);
+    snprintf(costs, sizeof costs, "%s/hybrid-%s-costs.csv", cg_test_tmpdir(), motion);
     snprintf(options, sizeof options, "--frames 5 --fps 4 --time 0.5 --pass-costs '%s'", costs);
-    render(motion, options, "animated", animated, animated_map);
+    render("hybrid.json", motion, options, "animated", animated, animated_map);
     /* The last frame's report says the 2D geometry was kept and only the light recomputed. */
     assert_non_null(strstr(out, "rebuilt: geometry kept; light 262144 texels relit (1 geometry build since prepare)"));
     check_costs(costs);
-    render(motion, "--frames 1 --time 1.5", "fresh", fresh, fresh_map);
-    render(motion, "--frames 5 --fps 4 --time 0.5 --set terrain.cache=false", "rebuilt", rebuilt, rebuilt_map);
+    render("hybrid.json", motion, "--frames 1 --time 1.5", "fresh", fresh, fresh_map);
+    render("hybrid.json", motion, "--frames 5 --fps 4 --time 0.5 --set terrain.cache=false", "rebuilt", rebuilt,
+           rebuilt_map);
     assert_non_null(strstr(out, "rebuilt: geometry and light rasterized (cache=false)"));
 
     double d_fresh = 0, d_rebuilt = 0, d_map_fresh = 0, d_map_rebuilt = 0;
@@ -117,6 +132,55 @@ check_motion(const char *motion)
     assert_true(d_map_fresh == 0.0 && d_map_rebuilt == 0.0);
 }
 
+/* vct.json's voxelize (vox) in the costs of `path`, 5 frames: the geometry voxelized in the first
+ * frame, then kept (every_frame = false) or voxelized again because an instance moved (true). */
+static void
+check_voxelize_costs(const char *path, bool every_frame)
+{
+    char *text = NULL;
+    cg_error err = {0};
+    assert_cg_ok(cg_read_file(path, &text, NULL, &err), &err);
+    int vox = 0;
+    for (char *line = strtok(strchr(text, '\n') + 1, "\n"); line; line = strtok(NULL, "\n")) {
+        if (!strstr(line, ",vox,voxelize,"))
+            continue;
+        int frame = atoi(line);
+        vox++;
+        const char *want = frame == 0     ? "\"geometry voxelized (first frame; 1 geometry build since prepare)\""
+                           : every_frame ? "\"geometry voxelized (a voxelized instance changed;"
+                                         : "\"geometry kept (1 geometry build since prepare)\"";
+        if (!strstr(line, want))
+            fail_msg("frame %d of %s: want %s in\n%s", frame, path, want, line);
+    }
+    assert_int_equal(vox, 5);
+    free(text);
+}
+
+/* vct.json: the last of 5 frames against a fresh render and against vox.cache=false. */
+static void
+check_vct_motion(const char *motion)
+{
+    char animated[512], fresh[512], rebuilt[512], costs[512], options[1024];
+    snprintf(costs, sizeof costs, "%s/vct-%s-costs.csv", cg_test_tmpdir(), motion);
+    snprintf(options, sizeof options, "--frames 5 --fps 4 --time 0.5 --pass-costs '%s'", costs);
+    render("vct.json", motion, options, "animated", animated, NULL);
+    /* The sun turning leaves the geometry as it is; every complex object moving voxelizes it again. */
+    check_voxelize_costs(costs, strcmp(motion, "sun") != 0);
+    render("vct.json", motion, "--frames 1 --time 1.5", "fresh", fresh, NULL);
+    render("vct.json", motion, "--frames 5 --fps 4 --time 0.5 --set vox.cache=false", "rebuilt", rebuilt, NULL);
+    assert_non_null(strstr(out, "rebuilt: geometry voxelized (cache=false)"));
+
+    double d_fresh = 0, d_rebuilt = 0;
+    double e_fresh = compare(animated, fresh, &d_fresh);
+    double e_rebuilt = compare(animated, rebuilt, &d_rebuilt);
+    printf("# vct.json, motion=%s, frame 5 at t = 1.5 s: against a fresh render relMSE %g (max |difference| %g); "
+           "against vox.cache=false relMSE %g (max %g)\n",
+           motion, e_fresh, d_fresh, e_rebuilt, d_rebuilt);
+    assert_true(e_fresh < 1e-3);
+    assert_true(e_rebuilt < 1e-3);
+    assert_true(d_fresh == 0.0 && d_rebuilt == 0.0);
+}
+
 static void
 test_every_object_moving(void **state)
 {
@@ -131,12 +195,41 @@ test_sun_turning(void **state)
     check_motion("sun");
 }
 
+static void
+test_vct_every_object_moving(void **state)
+{
+    (void)state;
+    check_vct_motion("all");
+}
+
+static void
+test_vct_sun_turning(void **state)
+{
+    (void)state;
+    check_vct_motion("sun");
+}
+
+/* One building moving: voxelize (which voxelizes it with the rest) rebuilds every frame. */
+static void
+test_vct_one_moving(void **state)
+{
+    (void)state;
+    char image[512], costs[512], options[1024];
+    snprintf(costs, sizeof costs, "%s/vct-one-costs.csv", cg_test_tmpdir());
+    snprintf(options, sizeof options, "--frames 5 --fps 4 --time 0.5 --pass-costs '%s'", costs);
+    render("vct.json", "one", options, "animated", image, NULL);
+    check_voxelize_costs(costs, true);
+}
+
 int
 main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_every_object_moving),
         cmocka_unit_test(test_sun_turning),
+        cmocka_unit_test(test_vct_every_object_moving),
+        cmocka_unit_test(test_vct_sun_turning),
+        cmocka_unit_test(test_vct_one_moving),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

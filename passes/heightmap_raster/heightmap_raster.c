@@ -43,6 +43,7 @@
 #include <string.h>
 
 #include "sdk/blocks.h"
+#include "sdk/instances.h"
 #include "sdk/pass.h"
 #include "sdk/radiance.h"
 #include "sdk/scene.h"
@@ -75,15 +76,6 @@ static const char *const geometry_outputs[] = {
 };
 enum { GEOMETRY_TARGETS = 4 };
 
-/* What a height-field instance was when the geometry was rasterized. */
-typedef struct built_instance {
-    int index, mesh;
-    float world[16];
-    uint64_t revision;
-    cg_mesh mesh_data;          /* its counts, arrays, kind and bounds */
-    cg_material material;
-} built_instance;
-
 typedef struct heightmap_region {
     double lo[3], hi[3];    /* world bounds of the height-field instances */
 } heightmap_region;
@@ -97,15 +89,10 @@ typedef struct heightmap_raster_state {
     /* RGBA16F: per point/spot light, the nearest height-field surface (the radiance bound). */
     cgp_light_distances light_distances;
 
-    /* cache=true: what the kept geometry was rasterized from (built = false: nothing yet). */
-    bool built;
-    const cg_scene *scene;
-    const cg_gpu_scene *gpu_scene;
-    uint64_t generation;    /* the GPU scene's upload */
-    int instance_count, resolution;
+    /* cache=true: what the kept geometry was rasterized from (instances.taken = false: nothing yet). */
+    cgp_instance_record instances;  /* the height-field instances (sdk/instances.h) */
+    int resolution;
     heightmap_region region;
-    built_instance *instances;
-    int built_count, built_cap;
     uint64_t builds;        /* geometry rasterizations since prepare */
 } heightmap_raster_state;
 
@@ -165,7 +152,7 @@ heightmap_raster_cleanup(void *state)
 {
     heightmap_raster_state *s = state;
     cgp_light_distances_free(&s->light_distances);
-    free(s->instances);
+    cgp_instance_record_free(&s->instances);
 }
 
 static bool
@@ -187,48 +174,19 @@ heightmap_raster_prepare(fg_pass *pass, heightmap_raster_state *s, cg_error *err
            cgp_compute_program(s, "heightmap_raster/relight.comp", defines, &s->relight, err);
 }
 
-/* Whether a height-field instance is as it was at the build: its world matrix, its revision,
- * its mesh (counts, arrays, kind, bounds) and its material, compared by value. */
-static bool
-instance_unchanged(const cg_scene *scene, const built_instance *b)
-{
-    if (b->index >= scene->instance_count)
-        return false;
-    const cg_instance *inst = &scene->instances[b->index];
-    if (inst->mesh != b->mesh || inst->revision != b->revision ||
-        memcmp(inst->world, b->world, sizeof b->world) || b->mesh >= scene->mesh_count)
-        return false;
-    const cg_mesh *mesh = &scene->meshes[b->mesh];
-    return !memcmp(mesh, &b->mesh_data, sizeof *mesh) && mesh->material >= 0 &&
-           mesh->material < scene->material_count &&
-           !memcmp(&scene->materials[mesh->material], &b->material, sizeof b->material);
-}
-
 /* Why the kept geometry must be rasterized again this frame, or NULL when it is up to date.
  * Any doubt rebuilds: what is compared is everything the geometry raster reads. */
 static const char *
 geometry_stale(const heightmap_raster_state *s, const fg_frame *frame, const heightmap_region *region,
                int resolution)
 {
-    const cg_scene *scene = frame->scene;
-    if (!s->built)
-        return "first frame";
-    if (scene != s->scene || frame->gpu_scene != s->gpu_scene ||
-        frame->gpu_scene->generation != s->generation || scene->instance_count != s->instance_count)
-        return "scene uploaded again";
+    const char *why =
+        cgp_instances_changed(&s->instances, frame, CG_MESHES_HEIGHTFIELD, "a height-field instance changed");
+    if (why)
+        return why;
     if (resolution != s->resolution || memcmp(region, &s->region, sizeof *region))
         return "region moved";
-    int n = 0;
-    for (int i = 0; i < scene->instance_count; i++) {
-        const cg_instance *inst = &scene->instances[i];
-        if (inst->mesh < 0 || inst->mesh >= scene->mesh_count ||
-            !cgp_mesh_passes(scene->meshes[inst->mesh].kind, CG_MESHES_HEIGHTFIELD))
-            continue;
-        if (n >= s->built_count || s->instances[n].index != i || !instance_unchanged(scene, &s->instances[n]))
-            return "a height-field instance changed";
-        n++;
-    }
-    return n == s->built_count ? NULL : "a height-field instance changed";
+    return NULL;
 }
 
 /* Records what the geometry was rasterized from. */
@@ -236,41 +194,9 @@ static bool
 remember_build(heightmap_raster_state *s, const fg_frame *frame, const heightmap_region *region, int resolution,
                cg_error *err)
 {
-    const cg_scene *scene = frame->scene;
-    s->built = false;
-    s->built_count = 0;
-    for (int i = 0; i < scene->instance_count; i++) {
-        const cg_instance *inst = &scene->instances[i];
-        const cg_mesh *mesh = &scene->meshes[inst->mesh];
-        if (!cgp_mesh_passes(mesh->kind, CG_MESHES_HEIGHTFIELD))
-            continue;
-        if (s->built_count == s->built_cap) {
-            int cap = s->built_cap ? 2 * s->built_cap : 8;
-            built_instance *grown = realloc(s->instances, sizeof *grown * (size_t)cap);
-            if (!grown)
-                return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "out of memory for %d height-field instances", cap);
-            s->instances = grown;
-            s->built_cap = cap;
-        }
-        built_instance *b = &s->instances[s->built_count++];
-        memset(b, 0, sizeof *b);
-        b->index = i;
-        b->mesh = inst->mesh;
-        memcpy(b->world, inst->world, sizeof b->world);
-        b->revision = inst->revision;
-        /* memcpy, not assignment: memcmp then compares the padding too, byte for byte. */
-        memcpy(&b->mesh_data, mesh, sizeof *mesh);
-        if (mesh->material >= 0 && mesh->material < scene->material_count)
-            memcpy(&b->material, &scene->materials[mesh->material], sizeof b->material);
-    }
-    s->scene = scene;
-    s->gpu_scene = frame->gpu_scene;
-    s->generation = frame->gpu_scene->generation;
-    s->instance_count = scene->instance_count;
     s->resolution = resolution;
     s->region = *region;
-    s->built = true;
-    return true;
+    return cgp_instances_remember(&s->instances, frame, CG_MESHES_HEIGHTFIELD, err);
 }
 
 /* Rasterizes the height-field meshes from above into the framebuffer as attached: the lit

@@ -24,13 +24,26 @@
  * Inputs (optional, together, model = radiance): shadow (depth) and shadow_matrix (buffer) of a
  * shadow_map pass.
  *
- * Cleared and rebuilt every frame, so the volume follows moving lights and geometry.
+ * Caching (model = surface, cache=true, the default): the four geometry volumes are persistent and
+ * kept across frames; they read no light, so a turning sun leaves them as they are. They are
+ * voxelized again only when what the voxelization reads may have changed: the first frame after
+ * prepare, an instance the mesh filter keeps (its world matrix, revision, mesh or material, compared
+ * by value, sdk/instances.h), the set of instances, the GPU scene's upload, the region, or the
+ * fixed-point and radiance scales (the emission volume stores emission / the radiance scale). Any
+ * such change clears and voxelizes the whole volume again: conservative, and a frame that rebuilds
+ * costs what an uncached one does (re-voxelizing only the voxels of the instances that moved is not
+ * done). The light (voxel_light) and its mips are recomputed every frame from the kept volumes.
+ * The pass reports which it did through fg_pass_report_rebuilt. Model radiance, and cache=false (the
+ * VCT paper's), clear and voxelize everything every frame, so the volume follows moving lights and
+ * geometry.
  */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "sdk/blocks.h"
+#include "sdk/instances.h"
 #include "sdk/pass.h"
 #include "sdk/radiance.h"
 #include "sdk/scene.h"
@@ -93,10 +106,28 @@ static const fg_param_desc voxelize_params[] = {
     { .name = "conservative", .type = FG_PARAM_BOOL, .default_value = 1,
       .doc = "every voxel a triangle touches (dilation + exact overlap test); false: one voxel per "
              "covered pixel centre, as plain rasterization gives (leaves holes)" },
+    { .name = "cache", .type = FG_PARAM_BOOL, .default_value = 1, .active_when = "model=surface",
+      .doc = "keep the geometry volumes across frames and voxelize them again (all of them) only when an "
+             "instance the mesh filter keeps, the region or the scales changed; false: voxelize every "
+             "frame (the VCT paper's rebuild)" },
 };
+
+/* Where the volume lies: a cube. */
+typedef struct voxel_region {
+    double origin[3];
+    double voxel;
+} voxel_region;
+
+/* Beside the instances, what the surface model's voxelization reads (compared by value). */
+typedef struct surface_build {
+    voxel_region region;
+    int resolution, conservative;
+    double unit_fixed, emission_fixed, radiance_scale;
+} surface_build;
 
 typedef struct voxelize_state {
     bool surface;
+    bool cache;             /* surface model only */
     GLuint program;
     GLuint resolve;
     GLuint find_max;        /* RGBA8 only: the largest radiance, for the stored scale */
@@ -106,13 +137,11 @@ typedef struct voxelize_state {
     GLenum format;
     /* Nearest-surface distance per point/spot light, recomputed when a light moves. */
     cgp_light_distances light_distances;
+    /* cache: what the kept volumes were voxelized from (instances.taken = false: nothing yet). */
+    cgp_instance_record instances;
+    surface_build built;
+    uint64_t builds;        /* voxelizations since prepare */
 } voxelize_state;
-
-/* Where the volume lies: a cube. */
-typedef struct voxel_region {
-    double origin[3];
-    double voxel;
-} voxel_region;
 
 /* The cube the volume covers; false when there is nothing to voxelize. The parameters met
  * their table (max_* > min_*, padding below a quarter of the resolution) before declare(). */
@@ -169,9 +198,12 @@ voxelize_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
         static const char *const names[4] = {"albedo", "coverage", "normal", "emission"};
         static const GLenum formats[4] = {GL_RGBA8, GL_RGBA8, GL_RGBA8_SNORM, GL_RGBA16F};
         for (int i = 0; i < 4; i++) {
+            /* cache: kept across frames; persistent storage is never pooled, so nothing else writes
+             * it between two frames. */
             fg_resource_desc geometry = {
                 .kind = FG_TEXTURE_3D, .format = formats[i],
                 .width = resolution, .height = resolution, .depth = resolution, .levels = 1, .gi = true,
+                .persistent = fg_param_bool(pass, "cache"),
             };
             fg_declare_output(decl, names[i], &geometry, FG_ACCESS_IMAGE_STORE);
         }
@@ -197,12 +229,14 @@ voxelize_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
     return true;
 }
 
-/* What the state holds beside its GL objects: the light cache of cgp_radiance_bound(). */
+/* What the state holds beside its GL objects: the light cache of cgp_radiance_bound() and the
+ * record of the kept volumes' instances. */
 static void
 voxelize_cleanup(void *state)
 {
     voxelize_state *s = state;
     cgp_light_distances_free(&s->light_distances);
+    cgp_instance_record_free(&s->instances);
 }
 
 static bool
@@ -214,6 +248,7 @@ voxelize_prepare(fg_pass *pass, voxelize_state *s, cg_error *err)
     s->fbo = cgp_framebuffer(s);
     cgp_no_shadow_create(s, &s->no_shadow);
     if (s->surface) {
+        s->cache = fg_param_bool(pass, "cache");
         s->format = GL_RGBA16F;
         return cgp_graphics_program(s, "voxelize/voxelize.vert", "voxelize/voxelize.geom", "voxelize/voxelize.frag",
                                     "#define SURFACE\n", &s->program, err) &&
@@ -267,6 +302,36 @@ voxelize_execute(fg_pass *pass, voxelize_state *s, cg_error *err)
     double unit_fixed = 2147483647.0 / SURFACE_HEADROOM;
     double emission_fixed = emission > 0.0 ? 4294967295.0 / (emission * SURFACE_HEADROOM) : 1.0;
 
+    /* The region block is not kept: written every frame, cached or not. */
+    const cg_volume_block block = {
+        .origin_voxel = {(float)region.origin[0], (float)region.origin[1], (float)region.origin[2],
+                         (float)region.voxel},
+        .info = {(float)resolution, (float)fg_mip_levels(resolution, resolution, resolution), (float)radiance_scale,
+                 0.0f},
+    };
+    GLuint region_buffer = fg_buffer(pass, "region");
+    glNamedBufferSubData(region_buffer, 0, sizeof block, &block);
+
+    const char *why = NULL;
+    surface_build build;
+    if (s->surface && s->cache) {
+        memset(&build, 0, sizeof build);    /* memcmp compares the padding too */
+        build.region = region;
+        build.resolution = resolution;
+        build.conservative = fg_param_bool(pass, "conservative");
+        build.unit_fixed = unit_fixed;
+        build.emission_fixed = emission_fixed;
+        build.radiance_scale = radiance_scale;
+        why = cgp_instances_changed(&s->instances, frame, filter, "a voxelized instance changed");
+        if (!why && memcmp(&build, &s->built, sizeof build))
+            why = "region or scales changed";
+        if (!why) {
+            fg_pass_report_rebuilt(pass, "geometry kept (%llu geometry build%s since prepare)",
+                                   (unsigned long long)s->builds, s->builds == 1 ? "" : "s");
+            return true;
+        }
+    }
+
     GLuint accum = fg_texture(pass, "accumulation");
     const GLuint zero = 0;
     glClearTexImage(accum, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
@@ -299,14 +364,6 @@ voxelize_execute(fg_pass *pass, voxelize_state *s, cg_error *err)
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
 
-    const cg_volume_block block = {
-        .origin_voxel = {(float)region.origin[0], (float)region.origin[1], (float)region.origin[2],
-                         (float)region.voxel},
-        .info = {(float)resolution, (float)fg_mip_levels(resolution, resolution, resolution), (float)radiance_scale,
-                 0.0f},
-    };
-    GLuint region_buffer = fg_buffer(pass, "region");
-    glNamedBufferSubData(region_buffer, 0, sizeof block, &block);
 
     GLuint groups = (GLuint)((resolution + 3) / 4);
     if (s->surface) {
@@ -322,6 +379,16 @@ voxelize_execute(fg_pass *pass, voxelize_state *s, cg_error *err)
         for (int i = 0; i < 5; i++)
             glBindImageTexture((GLuint)i, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
         glUseProgram(0);
+        if (!s->cache) {
+            fg_pass_report_rebuilt(pass, "geometry voxelized (cache=false)");
+            return true;
+        }
+        s->built = build;
+        if (!cgp_instances_remember(&s->instances, frame, filter, err))
+            return false;
+        s->builds++;
+        fg_pass_report_rebuilt(pass, "geometry voxelized (%s; %llu geometry build%s since prepare)", why,
+                               (unsigned long long)s->builds, s->builds == 1 ? "" : "s");
         return true;
     }
     GLuint radiance = fg_texture(pass, "radiance");
@@ -358,4 +425,6 @@ CGP_PASS(voxelize, CGP_PARAMS(voxelize_params),
          "emission, opacity in alpha; model surface, the geometry a voxel_light pass lights "
          "(albedo, mean normal and plane offset, per-axis coverage, emission). Dominant-axis "
          "projection in a geometry shader, conservative coverage by triangle dilation and an "
-         "exact triangle/voxel test, fragments averaged by fixed-point atomic sums. Rebuilt every frame.");
+         "exact triangle/voxel test, fragments averaged by fixed-point atomic sums. Model radiance is "
+         "rebuilt every frame; model surface keeps its volumes across frames (cache=true) and voxelizes "
+         "them again, whole, only when an instance it voxelizes, the region or the scales changed.");
