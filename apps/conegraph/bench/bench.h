@@ -3,15 +3,15 @@
  * Declares: the limits BENCH_MAX_*; bench_vary, bench_setting, bench_config (what to measure);
  *           bench_run (one combination of a setting); bench_scene (a scene with its session and
  *           reference); bench_row, bench_rows (one measured line of the table);
- *   sweep.c      bench_parse_args, bench_expand_runs, bench_run_assignments, bench_validate:
- *                flags and sweep file into a config, its runs, and every run compiled (without
- *                GL) on every scene before anything renders or any file is made;
+ *   sweep.c      bench_parse_args, bench_expand_runs, bench_run_assignments, bench_validate,
+ *                bench_graph_split: flags and sweep file into a config, its runs, and every run
+ *                compiled (without GL) on every scene before anything renders or any file is
+ *                made, with where each graph's own direct image is;
  *   reference.c  bench_reference, bench_path_tracer, bench_hash_text: the path-traced reference
  *                and its parts (cached), the truths made of them, and the path tracer timed at
  *                each sample count (cg/pt_render.h);
- *   measure.c    bench_graph_split, bench_measure_run: where a graph's own direct image is, and
- *                one run on one scene through the app session: timings, GI memory, errors
- *                against the reference (full image, GI part, direct part);
+ *   measure.c    bench_measure_run: one run on one scene through the app session: timings, GI
+ *                memory, errors against the reference (full image, GI part, direct part);
  *   analysis.c   bench_analyse, bench_error_value: the equal-error speed-up over the path tracer
  *                and the Pareto fronts, by the error --error chooses;
  *   write.c      bench_write_tables, bench_write_plots, bench_write_run_images,

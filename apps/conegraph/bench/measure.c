@@ -49,38 +49,6 @@ bench_measure_errors(const bench_scene *bs, const cg_image *test, const cg_image
     return ok;
 }
 
-/* The pass named by the part of `source` ("final.hdr") before its dot. */
-static const fg_pass *
-writer_of(const fg_graph *graph, const char *source)
-{
-    char name[BENCH_TEXT];
-    snprintf(name, sizeof name, "%.*s", (int)strcspn(source, "."), source);
-    return fg_graph_find_pass(graph, name);
-}
-
-void
-bench_graph_split(const app_session *s, bench_split *out)
-{
-    memset(out, 0, sizeof *out);
-    const char *image = s->image_source;
-    const fg_pass *final = image ? writer_of(s->graph, image) : NULL;
-    const char *dot = image ? strrchr(image, '.') : NULL;
-    if (!final || strcmp(fg_pass_type_of(final)->name, "composite") || !dot || strcmp(dot + 1, "hdr")) {
-        snprintf(out->why, sizeof out->why, "its image %s is not the hdr output of a composite pass",
-                 image ? image : "(none)");
-        return;
-    }
-    const char *direct = fg_pass_input_source(final, "direct");
-    const char *emissive = fg_pass_input_source(final, "emissive");
-    if (!direct) {
-        snprintf(out->why, sizeof out->why, "its composite '%s' has no direct input", fg_pass_name(final));
-        return;
-    }
-    out->ok = true;
-    snprintf(out->direct, sizeof out->direct, "%s", direct);
-    snprintf(out->emissive, sizeof out->emissive, "%s", emissive ? emissive : "");
-}
-
 /* The graph's own direct image: composite's direct + emissive, added in float as its shader
  * adds them (the GI term between them is left out), so that for a graph without GI the image
  * minus this is exactly 0. */

@@ -535,6 +535,38 @@ bench_run_assignments(const bench_config *c, const bench_run *run, char buf[BENC
     return n;
 }
 
+/* The pass named by the part of `source` ("final.hdr") before its dot. */
+static const fg_pass *
+writer_of(const fg_graph *graph, const char *source)
+{
+    char name[BENCH_TEXT];
+    snprintf(name, sizeof name, "%.*s", (int)strcspn(source, "."), source);
+    return fg_graph_find_pass(graph, name);
+}
+
+void
+bench_graph_split(const app_session *s, bench_split *out)
+{
+    memset(out, 0, sizeof *out);
+    const char *image = s->image_source;
+    const fg_pass *final = image ? writer_of(s->graph, image) : NULL;
+    const char *dot = image ? strrchr(image, '.') : NULL;
+    if (!final || strcmp(fg_pass_type_of(final)->name, "composite") || !dot || strcmp(dot + 1, "hdr")) {
+        snprintf(out->why, sizeof out->why, "its image %s is not the hdr output of a composite pass",
+                 image ? image : "(none)");
+        return;
+    }
+    const char *direct = fg_pass_input_source(final, "direct");
+    const char *emissive = fg_pass_input_source(final, "emissive");
+    if (!direct) {
+        snprintf(out->why, sizeof out->why, "its composite '%s' has no direct input", fg_pass_name(final));
+        return;
+    }
+    out->ok = true;
+    snprintf(out->direct, sizeof out->direct, "%s", direct);
+    snprintf(out->emissive, sizeof out->emissive, "%s", emissive ? emissive : "");
+}
+
 int
 bench_validate(const bench_config *c, const bench_run *runs, int run_count, bench_scene *scenes)
 {
