@@ -1,7 +1,8 @@
 /* The pass SDK (passes/sdk/): every block of shaders/common/blocks.h has, as GL lays it out for
  * GLSL, the size and member offsets of its C struct; a pass state deletes the GL objects it owns;
  * cgp_register_passes refuses a pass type of another ABI before registering any; cgp_mesh_bounds
- * transforms and filters as voxelize and heightmap_raster need. */
+ * transforms and filters as voxelize and heightmap_raster need; cgp_instances_changed sees every
+ * change to the instances a filter keeps, and none to the others. */
 #include <float.h>
 #include <stddef.h>
 #include <stdio.h>
@@ -10,6 +11,7 @@
 
 #include "cg/shader.h"
 #include "sdk/blocks.h"
+#include "sdk/instances.h"
 #include "sdk/pass.h"
 #include "sdk/scene.h"
 #include "test_support.h"
@@ -198,6 +200,50 @@ mesh_bounds_of_a_subset(void **state)
     cg_scene_free(&scene);
 }
 
+static void
+instances_changed_by_filter(void **state)
+{
+    (void)state;
+    cg_scene scene;
+    cg_error err = {0};
+    /* The furnace with its floor a height field: a change to the box is a change for the complex
+     * filter only. The GPU scene is only compared (its generation), so a struct stands for it. */
+    assert_cg_ok(cg_scene_load("builtin:furnace?heightfield=1&scale=2", &scene, &err), &err);
+    cg_gpu_scene gpu = {.scene = &scene, .generation = 7};
+    fg_frame frame = {.scene = &scene, .gpu_scene = &gpu};
+    cgp_instance_record complex = {0}, heightfield = {0};
+    assert_string_equal(cgp_instances_changed(&complex, &frame, CG_MESHES_COMPLEX, "moved"), "first frame");
+    assert_cg_ok(cgp_instances_remember(&complex, &frame, CG_MESHES_COMPLEX, &err), &err);
+    assert_cg_ok(cgp_instances_remember(&heightfield, &frame, CG_MESHES_HEIGHTFIELD, &err), &err);
+    assert_null(cgp_instances_changed(&complex, &frame, CG_MESHES_COMPLEX, "moved"));
+    assert_null(cgp_instances_changed(&heightfield, &frame, CG_MESHES_HEIGHTFIELD, "moved"));
+    /* Another filter than recorded is a change. */
+    assert_non_null(cgp_instances_changed(&complex, &frame, CG_MESHES_ALL, "moved"));
+    int box = -1;
+    for (int i = 0; i < scene.instance_count && box < 0; i++)
+        if (scene.meshes[scene.instances[i].mesh].kind == CG_MESH_COMPLEX)
+            box = i;
+    assert_true(box >= 0);
+    /* A world changed by hand, without a new revision: seen, by value. */
+    scene.instances[box].world[12] += 0.5f;
+    assert_string_equal(cgp_instances_changed(&complex, &frame, CG_MESHES_COMPLEX, "moved"), "moved");
+    assert_null(cgp_instances_changed(&heightfield, &frame, CG_MESHES_HEIGHTFIELD, "moved"));
+    scene.instances[box].world[12] -= 0.5f;
+    assert_null(cgp_instances_changed(&complex, &frame, CG_MESHES_COMPLEX, "moved"));
+    /* Its material's albedo. */
+    int material = scene.meshes[scene.instances[box].mesh].material;
+    scene.materials[material].base_color[0] *= 0.5f;
+    assert_string_equal(cgp_instances_changed(&complex, &frame, CG_MESHES_COMPLEX, "moved"), "moved");
+    scene.materials[material].base_color[0] *= 2.0f;
+    /* Another upload. */
+    gpu.generation = 8;
+    assert_string_equal(cgp_instances_changed(&complex, &frame, CG_MESHES_COMPLEX, "moved"), "scene uploaded again");
+    cgp_instance_record_free(&complex);
+    cgp_instance_record_free(&heightfield);
+    assert_string_equal(cgp_instances_changed(&complex, &frame, CG_MESHES_COMPLEX, "moved"), "first frame");
+    cg_scene_free(&scene);
+}
+
 int
 main(void)
 {
@@ -206,6 +252,7 @@ main(void)
         cmocka_unit_test(state_deletes_what_it_owns),
         cmocka_unit_test(registration_checks_the_abi_first),
         cmocka_unit_test(mesh_bounds_of_a_subset),
+        cmocka_unit_test(instances_changed_by_filter),
     };
     return cmocka_run_group_tests(tests, cg_test_gl_setup, cg_test_gl_teardown);
 }

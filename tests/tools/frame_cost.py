@@ -7,15 +7,16 @@ graph and cache setting, and prints a Markdown table of the medians over the fra
 first (the first builds every cache):
 
   update   the lightmap update: every pass that builds the 3D and 2D lightmaps, their mips and
-           tables (voxelize, mip3d, heightmap_raster, mip2d, hsat), and apart its 3D part
-           (voxelize, mip3d) and its 2D part (heightmap_raster, mip2d, hsat)
+           tables (voxelize, voxel_light, mip3d, heightmap_raster, mip2d, hsat), and apart its 3D
+           part (voxelize, voxel_light, mip3d) and its 2D part (heightmap_raster, mip2d, hsat)
   common   what every renderer pays each frame (shadow_map, gbuffer, direct_light, composite)
   gather   the cone gather (cone_gather, hybrid_gather)
   update / gather   the issue's done-when ratio (at most 0.3 wanted)
 
-then each pass's share of the frame and what heightmap_raster reported rebuilding in the last
-frame. `cache=off` sets PASS.cache=false on every heightmap_raster pass of the graph (the
-paper's rebuild every frame); graphs without one run once (nothing of theirs is cached).
+then each pass's share of the frame and what the caching passes (heightmap_raster, voxelize)
+reported rebuilding in the last frame. `cache=off` sets PASS.cache=false on every heightmap_raster
+and voxelize pass of the graph (the papers' rebuild every frame; voxelize caches only with
+model=surface, and ignores the setting otherwise); graphs without one run once.
 Timings on llvmpipe are noisy and the machine may be shared: compare ratios of one run.
 
 usage: frame_cost.py CONEGRAPH [--triangles 200000,2000000] [--motions sun,one,all]
@@ -31,14 +32,17 @@ import subprocess
 import sys
 import tempfile
 
-UPDATE = {"voxelize", "mip3d", "heightmap_raster", "mip2d", "hsat"}
-UPDATE_3D = {"voxelize", "mip3d"}
+UPDATE = {"voxelize", "voxel_light", "mip3d", "heightmap_raster", "mip2d", "hsat"}
+UPDATE_3D = {"voxelize", "voxel_light", "mip3d"}
 COMMON = {"shadow_map", "gbuffer", "direct_light", "composite"}
 GATHER = {"cone_gather", "hybrid_gather"}
 
 
-def heightmap_passes(conegraph, graph, workdir):
-    """Names of the graph's heightmap_raster passes, from `conegraph graph --report`."""
+CACHING = {"heightmap_raster", "voxelize"}
+
+
+def caching_passes(conegraph, graph, workdir):
+    """Names of the graph's heightmap_raster and voxelize passes, from `conegraph graph --report`."""
     report = os.path.join(workdir, "graph.json")
     done = subprocess.run([conegraph, "graph", graph, "--report", report], capture_output=True, text=True)
     if done.returncode != 0:
@@ -46,7 +50,7 @@ def heightmap_passes(conegraph, graph, workdir):
     with open(report) as f:
         passes = json.load(f)["passes"]
     os.remove(report)
-    return [p["name"] for p in passes if p["type"] == "heightmap_raster"]
+    return [p["name"] for p in passes if p["type"] in CACHING]
 
 
 def run(conegraph, scene, graph, sets, size, frames, workdir):
@@ -105,23 +109,23 @@ def main():
     print("frame_cost: %s, %d frames per run (medians of frames 2..%d), ms from `render --timing sync`"
           % (a.size, a.frames, a.frames))
     print()
-    print("| triangles | motion | graph | 2D cache | frame ms | update ms (3D + 2D) | common ms | gather ms "
-          "| update / gather | passes (ms, share of the frame) | heightmap_raster, last frame |")
+    print("| triangles | motion | graph | cache | frame ms | update ms (3D + 2D) | common ms | gather ms "
+          "| update / gather | passes (ms, share of the frame) | caching passes, last frame |")
     print("|---|---|---|---|---|---|---|---|---|---|---|")
     with tempfile.TemporaryDirectory() as workdir:
         for tri in a.triangles.split(","):
             for motion in a.motions.split(","):
                 scene = "builtin:openworld?triangles=%s&motion=%s&period=%s" % (tri, motion, a.period)
                 for graph in a.graphs.split(","):
-                    heightmaps = heightmap_passes(a.conegraph, graph, workdir)
-                    settings = [("on", []), ("off", ["%s.cache=false" % h for h in heightmaps])] \
-                        if heightmaps else [("-", [])]
+                    cached = caching_passes(a.conegraph, graph, workdir)
+                    settings = [("on", []), ("off", ["%s.cache=false" % h for h in cached])] \
+                        if cached else [("-", [])]
                     for label, sets in settings:
                         rows = run(a.conegraph, scene, graph, sets, a.size, a.frames, workdir)
                         med, passes, types, rebuilt = summarize(rows, a.frames)
                         shares = ", ".join("%s %.0f (%.0f%%)" % (p, ms, 100.0 * ms / med["frame"])
                                            for p, ms in passes.items())
-                        note = "; ".join(rebuilt[h] for h in heightmaps if h in rebuilt) or "-"
+                        note = "; ".join("%s: %s" % (h, rebuilt[h]) for h in cached if h in rebuilt) or "-"
                         ratio = med["update"] / med["gather"] if med["gather"] > 0 else float("inf")
                         print("| %s | %s | %s | %s | %.0f | %.0f (%.0f + %.0f) | %.0f | %.0f | %.2f | %s | %s |"
                               % (tri, motion, graph, label, med["frame"], med["update"], med["3d"], med["2d"],
