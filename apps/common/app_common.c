@@ -243,3 +243,15 @@ app_compare_double(const void *a, const void *b)
     double x = *(const double *)a, y = *(const double *)b;
     return (x > y) - (x < y);
 }
+
+void
+app_csv_field(FILE *fp, const char *text)
+{
+    fputc('"', fp);
+    for (const char *s = text; *s; s++) {
+        if (*s == '"')
+            fputc('"', fp);
+        fputc(*s, fp);
+    }
+    fputc('"', fp);
+}

@@ -4,7 +4,7 @@
  *
  * Declares: app_graph_dir, app_resolve_graph, app_parse_int, app_parse_double, app_parse_size, app_parse_timing,
  *           app_parse_bytes, app_has_extension, app_usage_error, app_fail, app_error_prefix,
- *           app_make_dirs, app_now_ms, app_cpu_ms, app_median, app_compare_double.
+ *           app_make_dirs, app_now_ms, app_cpu_ms, app_median, app_compare_double, app_csv_field.
  *
  * Exit codes, as everywhere in conegraph: 0 done, 1 failed while running, 2 bad input or usage.
  */
@@ -13,6 +13,7 @@
 
 #include <stdbool.h>
 #include <stddef.h>
+#include <stdio.h>
 
 #include "cg/error.h"
 #include "cg/fg.h"
@@ -60,5 +61,8 @@ double app_cpu_ms(void);
 double app_median(double *values, int count);
 /* qsort comparator for doubles. */
 int app_compare_double(const void *a, const void *b);
+
+/* Writes `text` as one CSV field (RFC 4180): quoted, its quotes doubled. */
+void app_csv_field(FILE *fp, const char *text);
 
 #endif

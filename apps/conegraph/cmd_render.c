@@ -150,19 +150,6 @@ typedef struct render_progress {
     FILE *costs_fp;         /* open_memstream over costs; NULL without --pass-costs */
 } render_progress;
 
-/* A CSV field: quoted, with its quotes doubled. */
-static void
-csv_text(FILE *fp, const char *text)
-{
-    fputc('"', fp);
-    for (const char *c = text; *c; c++) {
-        if (*c == '"')
-            fputc('"', fp);
-        fputc(*c, fp);
-    }
-    fputc('"', fp);
-}
-
 /* The frame line on stderr (with what each pass that said so rebuilt), and the frame's rows
  * of --pass-costs. */
 static void
@@ -187,7 +174,7 @@ print_progress(void *user, int frame, int frames, double ms)
             continue;
         fprintf(p->costs_fp, "%d,%.17g,%s,%s,%.6f,", frame, p->s->scene.time, fg_pass_name(pass),
                 fg_pass_type_of(pass)->name, fg_pass_milliseconds(pass));
-        csv_text(p->costs_fp, fg_pass_rebuilt(pass));
+        app_csv_field(p->costs_fp, fg_pass_rebuilt(pass));
         fputc('\n', p->costs_fp);
     }
 }

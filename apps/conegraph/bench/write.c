@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "app_common.h"
 #include "bench.h"
 #include "cg/fs.h"
 #include "plot.h"
@@ -17,18 +18,6 @@ bench_slug(const char *text, char *out, size_t size)
     for (const char *s = text; *s && n + 1 < size; s++)
         out[n++] = isalnum((unsigned char)*s) || *s == '.' ? *s : '-';
     out[n] = '\0';
-}
-
-static void
-csv_field(FILE *fp, const char *text)
-{
-    fputc('"', fp);
-    for (const char *s = text; *s; s++) {
-        if (*s == '"')
-            fputc('"', fp);
-        fputc(*s, fp);
-    }
-    fputc('"', fp);
 }
 
 static bool
@@ -46,13 +35,13 @@ write_csv(const bench_config *c, const bench_rows *rows, const bench_scene *scen
                   "direct_nrmse,error_metric\n");
     for (int i = 0; i < rows->count; i++) {
         const bench_row *r = &rows->rows[i];
-        csv_field(f.fp, scenes[r->scene].source);
+        app_csv_field(f.fp, scenes[r->scene].source);
         fprintf(f.fp, ",%d,%d,", c->width, c->height);
-        csv_field(f.fp, r->graph);
+        app_csv_field(f.fp, r->graph);
         fputc(',', f.fp);
-        csv_field(f.fp, r->params);
+        app_csv_field(f.fp, r->params);
         fprintf(f.fp, ",%.3f,", r->ms);
-        csv_field(f.fp, r->pass_ms);
+        app_csv_field(f.fp, r->pass_ms);
         fprintf(f.fp, ",%zu,%zu,%.6g,%.6g,%.6f,%.6g,%.6f,%zu,%.6g,%.6g,%.6f,%.6f,%.3f,%.3f,%d,%d,%.6g,%.6g,%.6g,%.6g,%s\n",
                 r->gi_bytes, r->peak_bytes, r->full.rmse, r->full.rel_mse, r->full.ssim, r->full.max_error,
                 r->full.mean_luminance_ratio, r->full.nonfinite_pixels, r->indirect.rmse, r->indirect.rel_mse,
