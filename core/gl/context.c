@@ -2,7 +2,7 @@
  * messages routed to the log and GL errors counted per context.
  *
  * GL entry points are loaded by glad through each backend's own GetProcAddress:
- * linking libOSMesa directly misses the DSA entry points (PLATFORM.md, "Contexts").
+ * linking libOSMesa directly misses the DSA entry points (Mesa 22 on Debian 12: its libOSMesa exports only the GL 1.x-3.x symbols).
  */
 #include "cg/gl.h"
 

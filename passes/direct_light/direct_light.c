@@ -1,5 +1,5 @@
 /* direct_light: outgoing radiance of the G-buffer's surfaces lit directly by every light
- * of the scene (Lambertian, DESIGN.md units: shaders/common/lights.glsl), shadowed by the
+ * of the scene (Lambertian, the units of docs/architecture.md: shaders/common/lights.glsl), shadowed by the
  * optional shadow map (shaders/common/shadow.glsl) for the light it serves. Point lights
  * and lights without a map are unshadowed.
  *

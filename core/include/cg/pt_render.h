@@ -5,7 +5,7 @@
  *
  * Pure C, no GL: it renders a cg_scene seen through a cg_view into linear float RGBA
  * (rows top to bottom, as cg_image stores them), so tests and `conegraph bench` can use
- * it without a context. Physics and units are those of cg/scene.h and DESIGN.md:
+ * it without a context. Physics and units are those of cg/scene.h (docs/architecture.md, "Units and conventions"):
  *   - Lambertian surfaces, albedo = base_color x base colour texture (bilinear, repeat,
  *     sRGB-decoded before filtering as GL does for SRGB8_ALPHA8; no mipmaps);
  *   - emissive radiance = emissive x emissive texture x emissive_strength, seen from
