@@ -37,19 +37,6 @@ run(const char *args, char *out, size_t size)
     return cg_test_run_conegraph(args, false, out, size);
 }
 
-/* The number after "KEY": in the object that follows "SECTION": . */
-static double
-json_number(const char *json, const char *section, const char *key)
-{
-    const char *s = strstr(json, section);
-    assert_non_null(s);
-    char pattern[64];
-    snprintf(pattern, sizeof pattern, "\"%s\": ", key);
-    const char *k = strstr(s, pattern);
-    assert_non_null(k);
-    return strtod(k + strlen(pattern), NULL);
-}
-
 /* An 8-bit sRGB PNG beside a linear EXR: refused with exit 2, naming both and the way out;
  * two PNGs, or two EXRs, are compared. */
 static void
@@ -91,10 +78,10 @@ identical_images(void **state)
     char args[9000], out[4096];
     snprintf(args, sizeof args, "compare '%s' '%s' --json", a, a);
     assert_int_equal(run(args, out, sizeof out), 0);
-    assert_float_equal(json_number(out, "\"full\"", "rmse"), 0.0, 0.0);
-    assert_float_equal(json_number(out, "\"full\"", "relmse"), 0.0, 0.0);
-    assert_float_equal(json_number(out, "\"full\"", "ssim"), 1.0, 1e-9);
-    assert_float_equal(json_number(out, "\"full\"", "lum_ratio"), 1.0, 1e-9);
+    assert_float_equal(cg_test_json_number(out, "\"full\"", "rmse"), 0.0, 0.0);
+    assert_float_equal(cg_test_json_number(out, "\"full\"", "relmse"), 0.0, 0.0);
+    assert_float_equal(cg_test_json_number(out, "\"full\"", "ssim"), 1.0, 1e-9);
+    assert_float_equal(cg_test_json_number(out, "\"full\"", "lum_ratio"), 1.0, 1e-9);
 }
 
 static void
@@ -111,13 +98,13 @@ offset_and_indirect_part(void **state)
     assert_int_equal(run(args, out, sizeof out), 0);
     /* Offset 0.25 on 0.25: relMSE 0.0625 / (0.0625 + 0.01); indirect 0.375 against 0.125
      * (the reference's direct part taken from both). */
-    assert_float_equal(json_number(out, "\"full\"", "rmse"), 0.25, 1e-7);
-    assert_float_equal(json_number(out, "\"full\"", "relmse"), 0.0625 / 0.0725, 1e-7);
-    assert_float_equal(json_number(out, "\"full\"", "lum_ratio"), 2.0, 1e-7);
-    assert_float_equal(json_number(out, "\"indirect\"", "lum_ratio"), 3.0, 1e-6);
-    assert_float_equal(json_number(out, "\"indirect\"", "relmse"), 0.0625 / (0.015625 + 0.01), 1e-6);
-    assert_float_equal(json_number(out, "\"indirect\"", "energy"), 3.0, 1e-6);
-    assert_float_equal(json_number(out, "\"indirect\"", "nrmse"), 2.0, 1e-6);
+    assert_float_equal(cg_test_json_number(out, "\"full\"", "rmse"), 0.25, 1e-7);
+    assert_float_equal(cg_test_json_number(out, "\"full\"", "relmse"), 0.0625 / 0.0725, 1e-7);
+    assert_float_equal(cg_test_json_number(out, "\"full\"", "lum_ratio"), 2.0, 1e-7);
+    assert_float_equal(cg_test_json_number(out, "\"indirect\"", "lum_ratio"), 3.0, 1e-6);
+    assert_float_equal(cg_test_json_number(out, "\"indirect\"", "relmse"), 0.0625 / (0.015625 + 0.01), 1e-6);
+    assert_float_equal(cg_test_json_number(out, "\"indirect\"", "energy"), 3.0, 1e-6);
+    assert_float_equal(cg_test_json_number(out, "\"indirect\"", "nrmse"), 2.0, 1e-6);
     assert_non_null(strstr(out, "\"estimate\": \"TEST - REF_DIRECT\""));
     assert_null(strstr(out, "\"direct\": {"));
     cg_image map = { 0 };
@@ -167,18 +154,18 @@ own_direct_light_cancels_shadow_edges(void **state)
              td, rd_a, rd_b);
     assert_int_equal(run(args, out, sizeof out), 0);
     assert_non_null(strstr(out, "\"estimate\": \"TEST - TEST_DIRECT\""));
-    assert_float_equal(json_number(out, "\"indirect\"", "energy"), 1.0, 1e-9);
-    assert_float_equal(json_number(out, "\"indirect\"", "nrmse"), 0.0, 1e-9);
-    assert_float_equal(json_number(out, "\"indirect\"", "rms_truth"), 0.25, 1e-9);
+    assert_float_equal(cg_test_json_number(out, "\"indirect\"", "energy"), 1.0, 1e-9);
+    assert_float_equal(cg_test_json_number(out, "\"indirect\"", "nrmse"), 0.0, 1e-9);
+    assert_float_equal(cg_test_json_number(out, "\"indirect\"", "rms_truth"), 0.25, 1e-9);
     /* The direct parts: 18 lit columns for 16, an error of 1 on 2 of 32 columns. */
-    assert_float_equal(json_number(out, "\"direct\"", "energy"), 18.0 / 16.0, 1e-9);
-    assert_float_equal(json_number(out, "\"direct\"", "nrmse"), sqrt(2.0 / 32.0) / sqrt(0.5), 1e-9);
-    assert_float_equal(json_number(out, "\"direct\"", "rmse"), 0.25, 1e-9);
+    assert_float_equal(cg_test_json_number(out, "\"direct\"", "energy"), 18.0 / 16.0, 1e-9);
+    assert_float_equal(cg_test_json_number(out, "\"direct\"", "nrmse"), sqrt(2.0 / 32.0) / sqrt(0.5), 1e-9);
+    assert_float_equal(cg_test_json_number(out, "\"direct\"", "rmse"), 0.25, 1e-9);
     /* The reference's direct light taken from both: the edge's 2 columns of 1.0 are indirect error. */
     snprintf(args, sizeof args, "compare '%s' '%s' --ref-direct '%s' --ref-direct '%s' --json", test, ref, rd_a, rd_b);
     assert_int_equal(run(args, out, sizeof out), 0);
-    assert_float_equal(json_number(out, "\"indirect\"", "energy"), 1.25, 1e-9);
-    assert_float_equal(json_number(out, "\"indirect\"", "nrmse"), 1.0, 1e-9);
+    assert_float_equal(cg_test_json_number(out, "\"indirect\"", "energy"), 1.25, 1e-9);
+    assert_float_equal(cg_test_json_number(out, "\"indirect\"", "nrmse"), 1.0, 1e-9);
     /* The table prints the same figures. */
     snprintf(args, sizeof args, "compare '%s' '%s' --direct '%s' --ref-direct '%s' --ref-direct '%s'", test, ref, td,
              rd_a, rd_b);
@@ -201,13 +188,13 @@ no_indirect_light_and_the_reference_itself(void **state)
     char args[30000], out[8192];
     snprintf(args, sizeof args, "compare '%s' '%s' --direct '%s' --ref-direct '%s' --json", test, ref, test, rd);
     assert_int_equal(run(args, out, sizeof out), 0);
-    assert_true(json_number(out, "\"indirect\"", "energy") == 0.0);
-    assert_true(json_number(out, "\"indirect\"", "nrmse") == 1.0);
+    assert_true(cg_test_json_number(out, "\"indirect\"", "energy") == 0.0);
+    assert_true(cg_test_json_number(out, "\"indirect\"", "nrmse") == 1.0);
     snprintf(args, sizeof args, "compare '%s' '%s' --direct '%s' --ref-direct '%s' --json", ref, ref, rd, rd);
     assert_int_equal(run(args, out, sizeof out), 0);
-    assert_true(json_number(out, "\"indirect\"", "energy") == 1.0);
-    assert_true(json_number(out, "\"indirect\"", "nrmse") == 0.0);
-    assert_true(json_number(out, "\"direct\"", "nrmse") == 0.0);
+    assert_true(cg_test_json_number(out, "\"indirect\"", "energy") == 1.0);
+    assert_true(cg_test_json_number(out, "\"indirect\"", "nrmse") == 0.0);
+    assert_true(cg_test_json_number(out, "\"direct\"", "nrmse") == 0.0);
 }
 
 static void

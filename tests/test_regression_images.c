@@ -10,7 +10,6 @@
  *
  * A graph or scene without a kept image fails: a new one is added to the set on purpose.
  */
-#include <dirent.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -20,28 +19,6 @@
 #include "cg/metrics.h"
 #include "cg/scene.h"
 #include "test_support.h"
-
-#define MAX_GRAPHS 64
-
-static int
-list_graphs(char names[MAX_GRAPHS][256])
-{
-    const char *dir = getenv("CONEGRAPH_GRAPH_DIR");
-    if (!dir)
-        fail_msg("CONEGRAPH_GRAPH_DIR is not set");
-    DIR *d = opendir(dir);
-    if (!d)
-        fail_msg("cannot open %s", dir);
-    int n = 0;
-    for (struct dirent *e; (e = readdir(d));) {
-        size_t len = strlen(e->d_name);
-        if (len > 5 && !strcmp(e->d_name + len - 5, ".json") && n < MAX_GRAPHS && len < 256)
-            snprintf(names[n++], 256, "%.*s", (int)(len - 5), e->d_name);
-    }
-    closedir(d);
-    qsort(names, (size_t)n, sizeof names[0], (int (*)(const void *, const void *))strcmp);
-    return n;
-}
 
 /* Largest |a - b| over all channels; -1 when the sizes differ. */
 static double
@@ -68,8 +45,8 @@ test_every_graph_on_every_builtin_scene(void **state)
         fail_msg("CONEGRAPH_TEST_DATA is not set");
     const char *update = getenv("CONEGRAPH_REGRESSION_UPDATE");
     bool updating = update && *update && strcmp(update, "0");
-    static char graphs[MAX_GRAPHS][256];
-    int graph_count = list_graphs(graphs);
+    static char graphs[CG_TEST_MAX_GRAPHS][256];
+    int graph_count = cg_test_list_graphs(graphs);
     assert_true(graph_count > 0);
     int failures = 0;
     for (const char *const *scene = cg_scene_builtin_names(); *scene; scene++)

@@ -36,19 +36,6 @@ run_ok(const char *args)
         fail_msg("conegraph %s: exit %d\n%s", args, rc, out);
 }
 
-/* The number after "KEY": in the object that follows "SECTION": . */
-static double
-json_number(const char *json, const char *section, const char *key)
-{
-    const char *s = strstr(json, section);
-    assert_non_null(s);
-    char pattern[64];
-    snprintf(pattern, sizeof pattern, "\"%s\": ", key);
-    const char *k = strstr(s, pattern);
-    assert_non_null(k);
-    return strtod(k + strlen(pattern), NULL);
-}
-
 typedef struct sky_figures {
     double full_lum_ratio, gi_energy, gi_nrmse, direct_energy, direct_nrmse;
 } sky_figures;
@@ -69,11 +56,11 @@ measure(const char *scene, const char *sky, const char *graph, const char *ref, 
     if (rc != 0)
         fail_msg("conegraph %s: exit %d", args, rc);
     sky_figures f = {
-        .full_lum_ratio = json_number(out, "\"full\"", "lum_ratio"),
-        .gi_energy = json_number(out, "\"indirect\"", "energy"),
-        .gi_nrmse = json_number(out, "\"indirect\"", "nrmse"),
-        .direct_energy = json_number(out, "\"direct\"", "energy"),
-        .direct_nrmse = json_number(out, "\"direct\"", "nrmse"),
+        .full_lum_ratio = cg_test_json_number(out, "\"full\"", "lum_ratio"),
+        .gi_energy = cg_test_json_number(out, "\"indirect\"", "energy"),
+        .gi_nrmse = cg_test_json_number(out, "\"indirect\"", "nrmse"),
+        .direct_energy = cg_test_json_number(out, "\"direct\"", "energy"),
+        .direct_nrmse = cg_test_json_number(out, "\"direct\"", "nrmse"),
     };
     printf("# %s --sky %s, %s: full lum ratio %.4f, GI energy %.4f nrmse %.4f, direct energy %.6f nrmse %.2g\n",
            scene, sky, graph, f.full_lum_ratio, f.gi_energy, f.gi_nrmse, f.direct_energy, f.direct_nrmse);
@@ -118,8 +105,8 @@ box_under_the_sky(void **state)
         char args[8192], out[1 << 14];
         snprintf(args, sizeof args, "compare '%s' '%s' --json", tmp("gi-emissive.exr"), tmp("ref-emitted.exr"));
         assert_int_equal(cg_test_run_conegraph(args, false, out, sizeof out), 0);
-        assert_true(json_number(out, "\"full\"", "rmse") == 0.0);
-        assert_true(json_number(out, "\"full\"", "mean_luminance_ref") > 0.1);
+        assert_true(cg_test_json_number(out, "\"full\"", "rmse") == 0.0);
+        assert_true(cg_test_json_number(out, "\"full\"", "mean_luminance_ref") > 0.1);
         /* Measured at 64x36, 256 spp: vct.json 1.151, hybrid.json 0.555 (hybrid.json's march is
          * cone_gather's here, no height field, on radiance voxels: step 0.5 at the matched level;
          * 0.663 with its earlier step 0.25 and lod_bias -2).

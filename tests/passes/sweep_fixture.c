@@ -1,6 +1,5 @@
 #include "sweep_fixture.h"
 
-#include <dirent.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -9,32 +8,6 @@
 #include "cg/scene.h"
 #include "test_support.h"
 #include "vct_fixture.h"
-
-static int
-compare_names(const void *a, const void *b)
-{
-    return strcmp(a, b);
-}
-
-int
-sf_list_graphs(char names[SF_MAX_GRAPHS][256])
-{
-    const char *dir = getenv("CONEGRAPH_GRAPH_DIR");
-    if (!dir)
-        fail_msg("CONEGRAPH_GRAPH_DIR is not set");
-    DIR *d = opendir(dir);
-    if (!d)
-        fail_msg("cannot open %s", dir);
-    int n = 0;
-    for (struct dirent *e; (e = readdir(d));) {
-        size_t len = strlen(e->d_name);
-        if (len > 5 && !strcmp(e->d_name + len - 5, ".json") && n < SF_MAX_GRAPHS && len < 256)
-            snprintf(names[n++], 256, "%.*s", (int)(len - 5), e->d_name);
-    }
-    closedir(d);
-    qsort(names, (size_t)n, sizeof names[0], compare_names);
-    return n;
-}
 
 cg_image
 sf_render(const char *source, const char *graph, const char *const *overrides, int width, int height)

@@ -1,7 +1,7 @@
 /* tests/passes/sweep_fixture.h: one graph file on one scene, rendered in this process, for the
  * tests that render the same scene many times over (test_scale_sweep.c, test_radiance_range.c).
  *
- * Declares: SF_MAX_GRAPHS, sf_list_graphs, sf_render, sf_render_placed, sf_nonfinite, sf_compare.
+ * Declares: sf_render, sf_render_placed, sf_nonfinite, sf_compare.
  */
 #ifndef CG_TEST_SWEEP_FIXTURE_H
 #define CG_TEST_SWEEP_FIXTURE_H
@@ -10,11 +10,6 @@
 
 #include "cg/image.h"
 #include "cg/metrics.h"
-
-#define SF_MAX_GRAPHS 64
-
-/* The graph files of $CONEGRAPH_GRAPH_DIR (names without ".json"), sorted; returns how many. */
-int sf_list_graphs(char names[SF_MAX_GRAPHS][256]);
 
 /* `final.hdr` of graphs/GRAPH.json on the scene `source` at width x height, one frame, with
  * `overrides` ("pass.param=value", NULL-terminated, may be NULL): linear RGBA, rows bottom to

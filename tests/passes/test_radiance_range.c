@@ -113,8 +113,8 @@ static void
 test_every_graph_over_the_range(void **state)
 {
     cg_context *ctx = cg_test_gl_context(state);
-    static char graphs[SF_MAX_GRAPHS][256];
-    int graph_count = sf_list_graphs(graphs);
+    static char graphs[CG_TEST_MAX_GRAPHS][256];
+    int graph_count = cg_test_list_graphs(graphs);
     assert_true(graph_count > 0);
     int failures = 0;
     for (int g = 0; g < graph_count; g++)

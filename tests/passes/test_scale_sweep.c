@@ -104,8 +104,8 @@ static void
 test_every_graph_at_every_scale(void **state)
 {
     cg_context *ctx = cg_test_gl_context(state);
-    static char graphs[SF_MAX_GRAPHS][256];
-    int graph_count = sf_list_graphs(graphs);
+    static char graphs[CG_TEST_MAX_GRAPHS][256];
+    int graph_count = cg_test_list_graphs(graphs);
     assert_true(graph_count > 0);
     int failures = 0;
     for (size_t sc = 0; sc < sizeof scenes / sizeof scenes[0]; sc++)

@@ -3,6 +3,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <dirent.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -187,4 +188,42 @@ cg_test_scale_scene(cg_scene *s, double k)
         cam->ymag = (float)(cam->ymag * k);
     }
     cg_scene_compute_bounds(s);
+}
+
+static int
+compare_names(const void *a, const void *b)
+{
+    return strcmp(a, b);
+}
+
+int
+cg_test_list_graphs(char names[CG_TEST_MAX_GRAPHS][256])
+{
+    const char *dir = getenv("CONEGRAPH_GRAPH_DIR");
+    if (!dir)
+        fail_msg("CONEGRAPH_GRAPH_DIR is not set");
+    DIR *d = opendir(dir);
+    if (!d)
+        fail_msg("cannot open %s", dir);
+    int n = 0;
+    for (struct dirent *e; (e = readdir(d));) {
+        size_t len = strlen(e->d_name);
+        if (len > 5 && !strcmp(e->d_name + len - 5, ".json") && n < CG_TEST_MAX_GRAPHS && len < 256)
+            snprintf(names[n++], 256, "%.*s", (int)(len - 5), e->d_name);
+    }
+    closedir(d);
+    qsort(names, (size_t)n, sizeof names[0], compare_names);
+    return n;
+}
+
+double
+cg_test_json_number(const char *json, const char *section, const char *key)
+{
+    const char *s = strstr(json, section);
+    assert_non_null(s);
+    char pattern[64];
+    snprintf(pattern, sizeof pattern, "\"%s\": ", key);
+    const char *k = strstr(s, pattern);
+    assert_non_null(k);
+    return strtod(k + strlen(pattern), NULL);
 }

@@ -43,6 +43,15 @@ const char *cg_test_write_file(const char *name, const void *data, size_t size);
  * its stderr too when with_stderr, goes to out (NUL-terminated, cut at size - 1). */
 int cg_test_run_conegraph(const char *args, bool with_stderr, char *out, size_t size);
 
+/* The graph files of $CONEGRAPH_GRAPH_DIR by name without ".json", sorted; fails the test when
+ * the directory is not set or cannot be read. */
+#define CG_TEST_MAX_GRAPHS 64
+int cg_test_list_graphs(char names[CG_TEST_MAX_GRAPHS][256]);
+
+/* The number after "KEY": in the object that follows "SECTION": of a JSON text (as conegraph
+ * prints it); fails the test when either is missing. */
+double cg_test_json_number(const char *json, const char *section, const char *key);
+
 /* Scales a whole scene about the origin by k: geometry (instance transforms), cameras (position,
  * clip planes, orthographic extents), light positions and ranges, and the intensity of point and
  * spot lights by k^2 so that E = I / d^2 stays the same. Directional irradiance and emitted
