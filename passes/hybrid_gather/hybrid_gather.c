@@ -80,7 +80,8 @@ static const fg_param_desc hybrid_gather_params[] = {
              "that a footprint-wide mean flattens" },
     { .name = "surface_cap", .type = FG_PARAM_ENUM, .default_value = CAP_COMPLEX, .choices = "complex|all",
       .active_when = "method=horizon",
-      .doc = "where cone_gather's level cap near the surface applies: complex = only on points off the height "
+      .doc = "where cone_gather's handling of the cone's own surface applies (the level cap near the surface on "
+             "radiance voxels, the own plane left out on surface voxels): complex = only on points off the height "
              "field (a terrain point has no voxels of its own), all = everywhere" },
     { .name = "cube", .type = FG_PARAM_ENUM, .default_value = CUBE_EQ11, .choices = "eq11|eq10",
       .active_when = "method=paper",
