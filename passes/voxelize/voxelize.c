@@ -713,7 +713,10 @@ voxelize_execute(fg_pass *pass, voxelize_state *s, cg_error *err)
                          100.0 * share, 100.0 * PARTIAL_LIMIT);
         }
     }
-    if (partial && (s->chunk_generation != frame->gpu_scene->generation || s->chunk_mesh_count != scene->mesh_count) &&
+    /* Sorted with the whole build that a partial one may follow (sorting 2 M triangles costs about
+     * 0.1 s on llvmpipe: in the frame that voxelizes everything, not in the first that moves). */
+    if (s->surface && s->cache &&
+        (s->chunk_generation != frame->gpu_scene->generation || s->chunk_mesh_count != scene->mesh_count) &&
         !build_chunks(s, frame, err))
         return false;
 
