@@ -9,8 +9,8 @@
  *   - the wall moves out of the volume (its new box is empty: only its old one is cleared and
  *     voxelized again), and back in;
  *   - nothing changes: the volumes are kept;
- *   - the terrain itself moves: the changed region is most of the volume, so the pass voxelizes
- *     the whole volume instead, and says so.
+ *   - the terrain itself is stretched: the changed region is most of the volume, so the pass
+ *     voxelizes the whole volume instead, and says so.
  * The pass's report says which it did. Frames after the first run fg_graph_execute directly, as
  * the apps do (vf_frame uploads the scene again, which voxelizes everything). */
 #include <math.h>
@@ -196,10 +196,12 @@ test_partial_equals_whole(void **state)
 
     step(&cached, &whole, "geometry kept (builds: 1 whole, 5 partial)", "nothing moved");
 
-    /* The terrain moves: its box is the whole floor of the volume, over the partial limit. */
-    set_world(&cached_scene, &whole_scene, 0, translation(0.0f, 1.0f, 0.0f));
+    /* The terrain is stretched fourfold in height: its box, before and after, is more than half the
+     * volume, over the partial limit. */
+    static const float stretched[16] = {1, 0, 0, 0, 0, 4, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    set_world(&cached_scene, &whole_scene, 0, stretched);
     step(&cached, &whole, "geometry voxelized (a voxelized instance changed; changed regions",
-         "terrain moved");
+         "terrain stretched");
     assert_non_null(strstr(rebuilt(&cached), "builds: 2 whole, 5 partial"));
 
     vf_stop(&cached);
