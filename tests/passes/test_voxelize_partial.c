@@ -11,7 +11,7 @@
  *   - nothing changes: the volumes are kept;
  *   - the terrain itself is stretched: the changed region is most of the volume, so the pass
  *     voxelizes the whole volume instead, and says so.
- * The pass's report says which it did. Frames after the first run fg_graph_execute directly, as
+ * Through both voxelizers (geometry shader, compute shader). The pass's report says which it did. Frames after the first run fg_graph_execute directly, as
  * the apps do (vf_frame uploads the scene again, which voxelizes everything). */
 #include <math.h>
 #include <stdio.h>
@@ -34,6 +34,7 @@ rolling(double x, double z, const void *user)
 static const char graph[] =
     "{ \"version\": 1, \"passes\": {"
     " \"vox\": { \"type\": \"voxelize\", \"params\": { \"model\": \"surface\", \"resolution\": 32, \"cache\": %s,"
+    "   \"voxelizer\": \"%s\","
     "   \"region\": \"explicit\", \"padding\": 0, \"min_x\": -4, \"min_y\": -4, \"min_z\": -4,"
     "   \"max_x\": 4, \"max_y\": 4, \"max_z\": 4 } } },"
     " \"outputs\": [ \"vox.albedo\", \"vox.coverage\", \"vox.normal\", \"vox.emission\" ] }";
@@ -58,10 +59,10 @@ make_scene(hf_scene *s)
 }
 
 static void
-start(vf_runner *r, hf_scene *s, bool cache)
+start(vf_runner *r, hf_scene *s, bool cache, const char *voxelizer)
 {
     char json[1024];
-    snprintf(json, sizeof json, graph, cache ? "true" : "false");
+    snprintf(json, sizeof json, graph, cache ? "true" : "false", voxelizer);
     vf_start(r, &s->scene, 16, 16, json, NULL);
     vf_frame(r);
 }
@@ -140,15 +141,15 @@ step(vf_runner *cached, vf_runner *whole, const char *want, const char *what)
 }
 
 static void
-test_partial_equals_whole(void **state)
+check_voxelizer(const char *voxelizer)
 {
-    (void)state;
+    printf("# voxelizer=%s\n", voxelizer);
     hf_scene cached_scene, whole_scene;
     make_scene(&cached_scene);
     make_scene(&whole_scene);
     vf_runner cached, whole;
-    start(&cached, &cached_scene, true);
-    start(&whole, &whole_scene, false);
+    start(&cached, &cached_scene, true, voxelizer);
+    start(&whole, &whole_scene, false, voxelizer);
     assert_non_null(strstr(rebuilt(&cached), "geometry voxelized (first frame"));
     assert_int_equal(differing_voxels(&cached, &whole), 0);
     float *before = occupancy(&cached);
@@ -208,6 +209,14 @@ test_partial_equals_whole(void **state)
     vf_stop(&whole);
     hf_free(&cached_scene);
     hf_free(&whole_scene);
+}
+
+static void
+test_partial_equals_whole(void **state)
+{
+    (void)state;
+    check_voxelizer("geometry");
+    check_voxelizer("compute");
 }
 
 int
