@@ -77,8 +77,9 @@ bool app_parse_point(const char *text, float out[3]);
     "  --sky none|L|R,G,B|preetham[:T[,SCALE]]  the scene's sky, seen where no surface is and\n"  \
     "                          lighting it: uniform radiance L or R,G,B in W/(m^2 sr), or the\n"  \
     "                          Preetham daylight of turbidity T (1.7..10, default 3) around the\n" \
-    "                          first directional light. Overrides a graph file's \"sky\". Today\n" \
-    "                          the path tracer renders it; the cone-traced graphs do not yet\n"    \
+    "                          first directional light. Overrides a graph file's \"sky\". Every\n" \
+    "                          graph renders it: the path tracer, and the cone tracers through\n" \
+    "                          what each cone leaves open (docs/reference.md, docs/vct.md)\n"      \
     "  --no-default-light      a scene with no light, no emissive surface and no sky gets a sun\n" \
     "                          and a sky (a notice says so on stderr); this leaves it dark\n"
 

@@ -10,7 +10,8 @@
  * hybrid_gather.comp describes both; docs/hybrid.md measures them).
  *
  * Inputs: position, normal (G-buffer, required); volume + region (mip3d'd voxelize radiance
- * and its block); lightmap + region2d (mip2d'd heightmap_raster lightmap and its block) and
+ * and its block, or voxel_light's surface voxels: its radiance, sides and normals, and voxelize's
+ * region, declared by the SDK as cone_gather's); lightmap + region2d (mip2d'd heightmap_raster lightmap and its block) and
  * hsat + hsat_info (an hsat pass's table and info; mode pyramid for the horizon's skipping).
  * Each group is optional; with neither lightmap the pass has nothing to do.
  * Output: radiance, RGBA32F: rgb = sum_k W_k L_k (E_i / pi, composite multiplies by the
@@ -137,22 +138,19 @@ hybrid_gather_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
 {
     const fg_resource_desc *position = fg_declare_input(decl, "position", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, true);
     fg_declare_input(decl, "normal", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, true);
-    const fg_resource_desc *volume = fg_declare_input(decl, "volume", FG_TEXTURE_3D, FG_ACCESS_SAMPLED, false);
-    const fg_resource_desc *region = fg_declare_input(decl, "region", FG_BUFFER, FG_ACCESS_UNIFORM, false);
+    /* The 3D lightmap as cone_gather takes it (sdk/cone.h): radiance voxels through mip3d, or
+     * voxel_light's surface voxels with 'sides' and 'normals' (Case 1 is cg_cone_step either way). */
+    const fg_resource_desc *volume, *region;
+    if (!cgp_gather_declare_volume(pass, decl, &volume, &region, err))
+        return false;
     const fg_resource_desc *lightmap = fg_declare_input(decl, "lightmap2d", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, false);
     const fg_resource_desc *region2d = fg_declare_input(decl, "region2d", FG_BUFFER, FG_ACCESS_UNIFORM, false);
     const fg_resource_desc *hsat = fg_declare_input(decl, "hsat", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, false);
     const fg_resource_desc *hsat_info = fg_declare_input(decl, "hsat_info", FG_BUFFER, FG_ACCESS_STORAGE, false);
-    if (volume && !region)
-        return cg_fail(err, CG_ERR_GRAPH_MISSING_INPUT,
-                       "pass '%s': input 'volume' needs input 'region' (a voxelize pass's output 'region')",
-                       fg_pass_name(pass));
     if (lightmap && (!region2d || !hsat || !hsat_info))
         return cg_fail(err, CG_ERR_GRAPH_MISSING_INPUT,
                        "pass '%s': input 'lightmap2d' needs 'region2d' (heightmap_raster's 'region'), "
                        "'hsat' and 'hsat_info' (an hsat pass's 'table' and 'info')", fg_pass_name(pass));
-    if (region && !check_buffer(pass, region, "region", sizeof(cg_volume_block), "a voxelize 'region'", err))
-        return false;
     if (lightmap &&
         (!check_buffer(pass, region2d, "region2d", sizeof(cg_heightmap_block), "a heightmap_raster 'region'", err) ||
          !check_buffer(pass, hsat_info, "hsat_info", sizeof(cg_hsat_info_block), "an hsat 'info'", err)))

@@ -5,7 +5,9 @@
  *   - builtin:wallfloor: floor and wall light each other by the form factor between perpendicular
  *     rectangles (the same formula per pixel);
  *   - builtin:thinwall: the dark side of a wall lit on one side gets nothing;
- *   - builtin:boxplane and builtin:terrain: the path tracer's one bounce is the truth.
+ *   - builtin:boxplane and builtin:terrain: the path tracer's one bounce is the truth;
+ *   - builtin:openworld through vct.json and hybrid.json (whose 3D part is the same surface
+ *     voxels, at 64^3 of the buildings) against the path tracer.
  * The estimate is what compare's --direct measures (apps/compare, core/metrics' cg_metrics_part):
  * the final image minus the graph's own direct light and emission; the figures are its mean
  * luminance over the truth's (energy) and rmse(estimate - truth) / rms(truth) (nrmse). Each
@@ -45,10 +47,10 @@ typedef struct unit_render {
 } unit_render;
 
 static unit_render
-render_vct(const cg_scene *scene, const char *const *overrides)
+render_graph(const cg_scene *scene, const char *graph, const char *const *overrides)
 {
     vf_runner r;
-    vf_start_file(&r, scene, W, H, "vct.json", overrides);
+    vf_start_file(&r, scene, W, H, graph, overrides);
     vf_frame(&r);
     unit_render u = {read_output(&r, "final.hdr"), read_output(&r, "gbuf.position"), read_output(&r, "gbuf.normal")};
     float *direct = read_output(&r, "direct.radiance"), *emissive = read_output(&r, "gbuf.emissive");
@@ -58,6 +60,12 @@ render_vct(const cg_scene *scene, const char *const *overrides)
     free(emissive);
     vf_stop(&r);
     return u;
+}
+
+static unit_render
+render_vct(const cg_scene *scene, const char *const *overrides)
+{
+    return render_graph(scene, "vct.json", overrides);
 }
 
 static void
@@ -331,11 +339,38 @@ test_boxplane_and_terrain(void **state)
     cg_scene_free(&flat);
 }
 
+/* builtin:openworld (a 400 m terrain of 200 000 triangles and its town) through both cone-traced
+ * graphs against the path tracer. Tolerance: energy 0.85..1.10, nrmse 0.45. The issue's target is
+ * 10% and 0.4; measured here at 64x36: vct.json 0.916 / 0.355, hybrid.json 0.942 / 0.327 (at
+ * 160x90: 0.92 / 0.33 and 0.94 / 0.31, docs/vct.md, docs/hybrid.md). The low side has 0.05 more
+ * room: both stop short of the light near the horizon, which no 16-cone set reaches (docs/vct.md).
+ * Before the hybrid read the surface voxels with 16 cones its energy was 1.46 / 0.78, and the
+ * radiance-voxel vct.json's 1.62 / 0.85: both fail. */
+static void
+test_openworld(void **state)
+{
+    (void)cg_test_gl_context(state);
+    cg_scene scene;
+    load("builtin:openworld", &scene);
+    float *truth = path_traced_indirect(&scene);
+    static const char *const graphs[] = {"vct.json", "hybrid.json"};
+    for (int g = 0; g < 2; g++) {
+        unit_render u = render_graph(&scene, graphs[g], NULL);
+        char what[64];
+        snprintf(what, sizeof what, "builtin:openworld, %s", graphs[g]);
+        check(what, figures(u.estimate, truth, u.position, NULL), 0.85, 1.10, 0.45);
+        unit_render_free(&u);
+    }
+    free(truth);
+    cg_scene_free(&scene);
+}
+
 int
 main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_plates_view_factor),
+        cmocka_unit_test(test_openworld),
         cmocka_unit_test(test_wallfloor_form_factor),
         cmocka_unit_test(test_thinwall_dark_side),
         cmocka_unit_test(test_boxplane_and_terrain),
