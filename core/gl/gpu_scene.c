@@ -307,6 +307,34 @@ active_scene_uniforms(bool active[3])
     }
 }
 
+/* Sets what a draw of instance `inst` reads beside its vertices: the matrices and material
+ * uniforms the bound program keeps (`active`), the material textures; binds its mesh's VAO. */
+static void
+bind_instance(const cg_gpu_scene *gpu, const cg_instance *inst, const bool active[3])
+{
+    const cg_scene *scene = gpu->scene;
+    mat4 model;
+    memcpy(model, inst->world, sizeof model);
+    /* Normals transform by the inverse transpose of the linear part. */
+    mat3 linear, normal_matrix;
+    glm_mat4_pick3(model, linear);
+    glm_mat3_inv(linear, normal_matrix);
+    glm_mat3_transpose(normal_matrix);
+    int material = scene->meshes[inst->mesh].material;
+    if (material < 0 || material >= scene->material_count)
+        material = 0;
+    if (active[0])
+        glUniformMatrix4fv(0, 1, GL_FALSE, (const float *)model);
+    if (active[1])
+        glUniformMatrix3fv(1, 1, GL_FALSE, (const float *)normal_matrix);
+    if (active[2])
+        glUniform1i(2, material);
+    const cg_material *m = scene->material_count > 0 ? &scene->materials[material] : NULL;
+    glBindTextureUnit(0, material_texture(gpu, m ? m->base_color_texture : -1));
+    glBindTextureUnit(1, material_texture(gpu, m ? m->emissive_texture : -1));
+    glBindVertexArray(gpu->meshes[inst->mesh].vao);
+}
+
 size_t
 cg_gpu_scene_draw(const cg_gpu_scene *gpu, cg_mesh_filter filter)
 {
@@ -320,29 +348,46 @@ cg_gpu_scene_draw(const cg_gpu_scene *gpu, cg_mesh_filter filter)
         const cg_gpu_mesh *mesh = &gpu->meshes[inst->mesh];
         if (!mesh_passes(mesh->kind, filter) || mesh->index_count == 0)
             continue;
-        mat4 model;
-        memcpy(model, inst->world, sizeof model);
-        /* Normals transform by the inverse transpose of the linear part. */
-        mat3 linear, normal_matrix;
-        glm_mat4_pick3(model, linear);
-        glm_mat3_inv(linear, normal_matrix);
-        glm_mat3_transpose(normal_matrix);
-        int material = scene->meshes[inst->mesh].material;
-        if (material < 0 || material >= scene->material_count)
-            material = 0;
-        if (active[0])
-            glUniformMatrix4fv(0, 1, GL_FALSE, (const float *)model);
-        if (active[1])
-            glUniformMatrix3fv(1, 1, GL_FALSE, (const float *)normal_matrix);
-        if (active[2])
-            glUniform1i(2, material);
-        const cg_material *m = scene->material_count > 0 ? &scene->materials[material] : NULL;
-        glBindTextureUnit(0, material_texture(gpu, m ? m->base_color_texture : -1));
-        glBindTextureUnit(1, material_texture(gpu, m ? m->emissive_texture : -1));
-        glBindVertexArray(mesh->vao);
+        bind_instance(gpu, inst, active);
         glDrawElements(GL_TRIANGLES, mesh->index_count, GL_UNSIGNED_INT, NULL);
         triangles += (size_t)mesh->index_count / 3u;
     }
+    glBindVertexArray(0);
+    return triangles;
+}
+
+size_t
+cg_gpu_scene_draw_ranges(const cg_gpu_scene *gpu, int instance, GLuint index_buffer, const GLsizei *counts,
+                         const GLsizeiptr *firsts, GLsizei ranges)
+{
+    const cg_scene *scene = gpu->scene;
+    if (instance < 0 || instance >= scene->instance_count || ranges <= 0)
+        return 0;
+    const cg_instance *inst = &scene->instances[instance];
+    const cg_gpu_mesh *mesh = &gpu->meshes[inst->mesh];
+    if (mesh->index_count == 0)
+        return 0;
+    bool active[3];
+    active_scene_uniforms(active);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_MATERIALS, gpu->material_buffer);
+    bind_instance(gpu, inst, active);
+    /* The caller's element buffer stands in for the mesh's own for this draw only: the VAO is
+     * shared by every pass, so it gets its own back before anything else draws with it. */
+    if (index_buffer)
+        glVertexArrayElementBuffer(mesh->vao, index_buffer);
+    size_t triangles = 0;
+    const void *offsets[64];
+    for (GLsizei done = 0; done < ranges;) {
+        GLsizei batch = ranges - done < 64 ? ranges - done : 64;
+        for (GLsizei r = 0; r < batch; r++) {
+            offsets[r] = (const void *)(firsts[done + r] * (GLsizeiptr)sizeof(GLuint));
+            triangles += (size_t)counts[done + r] / 3u;
+        }
+        glMultiDrawElements(GL_TRIANGLES, counts + done, GL_UNSIGNED_INT, offsets, batch);
+        done += batch;
+    }
+    if (index_buffer)
+        glVertexArrayElementBuffer(mesh->vao, mesh->index_buffer);
     glBindVertexArray(0);
     return triangles;
 }

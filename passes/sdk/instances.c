@@ -47,6 +47,30 @@ cgp_instances_changed(const cgp_instance_record *record, const fg_frame *frame, 
 }
 
 bool
+cgp_instances_changed_slots(const cgp_instance_record *record, const fg_frame *frame, cg_mesh_filter filter,
+                            int *changed, int *count)
+{
+    const cg_scene *scene = frame->scene;
+    *count = 0;
+    if (!record->taken || scene != record->scene || frame->gpu_scene != record->gpu_scene ||
+        frame->gpu_scene->generation != record->generation || scene->instance_count != record->instance_count ||
+        filter != record->filter)
+        return false;
+    int n = 0;
+    for (int i = 0; i < scene->instance_count; i++) {
+        const cg_instance *inst = &scene->instances[i];
+        if (inst->mesh < 0 || inst->mesh >= scene->mesh_count || !cgp_mesh_passes(scene->meshes[inst->mesh].kind, filter))
+            continue;
+        if (n >= record->count || record->instances[n].index != i)
+            return false;
+        if (!instance_unchanged(scene, &record->instances[n]))
+            changed[(*count)++] = n;
+        n++;
+    }
+    return n == record->count;
+}
+
+bool
 cgp_instances_remember(cgp_instance_record *record, const fg_frame *frame, cg_mesh_filter filter, cg_error *err)
 {
     const cg_scene *scene = frame->scene;

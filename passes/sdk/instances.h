@@ -2,8 +2,8 @@
  * something from them, for the passes that keep what they drew across frames (heightmap_raster's
  * rasterized geometry, voxelize's surface volumes).
  *
- * Declares: cgp_kept_instance, cgp_instance_record, cgp_instances_changed, cgp_instances_remember,
- *           cgp_instance_record_free.
+ * Declares: cgp_kept_instance, cgp_instance_record, cgp_instances_changed, cgp_instances_changed_slots,
+ *           cgp_instances_remember, cgp_instance_record_free.
  *
  * The record holds, for every instance whose mesh passes the pass's filter, what a draw of it
  * reads (world matrix, revision, mesh, material), copied by value, and the scene, GPU scene and
@@ -49,6 +49,15 @@ typedef struct cgp_instance_record {
  * every such instance is as recorded. */
 const char *cgp_instances_changed(const cgp_instance_record *record, const fg_frame *frame,
                                   cg_mesh_filter filter, const char *changed);
+
+/* Which recorded instances changed, for a pass that updates only what they cover (voxelize's
+ * partial re-voxelization): true when the instances `filter` keeps in `frame` are the recorded
+ * ones (the record taken from this scene and upload, the same instance indices), with
+ * changed[0 .. *count) the slots in record->instances of those that differ (as
+ * cgp_instances_changed compares them; `changed` has room for record->count). False when the set
+ * itself differs or nothing is recorded: then only a whole rebuild is right. */
+bool cgp_instances_changed_slots(const cgp_instance_record *record, const fg_frame *frame, cg_mesh_filter filter,
+                                 int *changed, int *count);
 
 /* Records the instances `filter` keeps in `frame` (after a build from them). False only when out
  * of memory; the record then holds nothing (the next check reports "first frame"). */

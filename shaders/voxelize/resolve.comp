@@ -26,6 +26,10 @@ layout(location = 0) uniform int u_resolution;
 // x: fixed-point units per unit of albedo, normal, offset and coverage; y: per unit of emission;
 // z: the region's radiance scale (pre-exposure, sdk/radiance.h): emission is stored divided by it.
 layout(location = 4) uniform vec4 u_surface_fixed;
+// The voxels resolved, [lo, hi): the whole volume, or the region of a partial re-voxelization
+// (its accumulation holds the region's sums only; the voxels outside keep their geometry).
+layout(location = 5) uniform ivec3 u_box_lo;
+layout(location = 6) uniform ivec3 u_box_hi;
 
 uint
 slab(ivec3 v, int k)
@@ -37,8 +41,8 @@ slab(ivec3 v, int k)
 void
 main()
 {
-    ivec3 v = ivec3(gl_GlobalInvocationID);
-    if (any(greaterThanEqual(v, ivec3(u_resolution))))
+    ivec3 v = u_box_lo + ivec3(gl_GlobalInvocationID);
+    if (any(greaterThanEqual(v, u_box_hi)))
         return;
     uint count = slab(v, 0);
     if (count == 0u) {

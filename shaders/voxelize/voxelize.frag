@@ -42,6 +42,12 @@ layout(location = 8) uniform vec4 u_origin_voxel;   // as in voxelize.geom
 // x: fixed-point units per unit of albedo, normal, offset (voxels) and coverage; y: per unit of
 // emitted radiance (passes/voxelize/voxelize.c).
 layout(location = 13) uniform vec4 u_surface_fixed;
+// The voxels this draw may write, [lo, hi) (as in voxelize.geom): a partial re-voxelization
+// sums every fragment that falls in its region, and only those, so that the region's sums are
+// those of a whole voxelization, bit for bit (integer sums and maxima do not depend on order),
+// while the voxels outside it keep what they hold.
+layout(location = 14) uniform ivec3 u_box_lo;
+layout(location = 15) uniform ivec3 u_box_hi;
 #endif
 
 layout(binding = 2) uniform sampler2D u_shadow_map;
@@ -137,6 +143,8 @@ main()
         if (any(lessThan(v, ivec3(0))) || any(greaterThanEqual(v, ivec3(u_resolution))))
             continue;
 #ifdef SURFACE
+        if (any(lessThan(v, u_box_lo)) || any(greaterThanEqual(v, u_box_hi)))
+            continue;
         vec3 centre = u_origin_voxel.xyz + (vec3(v) + 0.5) * u_origin_voxel.w;
         uint q_offset = uint(int(round(dot(normal, gs_world - centre) / u_origin_voxel.w * u_surface_fixed.x)));
         imageAtomicAdd(u_accum, v, 1u);

@@ -34,6 +34,12 @@ layout(location = 6) flat out int gs_axis;
 layout(location = 8) uniform vec4 u_origin_voxel;  // xyz volume min corner, w voxel size
 layout(location = 9) uniform int u_resolution;
 layout(location = 12) uniform bool u_conservative;
+#ifdef SURFACE
+// The voxels this draw may write, [lo, hi) in volume axes: the whole volume, or one region of a
+// partial re-voxelization (passes/voxelize/voxelize.c); the fragment shader tests each voxel.
+layout(location = 14) uniform ivec3 u_box_lo;
+layout(location = 15) uniform ivec3 u_box_hi;
+#endif
 
 // Volume coordinates with the dominant axis moved to z.
 vec3
@@ -54,6 +60,14 @@ main()
     vec3 p[3];
     for (int i = 0; i < 3; i++)
         p[i] = (vs_world[i] - u_origin_voxel.xyz) / u_origin_voxel.w;
+#ifdef SURFACE
+    // A triangle writes only voxels within a hair of its box (the overlap test's tolerance, or
+    // its pixel centres' columns without it): one whose box, grown by a voxel, misses the region
+    // has nothing to add there, and is dropped before it is rasterized.
+    vec3 lo = min(p[0], min(p[1], p[2])), hi = max(p[0], max(p[1], p[2]));
+    if (any(lessThan(hi + 1.0, vec3(u_box_lo))) || any(greaterThanEqual(lo - 1.0, vec3(u_box_hi))))
+        return;
+#endif
     vec3 n = abs(cross(p[1] - p[0], p[2] - p[0]));
     int axis = n.x >= n.y && n.x >= n.z ? 0 : n.y >= n.z ? 1 : 2;
     vec3 s[3];

@@ -21,6 +21,14 @@ static const char graph_template[] =
     " \"min_x\": 0, \"min_y\": 0, \"min_z\": 0, \"max_x\": 1, \"max_y\": 1, \"max_z\": 1 } } },"
     " \"outputs\": [ \"vox.radiance\" ] }";
 
+/* The surface model through the compute-shader voxelizer (voxelizer=compute): the same voxels. */
+static const char compute_template[] =
+    "{ \"version\": 1, \"passes\": { \"vox\": { \"type\": \"voxelize\", \"params\": {"
+    " \"model\": \"surface\", \"voxelizer\": \"compute\", \"cache\": false,"
+    " \"resolution\": %d, \"region\": \"explicit\", \"padding\": 0,"
+    " \"min_x\": 0, \"min_y\": 0, \"min_z\": 0, \"max_x\": 1, \"max_y\": 1, \"max_z\": 1 } } },"
+    " \"outputs\": [ \"vox.albedo\" ] }";
+
 /* Deterministic rotations: a small LCG, no global state. */
 static double
 next_uniform(uint64_t *seed)
@@ -111,10 +119,13 @@ build_shape(vf_scene *s, int shape, const double m[3][3])
 }
 
 static int
-run_orientations(cg_context *ctx, bool conservative, int shape, int count, coverage *total)
+run_orientations(cg_context *ctx, bool conservative, bool compute, int shape, int count, coverage *total)
 {
     char json[1024];
-    snprintf(json, sizeof json, graph_template, RES, conservative ? "true" : "false", "rgba16f");
+    if (compute)
+        snprintf(json, sizeof json, compute_template, RES);
+    else
+        snprintf(json, sizeof json, graph_template, RES, conservative ? "true" : "false", "rgba16f");
     vf_scene *s = calloc(1, sizeof *s);
     assert_non_null(s);
     double identity[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
@@ -130,7 +141,8 @@ run_orientations(cg_context *ctx, bool conservative, int shape, int count, cover
         build_shape(s, shape, i == 0 ? identity : m);
         vf_frame(&r);
         int size = 0;
-        float *vox = vf_read_volume(&r, "vox.radiance", 0, &size);
+        /* Opacity (radiance) or albedo alpha (surface): 1 where a surface is. */
+        float *vox = vf_read_volume(&r, compute ? "vox.albedo" : "vox.radiance", 0, &size);
         assert_int_equal(size, RES);
         coverage c = check_coverage(s, vox);
         free(vox);
@@ -153,8 +165,24 @@ test_coverage_exact(void **state)
     cg_context *ctx = cg_test_gl_context(state);
     for (int shape = 0; shape < 2; shape++) {
         coverage total;
-        run_orientations(ctx, true, shape, 40, &total);
+        run_orientations(ctx, true, false, shape, 40, &total);
         fprintf(stderr, "# conservative, %s, 40 orientations: %d voxels expected, %d missing, %d extra\n",
+                shape == 0 ? "sliver" : "quad", total.expected, total.missing, total.extra);
+        assert_int_equal(total.missing, 0);
+        assert_int_equal(total.extra, 0);
+        assert_true(total.expected > 40 * 10);
+    }
+}
+
+/* The compute-shader voxelizer (model surface, voxelizer=compute): the same exact coverage. */
+static void
+test_coverage_exact_compute(void **state)
+{
+    cg_context *ctx = cg_test_gl_context(state);
+    for (int shape = 0; shape < 2; shape++) {
+        coverage total;
+        run_orientations(ctx, true, true, shape, 40, &total);
+        fprintf(stderr, "# compute voxelizer, %s, 40 orientations: %d voxels expected, %d missing, %d extra\n",
                 shape == 0 ? "sliver" : "quad", total.expected, total.missing, total.extra);
         assert_int_equal(total.missing, 0);
         assert_int_equal(total.extra, 0);
@@ -171,7 +199,7 @@ test_plain_rasterization_leaves_holes(void **state)
     cg_context *ctx = cg_test_gl_context(state);
     for (int shape = 0; shape < 2; shape++) {
         coverage total;
-        run_orientations(ctx, false, shape, 40, &total);
+        run_orientations(ctx, false, false, shape, 40, &total);
         fprintf(stderr, "# plain rasterization, %s, 40 orientations: %d voxels expected, %d missing (%.1f%%), %d extra\n",
                 shape == 0 ? "sliver" : "quad", total.expected, total.missing,
                 100.0 * total.missing / total.expected, total.extra);
@@ -340,6 +368,7 @@ main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_coverage_exact),
+        cmocka_unit_test(test_coverage_exact_compute),
         cmocka_unit_test(test_plain_rasterization_leaves_holes),
         cmocka_unit_test(test_lit_surface_radiance),
         cmocka_unit_test(test_mesh_filter),

@@ -1,7 +1,7 @@
 /* cg/gpu_scene.h: a cg_scene uploaded to GL buffers and textures, and the one way passes draw it.
  *
  * Declares: cg_gpu_scene, cg_gpu_scene_upload, cg_gpu_scene_destroy, cg_gpu_scene_draw,
- *           cg_mesh_filter, CG_BINDING_MATERIALS, CG_BINDING_LIGHTS,
+ *           cg_gpu_scene_draw_ranges, cg_mesh_filter, CG_BINDING_MATERIALS, CG_BINDING_LIGHTS,
  *           cg_gpu_scene_bind_lights, cg_gpu_scene_update_lights.
  *
  * Shader interface (shaders/common/scene.glsl): vertex attributes 0 = position,
@@ -68,6 +68,15 @@ void cg_gpu_scene_destroy(cg_gpu_scene *gpu);
  * instances at every call, so a scene posed at a new time (cg_scene_evaluate) draws where it
  * is now with nothing uploaded; only its lights need cg_gpu_scene_update_lights. */
 size_t cg_gpu_scene_draw(const cg_gpu_scene *gpu, cg_mesh_filter filter);
+
+/* Draws ranges of one instance's triangles as cg_gpu_scene_draw draws the whole (same uniforms,
+ * material and vertices): `ranges` runs of counts[r] indices from index firsts[r] (in indices, a
+ * multiple of 3) of `index_buffer` (GLuint indices into the mesh's vertices; 0: the mesh's own).
+ * For a pass that redraws only the part of a large mesh that lies in some region (voxelize's
+ * partial re-voxelization), from an index buffer it sorted by where the triangles lie. Returns
+ * the number of triangles drawn. */
+size_t cg_gpu_scene_draw_ranges(const cg_gpu_scene *gpu, int instance, GLuint index_buffer, const GLsizei *counts,
+                                const GLsizeiptr *firsts, GLsizei ranges);
 
 /* Binds the light SSBO at CG_BINDING_LIGHTS. */
 void cg_gpu_scene_bind_lights(const cg_gpu_scene *gpu);
