@@ -21,7 +21,11 @@ Timings on llvmpipe are noisy and the machine may be shared: compare ratios of o
 
 usage: frame_cost.py CONEGRAPH [--triangles 200000,2000000] [--motions sun,one,all]
                      [--graphs vct.json,hybrid.json] [--size 1280x720] [--frames 4]
-                     [--period 20] [--out DIR]
+                     [--period 20] [--exported]
+
+--exported writes each built-in scene (its motion included) to a .glb with `conegraph export` and
+renders that file instead: the same scene read back as glTF, animation and all, which the issue
+asks to measure beside the built-in.
 """
 import argparse
 import csv
@@ -103,12 +107,17 @@ def main():
     ap.add_argument("--size", default="1280x720")
     ap.add_argument("--frames", type=int, default=4)
     ap.add_argument("--period", default="20")
+    ap.add_argument("--exported", action="store_true",
+                    help="render each scene exported to .glb and read back (conegraph export)")
     a = ap.parse_args()
     if a.frames < 2:
         sys.exit("frame_cost: --frames must be at least 2 (the first frame builds the caches)")
     print("frame_cost: %s, %d frames per run (medians of frames 2..%d), ms from `render --timing sync`"
           % (a.size, a.frames, a.frames))
     print()
+    if a.exported:
+        print("Each scene exported with `conegraph export` and rendered from the .glb.")
+        print()
     print("| triangles | motion | graph | cache | frame ms | update ms (3D + 2D) | common ms | gather ms "
           "| update / gather | passes (ms, share of the frame) | caching passes, last frame |")
     print("|---|---|---|---|---|---|---|---|---|---|---|")
@@ -116,6 +125,13 @@ def main():
         for tri in a.triangles.split(","):
             for motion in a.motions.split(","):
                 scene = "builtin:openworld?triangles=%s&motion=%s&period=%s" % (tri, motion, a.period)
+                if a.exported:
+                    glb = os.path.join(workdir, "scene.glb")
+                    done = subprocess.run([a.conegraph, "export", scene, glb], capture_output=True, text=True)
+                    if done.returncode != 0:
+                        sys.exit("frame_cost: conegraph export %s exited %d:\n%s"
+                                 % (scene, done.returncode, done.stderr))
+                    scene = glb
                 for graph in a.graphs.split(","):
                     cached = caching_passes(a.conegraph, graph, workdir)
                     settings = [("on", []), ("off", ["%s.cache=false" % h for h in cached])] \
