@@ -182,12 +182,15 @@ layout(binding = CG_UNIT_NORMALS) uniform sampler3D cg_surface_normals;
 //     coverage in proportion to the match (m, times the coherence |N|). This replaces the level cap
 //     of the other models, which narrows the cones near the horizon (docs/vct.md).
 // `centre`: the volume's centre m.
+// `profile` = (sigma / w, L / L_lit): what the sample's coverage and colour are per unit of the
+// weight w and of the lit radiance, for cg_cone_sample_surface_as; 0 for an empty sample.
 vec4
 cg_cone_sample_surface(sampler3D radiance, vec3 uvw, float lod, float cell, float voxel, vec3 centre, vec3 d,
-                       vec3 origin, vec4 surface)
+                       vec3 origin, vec4 surface, out vec2 profile)
 {
     vec4 a = textureLod(radiance, uvw, lod);
     CG_CONE_READ(1);
+    profile = vec2(0.0);
     if (a.a <= 0.0)
         return vec4(0.0);   // empty: one read
     vec4 b = textureLod(cg_surface_sides, uvw, lod);
@@ -207,8 +210,21 @@ cg_cone_sample_surface(sampler3D radiance, vec3 uvw, float lod, float cell, floa
         float m = smoothstep(0.85, 0.95, facing) * (1.0 - smoothstep(0.5, 1.0, height / cell)) * coherence;
         cover *= 1.0 - m;
     }
-    vec3 l = a.rgb * mix(b.r / w, 1.0, lit) / w;
-    return vec4(l * cover, cover);
+    profile = vec2(cover / w, mix(b.r / w, 1.0, lit));
+    return vec4(a.rgb * (profile.y * profile.x), cover);
+}
+
+// A sample near one of cg_cone_sample_surface that reads the same surface: its weight and lit
+// radiance read at uvw, its coverage and colour per unit of them taken from that sample's
+// `profile`. One read instead of three: for the tail of a crossing's trilinear tent (cg_cone_step),
+// whose texels are those of the surface the full sample read (one plane: the same normal, plane and
+// per-axis coverage, so the same ratios), only nearer to or farther from the sample.
+vec4
+cg_cone_sample_surface_as(sampler3D radiance, vec3 uvw, float lod, vec2 profile)
+{
+    vec4 a = textureLod(radiance, uvw, lod);
+    CG_CONE_READ(1);
+    return vec4(a.rgb * (profile.y * profile.x), a.a * profile.x);
 }
 #endif
 
@@ -319,8 +335,9 @@ cg_cone_step(sampler3D volume, CgVolume v, CgCone c, vec4 surface, CgConeSample 
     float cell = v.voxel_size * exp2(lod);
     float span = min(c.step_factor * min(at.diameter, 2.0 * cell), cell);
     vec3 centre = v.origin + 0.5 * cg_volume_extent(v);
+    vec2 profile;
     vec4 s = cg_cone_sample_surface(volume, cg_volume_uvw(v, at.position), lod, cell, v.voxel_size, centre,
-                                    c.direction, c.origin, surface);
+                                    c.direction, c.origin, surface, profile);
     if (s.a > 0.0)
         span = min(span, 0.5 * cell);
     float weight = state.prev_span < 0.0 ? span : 0.5 * (state.prev_span + span);
@@ -334,22 +351,20 @@ cg_cone_step(sampler3D volume, CgVolume v, CgCone c, vec4 surface, CgConeSample 
         // Entering a surface: the level has grown since the previous sample, which read nothing
         // at its finer level, but the tent of this level may begin up to a cell before this
         // sample. Read the path behind again at this level, up to two previous spans back, so
-        // that the crossing is integrated at one level from where its tent begins.
+        // that the crossing is integrated at one level from where its tent begins. The tent's
+        // tail is the surface this sample reads, so one read each (cg_cone_sample_surface_as):
+        // the three-read samples here cost 2.5x the gather's time on llvmpipe, whose lockstep
+        // groups run this branch whenever one of their pixels enters a surface (docs/vct.md, Cost).
         float h = state.prev_span;
-        vec4 back[2];
-        for (int k = 0; k < 2; k++) {
-            vec3 q = at.position - c.direction * (h * float(k + 1));
-            back[k] = k == 0 || back[0].a > 0.0
-                          ? cg_cone_sample_surface(volume, cg_volume_uvw(v, q), lod, cell, v.voxel_size, centre,
-                                                   c.direction, c.origin, surface)
-                          : vec4(0.0);
-        }
-        for (int k = 1; k >= 0; k--)
-            if (back[k].a > 0.0) {
-                float before = acc.a;
-                cg_cone_composite_span(acc, vec4(back[k].rgb * scale, back[k].a), h, cell);
-                state.gained += acc.a - before;
-            }
+        vec4 back0 = cg_cone_sample_surface_as(volume, cg_volume_uvw(v, at.position - c.direction * h), lod, profile);
+        vec4 back1 = vec4(0.0);
+        if (back0.a > 0.0)  // the second only where the first is this surface's too
+            back1 = cg_cone_sample_surface_as(volume, cg_volume_uvw(v, at.position - c.direction * (2.0 * h)), lod,
+                                              profile);
+        float before = acc.a;
+        cg_cone_composite_span(acc, vec4(back1.rgb * scale, back1.a), h, cell);
+        cg_cone_composite_span(acc, vec4(back0.rgb * scale, back0.a), h, cell);
+        state.gained += acc.a - before;
     }
     state.prev_span = span;
     state.held_lod = lod;
