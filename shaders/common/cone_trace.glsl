@@ -184,12 +184,11 @@ layout(binding = CG_UNIT_NORMALS) uniform sampler3D cg_surface_normals;
 // `centre`: the volume's centre m.
 // `profile` = (sigma / w, L / L_lit): what the sample's coverage and colour are per unit of the
 // weight w and of the lit radiance, for cg_cone_sample_surface_as; 0 for an empty sample.
+// cg_cone_sample_surface_from: the same once the first read, `a` of the radiance, is made.
 vec4
-cg_cone_sample_surface(sampler3D radiance, vec3 uvw, float lod, float cell, float voxel, vec3 centre, vec3 d,
-                       vec3 origin, vec4 surface, out vec2 profile)
+cg_cone_sample_surface_from(vec4 a, vec3 uvw, float lod, float cell, float voxel, vec3 centre, vec3 d, vec3 origin,
+                            vec4 surface, out vec2 profile)
 {
-    vec4 a = textureLod(radiance, uvw, lod);
-    CG_CONE_READ(1);
     profile = vec2(0.0);
     if (a.a <= 0.0)
         return vec4(0.0);   // empty: one read
@@ -212,6 +211,15 @@ cg_cone_sample_surface(sampler3D radiance, vec3 uvw, float lod, float cell, floa
     }
     profile = vec2(cover / w, mix(b.r / w, 1.0, lit));
     return vec4(a.rgb * (profile.y * profile.x), cover);
+}
+
+vec4
+cg_cone_sample_surface(sampler3D radiance, vec3 uvw, float lod, float cell, float voxel, vec3 centre, vec3 d,
+                       vec3 origin, vec4 surface, out vec2 profile)
+{
+    vec4 a = textureLod(radiance, uvw, lod);
+    CG_CONE_READ(1);
+    return cg_cone_sample_surface_from(a, uvw, lod, cell, voxel, centre, d, origin, surface, profile);
 }
 
 // A sample near one of cg_cone_sample_surface that reads the same surface: its weight and lit
@@ -300,6 +308,65 @@ struct CgConeSample {
     float height;   // the sample's height above the surface the cone leaves (see `surface`)
 };
 
+#ifdef CG_CONE_SURFACE
+// cg_cone_step's level with surface voxels at `at`: the matched level plus the bias, held while a
+// crossing lasts; `cell` its voxel size, `span` the step before the sample says whether it is occupied.
+float
+cg_cone_surface_level(CgVolume v, CgCone c, CgConeSample at, CgConeState state, out float cell, out float span)
+{
+    float lod = min(clamp(cg_cone_level(v, at.diameter) + c.lod_bias, 0.0, v.levels - 1.0), state.held_lod);
+    cell = v.voxel_size * exp2(lod);
+    span = min(c.step_factor * min(at.diameter, 2.0 * cell), cell);
+    return lod;
+}
+
+// A sample that covers nothing: between surfaces, the next coverage starts a new crossing.
+float
+cg_cone_surface_gap(inout CgConeState state, float span)
+{
+    state.gained = 0.0;
+    state.prev_span = span;
+    state.held_lod = 1e30;
+    return span;
+}
+
+// A sample s (premultiplied, coverage > 0) at `at`, read at level `lod` with the surface `profile`
+// (cg_cone_sample_surface): the crossing's half-cell step, the midpoint weight, and on entering a
+// surface the reads behind it (see cg_cone_step). Returns the span.
+float
+cg_cone_surface_cover(sampler3D volume, CgVolume v, CgCone c, CgConeSample at, float lod, float cell, float span,
+                      vec4 s, vec2 profile, float scale, inout CgConeState state, inout vec4 acc)
+{
+    span = min(span, 0.5 * cell);
+    float weight = state.prev_span < 0.0 ? span : 0.5 * (state.prev_span + span);
+    if (state.gained <= 0.0 && state.prev_span > 0.0) {
+        // Entering a surface: the level has grown since the previous sample, which read nothing
+        // at its finer level, but the tent of this level may begin up to a cell before this
+        // sample. Read the path behind again at this level, up to two previous spans back, so
+        // that the crossing is integrated at one level from where its tent begins. The tent's
+        // tail is the surface this sample reads, so one read each (cg_cone_sample_surface_as):
+        // the three-read samples here cost 2.5x the gather's time on llvmpipe, whose lockstep
+        // groups run this branch whenever one of their pixels enters a surface (docs/vct.md, Cost).
+        float h = state.prev_span;
+        vec4 back0 = cg_cone_sample_surface_as(volume, cg_volume_uvw(v, at.position - c.direction * h), lod, profile);
+        vec4 back1 = vec4(0.0);
+        if (back0.a > 0.0)  // the second only where the first is this surface's too
+            back1 = cg_cone_sample_surface_as(volume, cg_volume_uvw(v, at.position - c.direction * (2.0 * h)), lod,
+                                              profile);
+        float before = acc.a;
+        cg_cone_composite_span(acc, vec4(back1.rgb * scale, back1.a), h, cell);
+        cg_cone_composite_span(acc, vec4(back0.rgb * scale, back0.a), h, cell);
+        state.gained += acc.a - before;
+    }
+    state.prev_span = span;
+    state.held_lod = lod;
+    float before = acc.a;
+    cg_cone_composite_span(acc, vec4(s.rgb * scale, s.a), weight, cell);
+    state.gained += acc.a - before;
+    return span;
+}
+#endif
+
 // One step of a cone through the 3D lightmap, the step both tracers take (cone_gather's march
 // below and hybrid_gather's Case 1), at `at.position` for a footprint `at.diameter` wide: the matched
 // level of the footprint plus the lod bias, the sample (the directional chains with
@@ -329,50 +396,17 @@ float
 cg_cone_step(sampler3D volume, CgVolume v, CgCone c, vec4 surface, CgConeSample at, float scale,
              inout CgConeState state, inout vec4 acc)
 {
-    float lod = cg_cone_level(v, at.diameter) + c.lod_bias;
 #ifdef CG_CONE_SURFACE
-    lod = min(clamp(lod, 0.0, v.levels - 1.0), state.held_lod);
-    float cell = v.voxel_size * exp2(lod);
-    float span = min(c.step_factor * min(at.diameter, 2.0 * cell), cell);
+    float cell, span;
+    float lod = cg_cone_surface_level(v, c, at, state, cell, span);
     vec3 centre = v.origin + 0.5 * cg_volume_extent(v);
     vec2 profile;
     vec4 s = cg_cone_sample_surface(volume, cg_volume_uvw(v, at.position), lod, cell, v.voxel_size, centre,
                                     c.direction, c.origin, surface, profile);
-    if (s.a > 0.0)
-        span = min(span, 0.5 * cell);
-    float weight = state.prev_span < 0.0 ? span : 0.5 * (state.prev_span + span);
-    if (s.a <= 0.0) {
-        state.gained = 0.0;     // between surfaces: the next coverage starts a new crossing
-        state.prev_span = span;
-        state.held_lod = 1e30;
-        return span;
-    }
-    if (state.gained <= 0.0 && state.prev_span > 0.0) {
-        // Entering a surface: the level has grown since the previous sample, which read nothing
-        // at its finer level, but the tent of this level may begin up to a cell before this
-        // sample. Read the path behind again at this level, up to two previous spans back, so
-        // that the crossing is integrated at one level from where its tent begins. The tent's
-        // tail is the surface this sample reads, so one read each (cg_cone_sample_surface_as):
-        // the three-read samples here cost 2.5x the gather's time on llvmpipe, whose lockstep
-        // groups run this branch whenever one of their pixels enters a surface (docs/vct.md, Cost).
-        float h = state.prev_span;
-        vec4 back0 = cg_cone_sample_surface_as(volume, cg_volume_uvw(v, at.position - c.direction * h), lod, profile);
-        vec4 back1 = vec4(0.0);
-        if (back0.a > 0.0)  // the second only where the first is this surface's too
-            back1 = cg_cone_sample_surface_as(volume, cg_volume_uvw(v, at.position - c.direction * (2.0 * h)), lod,
-                                              profile);
-        float before = acc.a;
-        cg_cone_composite_span(acc, vec4(back1.rgb * scale, back1.a), h, cell);
-        cg_cone_composite_span(acc, vec4(back0.rgb * scale, back0.a), h, cell);
-        state.gained += acc.a - before;
-    }
-    state.prev_span = span;
-    state.held_lod = lod;
-    float before = acc.a;
-    cg_cone_composite_span(acc, vec4(s.rgb * scale, s.a), weight, cell);
-    state.gained += acc.a - before;
-    return span;
+    return s.a > 0.0 ? cg_cone_surface_cover(volume, v, c, at, lod, cell, span, s, profile, scale, state, acc)
+                     : cg_cone_surface_gap(state, span);
 #else
+    float lod = cg_cone_level(v, at.diameter) + c.lod_bias;
     if (surface.w >= 0.0) {
         // A fractional level blends in the next coarser level, whose support is twice as
         // deep: that one must clear the plane, hence the 1 below the bound.
@@ -401,6 +435,48 @@ cg_cone_trace_surface(sampler3D volume, CgVolume v, CgCone c, vec4 surface)
     float t = c.t_start;
     float rise = dot(c.direction, surface.xyz);
     CgConeState state = cg_cone_state();
+#ifdef CG_CONE_SURFACE
+    // cg_cone_step's march (the same samples, levels, spans and weights, so the same result),
+    // arranged for lockstep groups: llvmpipe runs every texture read of a loop's body for every
+    // lane of a group, also in a branch that no lane takes (gather time on the open world grows
+    // by a third with two reads in a branch never taken: docs/vct.md, Cost), but leaves a loop once
+    // no lane is left in it. So the inner loop holds one read, the radiance's, and crosses empty
+    // space, most of a march (VCT paper 3.2: the cone is marched front to back; nothing here
+    // changes what it gathers); the other two reads of an occupied sample and the reads behind
+    // a surface's entry (cg_cone_surface_cover) are made once the inner loop stops at one.
+    vec3 centre = v.origin + 0.5 * extent;
+    bool done = false;
+    for (int i = 0; i < 4096 && !done; i++) {
+        CgConeSample at;
+        vec3 uvw;
+        vec4 a;
+        float lod, cell, span;
+        for (; i < 4096; i++) {
+            done = !(t < c.t_max && acc.a < CG_CONE_OPAQUE);
+            if (done)
+                break;
+            at = CgConeSample(c.origin + c.direction * t, cg_cone_diameter(c, v, t), surface.w + t * rise);
+            uvw = cg_volume_uvw(v, at.position);
+            float reach = 0.5 * at.diameter / extent;
+            done = any(lessThan(uvw, vec3(-reach))) || any(greaterThan(uvw, vec3(1.0 + reach)));
+            if (done)
+                break;  // the whole footprint is outside the volume: nothing more to gather
+            lod = cg_cone_surface_level(v, c, at, state, cell, span);
+            a = textureLod(volume, uvw, lod);
+            CG_CONE_READ(1);
+            if (a.a > 0.0)
+                break;
+            t += cg_cone_surface_gap(state, span);
+        }
+        if (done)
+            break;
+        vec2 profile;
+        vec4 s = cg_cone_sample_surface_from(a, uvw, lod, cell, v.voxel_size, centre, c.direction, c.origin, surface,
+                                             profile);
+        t += s.a > 0.0 ? cg_cone_surface_cover(volume, v, c, at, lod, cell, span, s, profile, 1.0, state, acc)
+                       : cg_cone_surface_gap(state, span);
+    }
+#else
     // The loop bound is a safety net against a zero step; steps grow with t, so real
     // marches end far earlier (about log(t_max / t_start) / log(1 + 2 step tan) steps).
     for (int i = 0; i < 4096 && t < c.t_max && acc.a < CG_CONE_OPAQUE; i++) {
@@ -411,6 +487,7 @@ cg_cone_trace_surface(sampler3D volume, CgVolume v, CgCone c, vec4 surface)
             break;  // the whole footprint is outside the volume: nothing more to gather
         t += cg_cone_step(volume, v, c, surface, at, 1.0, state, acc);
     }
+#endif
     acc.rgb *= v.radiance_scale;
     return acc;
 }
