@@ -3,7 +3,8 @@
 // Provides: CgCone, CgMarch, cg_cone_set_block, cg_cone_march(), cg_cone_count(), cg_cone_direction(),
 //           cg_cone_tan_half(), cg_cone_accumulate(), cg_cone_trace(), cg_cone_lod(), cg_cone_origin(),
 //           cg_cone_reach(), CgConeSample, cg_cone_composite(), cg_cone_composite_span(), cg_cone_step(),
-//           cg_cone_trace_surface(), cg_cone_gather_diffuse(), cg_tangent_frame().
+//           cg_cone_trace_surface(), cg_cone_gather_diffuse(), cg_tangent_frame(); with CG_CONE_SURFACE
+//           also cg_cone_sample_surface(_from, _as)(), cg_cone_surface_level(), _gap(), _cover().
 //
 // VCT paper 3.2 (after Crassin et al. 2011): the cone's footprint at distance t has the
 // diameter d = 2 t tan(half angle); the sample is read from the mip level whose voxels
@@ -161,6 +162,8 @@ layout(binding = CG_UNIT_ANISO + 5) uniform sampler3D cg_aniso_nz;
 // the cells), and alpha_i the coverage a path along axis i meets crossing them, per cell of path.
 layout(binding = CG_UNIT_SIDES) uniform sampler3D cg_surface_sides;
 layout(binding = CG_UNIT_NORMALS) uniform sampler3D cg_surface_normals;
+// The radiance again, read within one mip level (cgp_sampler_volume_one_level): the emptiness test.
+layout(binding = CG_UNIT_OCCUPANCY) uniform sampler3D cg_surface_occupancy;
 
 // One sample of the surface voxels at level `lod` (cells `cell` wide) at world p, for a cone from
 // `origin` travelling along unit d and leaving `surface` (as in cg_cone_step). Returns premultiplied
@@ -348,8 +351,8 @@ cg_cone_surface_cover(sampler3D volume, CgVolume v, CgCone c, CgConeSample at, f
         // sample. Read the path behind again at this level, up to two previous spans back, so
         // that the crossing is integrated at one level from where its tent begins. The tent's
         // tail is the surface this sample reads, so one read each (cg_cone_sample_surface_as):
-        // the three-read samples here cost 2.5x the gather's time on llvmpipe, whose lockstep
-        // groups run this branch whenever one of their pixels enters a surface (docs/vct.md, Cost).
+        // with three each (six reads in a branch, which llvmpipe runs for every lane of a lockstep
+        // group, taken or not) the gather took 1.8x its time (docs/vct.md, Cost).
         float h = state.prev_span;
         vec4 back0 = cg_cone_sample_surface_as(volume, cg_volume_uvw(v, at.position - c.direction * h), lod, profile);
         vec4 back1 = vec4(0.0);
@@ -465,15 +468,20 @@ cg_cone_trace_surface(sampler3D volume, CgVolume v, CgCone c, vec4 surface)
             if (done)
                 break;  // the whole footprint is outside the volume: nothing more to gather
             lod = cg_cone_surface_level(v, c, at, state, cell, span);
-            a = textureLod(volume, uvw, lod);
+            // Empty at the fractional level `lod` (its two levels mixed) is empty at ceil(lod): the
+            // 2x2x2 texels that a read there touches hold, as their children, every texel of the
+            // finer level's read (dyadic, aligned grids), and a mip texel has coverage wherever a
+            // child has (voxel_light's mip rule). So the test reads one level, 8 texels, not 16.
             CG_CONE_READ(1);
-            if (a.a > 0.0)
+            if (textureLod(cg_surface_occupancy, uvw, ceil(lod)).a > 0.0)
                 break;
             t += cg_cone_surface_gap(state, span);
         }
         if (done)
             break;
         vec2 profile;
+        a = textureLod(volume, uvw, lod);
+        CG_CONE_READ(1);
         vec4 s = cg_cone_sample_surface_from(a, uvw, lod, cell, v.voxel_size, centre, c.direction, c.origin, surface,
                                              profile);
         t += s.a > 0.0 ? cg_cone_surface_cover(volume, v, c, at, lod, cell, span, s, profile, 1.0, state, acc)
