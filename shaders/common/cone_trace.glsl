@@ -448,8 +448,9 @@ cg_cone_trace_surface(sampler3D volume, CgVolume v, CgCone c, vec4 surface)
     // by a third with two reads in a branch never taken: docs/vct.md, Cost), but leaves a loop once
     // no lane is left in it. So the inner loop holds one read, the radiance's, and crosses empty
     // space, most of a march (VCT paper 3.2: the cone is marched front to back; nothing here
-    // changes what it gathers); the other two reads of an occupied sample and the reads behind
-    // a surface's entry (cg_cone_surface_cover) are made once the inner loop stops at one.
+    // changes what it gathers); the reads of an occupied sample (the radiance at its own level,
+    // the sides, the normals) and those behind a surface's entry (cg_cone_surface_cover) are made
+    // once the inner loop stops at one.
     vec3 centre = v.origin + 0.5 * extent;
     bool done = false;
     for (int i = 0; i < 4096 && !done; i++) {
