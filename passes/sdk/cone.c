@@ -258,6 +258,7 @@ cgp_gather_prepare(void *state, const fg_pass *pass, cgp_gather *g, const char *
     if (!cgp_cone_set_of_pass(pass, &g->set, err) || !cgp_compute_program(state, shader, all, &g->program, err))
         return false;
     g->volume_sampler = cgp_sampler_volume(state);
+    g->one_level_sampler = cgp_sampler_volume_one_level(state);
     g->cone_block = cgp_uniform_buffer(state, sizeof(cg_cone_set_block));
     g->gather_block = cgp_uniform_buffer(state, gather_bytes);
     g->state = state;
@@ -280,6 +281,10 @@ cgp_gather_begin(const fg_pass *pass, cgp_gather *g, const void *block, size_t g
     glBindSampler(CG_UNIT_VOLUME, g->volume_sampler);
     if (volume)
         cgp_gather_bind_volume(pass, g->model, g->volume_sampler, false);
+    if (volume && g->model == CGP_VOLUME_SURFACE) {
+        glBindTextureUnit(CG_UNIT_OCCUPANCY, volume);
+        glBindSampler(CG_UNIT_OCCUPANCY, g->one_level_sampler);
+    }
     glBindTextureUnit(CG_UNIT_POSITION, fg_texture(pass, "position"));
     glBindTextureUnit(CG_UNIT_NORMAL, fg_texture(pass, "normal"));
     glBindImageTexture(0, fg_texture(pass, "radiance"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
@@ -292,6 +297,8 @@ cgp_gather_end(const fg_pass *pass)
     const fg_resource_desc *out = fg_resource(pass, "radiance");
     cgp_dispatch_2d(out->width, out->height);
     glBindSampler(CG_UNIT_VOLUME, 0);
+    glBindSampler(CG_UNIT_OCCUPANCY, 0);
+    glBindTextureUnit(CG_UNIT_OCCUPANCY, 0);
     cgp_gather_bind_volume(pass, cgp_gather_volume_model(pass), 0, true);
     cgp_sky_unbind();
     glUseProgram(0);

@@ -106,6 +106,7 @@ typedef struct cgp_gather {
     cgp_volume_model model;
     GLuint program;
     GLuint volume_sampler;
+    GLuint one_level_sampler; /* the surface model's second binding of the volume (CG_UNIT_OCCUPANCY) */
     GLuint cone_block;      /* CG_CONE_SET_BLOCK */
     GLuint gather_block;    /* the pass's block */
     void *state;            /* the pass state that owns these objects */

@@ -26,6 +26,15 @@ cgp_sampler_volume(void *state)
 }
 
 GLuint
+cgp_sampler_volume_one_level(void *state)
+{
+    GLuint sampler = new_sampler(state, GL_LINEAR_MIPMAP_NEAREST, GL_LINEAR, GL_CLAMP_TO_BORDER, 3);
+    const float border[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    glSamplerParameterfv(sampler, GL_TEXTURE_BORDER_COLOR, border);
+    return sampler;
+}
+
+GLuint
 cgp_sampler_lightmap2d(void *state)
 {
     return new_sampler(state, GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR, GL_CLAMP_TO_EDGE, 2);

@@ -61,6 +61,7 @@ static const char *const light_names[3] = {"radiance", "sides", "normals"};
 typedef struct voxel_light_state {
     GLuint inject, mip, gather;
     GLuint sampler;         /* the volumes, for the gathers at the voxels */
+    GLuint one_level;       /* the radiance again at CG_UNIT_OCCUPANCY (cgp_sampler_volume_one_level) */
     GLuint cone_block;
     cgp_cone_set set;
     cgp_no_shadow no_shadow;
@@ -155,6 +156,7 @@ voxel_light_prepare(fg_pass *pass, voxel_light_state *s, cg_error *err)
     cgp_no_shadow_create(s, &s->no_shadow);
     cgp_sky_prepare(s, &s->sky);
     s->sampler = cgp_sampler_volume(s);
+    s->one_level = cgp_sampler_volume_one_level(s);
     s->cone_block = cgp_uniform_buffer(s, sizeof(cg_cone_set_block));
     if (!cgp_cone_set_make(fg_param_int(pass, "bounce_cones"), &s->set))
         return cg_fail(err, CG_ERR_GRAPH_PARAM_RANGE, "pass '%s': no cone set of %d cones (1, 6, 9 or 16)",
@@ -217,6 +219,8 @@ gather(const fg_pass *pass, const voxel_light_state *s, int resolution)
     glBindSampler(CG_UNIT_VOLUME, s->sampler);
     glBindSampler(CG_UNIT_SIDES, s->sampler);
     glBindSampler(CG_UNIT_NORMALS, s->sampler);
+    glBindTextureUnit(CG_UNIT_OCCUPANCY, fg_texture(pass, "radiance"));
+    glBindSampler(CG_UNIT_OCCUPANCY, s->one_level);
     glBindTextureUnit(2, fg_texture(pass, "normal"));
     glBindImageTexture(0, fg_texture(pass, "gathered_front"), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glBindImageTexture(1, fg_texture(pass, "gathered_back"), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
@@ -227,6 +231,8 @@ gather(const fg_pass *pass, const voxel_light_state *s, int resolution)
     glBindSampler(CG_UNIT_VOLUME, 0);
     glBindSampler(CG_UNIT_SIDES, 0);
     glBindSampler(CG_UNIT_NORMALS, 0);
+    glBindSampler(CG_UNIT_OCCUPANCY, 0);
+    glBindTextureUnit(CG_UNIT_OCCUPANCY, 0);
     /* inject.comp reads the geometry and the gathered light at units 0..5 again. */
     glBindTextureUnit(CG_UNIT_SIDES, 0);
     glBindTextureUnit(CG_UNIT_NORMALS, 0);

@@ -55,6 +55,7 @@
 #define CG_UNIT_SKY 11                  /* the baked sky (sdk/sky.h): lat-long x cone aperture, 3D */
 #define CG_UNIT_SIDES 12                /* surface voxels (voxel_light): w beta, w delta, -, alpha_y */
 #define CG_UNIT_NORMALS 13              /* surface voxels (voxel_light): w N, alpha_z */
+#define CG_UNIT_OCCUPANCY 14            /* surface voxels: CG_UNIT_VOLUME's texture, one level a read */
 
 /* The most cones a diffuse set holds (sdk/cone.h: CGP_CONE_MAX). */
 #define CG_CONE_SET_MAX 16

@@ -3,7 +3,8 @@
 // Provides: CgCone, CgMarch, cg_cone_set_block, cg_cone_march(), cg_cone_count(), cg_cone_direction(),
 //           cg_cone_tan_half(), cg_cone_accumulate(), cg_cone_trace(), cg_cone_lod(), cg_cone_origin(),
 //           cg_cone_reach(), CgConeSample, cg_cone_composite(), cg_cone_composite_span(), cg_cone_step(),
-//           cg_cone_trace_surface(), cg_cone_gather_diffuse(), cg_tangent_frame().
+//           cg_cone_trace_surface(), cg_cone_gather_diffuse(), cg_tangent_frame(); with CG_CONE_SURFACE
+//           also cg_cone_sample_surface(_from, _as)(), cg_cone_surface_level(), _gap(), _cover().
 //
 // VCT paper 3.2 (after Crassin et al. 2011): the cone's footprint at distance t has the
 // diameter d = 2 t tan(half angle); the sample is read from the mip level whose voxels
@@ -161,6 +162,8 @@ layout(binding = CG_UNIT_ANISO + 5) uniform sampler3D cg_aniso_nz;
 // the cells), and alpha_i the coverage a path along axis i meets crossing them, per cell of path.
 layout(binding = CG_UNIT_SIDES) uniform sampler3D cg_surface_sides;
 layout(binding = CG_UNIT_NORMALS) uniform sampler3D cg_surface_normals;
+// The radiance again, read within one mip level (cgp_sampler_volume_one_level): the emptiness test.
+layout(binding = CG_UNIT_OCCUPANCY) uniform sampler3D cg_surface_occupancy;
 
 // One sample of the surface voxels at level `lod` (cells `cell` wide) at world p, for a cone from
 // `origin` travelling along unit d and leaving `surface` (as in cg_cone_step). Returns premultiplied
@@ -182,12 +185,14 @@ layout(binding = CG_UNIT_NORMALS) uniform sampler3D cg_surface_normals;
 //     coverage in proportion to the match (m, times the coherence |N|). This replaces the level cap
 //     of the other models, which narrows the cones near the horizon (docs/vct.md).
 // `centre`: the volume's centre m.
+// `profile` = (sigma / w, L / L_lit): what the sample's coverage and colour are per unit of the
+// weight w and of the lit radiance, for cg_cone_sample_surface_as; 0 for an empty sample.
+// cg_cone_sample_surface_from: the same once the first read, `a` of the radiance, is made.
 vec4
-cg_cone_sample_surface(sampler3D radiance, vec3 uvw, float lod, float cell, float voxel, vec3 centre, vec3 d,
-                       vec3 origin, vec4 surface)
+cg_cone_sample_surface_from(vec4 a, vec3 uvw, float lod, float cell, float voxel, vec3 centre, vec3 d, vec3 origin,
+                            vec4 surface, out vec2 profile)
 {
-    vec4 a = textureLod(radiance, uvw, lod);
-    CG_CONE_READ(1);
+    profile = vec2(0.0);
     if (a.a <= 0.0)
         return vec4(0.0);   // empty: one read
     vec4 b = textureLod(cg_surface_sides, uvw, lod);
@@ -207,8 +212,30 @@ cg_cone_sample_surface(sampler3D radiance, vec3 uvw, float lod, float cell, floa
         float m = smoothstep(0.85, 0.95, facing) * (1.0 - smoothstep(0.5, 1.0, height / cell)) * coherence;
         cover *= 1.0 - m;
     }
-    vec3 l = a.rgb * mix(b.r / w, 1.0, lit) / w;
-    return vec4(l * cover, cover);
+    profile = vec2(cover / w, mix(b.r / w, 1.0, lit));
+    return vec4(a.rgb * (profile.y * profile.x), cover);
+}
+
+vec4
+cg_cone_sample_surface(sampler3D radiance, vec3 uvw, float lod, float cell, float voxel, vec3 centre, vec3 d,
+                       vec3 origin, vec4 surface, out vec2 profile)
+{
+    vec4 a = textureLod(radiance, uvw, lod);
+    CG_CONE_READ(1);
+    return cg_cone_sample_surface_from(a, uvw, lod, cell, voxel, centre, d, origin, surface, profile);
+}
+
+// A sample near one of cg_cone_sample_surface that reads the same surface: its weight and lit
+// radiance read at uvw, its coverage and colour per unit of them taken from that sample's
+// `profile`. One read instead of three: for the tail of a crossing's trilinear tent (cg_cone_step),
+// whose texels are those of the surface the full sample read (one plane: the same normal, plane and
+// per-axis coverage, so the same ratios), only nearer to or farther from the sample.
+vec4
+cg_cone_sample_surface_as(sampler3D radiance, vec3 uvw, float lod, vec2 profile)
+{
+    vec4 a = textureLod(radiance, uvw, lod);
+    CG_CONE_READ(1);
+    return vec4(a.rgb * (profile.y * profile.x), a.a * profile.x);
 }
 #endif
 
@@ -284,6 +311,68 @@ struct CgConeSample {
     float height;   // the sample's height above the surface the cone leaves (see `surface`)
 };
 
+#ifdef CG_CONE_SURFACE
+// cg_cone_step's level with surface voxels at `at`: the matched level plus the bias, held while a
+// crossing lasts; `cell` its voxel size, `span` the step before the sample says whether it is occupied.
+float
+cg_cone_surface_level(CgVolume v, CgCone c, CgConeSample at, CgConeState state, out float cell, out float span)
+{
+    float lod = min(clamp(cg_cone_level(v, at.diameter) + c.lod_bias, 0.0, v.levels - 1.0), state.held_lod);
+    cell = v.voxel_size * exp2(lod);
+    span = min(c.step_factor * min(at.diameter, 2.0 * cell), cell);
+    return lod;
+}
+
+// A sample that covers nothing: between surfaces, the next coverage starts a new crossing.
+float
+cg_cone_surface_gap(inout CgConeState state, float span)
+{
+    state.gained = 0.0;
+    state.prev_span = span;
+    state.held_lod = 1e30;
+    return span;
+}
+
+// A sample s (premultiplied, coverage > 0) at `at`, read at level `lod` with the surface `profile`
+// (cg_cone_sample_surface): the crossing's 3/4-cell step, the midpoint weight, and on entering a
+// surface the reads behind it (see cg_cone_step). Returns the span.
+float
+cg_cone_surface_cover(sampler3D volume, CgVolume v, CgCone c, CgConeSample at, float lod, float cell, float span,
+                      vec4 s, vec2 profile, float scale, inout CgConeState state, inout vec4 acc)
+{
+    // 3/4 of a cell: the white furnace (closed walls, where the coverage has no margin) is within
+    // 0.07% of exact with it (half a cell: 0.01%, a whole cell: 0.6% and 2% at the worst pixel),
+    // and a crossing takes a third fewer samples than at half a cell (docs/vct.md, Cost).
+    span = min(span, 0.75 * cell);
+    float weight = state.prev_span < 0.0 ? span : 0.5 * (state.prev_span + span);
+    if (state.gained <= 0.0 && state.prev_span > 0.0) {
+        // Entering a surface: the level has grown since the previous sample, which read nothing
+        // at its finer level, but the tent of this level may begin up to a cell before this
+        // sample. Read the path behind again at this level, up to two previous spans back, so
+        // that the crossing is integrated at one level from where its tent begins. The tent's
+        // tail is the surface this sample reads, so one read each (cg_cone_sample_surface_as):
+        // with three each (six reads in a branch, which llvmpipe runs for every lane of a lockstep
+        // group, taken or not) the gather took 1.8x its time (docs/vct.md, Cost).
+        float h = state.prev_span;
+        vec4 back0 = cg_cone_sample_surface_as(volume, cg_volume_uvw(v, at.position - c.direction * h), lod, profile);
+        vec4 back1 = vec4(0.0);
+        if (back0.a > 0.0)  // the second only where the first is this surface's too
+            back1 = cg_cone_sample_surface_as(volume, cg_volume_uvw(v, at.position - c.direction * (2.0 * h)), lod,
+                                              profile);
+        float before = acc.a;
+        cg_cone_composite_span(acc, vec4(back1.rgb * scale, back1.a), h, cell);
+        cg_cone_composite_span(acc, vec4(back0.rgb * scale, back0.a), h, cell);
+        state.gained += acc.a - before;
+    }
+    state.prev_span = span;
+    state.held_lod = lod;
+    float before = acc.a;
+    cg_cone_composite_span(acc, vec4(s.rgb * scale, s.a), weight, cell);
+    state.gained += acc.a - before;
+    return span;
+}
+#endif
+
 // One step of a cone through the 3D lightmap, the step both tracers take (cone_gather's march
 // below and hybrid_gather's Case 1), at `at.position` for a footprint `at.diameter` wide: the matched
 // level of the footprint plus the lod bias, the sample (the directional chains with
@@ -306,58 +395,24 @@ struct CgConeSample {
 // cap. Instead each surface crossing is integrated at one level: while the previous sample read
 // coverage the level may not grow (a crossing whose level grows half-way meets two different
 // profiles of the wall, and the coverage that has no margin here, exactly 1 across a plane, falls
-// short: up to 30% at oblique angles), the steps inside are half a cell, and each sample is weighted
+// short: up to 30% at oblique angles), the steps inside are 3/4 of a cell, and each sample is weighted
 // by the mean of the spans before and after it (the midpoint rule on uneven steps), so that the
 // trilinear tent, a partition of unity, sums to 1 across the crossing (docs/vct.md).
 float
 cg_cone_step(sampler3D volume, CgVolume v, CgCone c, vec4 surface, CgConeSample at, float scale,
              inout CgConeState state, inout vec4 acc)
 {
-    float lod = cg_cone_level(v, at.diameter) + c.lod_bias;
 #ifdef CG_CONE_SURFACE
-    lod = min(clamp(lod, 0.0, v.levels - 1.0), state.held_lod);
-    float cell = v.voxel_size * exp2(lod);
-    float span = min(c.step_factor * min(at.diameter, 2.0 * cell), cell);
+    float cell, span;
+    float lod = cg_cone_surface_level(v, c, at, state, cell, span);
     vec3 centre = v.origin + 0.5 * cg_volume_extent(v);
+    vec2 profile;
     vec4 s = cg_cone_sample_surface(volume, cg_volume_uvw(v, at.position), lod, cell, v.voxel_size, centre,
-                                    c.direction, c.origin, surface);
-    if (s.a > 0.0)
-        span = min(span, 0.5 * cell);
-    float weight = state.prev_span < 0.0 ? span : 0.5 * (state.prev_span + span);
-    if (s.a <= 0.0) {
-        state.gained = 0.0;     // between surfaces: the next coverage starts a new crossing
-        state.prev_span = span;
-        state.held_lod = 1e30;
-        return span;
-    }
-    if (state.gained <= 0.0 && state.prev_span > 0.0) {
-        // Entering a surface: the level has grown since the previous sample, which read nothing
-        // at its finer level, but the tent of this level may begin up to a cell before this
-        // sample. Read the path behind again at this level, up to two previous spans back, so
-        // that the crossing is integrated at one level from where its tent begins.
-        float h = state.prev_span;
-        vec4 back[2];
-        for (int k = 0; k < 2; k++) {
-            vec3 q = at.position - c.direction * (h * float(k + 1));
-            back[k] = k == 0 || back[0].a > 0.0
-                          ? cg_cone_sample_surface(volume, cg_volume_uvw(v, q), lod, cell, v.voxel_size, centre,
-                                                   c.direction, c.origin, surface)
-                          : vec4(0.0);
-        }
-        for (int k = 1; k >= 0; k--)
-            if (back[k].a > 0.0) {
-                float before = acc.a;
-                cg_cone_composite_span(acc, vec4(back[k].rgb * scale, back[k].a), h, cell);
-                state.gained += acc.a - before;
-            }
-    }
-    state.prev_span = span;
-    state.held_lod = lod;
-    float before = acc.a;
-    cg_cone_composite_span(acc, vec4(s.rgb * scale, s.a), weight, cell);
-    state.gained += acc.a - before;
-    return span;
+                                    c.direction, c.origin, surface, profile);
+    return s.a > 0.0 ? cg_cone_surface_cover(volume, v, c, at, lod, cell, span, s, profile, scale, state, acc)
+                     : cg_cone_surface_gap(state, span);
 #else
+    float lod = cg_cone_level(v, at.diameter) + c.lod_bias;
     if (surface.w >= 0.0) {
         // A fractional level blends in the next coarser level, whose support is twice as
         // deep: that one must clear the plane, hence the 1 below the bound.
@@ -386,6 +441,54 @@ cg_cone_trace_surface(sampler3D volume, CgVolume v, CgCone c, vec4 surface)
     float t = c.t_start;
     float rise = dot(c.direction, surface.xyz);
     CgConeState state = cg_cone_state();
+#ifdef CG_CONE_SURFACE
+    // cg_cone_step's march (the same samples, levels, spans and weights, so the same result),
+    // arranged for lockstep groups: llvmpipe runs every texture read of a loop's body for every
+    // lane of a group, also in a branch that no lane takes (gather time on the open world grows
+    // by a third with two reads in a branch never taken: docs/vct.md, Cost), but leaves a loop once
+    // no lane is left in it. So the inner loop holds one read, the radiance's, and crosses empty
+    // space, most of a march (VCT paper 3.2: the cone is marched front to back; nothing here
+    // changes what it gathers); the reads of an occupied sample (the radiance at its own level,
+    // the sides, the normals) and those behind a surface's entry (cg_cone_surface_cover) are made
+    // once the inner loop stops at one.
+    vec3 centre = v.origin + 0.5 * extent;
+    bool done = false;
+    for (int i = 0; i < 4096 && !done; i++) {
+        CgConeSample at;
+        vec3 uvw;
+        vec4 a;
+        float lod, cell, span;
+        for (; i < 4096; i++) {
+            done = !(t < c.t_max && acc.a < CG_CONE_OPAQUE);
+            if (done)
+                break;
+            at = CgConeSample(c.origin + c.direction * t, cg_cone_diameter(c, v, t), surface.w + t * rise);
+            uvw = cg_volume_uvw(v, at.position);
+            float reach = 0.5 * at.diameter / extent;
+            done = any(lessThan(uvw, vec3(-reach))) || any(greaterThan(uvw, vec3(1.0 + reach)));
+            if (done)
+                break;  // the whole footprint is outside the volume: nothing more to gather
+            lod = cg_cone_surface_level(v, c, at, state, cell, span);
+            // Empty at the fractional level `lod` (its two levels mixed) is empty at ceil(lod): the
+            // 2x2x2 texels that a read there touches hold, as their children, every texel of the
+            // finer level's read (dyadic, aligned grids), and a mip texel has coverage wherever a
+            // child has (voxel_light's mip rule). So the test reads one level, 8 texels, not 16.
+            CG_CONE_READ(1);
+            if (textureLod(cg_surface_occupancy, uvw, ceil(lod)).a > 0.0)
+                break;
+            t += cg_cone_surface_gap(state, span);
+        }
+        if (done)
+            break;
+        vec2 profile;
+        a = textureLod(volume, uvw, lod);
+        CG_CONE_READ(1);
+        vec4 s = cg_cone_sample_surface_from(a, uvw, lod, cell, v.voxel_size, centre, c.direction, c.origin, surface,
+                                             profile);
+        t += s.a > 0.0 ? cg_cone_surface_cover(volume, v, c, at, lod, cell, span, s, profile, 1.0, state, acc)
+                       : cg_cone_surface_gap(state, span);
+    }
+#else
     // The loop bound is a safety net against a zero step; steps grow with t, so real
     // marches end far earlier (about log(t_max / t_start) / log(1 + 2 step tan) steps).
     for (int i = 0; i < 4096 && t < c.t_max && acc.a < CG_CONE_OPAQUE; i++) {
@@ -396,6 +499,7 @@ cg_cone_trace_surface(sampler3D volume, CgVolume v, CgCone c, vec4 surface)
             break;  // the whole footprint is outside the volume: nothing more to gather
         t += cg_cone_step(volume, v, c, surface, at, 1.0, state, acc);
     }
+#endif
     acc.rgb *= v.radiance_scale;
     return acc;
 }

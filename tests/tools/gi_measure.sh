@@ -14,7 +14,8 @@
 #                                                  scales $SCALES: mean and worst pixel against
 #                                                  path_trace at $FURNACE_BOUNCES (gi-metric furnace)
 #   gi_measure.sh reads SCENE GRAPH LABEL [--set ...]  volume reads per covered pixel of the diffuse
-#                                                  cones (gather.count_reads): a deterministic cost
+#                                                  cones (gather.count_reads): a deterministic cost;
+#                                                  mean, median, 99th percentile and maximum
 # Environment: SIZE (160x90), SPP (1024), BOUNCES (1), CACHE (build/gi-cache), SCENES, SCALES.
 set -e
 BUILD=${BUILD:-build}

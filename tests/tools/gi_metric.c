@@ -10,7 +10,8 @@
  *       and RGB and the worst |. - 1|.
  *   gi-metric mean IMG.exr [--rect x0 y0 x1 y1]
  *       mean red channel over the pixels whose red is above 0 (a gather's `reads` output: volume
- *       reads per covered pixel).
+ *       reads per covered pixel), and its distribution: median, 99th percentile and maximum (a
+ *       group of pixels runs in lockstep on llvmpipe, so the slowest pixels set the cost).
  * Exit codes: 0, 2 for bad arguments or unreadable images.
  */
 #include <math.h>
@@ -89,6 +90,13 @@ furnace(int argc, char **argv)
 }
 
 static int
+compare_float(const void *a, const void *b)
+{
+    float x = *(const float *)a, y = *(const float *)b;
+    return (x > y) - (x < y);
+}
+
+static int
 mean(int argc, char **argv)
 {
     if (argc < 3) {
@@ -99,16 +107,27 @@ mean(int argc, char **argv)
     load(argv[2], &a);
     rect r;
     options(argc, argv, 3, &a, &r, NULL);
-    double sum = 0, n = 0;
+    float *values = malloc(sizeof *values * (size_t)(r.x1 - r.x0) * (size_t)(r.y1 - r.y0));
+    if (!values) {
+        fprintf(stderr, "gi-metric: out of memory\n");
+        return 1;
+    }
+    double sum = 0;
+    size_t n = 0;
     for (int y = r.y0; y < r.y1; y++)
         for (int x = r.x0; x < r.x1; x++) {
             float v = a.rgba[4 * ((size_t)y * (size_t)a.width + (size_t)x)];
             if (v > 0.0f) {
                 sum += v;
-                n++;
+                values[n++] = v;
             }
         }
-    printf("mean %.2f over %.0f pixels\n", n > 0 ? sum / n : 0.0, n);
+    qsort(values, n, sizeof *values, compare_float);
+    printf("mean %.2f over %zu pixels", n > 0 ? sum / (double)n : 0.0, n);
+    if (n > 0)
+        printf(" median %.0f p99 %.0f max %.0f", values[n / 2], values[(n * 99) / 100], values[n - 1]);
+    printf("\n");
+    free(values);
     return 0;
 }
 
