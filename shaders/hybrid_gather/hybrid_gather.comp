@@ -475,6 +475,35 @@ trace_horizon(vec3 p, vec3 origin, vec3 dir, float tan_half, float t_start, floa
     // The farthest point of the 3D lightmap's box: past t_far3 / (1 - tan) a footprint cannot reach it.
     float t_far3 = length(max(abs(v_lo - origin), abs(v_hi - origin)));
     for (int i = 0; i < 4096 && t < t_max && acc.a < CG_CONE_OPAQUE && (live3 || live2); i++) {
+#ifdef CG_CONE_SURFACE
+        // Empty 3D space in a loop of one read, as cone_gather's march crosses it
+        // (cg_cone_trace_surface: llvmpipe runs every texture read of a loop body for every lane of
+        // a lockstep group, so the terrain's reads and the occupied sample's are kept out of it).
+        // It takes exactly the steps the loop below would take while no terrain covers the cone
+        // (the 3D sample on the axis, at the full diameter), the footprint is in the box, no terrain
+        // sample is due and the sample is empty (a surface gap), and stops before any other.
+        if (live3 && covered <= 0.0) {
+            for (; i < 4096 && t < t_max && !(live2 && t >= t2); i++) {
+                float d0 = max(2.0 * tan_half * t, xel);
+                vec3 x0 = origin + dir * t;
+                vec3 top0 = x0 + up_across * (0.5 * d0);
+                float gap0 = min(length(max(max(v_lo - x0, x0 - v_hi), vec3(0.0))) - 0.5 * d0,
+                                 length(max(max(v_lo - top0, top0 - v_hi), vec3(0.0))) - 1e-3 * d0);
+                if (!(gap0 < 0.0))
+                    break;
+                CgConeSample at0 = CgConeSample(x0, d0, surface.w + dot(x0 - origin, surface.xyz));
+                float cell0, span0;
+                float lod0 = cg_cone_surface_level(v, cone, at0, state, cell0, span0);
+                CG_CONE_READ(1);
+                if (textureLod(cg_surface_occupancy, cg_volume_uvw(v, x0), ceil(lod0)).a > 0.0)
+                    break;
+                was_in3 = true;
+                t += cg_cone_surface_gap(state, span0);
+            }
+            if (!(i < 4096 && t < t_max))
+                break;
+        }
+#endif
         float d = max(2.0 * tan_half * t, xel);
         vec3 x = origin + dir * t;
         float dt = march.step * d;
