@@ -334,16 +334,18 @@ cg_cone_surface_gap(inout CgConeState state, float span)
 }
 
 // A sample s (premultiplied, coverage > 0) at `at`, read at level `lod` with the surface `profile`
-// (cg_cone_sample_surface): the crossing's 3/4-cell step, the midpoint weight, and on entering a
+// (cg_cone_sample_surface): the crossing's half-cell step, the midpoint weight, and on entering a
 // surface the reads behind it (see cg_cone_step). Returns the span.
 float
 cg_cone_surface_cover(sampler3D volume, CgVolume v, CgCone c, CgConeSample at, float lod, float cell, float span,
                       vec4 s, vec2 profile, float scale, inout CgConeState state, inout vec4 acc)
 {
-    // 3/4 of a cell: the white furnace (closed walls, where the coverage has no margin) is within
-    // 0.07% of exact with it (half a cell: 0.01%, a whole cell: 0.6% and 2% at the worst pixel),
-    // and a crossing takes a third fewer samples than at half a cell (docs/vct.md, Cost).
-    span = min(span, 0.75 * cell);
+    // Half a cell: the trilinear tent sampled at half its cell sums to 1 across a plane at any
+    // phase, so the white furnace (closed walls, where the coverage has no margin) is exact to
+    // 0.01%. 3/4 of a cell takes a third fewer samples but not at every phase: the furnace's mean
+    // 0.07% short and, with a height field, a worst pixel 0.63% off, over the hybrid's 0.5%
+    // bound; a whole cell 0.6% and 2% (docs/vct.md, Cost).
+    span = min(span, 0.5 * cell);
     float weight = state.prev_span < 0.0 ? span : 0.5 * (state.prev_span + span);
     if (state.gained <= 0.0 && state.prev_span > 0.0) {
         // Entering a surface: the level has grown since the previous sample, which read nothing
@@ -395,7 +397,7 @@ cg_cone_surface_cover(sampler3D volume, CgVolume v, CgCone c, CgConeSample at, f
 // cap. Instead each surface crossing is integrated at one level: while the previous sample read
 // coverage the level may not grow (a crossing whose level grows half-way meets two different
 // profiles of the wall, and the coverage that has no margin here, exactly 1 across a plane, falls
-// short: up to 30% at oblique angles), the steps inside are 3/4 of a cell, and each sample is weighted
+// short: up to 30% at oblique angles), the steps inside are half a cell, and each sample is weighted
 // by the mean of the spans before and after it (the midpoint rule on uneven steps), so that the
 // trilinear tent, a partition of unity, sums to 1 across the crossing (docs/vct.md).
 float
