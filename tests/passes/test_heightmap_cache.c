@@ -50,16 +50,6 @@ start(vf_runner *r, hf_scene *s, const char *format, bool cache)
     vf_frame(r);
 }
 
-/* One more frame without uploading the scene again, as the apps run an animation. */
-static void
-next_frame(vf_runner *r)
-{
-    cg_error err = {0};
-    assert_cg_ok(fg_graph_execute(r->graph, &r->frame, FG_TIMING_NONE, &err), &err);
-    glMemoryBarrier(GL_ALL_BARRIER_BITS);
-    r->frame.index++;
-}
-
 static const char *
 rebuilt(const vf_runner *r)
 {
@@ -114,8 +104,8 @@ check_format(const char *format)
     for (int k = 1; k <= 3; k++) {
         turn_sun(&cached, &cached_scene, 40.0);
         turn_sun(&fresh, &fresh_scene, 40.0);
-        next_frame(&cached);
-        next_frame(&fresh);
+        vf_next_frame(&cached);
+        vf_next_frame(&fresh);
         assert_non_null(strstr(rebuilt(&cached), "geometry kept"));
         assert_int_equal(differing_texels(&cached, &fresh), 0);
     }
@@ -125,11 +115,11 @@ check_format(const char *format)
     static const float half_turn[16] = {-1, 0, 0, 0, 0, 1, 0, 0, 0, 0, -1, 0, 0, 0, 0, 1};
     memcpy(cached_scene.instances[0].world, half_turn, sizeof half_turn);
     memcpy(fresh_scene.instances[0].world, half_turn, sizeof half_turn);
-    next_frame(&cached);
-    next_frame(&fresh);
+    vf_next_frame(&cached);
+    vf_next_frame(&fresh);
     assert_non_null(strstr(rebuilt(&cached), "geometry rasterized (a height-field instance changed)"));
     assert_int_equal(differing_texels(&cached, &fresh), 0);
-    next_frame(&cached);
+    vf_next_frame(&cached);
     assert_non_null(strstr(rebuilt(&cached), "geometry kept"));
 
     /* The scene uploaded again: rasterized again. */

@@ -67,15 +67,6 @@ start(vf_runner *r, hf_scene *s, bool cache, const char *voxelizer)
     vf_frame(r);
 }
 
-static void
-next_frame(vf_runner *r)
-{
-    cg_error err = {0};
-    assert_cg_ok(fg_graph_execute(r->graph, &r->frame, FG_TIMING_NONE, &err), &err);
-    glMemoryBarrier(GL_ALL_BARRIER_BITS);
-    r->frame.index++;
-}
-
 static const char *
 rebuilt(const vf_runner *r)
 {
@@ -130,8 +121,8 @@ translation(float x, float y, float z)
 static void
 step(vf_runner *cached, vf_runner *whole, const char *want, const char *what)
 {
-    next_frame(cached);
-    next_frame(whole);
+    vf_next_frame(cached);
+    vf_next_frame(whole);
     if (!strstr(rebuilt(cached), want))
         fail_msg("%s: want '%s' in the report, got '%s'", what, want, rebuilt(cached));
     assert_string_equal(rebuilt(whole), "geometry voxelized (cache=false)");

@@ -147,6 +147,15 @@ vf_frame(vf_runner *r)
 }
 
 void
+vf_next_frame(vf_runner *r)
+{
+    cg_error err = {0};
+    assert_cg_ok(fg_graph_execute(r->graph, &r->frame, FG_TIMING_NONE, &err), &err);
+    glMemoryBarrier(GL_ALL_BARRIER_BITS);
+    r->frame.index++;
+}
+
+void
 vf_stop(vf_runner *r)
 {
     fg_graph_destroy(r->graph);

@@ -2,7 +2,7 @@
  * VCT pass tests (voxelize, mip3d, cone_gather).
  *
  * Declares: vf_scene, vf_scene_init, vf_add_triangle, vf_finish, vf_runner, vf_start,
- *           vf_frame, vf_stop, vf_read_volume.
+ *           vf_frame, vf_next_frame, vf_stop, vf_read_volume.
  */
 #ifndef CG_TEST_VCT_FIXTURE_H
 #define CG_TEST_VCT_FIXTURE_H
@@ -49,6 +49,9 @@ void vf_start_file(vf_runner *r, const cg_scene *scene, int width, int height, c
                    const char *const *overrides);
 /* Re-uploads the (changed) scene and runs one frame. */
 void vf_frame(vf_runner *r);
+/* One more frame without uploading the scene again, as the apps run an animation (the graph's
+ * caches see only what changed in the scene's instances). */
+void vf_next_frame(vf_runner *r);
 void vf_stop(vf_runner *r);
 
 /* Level `level` of a graph resource as RGBA floats (x fastest, then y, then z). */
