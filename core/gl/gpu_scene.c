@@ -335,6 +335,17 @@ bind_instance(const cg_gpu_scene *gpu, const cg_instance *inst, const bool activ
     glBindVertexArray(gpu->meshes[inst->mesh].vao);
 }
 
+void
+cg_gpu_scene_bind_instance(const cg_gpu_scene *gpu, int instance)
+{
+    if (instance < 0 || instance >= gpu->scene->instance_count)
+        return;
+    bool active[3];
+    active_scene_uniforms(active);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_MATERIALS, gpu->material_buffer);
+    bind_instance(gpu, &gpu->scene->instances[instance], active);
+}
+
 size_t
 cg_gpu_scene_draw(const cg_gpu_scene *gpu, cg_mesh_filter filter)
 {

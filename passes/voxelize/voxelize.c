@@ -558,6 +558,22 @@ reserve_ranges(voxelize_state *s, int n, cg_error *err)
     return true;
 }
 
+/* The mesh of instance `i` when the mesh filter keeps it and its box reaches `box`; else NULL.
+ * Both voxelizers redraw exactly these instances. */
+static const cg_mesh *
+instance_in_box(const cg_scene *scene, int i, cg_mesh_filter filter, const voxel_region *region, int resolution,
+                const voxel_box *box)
+{
+    const cg_instance *inst = &scene->instances[i];
+    if (inst->mesh < 0 || inst->mesh >= scene->mesh_count)
+        return NULL;
+    const cg_mesh *mesh = &scene->meshes[inst->mesh];
+    if (!cgp_mesh_passes(mesh->kind, filter) || mesh->index_count == 0)
+        return NULL;
+    voxel_box whole = box_voxels(region, resolution, inst->world, mesh->bounds_min, mesh->bounds_max);
+    return box_empty(&whole) || !boxes_overlap(&whole, box) ? NULL : mesh;
+}
+
 /* Draws, with the voxelization program bound, every instance `filter` keeps that may write a
  * voxel of `box`: of a chunked mesh only the chunks that may (neighbouring chunks in one range).
  * Returns the triangles drawn through *triangles. */
@@ -567,15 +583,10 @@ draw_box(voxelize_state *s, const fg_frame *frame, cg_mesh_filter filter, const 
 {
     const cg_scene *scene = frame->scene;
     for (int i = 0; i < scene->instance_count; i++) {
+        const cg_mesh *mesh = instance_in_box(scene, i, filter, region, resolution, box);
+        if (!mesh)
+            continue;
         const cg_instance *inst = &scene->instances[i];
-        if (inst->mesh < 0 || inst->mesh >= scene->mesh_count)
-            continue;
-        const cg_mesh *mesh = &scene->meshes[inst->mesh];
-        if (!cgp_mesh_passes(mesh->kind, filter) || mesh->index_count == 0)
-            continue;
-        voxel_box whole = box_voxels(region, resolution, inst->world, mesh->bounds_min, mesh->bounds_max);
-        if (box_empty(&whole) || !boxes_overlap(&whole, box))
-            continue;
         const mesh_chunks *c = &s->chunks[inst->mesh];
         if (!c->index_buffer) {
             GLsizei count = (GLsizei)mesh->index_count;
@@ -618,38 +629,13 @@ dispatch_triangles(voxelize_state *s, const fg_frame *frame, cg_mesh_filter filt
     glUniform4f(13, (float)unit_fixed, (float)emission_fixed, 0.0f, 0.0f);
     glUniform3i(14, box->lo[0], box->lo[1], box->lo[2]);
     glUniform3i(15, box->hi[0], box->hi[1], box->hi[2]);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_MATERIALS, gpu->material_buffer);
     for (int i = 0; i < scene->instance_count; i++) {
+        const cg_mesh *mesh = instance_in_box(scene, i, filter, region, resolution, box);
+        if (!mesh)
+            continue;
         const cg_instance *inst = &scene->instances[i];
-        const cg_mesh *mesh = &scene->meshes[inst->mesh];
-        if (!cgp_mesh_passes(mesh->kind, filter) || mesh->index_count == 0)
-            continue;
-        voxel_box whole = box_voxels(region, resolution, inst->world, mesh->bounds_min, mesh->bounds_max);
-        if (box_empty(&whole) || !boxes_overlap(&whole, box))
-            continue;
-        const float *m = inst->world;
-        double a[3][3], c[3][3];
-        for (int r = 0; r < 3; r++)
-            for (int k = 0; k < 3; k++)
-                a[r][k] = m[4 * k + r];
-        /* inverse transpose = cofactor matrix / det */
-        for (int r = 0; r < 3; r++)
-            for (int k = 0; k < 3; k++)
-                c[r][k] = a[(r + 1) % 3][(k + 1) % 3] * a[(r + 2) % 3][(k + 2) % 3] -
-                          a[(r + 1) % 3][(k + 2) % 3] * a[(r + 2) % 3][(k + 1) % 3];
-        double det = a[0][0] * c[0][0] + a[0][1] * c[0][1] + a[0][2] * c[0][2];
-        float normal[9];
-        for (int r = 0; r < 3; r++)
-            for (int k = 0; k < 3; k++)
-                normal[3 * k + r] = (float)(c[r][k] / det);
-        int material = mesh->material >= 0 && mesh->material < scene->material_count ? mesh->material : 0;
-        const cg_material *mat = scene->material_count > 0 ? &scene->materials[material] : NULL;
-        int base = mat ? mat->base_color_texture : -1, emissive = mat ? mat->emissive_texture : -1;
-        glUniformMatrix4fv(0, 1, GL_FALSE, m);
-        glUniformMatrix3fv(1, 1, GL_FALSE, normal);
-        glUniform1i(2, material);
-        glBindTextureUnit(0, base >= 0 && base < scene->texture_count ? gpu->textures[base] : gpu->white_texture);
-        glBindTextureUnit(1, emissive >= 0 && emissive < scene->texture_count ? gpu->textures[emissive] : gpu->white_texture);
+        /* The matrices, material and textures as the geometry-shader path's draw sets them. */
+        cg_gpu_scene_bind_instance(gpu, i);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 11, gpu->meshes[inst->mesh].vertex_buffer);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 12, gpu->meshes[inst->mesh].index_buffer);
         GLuint n = mesh->index_count / 3u;
@@ -659,6 +645,7 @@ dispatch_triangles(voxelize_state *s, const fg_frame *frame, cg_mesh_filter filt
     }
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 11, 0);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 12, 0);
+    glBindVertexArray(0);   /* cg_gpu_scene_bind_instance binds the mesh's */
     return triangles;
 }
 

@@ -1,7 +1,7 @@
 /* cg/gpu_scene.h: a cg_scene uploaded to GL buffers and textures, and the one way passes draw it.
  *
  * Declares: cg_gpu_scene, cg_gpu_scene_upload, cg_gpu_scene_destroy, cg_gpu_scene_draw,
- *           cg_gpu_scene_draw_ranges, cg_mesh_filter, CG_BINDING_MATERIALS, CG_BINDING_LIGHTS,
+ *           cg_gpu_scene_draw_ranges, cg_gpu_scene_bind_instance, cg_mesh_filter, CG_BINDING_MATERIALS, CG_BINDING_LIGHTS,
  *           cg_gpu_scene_bind_lights, cg_gpu_scene_update_lights.
  *
  * Shader interface (shaders/common/scene.glsl): vertex attributes 0 = position,
@@ -77,6 +77,13 @@ size_t cg_gpu_scene_draw(const cg_gpu_scene *gpu, cg_mesh_filter filter);
  * the number of triangles drawn. */
 size_t cg_gpu_scene_draw_ranges(const cg_gpu_scene *gpu, int instance, GLuint index_buffer, const GLsizei *counts,
                                 const GLsizeiptr *firsts, GLsizei ranges);
+
+/* What a draw of `instance` reads beside its vertices, set for the bound program as
+ * cg_gpu_scene_draw sets it: the active uniforms 0..2 (model and normal matrices, material
+ * index), the materials SSBO, the material textures, the mesh's VAO. For a compute program that
+ * reads the mesh's buffers itself (voxelize's voxelizer=compute), so that both see one instance
+ * alike. */
+void cg_gpu_scene_bind_instance(const cg_gpu_scene *gpu, int instance);
 
 /* Binds the light SSBO at CG_BINDING_LIGHTS. */
 void cg_gpu_scene_bind_lights(const cg_gpu_scene *gpu);
