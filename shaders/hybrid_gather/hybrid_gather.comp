@@ -440,6 +440,16 @@ slope_of(float elevation)
     return tan(clamp(elevation, -0.49 * PI, 0.49 * PI));
 }
 
+// How far the 3D step's footprint (a disc of diameter `d3` at `x3`) and the open segment's top
+// (`top`, on a footprint `d` wide) are from the 3D lightmap's box [lo, hi]: below 0, the step may
+// meet what the box holds.
+float
+footprint_gap(vec3 lo, vec3 hi, vec3 x3, float d3, vec3 top, float d)
+{
+    return min(length(max(max(lo - x3, x3 - hi), vec3(0.0))) - 0.5 * d3,
+               length(max(max(lo - top, top - hi), vec3(0.0))) - 1e-3 * d);
+}
+
 // One cone: `p` the surface point, `origin` the 3D march's origin (moved off the surface as
 // cone_gather moves it), `surface` its cap (w < 0: none), `cell` its cell.
 vec4
@@ -487,9 +497,7 @@ trace_horizon(vec3 p, vec3 origin, vec3 dir, float tan_half, float t_start, floa
                 float d0 = max(2.0 * tan_half * t, xel);
                 vec3 x0 = origin + dir * t;
                 vec3 top0 = x0 + up_across * (0.5 * d0);
-                float gap0 = min(length(max(max(v_lo - x0, x0 - v_hi), vec3(0.0))) - 0.5 * d0,
-                                 length(max(max(v_lo - top0, top0 - v_hi), vec3(0.0))) - 1e-3 * d0);
-                if (!(gap0 < 0.0))
+                if (!(footprint_gap(v_lo, v_hi, x0, d0, top0, d0) < 0.0))
                     break;
                 CgConeSample at0 = CgConeSample(x0, d0, surface.w + dot(x0 - origin, surface.xyz));
                 float cell0, span0;
@@ -529,8 +537,7 @@ trace_horizon(vec3 p, vec3 origin, vec3 dir, float tan_half, float t_start, floa
             // The open segment's top, half a diameter above the axis: while it is in the box, the
             // open part may still meet what the box holds.
             vec3 top3 = x + up_across * (0.5 * d);
-            gap3 = min(length(max(max(v_lo - x3, x3 - v_hi), vec3(0.0))) - 0.5 * d3,
-                       length(max(max(v_lo - top3, top3 - v_hi), vec3(0.0))) - 1e-3 * d);
+            gap3 = footprint_gap(v_lo, v_hi, x3, d3, top3, d);
             in3 = gap3 < 0.0 && open > 1e-3;
             if (in3) {
                 was_in3 = true;
