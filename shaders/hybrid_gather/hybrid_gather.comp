@@ -450,22 +450,160 @@ footprint_gap(vec3 lo, vec3 hi, vec3 x3, float d3, vec3 top, float d)
                length(max(max(lo - top, top - hi), vec3(0.0))) - 1e-3 * d);
 }
 
+// What the terrain walk carries from one sample to the next.
+struct Horizon {
+    float elevation;    // the running horizon's elevation
+    float slope;        // its tan, compared with the terrain's rise over the distance, so that the
+                        // elevation is computed only where the horizon rises
+    float covered;      // the cosine-weighted share of the cone's cell the terrain has covered
+    float next;         // where the next terrain sample is due
+    int level;          // the pyramid level the skipping tries first
+    bool live;          // the terrain may still cover more of the cone
+};
+
+// One terrain sample at distance t along the axis (x, footprint d): the horizon raised by the
+// texel under the axis, its newly covered share composited with the terrain's radiance; or a jump
+// over the coarsest pyramid block that cannot raise the horizon, or to where the axis comes over
+// the map.
+void
+terrain_sample(CgHeightmap m, vec3 p, vec3 dir, float t, vec3 x, float d, Cell cell, bool steep, float axis_slope,
+               vec3 m_lo, vec3 m_hi, inout Horizon h, inout vec4 acc)
+{
+    bool skip = cg_hybrid_gather_block.switches.w != 0;
+    int top = int(m.levels) - 1;
+    float horizontal = length(dir.xz);
+    vec2 uv = cg_heightmap_uv(m, x.xz);
+    float next = t + cg_hybrid_gather_block.params.y * d;
+    if (!inside_map(uv)) {
+        // No terrain here: on to where the axis comes over the map, or done.
+        vec2 span = xz_interval(x.xz, dir.xz, m_lo.xz, m_hi.xz);
+        if (!(span.x <= span.y) || span.y < 0.0)
+            h.live = false;
+        else
+            next = max(next, t + span.x + 1e-4 * d);
+        h.next = next;
+        return;
+    }
+    float s = length(x.xz - p.xz);
+    if (steep)
+        s = max(s, 0.5 * d);
+    // The ray at the horizon's elevation: terrain below it raises nothing. Along a block the axis
+    // moves away from p, so the ray is lowest at the block's near side when it rises and at its far
+    // side when it falls.
+    float lod = clamp(level_2d(m, d) + cg_hybrid_gather_block.params.z, 0.0, m.levels - 1.0);
+    int level = int(lod);
+    bool fetch = true;
+    // A cone whose axis is below the horizon may have it under the terrain: no skipping.
+    if (skip && axis_slope >= h.slope) {
+        // Maximum-mipmap skipping: the coarsest pyramid block under the axis whose highest point
+        // stays below that ray is passed in one jump, to where the axis leaves it; else the next
+        // finer level is tried, down to the level sampled.
+        int k = clamp(h.level, level, top);
+        for (;;) {
+            vec2 size = m.texel * float(1 << k);
+            vec2 f = (x.xz - m.origin) / size;
+            int n = max(int(m.resolution) >> k, 1);
+            ivec2 c = clamp(ivec2(floor(f)), ivec2(0), ivec2(n - 1));
+            vec2 edge = vec2(dir.x >= 0.0 ? float(c.x + 1) : float(c.x), dir.z >= 0.0 ? float(c.y + 1) : float(c.y));
+            vec2 rate = dir.xz / size;
+            vec2 exit = vec2(abs(rate.x) > 1e-20 ? (edge.x - f.x) / rate.x : 1e30,
+                             abs(rate.y) > 1e-20 ? (edge.y - f.y) / rate.y : 1e30);
+            float leave = max(min(exit.x, exit.y), 0.0);
+            float s_ray = h.slope >= 0.0 ? s : length(x.xz + dir.xz * leave - p.xz);
+            if (steep)
+                s_ray = max(s_ray, 0.5 * d);
+            if (block_max(c, k) > p.y + s_ray * h.slope) {
+                if (k == level)
+                    break;
+                k--;
+                continue;
+            }
+            next = max(next, t + leave + 1e-4 * d);
+            fetch = false;
+            k = min(k + 1, top);
+            break;
+        }
+        h.level = k;
+    }
+    if (fetch) {
+        // The texel under the axis, unfiltered: the horizon takes the highest of the samples, so a
+        // filter would only flatten them, and one fetch is a sixteenth of the 3D step's trilinear one.
+        int n = max(int(m.resolution) >> level, 1);
+        vec4 texel = texelFetch(u_lightmap, clamp(ivec2(floor(uv * float(n))), ivec2(0), ivec2(n - 1)), level);
+        if (texel.a - p.y > s * h.slope) {
+            // Every direction of the cell below the new horizon meets the terrain here: the newly
+            // covered share, with the terrain's radiance.
+            float elevation = atan(texel.a - p.y, s);
+            float share = cell_below(cell, elevation);
+            if (share > h.covered) {
+                float w = min(share - h.covered, 1.0 - acc.a);
+                acc.rgb += w * m.radiance_scale * texel.rgb;
+                acc.a += w;
+                h.covered = share;
+            }
+            h.elevation = elevation;
+            h.slope = slope_of(elevation);
+        }
+        // The axis under the terrain: the footprint's part below the terrain's height (its disc seen
+        // across, vertical half extent r cos e) is covered, so that a cone whose axis runs into the
+        // ground ends there, as the horizon of its one azimuth may not tell (a cone wider than the
+        // terrain around it, a terrain ending at a wall).
+        if (texel.a > x.y) {
+            float across = 0.5 * d * max(horizontal, 1e-3);
+            float buried = disc_below(clamp((texel.a - x.y) / across, -1.0, 1.0));
+            if (buried > h.covered) {
+                float w = min(buried - h.covered, 1.0 - acc.a);
+                acc.rgb += w * m.radiance_scale * texel.rgb;
+                acc.a += w;
+                h.covered = buried;
+            }
+        }
+    }
+    // Done once even the highest terrain stays below the horizon's ray, and the ray no longer falls.
+    if (h.covered >= 1.0 || (h.slope >= 0.0 && m.y_max <= p.y + s * h.slope))
+        h.live = false;
+    h.next = next;
+}
+
+// Where the 3D step samples the part of the footprint the terrain left open (a disc across the
+// cone, cut by the horizon's chord): the centroid of the circular segment above the chord, in
+// radii from the centre up across the cone, for the covered share `covered`.
+float
+open_lift(float covered)
+{
+    float u = disc_chord(covered);
+    return u > -1.0 ? (2.0 / 3.0) * pow(1.0 - u * u, 1.5) / (PI * max(1.0 - covered, 1e-6)) : 0.0;
+}
+
 // One cone: `p` the surface point, `origin` the 3D march's origin (moved off the surface as
 // cone_gather moves it), `surface` its cap (w < 0: none), `cell` its cell.
+//
+// Every step samples the 3D lightmap (cone_gather's step, eq. 12: wherever the footprint overlaps
+// its box) and then, when one is due, the terrain. The terrain below the horizon has taken the
+// lower part of the footprint (a disc across the cone, cut by the horizon's chord): the 3D step
+// samples the open part, at its centroid and with its area's diameter, so that a cone whose axis
+// has gone under the terrain still meets what its open part meets (a wall beyond the terrain's
+// end). The terrain is sampled every `terrain_step` diameters and, once it covers part of the
+// cone, with every 3D step too, so that the chord the 3D step samples follows the horizon.
+//
+// llvmpipe runs every texture read written in a loop body for every lane of a lockstep group,
+// taken or not, and a 3D step on an occupied sample reads many texels. So the march is two loops:
+// the inner one takes every step whose 3D sample is empty or off the box (with surface voxels, one
+// occupancy read tells, as cone_gather's march crosses empty space: cg_cone_trace_surface) and
+// the terrain samples with it; the outer one the 3D step on an occupied sample. The steps are the
+// same as one loop's.
 vec4
 trace_horizon(vec3 p, vec3 origin, vec3 dir, float tan_half, float t_start, float t_max, vec4 surface, Cell cell)
 {
     CgVolume v = hybrid_volume();
     CgHeightmap m = cg_heightmap();
     CgMarch march = cg_cone_march();
-    bool skip = cg_hybrid_gather_block.switches.w != 0;
     vec3 v_lo, v_hi;
     box_3d(v, v_lo, v_hi);
     vec3 m_lo, m_hi;
     map_box(m, m_lo, m_hi);
     float xel = has_3d() ? min(v.voxel_size, cg_heightmap_xel(m)) : cg_heightmap_xel(m);
     CgCone cone = CgCone(origin, dir, tan_half, t_start, t_max, march.step, bias_3d());
-    int top = int(m.levels) - 1;
     // A cone whose footprint holds the vertical has no one horizontal direction: its terrain is
     // seen at the rim of its footprint.
     float horizontal = length(dir.xz);
@@ -475,184 +613,79 @@ trace_horizon(vec3 p, vec3 origin, vec3 dir, float tan_half, float t_start, floa
     up_across = dot(up_across, up_across) > 1e-12 ? normalize(up_across) : vec3(1.0, 0.0, 0.0);
     vec4 acc = vec4(0.0);
     CgConeState state = cg_cone_state();    // what one 3D step tells the next (cg_cone_step)
-    // The running horizon: its elevation and the tan of it (compared with the terrain's rise over
-    // the distance, so that the elevation is computed only where the horizon rises).
-    float horizon = cell.lowest, slope = slope_of(horizon), covered = 0.0, chord_of = 0.0, lift = 0.0;
+    Horizon h = Horizon(cell.lowest, slope_of(cell.lowest), 0.0, t_start, int(m.levels) - 1, true);
+    float chord_of = 0.0, lift = 0.0;
     float axis_slope = dir.y / max(horizontal, 1e-6);
-    bool live3 = has_3d(), was_in3 = false, live2 = true;
-    float t = t_start, t2 = t_start;
-    int k = top;    // the pyramid level the skipping tries first
+    bool live3 = has_3d(), was_in3 = false;
+    float t = t_start;
     // The farthest point of the 3D lightmap's box: past t_far3 / (1 - tan) a footprint cannot reach it.
     float t_far3 = length(max(abs(v_lo - origin), abs(v_hi - origin)));
-    for (int i = 0; i < 4096 && t < t_max && acc.a < CG_CONE_OPAQUE && (live3 || live2); i++) {
+    for (int i = 0; i < 4096 && t < t_max && acc.a < CG_CONE_OPAQUE && (live3 || h.live); i++) {
+        bool occupied = false;
+        for (; i < 4096 && t < t_max && acc.a < CG_CONE_OPAQUE; i++) {
+            float d = max(2.0 * tan_half * t, xel);
+            vec3 x = origin + dir * t;
+            float dt = 0.0, gap3 = 1e30;
+            bool in3 = false;
+            if (live3) {
+                float open = 1.0 - h.covered;
+                if (h.covered != chord_of) {
+                    lift = open_lift(h.covered);
+                    chord_of = h.covered;
+                }
+                // The open part's sample, and the open segment's top, half a diameter above the
+                // axis: while that is in the box, the open part may still meet what the box holds.
+                vec3 x3 = x + up_across * (lift * 0.5 * d);
+                float d3 = max(d * sqrt(open), xel);
+                gap3 = footprint_gap(v_lo, v_hi, x3, d3, x + up_across * (0.5 * d), d);
+                in3 = gap3 < 0.0 && open > 1e-3;
+                if (in3) {
 #ifdef CG_CONE_SURFACE
-        // Empty 3D space in a loop of one read, as cone_gather's march crosses it
-        // (cg_cone_trace_surface: llvmpipe runs every texture read of a loop body for every lane of
-        // a lockstep group, so the terrain's reads and the occupied sample's are kept out of it).
-        // It takes exactly the steps the loop below would take while no terrain covers the cone
-        // (the 3D sample on the axis, at the full diameter), the footprint is in the box, no terrain
-        // sample is due and the sample is empty (a surface gap), and stops before any other.
-        if (live3 && covered <= 0.0) {
-            for (; i < 4096 && t < t_max && !(live2 && t >= t2); i++) {
-                float d0 = max(2.0 * tan_half * t, xel);
-                vec3 x0 = origin + dir * t;
-                vec3 top0 = x0 + up_across * (0.5 * d0);
-                if (!(footprint_gap(v_lo, v_hi, x0, d0, top0, d0) < 0.0))
-                    break;
-                CgConeSample at0 = CgConeSample(x0, d0, surface.w + dot(x0 - origin, surface.xyz));
-                float cell0, span0;
-                float lod0 = cg_cone_surface_level(v, cone, at0, state, cell0, span0);
-                CG_CONE_READ(1);
-                if (textureLod(cg_surface_occupancy, cg_volume_uvw(v, x0), ceil(lod0)).a > 0.0)
-                    break;
-                was_in3 = true;
-                t += cg_cone_surface_gap(state, span0);
-            }
-            if (!(i < 4096 && t < t_max))
-                break;
-        }
+                    CgConeSample at = CgConeSample(x3, d3, surface.w + dot(x3 - origin, surface.xyz));
+                    float cell3, span3;
+                    float lod3 = cg_cone_surface_level(v, cone, at, state, cell3, span3);
+                    CG_CONE_READ(1);
+                    occupied = textureLod(cg_surface_occupancy, cg_volume_uvw(v, x3), ceil(lod3)).a > 0.0;
+                    if (!occupied) {
+                        was_in3 = true;
+                        dt = cg_cone_surface_gap(state, span3);
+                    }
+#else
+                    occupied = true;
 #endif
+                    if (occupied)
+                        break;
+                } else if (was_in3 || open <= 1e-3 || (tan_half < 1.0 && t > t_far3 / (1.0 - tan_half))) {
+                    live3 = false;  // left the box (the footprint's gap is convex in t), under the
+                                    // terrain, or out of its reach
+                }
+            }
+            if (!in3 && !h.live && !live3)
+                break;
+            if (h.live && (t >= h.next || (in3 && h.covered > 0.0)))
+                terrain_sample(m, p, dir, t, x, d, cell, steep, axis_slope, m_lo, m_hi, h, acc);
+            // Off the box, on to the next terrain sample; a jump never takes the footprint into
+            // the box unseen (its gap shrinks by at most 1 + tan per unit of t).
+            if (!in3) {
+                float jump = h.live ? h.next - t : 1e30;
+                if (live3)
+                    jump = min(jump, max(gap3 / (1.0 + tan_half), march.step * d));
+                dt = max(jump, 1e-4 * d);
+            }
+            t += dt;
+        }
+        if (!occupied)
+            break;
+        // The 3D step on an occupied sample, then the terrain.
         float d = max(2.0 * tan_half * t, xel);
         vec3 x = origin + dir * t;
-        float dt = march.step * d;
-        // The 3D lightmap: cone_gather's step wherever the footprint overlaps its box (eq. 12). The
-        // terrain below the horizon has taken the lower part of the footprint (a disc across the
-        // cone, cut by the horizon's chord): the step samples the open part, at its centroid and
-        // with its area's diameter, so that a cone whose axis has gone under the terrain still
-        // meets what its open part meets (a wall beyond the terrain's end).
-        bool in3 = false;
-        float gap3 = 1e30;
-        if (live3) {
-            // The disc's chord that leaves open what the terrain left of the cell, and the centroid
-            // of the circular segment above it, in radii from the centre (again only when the
-            // terrain covered more).
-            float open = 1.0 - covered;
-            if (covered != chord_of) {
-                float u = disc_chord(covered);
-                lift = u > -1.0 ? (2.0 / 3.0) * pow(1.0 - u * u, 1.5) / (PI * max(open, 1e-6)) : 0.0;
-                chord_of = covered;
-            }
-            vec3 x3 = x + up_across * (lift * 0.5 * d);
-            float d3 = max(d * sqrt(open), xel);
-            // The open segment's top, half a diameter above the axis: while it is in the box, the
-            // open part may still meet what the box holds.
-            vec3 top3 = x + up_across * (0.5 * d);
-            gap3 = footprint_gap(v_lo, v_hi, x3, d3, top3, d);
-            in3 = gap3 < 0.0 && open > 1e-3;
-            if (in3) {
-                was_in3 = true;
-                CgConeSample at = CgConeSample(x3, d3, surface.w + dot(x3 - origin, surface.xyz));
-                dt = cg_cone_step(cg_gather_volume, v, cone, surface, at, v.radiance_scale, state, acc);
-            } else if (was_in3 || open <= 1e-3 || (tan_half < 1.0 && t > t_far3 / (1.0 - tan_half))) {
-                live3 = false;  // left the box (the footprint's gap is convex in t), under the
-                                // terrain, or out of its reach
-            }
-        }
-        // The terrain, every `terrain_step` diameters, and once it covers part of the cone with every
-        // 3D step too, so that the chord the 3D step samples above follows the horizon.
-        if (live2 && (t >= t2 || (in3 && covered > 0.0)) && acc.a < CG_CONE_OPAQUE) {
-            vec2 uv = cg_heightmap_uv(m, x.xz);
-            float next = t + cg_hybrid_gather_block.params.y * d;
-            if (!inside_map(uv)) {
-                // No terrain here: on to where the axis comes over the map, or done.
-                vec2 span = xz_interval(x.xz, dir.xz, m_lo.xz, m_hi.xz);
-                if (!(span.x <= span.y) || span.y < 0.0)
-                    live2 = false;
-                else
-                    next = max(next, t + span.x + 1e-4 * d);
-            } else {
-                float s = length(x.xz - p.xz);
-                if (steep)
-                    s = max(s, 0.5 * d);
-                // The ray at the horizon's elevation: terrain below it raises nothing. Along a block
-                // the axis moves away from p, so the ray is lowest at the block's near side when it
-                // rises and at its far side when it falls.
-                float lod = clamp(level_2d(m, d) + cg_hybrid_gather_block.params.z, 0.0, m.levels - 1.0);
-                int level = int(lod);
-                bool fetch = true;
-                // A cone whose axis is below the horizon may have it under the terrain: no skipping.
-                if (skip && axis_slope >= slope) {
-                    // Maximum-mipmap skipping: the coarsest pyramid block under the axis whose highest
-                    // point stays below that ray is passed in one jump, to where the axis leaves it;
-                    // else the next finer level is tried, down to the level sampled.
-                    k = clamp(k, level, top);
-                    for (;;) {
-                        vec2 size = m.texel * float(1 << k);
-                        vec2 f = (x.xz - m.origin) / size;
-                        int n = max(int(m.resolution) >> k, 1);
-                        ivec2 c = clamp(ivec2(floor(f)), ivec2(0), ivec2(n - 1));
-                        vec2 edge = vec2(dir.x >= 0.0 ? float(c.x + 1) : float(c.x), dir.z >= 0.0 ? float(c.y + 1) : float(c.y));
-                        vec2 rate = dir.xz / size;
-                        vec2 exit = vec2(abs(rate.x) > 1e-20 ? (edge.x - f.x) / rate.x : 1e30,
-                                         abs(rate.y) > 1e-20 ? (edge.y - f.y) / rate.y : 1e30);
-                        float leave = max(min(exit.x, exit.y), 0.0);
-                        float s_ray = slope >= 0.0 ? s : length(x.xz + dir.xz * leave - p.xz);
-                        if (steep)
-                            s_ray = max(s_ray, 0.5 * d);
-                        if (block_max(c, k) > p.y + s_ray * slope) {
-                            if (k == level)
-                                break;
-                            k--;
-                            continue;
-                        }
-                        next = max(next, t + leave + 1e-4 * d);
-                        fetch = false;
-                        k = min(k + 1, top);
-                        break;
-                    }
-                }
-                if (fetch) {
-                    // The texel under the axis, unfiltered: the horizon takes the highest of the
-                    // samples, so a filter would only flatten them, and one fetch is a sixteenth
-                    // of the 3D step's trilinear one.
-                    int n = max(int(m.resolution) >> level, 1);
-                    vec4 texel = texelFetch(u_lightmap, clamp(ivec2(floor(uv * float(n))), ivec2(0), ivec2(n - 1)), level);
-                    if (texel.a - p.y > s * slope) {
-                        // Every direction of the cell below the new horizon meets the terrain here:
-                        // the newly covered share, with the terrain's radiance.
-                        float elevation = atan(texel.a - p.y, s);
-                        float share = cell_below(cell, elevation);
-                        if (share > covered) {
-                            float w = min(share - covered, 1.0 - acc.a);
-                            acc.rgb += w * m.radiance_scale * texel.rgb;
-                            acc.a += w;
-                            covered = share;
-                        }
-                        horizon = elevation;
-                        slope = slope_of(horizon);
-                    }
-                    // The axis under the terrain: the footprint's part below the terrain's height (its
-                    // disc seen across, vertical half extent r cos e) is covered, so that a cone whose
-                    // axis runs into the ground ends there, as the horizon of its one azimuth may not
-                    // tell (a cone wider than the terrain around it, a terrain ending at a wall).
-                    if (texel.a > x.y) {
-                        float across = 0.5 * d * max(horizontal, 1e-3);
-                        float buried = disc_below(clamp((texel.a - x.y) / across, -1.0, 1.0));
-                        if (buried > covered) {
-                            float w = min(buried - covered, 1.0 - acc.a);
-                            acc.rgb += w * m.radiance_scale * texel.rgb;
-                            acc.a += w;
-                            covered = buried;
-                        }
-                    }
-                }
-                // Done once even the highest terrain stays below the horizon's ray, and the ray no
-                // longer falls.
-                if (covered >= 1.0 || (slope >= 0.0 && m.y_max <= p.y + s * slope))
-                    live2 = false;
-            }
-            t2 = next;
-        }
-        // Outside the 3D lightmap, on to the next terrain sample; a jump never takes the footprint
-        // into the box unseen (its gap shrinks by at most 1 + tan per unit of t).
-        if (!in3) {
-            if (!live2 && !live3)
-                break;
-            float jump = live2 ? t2 - t : 1e30;
-            if (live3)
-                jump = min(jump, max(gap3 / (1.0 + tan_half), march.step * d));
-            dt = max(jump, 1e-4 * d);
-        }
+        vec3 x3 = x + up_across * (lift * 0.5 * d);
+        float d3 = max(d * sqrt(1.0 - h.covered), xel);
+        was_in3 = true;
+        CgConeSample at = CgConeSample(x3, d3, surface.w + dot(x3 - origin, surface.xyz));
+        float dt = cg_cone_step(cg_gather_volume, v, cone, surface, at, v.radiance_scale, state, acc);
+        if (h.live && (t >= h.next || h.covered > 0.0) && acc.a < CG_CONE_OPAQUE)
+            terrain_sample(m, p, dir, t, x, d, cell, steep, axis_slope, m_lo, m_hi, h, acc);
         t += dt;
     }
     return acc;
