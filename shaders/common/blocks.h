@@ -111,8 +111,9 @@
 
 /* Quadrature points per cone cell in hybrid_gather's horizon method. */
 #define CG_HYBRID_CELL_POINTS 12
+#define CG_HYBRID_LIFT_POINTS 33
 
-/* hybrid_gather's parameters (passes/hybrid_gather/hybrid_gather.c); 3264 bytes. */
+/* hybrid_gather's parameters (passes/hybrid_gather/hybrid_gather.c); 3408 bytes. */
 #define CG_HYBRID_GATHER_BLOCK(M, A)                                                              \
     M(ivec4, maps)        /* x: a 3D lightmap is bound */                                          \
     M(ivec4, switches)    /* x: eq. 11 (else eq. 10), y: occlusion (0 eq. 16, 1 eq. 17), z: the morphology search, w: skipping */ \
@@ -123,7 +124,8 @@
     M(vec4, box3_lo)      /* xyz: the 3D lightmap's box of eq. 12 (the complex meshes' bounds in the volume) */ \
     M(vec4, box3_hi)                                                                              \
     A(vec4, cell_width, CG_CONE_SET_MAX / 4) /* per cone: the half width (radians) of a quadrature point's band */ \
-    A(vec4, cells, CG_CONE_SET_MAX * CG_HYBRID_CELL_POINTS) /* xyz: tangent-space quadrature points of each cone's cell */
+    A(vec4, cells, CG_CONE_SET_MAX * CG_HYBRID_CELL_POINTS) /* xyz: tangent-space quadrature points of each cone's cell */ \
+    A(vec4, lift, (CG_HYBRID_LIFT_POINTS + 3) / 4) /* the open segment's centroid against (1 - covered)^(2/3) (hybrid_gather.c) */
 
 /* The baked sky (common/sky.glsl), uploaded by cgp_sky_bind (sdk/sky.h); 16 bytes. */
 #define CG_SKY_BLOCK(M, A)                                                                        \
@@ -158,7 +160,7 @@ CG_C_BLOCK(cg_heightmap_block, CG_HEIGHTMAP_BLOCK, 48);
 CG_C_BLOCK(cg_hsat_info_block, CG_HSAT_INFO_BLOCK, 272);
 CG_C_BLOCK(cg_cone_set_block, CG_CONE_SET_BLOCK, 544);
 CG_C_BLOCK(cg_cone_gather_block, CG_CONE_GATHER_BLOCK, 48);
-CG_C_BLOCK(cg_hybrid_gather_block, CG_HYBRID_GATHER_BLOCK, 3264);
+CG_C_BLOCK(cg_hybrid_gather_block, CG_HYBRID_GATHER_BLOCK, 3408);
 CG_C_BLOCK(cg_sky_block, CG_SKY_BLOCK, 16);
 CG_C_BLOCK(cg_voxel_list_block, CG_VOXEL_LIST_BLOCK, 16);
 

@@ -418,21 +418,6 @@ disc_below(float u)
     return clamp(0.5 + (u * sqrt(1.0 - u * u) + asin(u)) / PI, 0.0, 1.0);
 }
 
-// The chord height u (in radii) below which a disc has the share `below` (disc_below's inverse,
-// by Newton's method from the linear guess; f' = 2 sqrt(1 - u^2) / pi).
-float
-disc_chord(float below)
-{
-    if (below <= 0.0)
-        return -1.0;
-    if (below >= 1.0)
-        return 1.0;
-    float u = clamp(2.0 * below - 1.0, -0.999, 0.999);
-    for (int i = 0; i < 4; i++)
-        u = clamp(u - (disc_below(u) - below) * PI / (2.0 * sqrt(max(1.0 - u * u, 1e-6))), -0.9999, 0.9999);
-    return u;
-}
-
 // tan of an elevation, finite.
 float
 slope_of(float elevation)
@@ -567,12 +552,15 @@ terrain_sample(CgHeightmap m, vec3 p, vec3 dir, float t, vec3 x, float d, Cell c
 
 // Where the 3D step samples the part of the footprint the terrain left open (a disc across the
 // cone, cut by the horizon's chord): the centroid of the circular segment above the chord, in
-// radii from the centre up across the cone, for the covered share `covered`.
+// radii from the centre up across the cone, for the covered share `covered`; interpolated in the
+// table hybrid_gather.c computes against w = (1 - covered)^(2/3) (within 6e-4 radii).
 float
 open_lift(float covered)
 {
-    float u = disc_chord(covered);
-    return u > -1.0 ? (2.0 / 3.0) * pow(1.0 - u * u, 1.5) / (PI * max(1.0 - covered, 1e-6)) : 0.0;
+    float x = pow(clamp(1.0 - covered, 0.0, 1.0), 2.0 / 3.0) * float(CG_HYBRID_LIFT_POINTS - 1);
+    int k = min(int(x), CG_HYBRID_LIFT_POINTS - 2);
+    float a = cg_hybrid_gather_block.lift[k / 4][k % 4], b = cg_hybrid_gather_block.lift[(k + 1) / 4][(k + 1) % 4];
+    return mix(a, b, x - float(k));
 }
 
 // One cone: `p` the surface point, `origin` the 3D march's origin (moved off the surface as
