@@ -447,12 +447,12 @@ struct Horizon {
 };
 
 // One terrain sample at distance t along the axis (x, footprint d): the horizon raised by the
-// texel under the axis, its newly covered share composited with the terrain's radiance; or a jump
-// over the coarsest pyramid block that cannot raise the horizon, or to where the axis comes over
-// the map.
+// texel under the axis, its newly covered share composited with the terrain's radiance; or, where
+// `may_skip`, a jump over the coarsest pyramid block that cannot raise the horizon; or a jump to
+// where the axis comes over the map.
 void
 terrain_sample(CgHeightmap m, vec3 p, vec3 dir, float t, vec3 x, float d, Cell cell, bool steep, float axis_slope,
-               vec3 m_lo, vec3 m_hi, inout Horizon h, inout vec4 acc)
+               vec3 m_lo, vec3 m_hi, bool may_skip, inout Horizon h, inout vec4 acc)
 {
     bool skip = cg_hybrid_gather_block.switches.w != 0;
     int top = int(m.levels) - 1;
@@ -479,7 +479,7 @@ terrain_sample(CgHeightmap m, vec3 p, vec3 dir, float t, vec3 x, float d, Cell c
     int level = int(lod);
     bool fetch = true;
     // A cone whose axis is below the horizon may have it under the terrain: no skipping.
-    if (skip && axis_slope >= h.slope) {
+    if (skip && may_skip && axis_slope >= h.slope) {
         // Maximum-mipmap skipping: the coarsest pyramid block under the axis whose highest point
         // stays below that ray is passed in one jump, to where the axis leaves it; else the next
         // finer level is tried, down to the level sampled.
@@ -650,8 +650,13 @@ trace_horizon(vec3 p, vec3 origin, vec3 dir, float tan_half, float t_start, floa
             }
             if (!in3 && !h.live && !live3)
                 break;
+            // Inside the 3D box the 3D steps pace the march and the terrain is sampled at nearly
+            // every one of them: a skip there would only let a few of those steps pass without a
+            // sample, and its descent through the pyramid costs a read a level at every step
+            // (on builtin:openworld 7% of the gather, docs/hybrid.md). So the pyramid skips off
+            // the box only.
             if (h.live && (t >= h.next || (in3 && h.covered > 0.0)))
-                terrain_sample(m, p, dir, t, x, d, cell, steep, axis_slope, m_lo, m_hi, h, acc);
+                terrain_sample(m, p, dir, t, x, d, cell, steep, axis_slope, m_lo, m_hi, !in3, h, acc);
             // Off the box, on to the next terrain sample; a jump never takes the footprint into
             // the box unseen (its gap shrinks by at most 1 + tan per unit of t).
             if (!in3) {
@@ -673,7 +678,7 @@ trace_horizon(vec3 p, vec3 origin, vec3 dir, float tan_half, float t_start, floa
         CgConeSample at = CgConeSample(x3, d3, surface.w + dot(x3 - origin, surface.xyz));
         float dt = cg_cone_step(cg_gather_volume, v, cone, surface, at, v.radiance_scale, state, acc);
         if (h.live && (t >= h.next || h.covered > 0.0) && acc.a < CG_CONE_OPAQUE)
-            terrain_sample(m, p, dir, t, x, d, cell, steep, axis_slope, m_lo, m_hi, h, acc);
+            terrain_sample(m, p, dir, t, x, d, cell, steep, axis_slope, m_lo, m_hi, false, h, acc);
         t += dt;
     }
     return acc;
