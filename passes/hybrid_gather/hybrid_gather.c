@@ -70,7 +70,8 @@ static const fg_param_desc hybrid_gather_params[] = {
              "empty space around them) or the whole volume (a volume of all meshes)" },
     { .name = "skip", .type = FG_PARAM_BOOL, .default_value = 1,
       .doc = "skip empty space over the terrain: paper: a cube above the highest terrain under it (HSAT, VI.A); "
-             "horizon: every block of the min-max pyramid that cannot raise the horizon, hierarchically" },
+             "horizon: every block of the min-max pyramid that cannot raise the horizon, hierarchically, off "
+             "the 3D lightmap's box (inside it the 3D steps pace the march)" },
     { .name = "terrain_step", .type = FG_PARAM_FLOAT, .default_value = 0.25, .min = 0.05, .max = 4,
       .active_when = "method=horizon",
       .doc = "spacing of the terrain samples as a fraction of the cone diameter" },
