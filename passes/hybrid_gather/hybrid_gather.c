@@ -20,6 +20,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "sdk/blocks.h"
 #include "sdk/pass.h"
@@ -123,6 +124,7 @@ typedef struct hybrid_gather_state {
     GLuint empty_block;     /* bound where a map is absent, so no block is left unbound */
     bool has_2d, has_3d;
     cg_hybrid_gather_block block;   /* 3 KiB: kept here rather than on the stack */
+    cg_block_vec4 lift[(CG_HYBRID_LIFT_POINTS + 3) / 4];  /* lift_table(), made at prepare */
 } hybrid_gather_state;
 
 static bool
@@ -225,7 +227,7 @@ disc_below(double u)
  * linear in c as c -> 0): CG_HYBRID_LIFT_POINTS points, w = k / (n - 1), u by bisection; the
  * shader interpolates linearly, within 6e-4 radii of the exact centroid. */
 static void
-lift_table(cg_hybrid_gather_block *b)
+lift_table(cg_block_vec4 *table)
 {
     for (int k = 0; k < CG_HYBRID_LIFT_POINTS; k++) {
         double w = (double)k / (CG_HYBRID_LIFT_POINTS - 1), open = pow(w, 1.5), lift = 1.0;
@@ -243,7 +245,7 @@ lift_table(cg_hybrid_gather_block *b)
             double u = 0.5 * (lo + hi);
             lift = (2.0 / 3.0) * pow(1.0 - u * u, 1.5) / (M_PI * open);
         }
-        b->lift[k / 4][k % 4] = (float)lift;
+        table[k / 4][k % 4] = (float)lift;
     }
 }
 
@@ -252,6 +254,7 @@ hybrid_gather_prepare(fg_pass *pass, hybrid_gather_state *s, cg_error *err)
 {
     s->has_3d = fg_input_present(pass, "volume");
     s->has_2d = fg_input_present(pass, "lightmap2d");
+    lift_table(s->lift);
     /* The cube-centre sample (dda = false) reads the 2D lightmap filtered; the DDA and HSAT fetch. */
     s->map_sampler = cgp_sampler_lightmap2d(s);
     s->table_sampler = cgp_sampler_table(s);
@@ -282,7 +285,7 @@ hybrid_gather_execute(fg_pass *pass, hybrid_gather_state *s, cg_error *err)
                    fg_param_float(pass, "terrain_lod_bias")},
     };
     cell_points(&s->gather.set, block);
-    lift_table(block);
+    memcpy(block->lift, s->lift, sizeof s->lift);
     /* Eq. 12's box: the complex meshes' bounds; the shader keeps its part inside the volume. */
     double lo[3] = { -1e30, -1e30, -1e30 }, hi[3] = { 1e30, 1e30, 1e30 };
     if (fg_param_enum(pass, "box3d") == BOX_MESHES && !cgp_mesh_bounds(fg_pass_frame(pass)->scene, CG_MESHES_COMPLEX, lo, hi))
