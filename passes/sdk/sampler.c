@@ -16,22 +16,26 @@ new_sampler(void *state, GLint min_filter, GLint mag_filter, GLint wrap, int dim
     return cgp_own(state, CGP_GL_SAMPLER, sampler);
 }
 
-GLuint
-cgp_sampler_volume(void *state)
+/* A volume sampler that reads empty space (0) outside the volume. */
+static GLuint
+volume_sampler(void *state, GLenum min_filter)
 {
-    GLuint sampler = new_sampler(state, GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR, GL_CLAMP_TO_BORDER, 3);
+    GLuint sampler = new_sampler(state, min_filter, GL_LINEAR, GL_CLAMP_TO_BORDER, 3);
     const float border[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     glSamplerParameterfv(sampler, GL_TEXTURE_BORDER_COLOR, border);
     return sampler;
 }
 
 GLuint
+cgp_sampler_volume(void *state)
+{
+    return volume_sampler(state, GL_LINEAR_MIPMAP_LINEAR);
+}
+
+GLuint
 cgp_sampler_volume_one_level(void *state)
 {
-    GLuint sampler = new_sampler(state, GL_LINEAR_MIPMAP_NEAREST, GL_LINEAR, GL_CLAMP_TO_BORDER, 3);
-    const float border[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-    glSamplerParameterfv(sampler, GL_TEXTURE_BORDER_COLOR, border);
-    return sampler;
+    return volume_sampler(state, GL_LINEAR_MIPMAP_NEAREST);
 }
 
 GLuint
