@@ -437,9 +437,8 @@ footprint_gap(vec3 lo, vec3 hi, vec3 x3, float d3, vec3 top, float d)
 
 // What the terrain walk carries from one sample to the next.
 struct Horizon {
-    float elevation;    // the running horizon's elevation
-    float slope;        // its tan, compared with the terrain's rise over the distance, so that the
-                        // elevation is computed only where the horizon rises
+    float slope;        // the tan of the running horizon's elevation, compared with the terrain's
+                        // rise over the distance, so that an elevation is computed only where it rises
     float covered;      // the cosine-weighted share of the cone's cell the terrain has covered
     float next;         // where the next terrain sample is due
     int level;          // the pyramid level the skipping tries first
@@ -526,7 +525,6 @@ terrain_sample(CgHeightmap m, vec3 p, vec3 dir, float t, vec3 x, float d, Cell c
                 acc.a += w;
                 h.covered = share;
             }
-            h.elevation = elevation;
             h.slope = slope_of(elevation);
         }
         // The axis under the terrain: the footprint's part below the terrain's height (its disc seen
@@ -601,7 +599,7 @@ trace_horizon(vec3 p, vec3 origin, vec3 dir, float tan_half, float t_start, floa
     up_across = dot(up_across, up_across) > 1e-12 ? normalize(up_across) : vec3(1.0, 0.0, 0.0);
     vec4 acc = vec4(0.0);
     CgConeState state = cg_cone_state();    // what one 3D step tells the next (cg_cone_step)
-    Horizon h = Horizon(cell.lowest, slope_of(cell.lowest), 0.0, t_start, int(m.levels) - 1, true);
+    Horizon h = Horizon(slope_of(cell.lowest), 0.0, t_start, int(m.levels) - 1, true);
     float chord_of = 0.0, lift = 0.0;
     float axis_slope = dir.y / max(horizontal, 1e-6);
     bool live3 = has_3d(), was_in3 = false;
