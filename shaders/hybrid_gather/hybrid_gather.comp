@@ -607,10 +607,14 @@ trace_horizon(vec3 p, vec3 origin, vec3 dir, float tan_half, float t_start, floa
     // The farthest point of the 3D lightmap's box: past t_far3 / (1 - tan) a footprint cannot reach it.
     float t_far3 = length(max(abs(v_lo - origin), abs(v_hi - origin)));
     for (int i = 0; i < 4096 && t < t_max && acc.a < CG_CONE_OPAQUE && (live3 || h.live); i++) {
+        // The step the inner loop stops at: its axis point, diameter and 3D sample.
         bool occupied = false;
+        float d;
+        vec3 x;
+        CgConeSample at;
         for (; i < 4096 && t < t_max && acc.a < CG_CONE_OPAQUE; i++) {
-            float d = max(2.0 * tan_half * t, xel);
-            vec3 x = origin + dir * t;
+            d = max(2.0 * tan_half * t, xel);
+            x = origin + dir * t;
             float dt = 0.0, gap3 = 1e30;
             bool in3 = false;
             if (live3) {
@@ -626,8 +630,8 @@ trace_horizon(vec3 p, vec3 origin, vec3 dir, float tan_half, float t_start, floa
                 gap3 = footprint_gap(v_lo, v_hi, x3, d3, x + up_across * (0.5 * d), d);
                 in3 = gap3 < 0.0 && open > 1e-3;
                 if (in3) {
+                    at = CgConeSample(x3, d3, surface.w + dot(x3 - origin, surface.xyz));
 #ifdef CG_CONE_SURFACE
-                    CgConeSample at = CgConeSample(x3, d3, surface.w + dot(x3 - origin, surface.xyz));
                     float cell3, span3;
                     float lod3 = cg_cone_surface_level(v, cone, at, state, cell3, span3);
                     CG_CONE_READ(1);
@@ -667,13 +671,8 @@ trace_horizon(vec3 p, vec3 origin, vec3 dir, float tan_half, float t_start, floa
         }
         if (!occupied)
             break;
-        // The 3D step on an occupied sample, then the terrain.
-        float d = max(2.0 * tan_half * t, xel);
-        vec3 x = origin + dir * t;
-        vec3 x3 = x + up_across * (lift * 0.5 * d);
-        float d3 = max(d * sqrt(1.0 - h.covered), xel);
+        // The 3D step on the occupied sample, then the terrain.
         was_in3 = true;
-        CgConeSample at = CgConeSample(x3, d3, surface.w + dot(x3 - origin, surface.xyz));
         float dt = cg_cone_step(cg_gather_volume, v, cone, surface, at, v.radiance_scale, state, acc);
         if (h.live && (t >= h.next || h.covered > 0.0) && acc.a < CG_CONE_OPAQUE)
             terrain_sample(m, p, dir, t, x, d, cell, steep, axis_slope, m_lo, m_hi, false, h, acc);
