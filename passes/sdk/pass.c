@@ -172,6 +172,17 @@ cgp_buffer_desc(size_t bytes)
     return (fg_resource_desc){.kind = FG_BUFFER, .depth = 1, .levels = 1, .buffer_bytes = bytes};
 }
 
+int
+cgp_volume_levels(int width, int height, int depth)
+{
+    int levels = 1;
+    while (width > 1 && height > 1 && depth > 1 && width % 2 == 0 && height % 2 == 0 && depth % 2 == 0) {
+        width /= 2, height /= 2, depth /= 2;
+        levels++;
+    }
+    return levels;
+}
+
 void
 cgp_dispatch_2d(int width, int height)
 {

@@ -134,6 +134,10 @@ fg_resource_desc cgp_image_2d(GLenum format, int width, int height);
 fg_resource_desc cgp_image_like(const fg_pass *pass, const fg_resource_desc *like, GLenum format);
 /* A buffer of `bytes`. */
 fg_resource_desc cgp_buffer_desc(size_t bytes);
+/* Mip levels of a 3D lightmap of width x height x depth voxels: level 0 and every level at which
+ * all three sides still halve exactly, so that each voxel of a level is 2 x 2 x 2 voxels of the one
+ * below (a cube of 2^n: n + 1 levels, the full chain; a box such as 128 x 32 x 80: 5). */
+int cgp_volume_levels(int width, int height, int depth);
 
 /* glDispatchCompute over width x height invocations in groups of 8 x 8 (local_size 8 x 8). */
 void cgp_dispatch_2d(int width, int height);

@@ -3,7 +3,7 @@
  *
  * Inputs: albedo, coverage, normal, emission and region of a voxelize pass with model = surface
  * (required); shadow and shadow_matrix of a shadow_map pass (optional, together).
- * Outputs, 3D RGBA16F, voxelize's resolution, full mip chains:
+ * Outputs, 3D RGBA16F, voxelize's voxels (a cube or a box), its mip chains (cgp_volume_levels):
  *   radiance  (w L_lit, w), w = alpha_x + alpha_y + alpha_z: the lit side's radiance premultiplied by
  *             the voxel's coverage sum (shaders/voxel_light/inject.comp)
  *   sides     (w beta, w delta, 0, alpha_y): the other side's luminance fraction, the plane offset
@@ -72,9 +72,9 @@ typedef struct voxel_light_state {
 /* Entries of the list of occupied voxels: a quarter of the volume, far beyond what surfaces
  * occupy (a plane across a 128^3 volume takes 1 to 3 percent of it). */
 static GLuint
-list_capacity(int resolution)
+list_capacity(const fg_resource_desc *volume)
 {
-    return (GLuint)((size_t)resolution * (size_t)resolution * (size_t)resolution / 4);
+    return (GLuint)((size_t)volume->width * (size_t)volume->height * (size_t)volume->depth / 4);
 }
 
 /* Whether any mesh that a voxelize pass may have voxelized emits (emission in the volume), or a
@@ -120,20 +120,21 @@ voxel_light_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
         return true;
     for (int i = 0; i < 4; i++)
         if (geometry[i]->format != geometry_formats[i] || geometry[i]->width != geometry[0]->width ||
-            geometry[i]->height != geometry[0]->width || geometry[i]->depth != geometry[0]->width)
+            geometry[i]->height != geometry[0]->height || geometry[i]->depth != geometry[0]->depth)
             return cg_fail(err, CG_ERR_GRAPH_INCOMPATIBLE,
-                           "pass '%s': input '%s' is not a voxelize pass's output of model surface (a cube "
-                           "of its format): connect albedo, coverage, normal and emission of one voxelize pass",
+                           "pass '%s': input '%s' is not a voxelize pass's output of model surface (a volume "
+                           "of its format, the size of the others): connect albedo, coverage, normal and emission "
+                           "of one voxelize pass",
                            fg_pass_name(pass), geometry_names[i]);
     if (region->buffer_bytes < sizeof(cg_volume_block))
         return cg_fail(err, CG_ERR_GRAPH_INCOMPATIBLE,
                        "pass '%s': input 'region' holds %zu bytes; a voxelize 'region' holds %zu",
                        fg_pass_name(pass), region->buffer_bytes, sizeof(cg_volume_block));
-    int resolution = geometry[0]->width;
+    const fg_resource_desc *g = geometry[0];
     fg_resource_desc light = {
         .kind = FG_TEXTURE_3D, .format = GL_RGBA16F,
-        .width = resolution, .height = resolution, .depth = resolution,
-        .levels = fg_mip_levels(resolution, resolution, resolution), .gi = true,
+        .width = g->width, .height = g->height, .depth = g->depth,
+        .levels = cgp_volume_levels(g->width, g->height, g->depth), .gi = true,
     };
     for (int i = 0; i < 3; i++)
         fg_declare_output(decl, light_names[i], &light, FG_ACCESS_IMAGE_STORE);
@@ -142,7 +143,7 @@ voxel_light_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
         gathered.levels = 1;
         fg_declare_output(decl, "gathered_front", &gathered, FG_ACCESS_IMAGE_STORE);
         fg_declare_output(decl, "gathered_back", &gathered, FG_ACCESS_IMAGE_STORE);
-        fg_resource_desc list = cgp_buffer_desc(sizeof(cg_voxel_list_block) + sizeof(GLuint) * list_capacity(resolution));
+        fg_resource_desc list = cgp_buffer_desc(sizeof(cg_voxel_list_block) + sizeof(GLuint) * list_capacity(g));
         list.gi = true;
         fg_declare_output(decl, "voxels", &list, FG_ACCESS_STORAGE | FG_ACCESS_TRANSFER);
     }
@@ -169,38 +170,36 @@ voxel_light_prepare(fg_pass *pass, voxel_light_state *s, cg_error *err)
 
 /* Level 0 of the three volumes. */
 static void
-inject(const fg_pass *pass, const voxel_light_state *s, int resolution, bool direct, bool gathered, bool build_list)
+inject(const fg_pass *pass, const voxel_light_state *s, bool direct, bool gathered, bool build_list)
 {
     glUseProgram(s->inject);
     glUniform1i(4, direct);
     glUniform1i(1, gathered);
     glUniform1i(2, build_list);
-    glUniform1ui(3, s->gathers ? list_capacity(resolution) : 0u);
+    const fg_resource_desc *volume = fg_resource(pass, "radiance");
+    glUniform1ui(3, s->gathers ? list_capacity(volume) : 0u);
     for (int i = 0; i < 3; i++)
         glBindImageTexture((GLuint)i, fg_texture(pass, light_names[i]), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    GLuint groups = (GLuint)((resolution + 3) / 4);
-    glDispatchCompute(groups, groups, groups);
+    glDispatchCompute((GLuint)(volume->width + 3) / 4, (GLuint)(volume->height + 3) / 4, (GLuint)(volume->depth + 3) / 4);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT |
                     GL_COMMAND_BARRIER_BIT);
 }
 
 /* Levels 1.. of the three volumes from level 0. */
 static void
-mip(const fg_pass *pass, const voxel_light_state *s, int resolution)
+mip(const fg_pass *pass, const voxel_light_state *s)
 {
     glUseProgram(s->mip);
-    int levels = fg_resource(pass, "radiance")->levels;
-    for (int level = 1; level < levels; level++) {
-        int size = resolution >> level;
-        if (size < 1)
-            size = 1;
+    const fg_resource_desc *volume = fg_resource(pass, "radiance");
+    for (int level = 1; level < volume->levels; level++) {
         for (int i = 0; i < 3; i++) {
             GLuint tex = fg_texture(pass, light_names[i]);
             glBindImageTexture((GLuint)i, tex, level - 1, GL_TRUE, 0, GL_READ_ONLY, GL_RGBA16F);
             glBindImageTexture(3 + (GLuint)i, tex, level, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
         }
-        GLuint groups = (GLuint)((size + 3) / 4);
-        glDispatchCompute(groups, groups, groups);
+        /* cgp_volume_levels: every side halves exactly. */
+        glDispatchCompute((GLuint)((volume->width >> level) + 3) / 4, (GLuint)((volume->height >> level) + 3) / 4,
+                          (GLuint)((volume->depth >> level) + 3) / 4);
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     }
     for (int i = 0; i < 6; i++)
@@ -209,10 +208,10 @@ mip(const fg_pass *pass, const voxel_light_state *s, int resolution)
 
 /* Each listed voxel's gathered light on both sides, through the current volumes. */
 static void
-gather(const fg_pass *pass, const voxel_light_state *s, int resolution)
+gather(const fg_pass *pass, const voxel_light_state *s)
 {
     glUseProgram(s->gather);
-    glUniform1ui(3, list_capacity(resolution));
+    glUniform1ui(3, list_capacity(fg_resource(pass, "radiance")));
     glBindTextureUnit(CG_UNIT_VOLUME, fg_texture(pass, "radiance"));
     glBindTextureUnit(CG_UNIT_SIDES, fg_texture(pass, "sides"));
     glBindTextureUnit(CG_UNIT_NORMALS, fg_texture(pass, "normals"));
@@ -251,7 +250,6 @@ static bool
 voxel_light_execute(fg_pass *pass, voxel_light_state *s, cg_error *err)
 {
     const fg_frame *frame = fg_pass_frame(pass);
-    int resolution = fg_resource(pass, "radiance")->width;
     int bounces = fg_param_int(pass, "bounces");
     glBindBufferBase(GL_UNIFORM_BUFFER, CG_BINDING_VOLUME, fg_buffer(pass, "region"));
     cg_gpu_scene_bind_lights(frame->gpu_scene);
@@ -268,8 +266,8 @@ voxel_light_execute(fg_pass *pass, voxel_light_state *s, cg_error *err)
     int count = s->gathers ? gathers(pass) : 0;
     bool skip_first = bounces > 0 && count < bounces;
     bind_inject_inputs(pass, s);
-    inject(pass, s, resolution, skip_first, false, s->gathers);
-    mip(pass, s, resolution);
+    inject(pass, s, skip_first, false, s->gathers);
+    mip(pass, s);
     /* What a cone of a gather at the voxels leaves open sees the sky, as the screen's gather. */
     if (count > 0) {
         if (!cgp_sky_update(s, &s->sky, frame->scene, err))
@@ -277,10 +275,10 @@ voxel_light_execute(fg_pass *pass, voxel_light_state *s, cg_error *err)
         cgp_sky_bind(&s->sky);
     }
     for (int b = 0; b < count; b++) {
-        gather(pass, s, resolution);
+        gather(pass, s);
         bind_inject_inputs(pass, s);
-        inject(pass, s, resolution, true, true, false);
-        mip(pass, s, resolution);
+        inject(pass, s, true, true, false);
+        mip(pass, s);
     }
     if (count > 0)
         cgp_sky_unbind();

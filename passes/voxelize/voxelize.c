@@ -1,11 +1,13 @@
-/* passes/voxelize: the scene voxelized into a cubic volume (VCT paper 3.1), in one of two models.
+/* passes/voxelize: the scene voxelized into a cubic volume (VCT paper 3.1), or with fit = box (model
+ * surface) into a box of the same voxels that holds only what the bounds need, in one of two models.
  *
  * model = radiance (the VCT paper's): the scene's direct light in a 3D lightmap.
  *   radiance      3D, resolution^3, RGBA16F or RGBA8, full mip chain declared (mip3d fills
  *                 levels 1..): premultiplied outgoing diffuse radiance (direct light, shadowed
  *                 through the optional shadow map, plus emission) and opacity in alpha.
  * model = surface (docs/vct.md, "surface voxels"): the geometry alone, level 0, which a voxel_light
- *   pass lights (it reads no light, so it can be kept while the light changes):
+ *   pass lights (it reads no light, so it can be kept while the light changes); resolution^3, or
+ *   with fit = box dims x, y, z (box_dims; each side resolution at most):
  *   albedo        RGBA8: mean albedo of the voxel's fragments, a = 1 where a surface is.
  *   coverage      RGBA8: per axis i, the largest |n_i| / |n|_1 of its fragments' planes, rounded up
  *                 to the next 1/255: the coverage a path along axis i meets crossing them.
@@ -17,8 +19,8 @@
  * Both models:
  *   region        std140 block CG_VOLUME_BLOCK (common/blocks.h) for common/volume.glsl: where
  *                 the volume lies and how its values decode (consumers bind it at CG_BINDING_VOLUME).
- *   accumulation  3D R32UI, resolution^2 x 4 resolution (surface model: 2 resolution x 2 resolution x
- *                 4 resolution, 14 of its 16 slabs used): the fixed-point sums and counts
+ *   accumulation  3D R32UI, resolution^2 x 4 resolution (surface model: 2 x 2 x 4 slabs of the
+ *                 volume's size, 14 of its 16 used): the fixed-point sums and counts
  *                 of the fragments (shaders/voxelize/voxelize.frag), transient working memory,
  *                 declared so that the memory report counts it.
  * Inputs (optional, together, model = radiance): shadow (depth) and shadow_matrix (buffer) of a
@@ -82,6 +84,7 @@ enum { MODEL_RADIANCE, MODEL_SURFACE };
 /* The surface model's pre-exposure over sdk/radiance.h's (voxelize_execute). */
 #define SURFACE_PRE_EXPOSURE 32.0
 enum { REGION_MESHES, REGION_SCENE, REGION_EXPLICIT };
+enum { FIT_CUBE, FIT_BOX };
 
 static const fg_param_desc voxelize_params[] = {
     { .name = "model", .type = FG_PARAM_ENUM, .default_value = MODEL_RADIANCE, .choices = "radiance|surface",
@@ -90,7 +93,13 @@ static const fg_param_desc voxelize_params[] = {
              "coverage, emission), lit by a voxel_light pass (docs/vct.md)" },
     { .name = "resolution", .type = FG_PARAM_INT, .default_value = 128, .min = 16, .max = 512,
       .power_of_two = true,
-      .doc = "voxels per edge of the cubic volume at level 0" },
+      .doc = "voxels along the volume's longest side at level 0 (every side of a cube)" },
+    { .name = "fit", .type = FG_PARAM_ENUM, .default_value = FIT_CUBE, .choices = "cube|box",
+      .active_when = "model=surface",
+      .doc = "cube: a cube of resolution^3 voxels (VCT paper 3.1); box: the same voxels, each side only as "
+             "long as the bounds and the padding need, in whole blocks of B voxels (B a power of two: the "
+             "shortest side's need, at least resolution / 8), with log2(B) + 1 mip levels: a town of low "
+             "buildings in a fraction of the cube's memory (docs/hybrid.md)" },
     { .name = "format", .type = FG_PARAM_ENUM, .default_value = FORMAT_RGBA16F, .choices = "rgba8|rgba16f",
       .active_when = "model=radiance",
       .doc = "texel format: rgba8 as in the VCT paper (radiance over the volume's maximum) or rgba16f" },
@@ -135,10 +144,12 @@ static const fg_param_desc voxelize_params[] = {
              "paper's rebuild)" },
 };
 
-/* Where the volume lies: a cube. */
+/* Where the volume lies: dims voxels along x, y, z (all resolution for a cube), each a cube of
+ * edge `voxel`, from `origin`. */
 typedef struct voxel_region {
     double origin[3];
     double voxel;
+    int dims[3];
 } voxel_region;
 
 /* Voxels [lo, hi) of the volume, per axis. */
@@ -160,7 +171,7 @@ typedef struct mesh_chunks {
 /* Beside the instances, what the surface model's voxelization reads (compared by value). */
 typedef struct surface_build {
     voxel_region region;
-    int resolution, conservative;
+    int conservative;
     double unit_fixed, emission_fixed, radiance_scale;
 } surface_build;
 
@@ -196,15 +207,44 @@ typedef struct voxelize_state {
     int range_cap;
 } voxelize_state;
 
-/* The cube the volume covers; false when there is nothing to voxelize. The parameters met
- * their table (max_* > min_*, padding below a quarter of the resolution) before declare(). */
-static bool
-voxelize_region(const fg_pass *pass, const cg_scene *scene, voxel_region *out)
+/* The sides of a `fit = box` volume: with `voxel` the cube's voxel (the longest side's bounds and
+ * padding in `resolution` voxels), side k needs need_k = its bounds / voxel + 2 padding voxels (at
+ * least one voxel between the paddings); each side is the smallest multiple of a block of B voxels
+ * that holds its need, B the largest power of two at most the shortest need, at least
+ * resolution / 8 and at most resolution. A cube's bounds give the cube (B = resolution). */
+static void
+box_dims(int resolution, double padding, const double extent[3], double voxel, int dims[3])
 {
+    double need[3], shortest = resolution;
+    for (int k = 0; k < 3; k++) {
+        need[k] = fmax(extent[k] / voxel + 2.0 * padding, 2.0 * padding + 1.0);
+        shortest = fmin(shortest, need[k]);
+    }
+    int block = resolution / 8;
+    while (block * 2 <= shortest && block * 2 <= resolution)
+        block *= 2;
+    for (int k = 0; k < 3; k++) {
+        /* The longest side's need is resolution up to rounding: never more than resolution. */
+        int blocks = (int)ceil(need[k] / block - 1e-9);
+        dims[k] = blocks * block < resolution ? blocks * block : resolution;
+    }
+}
+
+/* The volume over the meshes `meshes` keeps (or the region's bounds); false when there is nothing
+ * to voxelize. `dims`: the sides the volume was declared with (execute), or NULL to size it
+ * (declare). Voxels are cubes (VCT paper 3.1); the padding is in voxels. With declared sides the
+ * voxel grows, should the bounds have outgrown them since (a moved instance), so that the volume
+ * still holds them. The parameters met their table (max_* > min_*, padding below a quarter of the
+ * resolution) before declare(). */
+static bool
+voxelize_region(const fg_pass *pass, const cg_scene *scene, const int *dims, voxel_region *out)
+{
+    memset(out, 0, sizeof *out);    /* surface_build compares regions with memcmp */
     int mode = fg_param_enum(pass, "region");
     cg_mesh_filter filter = (cg_mesh_filter)fg_param_enum(pass, "meshes");
     int resolution = fg_param_int(pass, "resolution");
     double padding = fg_param_float(pass, "padding");
+    bool box = fg_param_enum(pass, "model") == MODEL_SURFACE && fg_param_enum(pass, "fit") == FIT_BOX;
     double lo[3], hi[3];
     bool has = cgp_mesh_bounds(scene, filter, lo, hi);
     if (mode == REGION_SCENE) {
@@ -220,15 +260,27 @@ voxelize_region(const fg_pass *pass, const cg_scene *scene, voxel_region *out)
     }
     if (!has)
         return false;
-    double extent = fmax(hi[0] - lo[0], fmax(hi[1] - lo[1], hi[2] - lo[2]));
+    double size[3] = {hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]};
+    double extent = fmax(size[0], fmax(size[1], size[2]));
     if (!(extent > 0.0) || !isfinite(extent)) {
         return false;   /* all geometry in one point: no surface to voxelize */
     }
-    /* Cubic voxels (VCT paper 3.1: the texture must be cubic); the padding is in voxels. */
     double side = extent * resolution / (resolution - 2.0 * padding);
     out->voxel = side / resolution;
+    if (!box) {
+        for (int k = 0; k < 3; k++)
+            out->dims[k] = resolution;
+    } else if (!dims) {
+        box_dims(resolution, padding, size, out->voxel, out->dims);
+    } else {
+        for (int k = 0; k < 3; k++) {
+            out->dims[k] = dims[k];
+            if (dims[k] > 2.0 * padding)
+                out->voxel = fmax(out->voxel, size[k] / (dims[k] - 2.0 * padding));
+        }
+    }
     for (int k = 0; k < 3; k++)
-        out->origin[k] = 0.5 * (lo[k] + hi[k]) - 0.5 * side;
+        out->origin[k] = 0.5 * (lo[k] + hi[k]) - 0.5 * (box ? out->dims[k] * out->voxel : side);
     return true;
 }
 
@@ -241,7 +293,7 @@ voxelize_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
         return false;
 
     voxel_region region;
-    if (!voxelize_region(pass, frame->scene, &region)) {
+    if (!voxelize_region(pass, frame->scene, NULL, &region)) {
         fg_declare_nothing_to_do(decl, "no mesh passes the 'meshes' filter (or all are degenerate)");
         return true;
     }
@@ -255,7 +307,7 @@ voxelize_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
              * it between two frames. */
             fg_resource_desc geometry = {
                 .kind = FG_TEXTURE_3D, .format = formats[i],
-                .width = resolution, .height = resolution, .depth = resolution, .levels = 1, .gi = true,
+                .width = region.dims[0], .height = region.dims[1], .depth = region.dims[2], .levels = 1, .gi = true,
                 .persistent = fg_param_bool(pass, "cache"),
             };
             fg_declare_output(decl, names[i], &geometry, FG_ACCESS_IMAGE_STORE);
@@ -274,7 +326,8 @@ voxelize_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
     fg_declare_output(decl, "region", &block, FG_ACCESS_TRANSFER | FG_ACCESS_STORAGE);
     fg_resource_desc accumulation = {
         .kind = FG_TEXTURE_3D, .format = GL_R32UI,
-        .width = (surface ? 2 : 1) * resolution, .height = (surface ? 2 : 1) * resolution, .depth = 4 * resolution,
+        .width = (surface ? 2 : 1) * region.dims[0], .height = (surface ? 2 : 1) * region.dims[1],
+        .depth = 4 * region.dims[2],
         .levels = 1,
         .gi = true,
     };
@@ -457,7 +510,7 @@ build_chunks(voxelize_state *s, const fg_frame *frame, cg_error *err)
 /* The voxels a local box (lo, hi) under `world` may write, grown by a voxel on every side (a
  * triangle reaches the voxels within a hair of its box), clipped to the volume. */
 static voxel_box
-box_voxels(const voxel_region *region, int resolution, const float world[16], const float lo[3], const float hi[3])
+box_voxels(const voxel_region *region, const float world[16], const float lo[3], const float hi[3])
 {
     double wlo[3] = {INFINITY, INFINITY, INFINITY}, whi[3] = {-INFINITY, -INFINITY, -INFINITY};
     for (int c = 0; c < 8; c++) {
@@ -473,10 +526,17 @@ box_voxels(const voxel_region *region, int resolution, const float world[16], co
     for (int k = 0; k < 3; k++) {
         double a = floor((wlo[k] - region->origin[k]) / region->voxel) - 1.0;
         double b = floor((whi[k] - region->origin[k]) / region->voxel) + 2.0;
-        box.lo[k] = (int)fmin(fmax(a, 0.0), (double)resolution);
-        box.hi[k] = (int)fmin(fmax(b, 0.0), (double)resolution);
+        box.lo[k] = (int)fmin(fmax(a, 0.0), (double)region->dims[k]);
+        box.hi[k] = (int)fmin(fmax(b, 0.0), (double)region->dims[k]);
     }
     return box;
+}
+
+/* Voxels of the whole volume. */
+static double
+volume_voxels(const voxel_region *region)
+{
+    return (double)region->dims[0] * region->dims[1] * region->dims[2];
 }
 
 static bool
@@ -505,7 +565,7 @@ box_voxel_count(const voxel_box *b)
  * that would draw its neighbours twice). False when a slot's mesh itself changed: its chunks
  * would be stale, and only a whole rebuild is right. */
 static bool
-changed_regions(voxelize_state *s, const cg_scene *scene, const voxel_region *region, int resolution, int changed,
+changed_regions(voxelize_state *s, const cg_scene *scene, const voxel_region *region, int changed,
                 int *box_count)
 {
     int n = 0;
@@ -515,9 +575,9 @@ changed_regions(voxelize_state *s, const cg_scene *scene, const voxel_region *re
         const cg_mesh *mesh = &scene->meshes[inst->mesh];
         if (inst->mesh != kept->mesh || memcmp(mesh, &kept->mesh_data, sizeof *mesh))
             return false;
-        voxel_box before = box_voxels(region, resolution, kept->world, kept->mesh_data.bounds_min,
+        voxel_box before = box_voxels(region, kept->world, kept->mesh_data.bounds_min,
                                       kept->mesh_data.bounds_max);
-        voxel_box after = box_voxels(region, resolution, inst->world, mesh->bounds_min, mesh->bounds_max);
+        voxel_box after = box_voxels(region, inst->world, mesh->bounds_min, mesh->bounds_max);
         if (!box_empty(&before))
             s->boxes[n++] = before;
         if (!box_empty(&after))
@@ -561,7 +621,7 @@ reserve_ranges(voxelize_state *s, int n, cg_error *err)
 /* The mesh of instance `i` when the mesh filter keeps it and its box reaches `box`; else NULL.
  * Both voxelizers redraw exactly these instances. */
 static const cg_mesh *
-instance_in_box(const cg_scene *scene, int i, cg_mesh_filter filter, const voxel_region *region, int resolution,
+instance_in_box(const cg_scene *scene, int i, cg_mesh_filter filter, const voxel_region *region,
                 const voxel_box *box)
 {
     const cg_instance *inst = &scene->instances[i];
@@ -570,7 +630,7 @@ instance_in_box(const cg_scene *scene, int i, cg_mesh_filter filter, const voxel
     const cg_mesh *mesh = &scene->meshes[inst->mesh];
     if (!cgp_mesh_passes(mesh->kind, filter) || mesh->index_count == 0)
         return NULL;
-    voxel_box whole = box_voxels(region, resolution, inst->world, mesh->bounds_min, mesh->bounds_max);
+    voxel_box whole = box_voxels(region, inst->world, mesh->bounds_min, mesh->bounds_max);
     return box_empty(&whole) || !boxes_overlap(&whole, box) ? NULL : mesh;
 }
 
@@ -579,11 +639,11 @@ instance_in_box(const cg_scene *scene, int i, cg_mesh_filter filter, const voxel
  * Returns the triangles drawn through *triangles. */
 static bool
 draw_box(voxelize_state *s, const fg_frame *frame, cg_mesh_filter filter, const voxel_region *region,
-         int resolution, const voxel_box *box, size_t *triangles, cg_error *err)
+         const voxel_box *box, size_t *triangles, cg_error *err)
 {
     const cg_scene *scene = frame->scene;
     for (int i = 0; i < scene->instance_count; i++) {
-        const cg_mesh *mesh = instance_in_box(scene, i, filter, region, resolution, box);
+        const cg_mesh *mesh = instance_in_box(scene, i, filter, region, box);
         if (!mesh)
             continue;
         const cg_instance *inst = &scene->instances[i];
@@ -598,7 +658,7 @@ draw_box(voxelize_state *s, const fg_frame *frame, cg_mesh_filter filter, const 
             return false;
         int ranges = 0;
         for (int k = 0; k < c->count; k++) {
-            voxel_box chunk = box_voxels(region, resolution, inst->world, c->lo[k], c->hi[k]);
+            voxel_box chunk = box_voxels(region, inst->world, c->lo[k], c->hi[k]);
             if (box_empty(&chunk) || !boxes_overlap(&chunk, box))
                 continue;
             if (ranges > 0 && s->range_firsts[ranges - 1] + s->range_counts[ranges - 1] == c->first[k]) {
@@ -618,19 +678,19 @@ draw_box(voxelize_state *s, const fg_frame *frame, cg_mesh_filter filter, const 
 /* voxelizer=compute: every instance's triangles, one invocation each (voxelize_tri.comp). */
 static size_t
 dispatch_triangles(voxelize_state *s, const fg_frame *frame, cg_mesh_filter filter, const voxel_region *region,
-                   int resolution, const voxel_box *box, double unit_fixed, double emission_fixed)
+                   const voxel_box *box, double unit_fixed, double emission_fixed)
 {
     const cg_scene *scene = frame->scene;
     const cg_gpu_scene *gpu = frame->gpu_scene;
     size_t triangles = 0;
     glUseProgram(s->tri_program);
     glUniform4f(8, (float)region->origin[0], (float)region->origin[1], (float)region->origin[2], (float)region->voxel);
-    glUniform1i(9, resolution);
+    glUniform3i(11, region->dims[0], region->dims[1], region->dims[2]);
     glUniform4f(13, (float)unit_fixed, (float)emission_fixed, 0.0f, 0.0f);
     glUniform3i(14, box->lo[0], box->lo[1], box->lo[2]);
     glUniform3i(15, box->hi[0], box->hi[1], box->hi[2]);
     for (int i = 0; i < scene->instance_count; i++) {
-        const cg_mesh *mesh = instance_in_box(scene, i, filter, region, resolution, box);
+        const cg_mesh *mesh = instance_in_box(scene, i, filter, region, box);
         if (!mesh)
             continue;
         const cg_instance *inst = &scene->instances[i];
@@ -651,13 +711,13 @@ dispatch_triangles(voxelize_state *s, const fg_frame *frame, cg_mesh_filter filt
 
 /* The surface model's resolve (shaders/voxelize/resolve.comp) of the voxels of `box`. */
 static void
-resolve_surface(fg_pass *pass, voxelize_state *s, int resolution, const voxel_box *box, double unit_fixed,
+resolve_surface(fg_pass *pass, voxelize_state *s, const voxel_region *region, const voxel_box *box, double unit_fixed,
                 double emission_fixed, double radiance_scale)
 {
     static const char *const names[4] = {"albedo", "coverage", "normal", "emission"};
     static const GLenum formats[4] = {GL_RGBA8, GL_RGBA8, GL_RGBA8_SNORM, GL_RGBA16F};
     glUseProgram(s->resolve);
-    glUniform1i(0, resolution);
+    glUniform3i(7, region->dims[0], region->dims[1], region->dims[2]);
     glUniform4f(4, (float)unit_fixed, (float)emission_fixed, (float)radiance_scale, 0.0f);
     glUniform3i(5, box->lo[0], box->lo[1], box->lo[2]);
     glUniform3i(6, box->hi[0], box->hi[1], box->hi[2]);
@@ -678,8 +738,12 @@ voxelize_execute(fg_pass *pass, voxelize_state *s, cg_error *err)
     const cg_scene *scene = frame->scene;
     cg_mesh_filter filter = (cg_mesh_filter)fg_param_enum(pass, "meshes");
     int resolution = fg_param_int(pass, "resolution");
+    /* The sides declared at compile: the volume's textures are of them. */
+    const fg_resource_desc *accumulation = fg_resource(pass, "accumulation");
+    const int declared[3] = {accumulation->width / (s->surface ? 2 : 1), accumulation->height / (s->surface ? 2 : 1),
+                             accumulation->depth / 4};
     voxel_region region;
-    if (!voxelize_region(pass, scene, &region))
+    if (!voxelize_region(pass, scene, declared, &region))
         return cg_fail(err, CG_ERR_PASS, "pass '%s': the voxelized meshes vanished since compile", fg_pass_name(pass));
     /* Radiance is averaged over voxels: a point light is never nearer than half a voxel. */
     double bound = 0.0;
@@ -713,8 +777,9 @@ voxelize_execute(fg_pass *pass, voxelize_state *s, cg_error *err)
     const cg_volume_block block = {
         .origin_voxel = {(float)region.origin[0], (float)region.origin[1], (float)region.origin[2],
                          (float)region.voxel},
-        .info = {(float)resolution, (float)fg_mip_levels(resolution, resolution, resolution), (float)radiance_scale,
-                 0.0f},
+        .info = {(float)resolution, (float)cgp_volume_levels(region.dims[0], region.dims[1], region.dims[2]),
+                 (float)radiance_scale, 0.0f},
+        .dims = {(float)region.dims[0], (float)region.dims[1], (float)region.dims[2], 0.0f},
     };
     GLuint region_buffer = fg_buffer(pass, "region");
     glNamedBufferSubData(region_buffer, 0, sizeof block, &block);
@@ -723,8 +788,7 @@ voxelize_execute(fg_pass *pass, voxelize_state *s, cg_error *err)
     surface_build build;
     if (s->surface && s->cache) {
         memset(&build, 0, sizeof build);    /* memcmp compares the padding too */
-        build.region = region;
-        build.resolution = resolution;
+        memcpy(&build.region, &region, sizeof region);  /* with its padding, zeroed by voxelize_region */
         build.conservative = fg_param_bool(pass, "conservative");
         build.unit_fixed = unit_fixed;
         build.emission_fixed = emission_fixed;
@@ -769,11 +833,11 @@ voxelize_execute(fg_pass *pass, voxelize_state *s, cg_error *err)
         }
         int changed = 0;
         if (cgp_instances_changed_slots(&s->instances, frame, filter, s->changed, &changed) && changed > 0 &&
-            changed_regions(s, scene, &region, resolution, changed, &box_count)) {
+            changed_regions(s, scene, &region, changed, &box_count)) {
             double voxels = 0.0;
             for (int i = 0; i < box_count; i++)
                 voxels += box_voxel_count(&s->boxes[i]);
-            double share = voxels / ((double)resolution * resolution * resolution);
+            double share = voxels / volume_voxels(&region);
             partial = share <= PARTIAL_LIMIT;
             if (!partial)
                 snprintf(why_full, sizeof why_full, "%s; changed regions %.0f%% of the volume > %.0f%%", why,
@@ -806,7 +870,7 @@ voxelize_execute(fg_pass *pass, voxelize_state *s, cg_error *err)
     cg_gpu_scene_bind_lights(frame->gpu_scene);
     cgp_bind_shadow(pass, &s->no_shadow, 2);
 
-    const voxel_box volume = {{0, 0, 0}, {resolution, resolution, resolution}};
+    const voxel_box volume = {{0, 0, 0}, {region.dims[0], region.dims[1], region.dims[2]}};
     size_t triangles = 0;
     double voxels = 0.0;
     for (int b = 0; b < (partial ? box_count : 1); b++) {
@@ -815,8 +879,9 @@ voxelize_execute(fg_pass *pass, voxelize_state *s, cg_error *err)
             /* The region's sums start from zero in each of the 14 slabs (voxelize.frag's
              * surface_slab); what the accumulation holds elsewhere is never read. */
             for (int k = 0; k < 14; k++)
-                glClearTexSubImage(accum, 0, box->lo[0] + (k & 1) * resolution, box->lo[1] + ((k >> 1) & 1) * resolution,
-                                   box->lo[2] + (k >> 2) * resolution, box->hi[0] - box->lo[0], box->hi[1] - box->lo[1],
+                glClearTexSubImage(accum, 0, box->lo[0] + (k & 1) * region.dims[0],
+                                   box->lo[1] + ((k >> 1) & 1) * region.dims[1], box->lo[2] + (k >> 2) * region.dims[2],
+                                   box->hi[0] - box->lo[0], box->hi[1] - box->lo[1],
                                    box->hi[2] - box->lo[2], GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
             glMemoryBarrier(GL_ALL_BARRIER_BITS);
             voxels += box_voxel_count(box);
@@ -826,6 +891,8 @@ voxelize_execute(fg_pass *pass, voxelize_state *s, cg_error *err)
                     (float)region.voxel);
         glUniform1i(9, resolution);
         glUniform1i(12, fg_param_bool(pass, "conservative") ? 1 : 0);
+        if (s->surface)
+            glUniform3i(11, region.dims[0], region.dims[1], region.dims[2]);
         if (s->surface) {
             glUniform4f(13, (float)unit_fixed, (float)emission_fixed, 0.0f, 0.0f);
             glUniform3i(14, box->lo[0], box->lo[1], box->lo[2]);
@@ -836,16 +903,16 @@ voxelize_execute(fg_pass *pass, voxelize_state *s, cg_error *err)
         glBindImageTexture(0, accum, 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
         if (s->surface && s->compute) {
             /* Whole meshes, the shader clamping each triangle's voxels to the region. */
-            triangles += dispatch_triangles(s, frame, filter, &region, resolution, box, unit_fixed, emission_fixed);
+            triangles += dispatch_triangles(s, frame, filter, &region, box, unit_fixed, emission_fixed);
         } else if (partial) {
-            if (!draw_box(s, frame, filter, &region, resolution, box, &triangles, err))
+            if (!draw_box(s, frame, filter, &region, box, &triangles, err))
                 return false;
         } else {
             triangles += cg_gpu_scene_draw(frame->gpu_scene, filter);
         }
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
         if (s->surface) {
-            resolve_surface(pass, s, resolution, box, unit_fixed, emission_fixed, radiance_scale);
+            resolve_surface(pass, s, &region, box, unit_fixed, emission_fixed, radiance_scale);
             /* The next region clears the accumulation this resolve read. */
             glMemoryBarrier(GL_ALL_BARRIER_BITS);
         }
@@ -866,7 +933,7 @@ voxelize_execute(fg_pass *pass, voxelize_state *s, cg_error *err)
             fg_pass_report_rebuilt(pass, "geometry re-voxelized in part (%s: %d region%s, %.0f voxels (%.2f%%), "
                                    "%zu triangles; builds: %llu whole, %llu partial)",
                                    why, box_count, box_count == 1 ? "" : "s", voxels,
-                                   100.0 * voxels / ((double)resolution * resolution * resolution), triangles,
+                                   100.0 * voxels / volume_voxels(&region), triangles,
                                    (unsigned long long)s->builds, (unsigned long long)s->partial_builds);
             return true;
         }
@@ -911,7 +978,8 @@ voxelize_execute(fg_pass *pass, voxelize_state *s, cg_error *err)
 }
 
 CGP_PASS(voxelize, CGP_PARAMS(voxelize_params),
-         "Voxelizes the scene into a cubic volume (VCT paper 3.1): model radiance, the outgoing "
+         "Voxelizes the scene into a cubic volume (VCT paper 3.1), or (fit=box) a box of the same voxels "
+         "fitted to the bounds: model radiance, the outgoing "
          "diffuse radiance of the direct light (shadowed through the optional shadow map) plus "
          "emission, opacity in alpha; model surface, the geometry a voxel_light pass lights "
          "(albedo, mean normal and plane offset, per-axis coverage, emission). Dominant-axis "

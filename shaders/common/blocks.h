@@ -73,10 +73,12 @@
     M(vec4, light)      /* xyz: towards the light (orthographic) or the light's position */      \
     M(vec4, texel)      /* xy: texel world size along light x, y (orthographic), or per metre of distance */
 
-/* Where a 3D lightmap lies (common/volume.glsl), a voxelize pass's `region`; 32 bytes. */
+/* Where a 3D lightmap lies (common/volume.glsl), a voxelize pass's `region`; 48 bytes. */
 #define CG_VOLUME_BLOCK(M, A)                                                                     \
     M(vec4, origin_voxel) /* xyz: world position of the minimum corner; w: voxel edge at level 0 */ \
-    M(vec4, info)         /* x voxels per edge, y mip levels, z radiance scale (stored x scale = radiance) */
+    M(vec4, info)         /* x voxels along the longest side, y mip levels, z radiance scale */    \
+                          /* (stored x scale = radiance) */                                       \
+    M(vec4, dims)         /* xyz: voxels along x, y, z at level 0 (all equal for a cube) */
 
 /* Where a 2D lightmap lies (common/heightmap.glsl), a heightmap_raster pass's `region`; 48 bytes. */
 #define CG_HEIGHTMAP_BLOCK(M, A)                                                                  \
@@ -155,7 +157,7 @@ typedef float cg_block_mat4[16];    /* column-major, as GLSL reads it */
     _Static_assert(sizeof(name) == (bytes), #name " is " #bytes " bytes")
 
 CG_C_BLOCK(cg_shadow_block, CG_SHADOW_BLOCK, 192);
-CG_C_BLOCK(cg_volume_block, CG_VOLUME_BLOCK, 32);
+CG_C_BLOCK(cg_volume_block, CG_VOLUME_BLOCK, 48);
 CG_C_BLOCK(cg_heightmap_block, CG_HEIGHTMAP_BLOCK, 48);
 CG_C_BLOCK(cg_hsat_info_block, CG_HSAT_INFO_BLOCK, 272);
 CG_C_BLOCK(cg_cone_set_block, CG_CONE_SET_BLOCK, 544);

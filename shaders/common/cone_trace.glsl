@@ -439,7 +439,7 @@ vec4
 cg_cone_trace_surface(sampler3D volume, CgVolume v, CgCone c, vec4 surface)
 {
     vec4 acc = vec4(0.0);
-    float extent = cg_volume_extent(v);
+    vec3 extent = cg_volume_extent(v);
     float t = c.t_start;
     float rise = dot(c.direction, surface.xyz);
     CgConeState state = cg_cone_state();
@@ -466,7 +466,7 @@ cg_cone_trace_surface(sampler3D volume, CgVolume v, CgCone c, vec4 surface)
                 break;
             at = CgConeSample(c.origin + c.direction * t, cg_cone_diameter(c, v, t), surface.w + t * rise);
             uvw = cg_volume_uvw(v, at.position);
-            float reach = 0.5 * at.diameter / extent;
+            vec3 reach = 0.5 * at.diameter / extent;
             done = any(lessThan(uvw, vec3(-reach))) || any(greaterThan(uvw, vec3(1.0 + reach)));
             if (done)
                 break;  // the whole footprint is outside the volume: nothing more to gather
@@ -496,7 +496,7 @@ cg_cone_trace_surface(sampler3D volume, CgVolume v, CgCone c, vec4 surface)
     for (int i = 0; i < 4096 && t < c.t_max && acc.a < CG_CONE_OPAQUE; i++) {
         CgConeSample at = CgConeSample(c.origin + c.direction * t, cg_cone_diameter(c, v, t), surface.w + t * rise);
         vec3 uvw = cg_volume_uvw(v, at.position);
-        float reach = 0.5 * at.diameter / extent;
+        vec3 reach = 0.5 * at.diameter / extent;
         if (any(lessThan(uvw, vec3(-reach))) || any(greaterThan(uvw, vec3(1.0 + reach))))
             break;  // the whole footprint is outside the volume: nothing more to gather
         t += cg_cone_step(volume, v, c, surface, at, 1.0, state, acc);
@@ -525,7 +525,7 @@ cg_cone_origin(CgVolume v, vec3 position, vec3 n, float start_offset)
 float
 cg_cone_reach(CgVolume v, float max_distance)
 {
-    return max_distance > 0.0 ? max_distance : cg_volume_extent(v) * sqrt(3.0);
+    return max_distance > 0.0 ? max_distance : length(cg_volume_extent(v));
 }
 
 // The diffuse gather of one surface point (VCT paper 3.2.1; hybrid eq. 3-4) with the cone set

@@ -11,7 +11,7 @@
 struct CgVolume {
     vec3 origin;          // world position of the volume's minimum corner
     float voxel_size;     // world edge length of a level-0 voxel (voxels are cubes)
-    float resolution;     // voxels per edge at level 0
+    vec3 dims;            // voxels along x, y, z at level 0 (a box; all equal for a cube)
     float levels;         // mip levels present
     float radiance_scale; // stored RGB x radiance_scale = radiance (1 for RGBA16F)
 };
@@ -21,14 +21,15 @@ CG_UNIFORM_BLOCK(CgVolumeBlock, cg_volume_block, CG_BINDING_VOLUME, CG_VOLUME_BL
 CgVolume
 cg_volume()
 {
-    return CgVolume(cg_volume_block.origin_voxel.xyz, cg_volume_block.origin_voxel.w,
-                    cg_volume_block.info.x, cg_volume_block.info.y, cg_volume_block.info.z);
+    return CgVolume(cg_volume_block.origin_voxel.xyz, cg_volume_block.origin_voxel.w, cg_volume_block.dims.xyz,
+                    cg_volume_block.info.y, cg_volume_block.info.z);
 }
 
-float
+// World size of the volume along x, y, z.
+vec3
 cg_volume_extent(CgVolume v)
 {
-    return v.voxel_size * v.resolution;
+    return v.voxel_size * v.dims;
 }
 
 // Normalised texture coordinates of a world position ([0,1]^3 inside the volume).

@@ -70,7 +70,7 @@ main()
 {
     CgVolume vol = cg_volume();
     ivec3 v = ivec3(gl_GlobalInvocationID);
-    if (any(greaterThanEqual(v, ivec3(vol.resolution))))
+    if (any(greaterThanEqual(v, ivec3(vol.dims))))
         return;
     vec4 albedo = texelFetch(u_albedo, v, 0);
     if (albedo.a <= 0.0) {

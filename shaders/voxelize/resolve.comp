@@ -22,7 +22,8 @@ layout(rgba8, binding = 1) writeonly uniform image3D u_albedo;
 layout(rgba8, binding = 2) writeonly uniform image3D u_coverage;
 layout(rgba8_snorm, binding = 3) writeonly uniform image3D u_normal;
 layout(rgba16f, binding = 4) writeonly uniform image3D u_emission;
-layout(location = 0) uniform int u_resolution;
+// The volume's voxels along x, y, z: the size of one slab.
+layout(location = 7) uniform ivec3 u_dims;
 // x: fixed-point units per unit of albedo, normal, offset and coverage; y: per unit of emission;
 // z: the region's radiance scale (pre-exposure, sdk/radiance.h): emission is stored divided by it.
 layout(location = 4) uniform vec4 u_surface_fixed;
@@ -34,8 +35,8 @@ layout(location = 6) uniform ivec3 u_box_hi;
 uint
 slab(ivec3 v, int k)
 {
-    // 2 x 2 x 4 slabs of resolution^3 (voxelize.frag's surface_slab)
-    return imageLoad(u_accum, v + ivec3(k & 1, (k >> 1) & 1, k >> 2) * u_resolution).r;
+    // 2 x 2 x 4 slabs of the volume's size (voxelize.frag's surface_slab)
+    return imageLoad(u_accum, v + ivec3(k & 1, (k >> 1) & 1, k >> 2) * u_dims).r;
 }
 
 void

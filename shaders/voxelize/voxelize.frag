@@ -48,6 +48,8 @@ layout(location = 13) uniform vec4 u_surface_fixed;
 // while the voxels outside it keep what they hold.
 layout(location = 14) uniform ivec3 u_box_lo;
 layout(location = 15) uniform ivec3 u_box_hi;
+// The volume's voxels along x, y, z (a box; resolution^3 for a cube): the size of one slab.
+layout(location = 11) uniform ivec3 u_dims;
 #endif
 
 layout(binding = 2) uniform sampler2D u_shadow_map;
@@ -60,13 +62,15 @@ unswizzle(ivec3 s, int axis)
     return axis == 0 ? s.zxy : axis == 1 ? s.yzx : s;
 }
 
-// Where slab k of the surface model's 14 lies in the accumulation volume, 2 x 2 x 4 slabs of
-// resolution^3 (so that 512^3 fits GL_MAX_3D_TEXTURE_SIZE 2048, which 14 along z would not).
+#ifdef SURFACE
+// Where slab k of the surface model's 14 lies in the accumulation volume, 2 x 2 x 4 slabs of the
+// volume's size (so that 512^3 fits GL_MAX_3D_TEXTURE_SIZE 2048, which 14 along z would not).
 ivec3
 surface_slab(int k)
 {
-    return ivec3(k & 1, (k >> 1) & 1, k >> 2) * u_resolution;
+    return ivec3(k & 1, (k >> 1) & 1, k >> 2) * u_dims;
 }
+#endif
 
 vec3
 unswizzle_vector(vec3 s, int axis)

@@ -14,7 +14,8 @@ layout(std430, binding = 11) readonly buffer CgVoxVertices { float cg_vertices[]
 layout(std430, binding = 12) readonly buffer CgVoxIndices { uint cg_indices[]; };
 layout(r32ui, binding = 0) uniform coherent uimage3D u_accum;
 layout(location = 8) uniform vec4 u_origin_voxel;
-layout(location = 9) uniform int u_resolution;
+// The volume's voxels along x, y, z: the size of one accumulation slab (voxelize.frag's).
+layout(location = 11) uniform ivec3 u_dims;
 layout(location = 13) uniform vec4 u_surface_fixed;
 layout(location = 16) uniform uint u_triangles;
 // The voxels this dispatch may write, [lo, hi): the whole volume or a partial region (as in
@@ -27,7 +28,7 @@ layout(location = 15) uniform ivec3 u_box_hi;
 ivec3
 surface_slab(int k)
 {
-    return ivec3(k & 1, (k >> 1) & 1, k >> 2) * u_resolution;
+    return ivec3(k & 1, (k >> 1) & 1, k >> 2) * u_dims;
 }
 
 void
