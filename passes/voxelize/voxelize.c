@@ -891,9 +891,8 @@ voxelize_execute(fg_pass *pass, voxelize_state *s, cg_error *err)
                     (float)region.voxel);
         glUniform1i(9, resolution);
         glUniform1i(12, fg_param_bool(pass, "conservative") ? 1 : 0);
-        if (s->surface)
-            glUniform3i(11, region.dims[0], region.dims[1], region.dims[2]);
         if (s->surface) {
+            glUniform3i(11, region.dims[0], region.dims[1], region.dims[2]);
             glUniform4f(13, (float)unit_fixed, (float)emission_fixed, 0.0f, 0.0f);
             glUniform3i(14, box->lo[0], box->lo[1], box->lo[2]);
             glUniform3i(15, box->hi[0], box->hi[1], box->hi[2]);
