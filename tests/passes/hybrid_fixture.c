@@ -158,6 +158,27 @@ hf_camera_looking(hf_scene *s, const double eye[3], const double forward[3], con
     s->scene.camera_count = 1;
 }
 
+static double
+town_terrain(double x, double z, const void *user)
+{
+    (void)user;
+    return 0.3 * sin(1.3 * x) * cos(0.9 * z) + 0.05 * x;
+}
+
+void
+hf_town(hf_scene *s, int n, float wall_emission)
+{
+    hf_init(s);
+    hf_material(s, 1, 0.4f, 0.0f);
+    hf_material(s, 2, 0.8f, wall_emission);
+    hf_material(s, 3, 0.6f, 0.0f);
+    hf_grid(s, n, -3.9, -3.9, 7.8, town_terrain, NULL);
+    const double wall[3] = {-1.0, -0.6, 0.2}, wall_e1[3] = {1.3, 0.0, 0.4}, wall_e2[3] = {0.0, 1.7, 0.0};
+    hf_quad(s, wall, wall_e1, wall_e2);
+    const double roof[3] = {1.5, 1.8, -2.5}, roof_e1[3] = {1.5, 0.3, 0.0}, roof_e2[3] = {0.0, 0.2, 1.2};
+    hf_quad(s, roof, roof_e1, roof_e2);
+}
+
 void
 hf_finish(hf_scene *s)
 {

@@ -33,6 +33,11 @@ void hf_quad(hf_scene *s, const double corner[3], const double e1[3], const doub
 void hf_sun(hf_scene *s, const double direction[3], float irradiance);
 /* A perspective camera at `eye` looking along `forward` with `up`, vertical field of view yfov. */
 void hf_camera_looking(hf_scene *s, const double eye[3], const double forward[3], const double up[3], float yfov);
+/* A small town (the voxelize tests'): hf_init, then a rolling terrain of n x n quads over
+ * [-3.9, 3.9]^2 (albedo 0.4), a wall standing on it (albedo 0.8, emitting `wall_emission`) and a
+ * tilted roof-like quad (albedo 0.6), about 2.6 m high in all; not finished (add lights, then
+ * hf_finish). */
+void hf_town(hf_scene *s, int n, float wall_emission);
 /* Bounds and counts. */
 void hf_finish(hf_scene *s);
 void hf_free(hf_scene *s);

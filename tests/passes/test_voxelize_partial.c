@@ -24,13 +24,6 @@
 
 #define RES 32
 
-static double
-rolling(double x, double z, const void *user)
-{
-    (void)user;
-    return 0.3 * sin(1.3 * x) * cos(0.9 * z) + 0.05 * x;
-}
-
 static const char graph[] =
     "{ \"version\": 1, \"passes\": {"
     " \"vox\": { \"type\": \"voxelize\", \"params\": { \"model\": \"surface\", \"resolution\": 32, \"cache\": %s,"
@@ -41,20 +34,12 @@ static const char graph[] =
 
 static const char *const volumes[4] = {"vox.albedo", "vox.coverage", "vox.normal", "vox.emission"};
 
-/* A terrain of 100 x 100 quads over the volume's floor, a wall standing on it and a roof-like
- * quad elsewhere that never moves. */
+/* hf_town: a terrain of 100 x 100 quads over the volume's floor, a wall standing on it and a
+ * roof-like quad elsewhere that never moves. */
 static void
 make_scene(hf_scene *s)
 {
-    hf_init(s);
-    hf_material(s, 1, 0.4f, 0.0f);
-    hf_material(s, 2, 0.8f, 0.5f);
-    hf_material(s, 3, 0.6f, 0.0f);
-    hf_grid(s, 100, -3.9, -3.9, 7.8, rolling, NULL);
-    const double wall[3] = {-1.0, -0.6, 0.2}, wall_e1[3] = {1.3, 0.0, 0.4}, wall_e2[3] = {0.0, 1.7, 0.0};
-    hf_quad(s, wall, wall_e1, wall_e2);
-    const double roof[3] = {1.5, 1.8, -2.5}, roof_e1[3] = {1.5, 0.3, 0.0}, roof_e2[3] = {0.0, 0.2, 1.2};
-    hf_quad(s, roof, roof_e1, roof_e2);
+    hf_town(s, 100, 0.5f);
     hf_finish(s);
 }
 
