@@ -15,6 +15,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "sdk/blocks.h"
 #include "cg/gl.h"
 #include "hybrid_fixture.h"
 #include "test_support.h"
@@ -146,6 +147,13 @@ check(const char *voxelizer)
     assert_int_equal(want[1], 16);  /* the scene is low: the box is half the cube */
     assert_int_equal(box_levels, 5);    /* 32 x 16 x 32 down to 2 x 1 x 2 */
     assert_int_equal(fg_graph_find_resource(cube.graph, "light.radiance")->desc.levels, 6);
+    /* The region block the gathers read: the sides and the levels. */
+    cg_volume_block region;
+    glGetNamedBufferSubData(fg_graph_texture(box.graph, "vox.region"), 0, sizeof region, &region);
+    for (int k = 0; k < 3; k++)
+        assert_int_equal((int)region.dims[k], want[k]);
+    assert_int_equal((int)region.info[1], box_levels);
+    assert_int_equal((int)region.info[0], RES);
 
     /* Both centred on the bounds: the box starts (32 - 16) / 2 cube voxels up. The geometry
      * voxelizer's voxels are the cube's bit for bit. The compute voxelizer takes each voxel's plane
