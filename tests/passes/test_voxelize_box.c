@@ -9,7 +9,8 @@
  *     volumes place alike (levels 0..3: the box starts 8 cube voxels up);
  *   - cone_gather through the box renders what it renders through the cube, to within the
  *     coarse levels that differ (measured below).
- * Through both voxelizers (geometry shader, compute shader). */
+ * Through both voxelizers (geometry shader, compute shader). And when a mesh moves out of the
+ * sides the box was declared with, the voxel grows so that the volume holds the bounds again. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -63,6 +64,15 @@ read_volume(const vf_runner *r, const char *source, int level, int dims[3])
     float *data = cg_test_read_texture(tex, level, &dims[0], &dims[1], &dims[2]);
     assert_non_null(data);
     return data;
+}
+
+/* The region block of a runner. */
+static cg_volume_block
+region_of(const vf_runner *r)
+{
+    cg_volume_block region;
+    glGetNamedBufferSubData(fg_graph_texture(r->graph, "vox.region"), 0, sizeof region, &region);
+    return region;
 }
 
 /* Texels of box level `level` that differ from the cube's at the same place (offset `dy` cube
@@ -148,8 +158,7 @@ check(const char *voxelizer)
     assert_int_equal(box_levels, 5);    /* 32 x 16 x 32 down to 2 x 1 x 2 */
     assert_int_equal(fg_graph_find_resource(cube.graph, "light.radiance")->desc.levels, 6);
     /* The region block the gathers read: the sides and the levels. */
-    cg_volume_block region;
-    glGetNamedBufferSubData(fg_graph_texture(box.graph, "vox.region"), 0, sizeof region, &region);
+    cg_volume_block region = region_of(&box);
     for (int k = 0; k < 3; k++)
         assert_int_equal((int)region.dims[k], want[k]);
     assert_int_equal((int)region.info[1], box_levels);
@@ -212,6 +221,58 @@ check(const char *voxelizer)
     hf_free(&s);
 }
 
+/* The box keeps the sides it was declared with (its textures are of them): when a mesh moves out
+ * of them, the voxel grows until the volume holds the bounds again, padding included, and the
+ * whole volume is voxelized again. The wall rises 4 m, above the 16 voxels the box has in y. */
+static void
+test_box_grows_its_voxel_for_moved_meshes(void **state)
+{
+    (void)state;
+    hf_scene s;
+    make_scene(&s);
+    vf_runner box;
+    start(&box, &s, "box", "geometry");
+    cg_volume_block before = region_of(&box);
+    static const float up[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 4, 0, 1};
+    memcpy(s.instances[1].world, up, sizeof up);
+    vf_next_frame(&box);
+    cg_volume_block after = region_of(&box);
+    const char *rebuilt = fg_pass_rebuilt(fg_graph_find_pass(box.graph, "vox"));
+    printf("# wall up 4 m: voxel %.4f -> %.4f m, sides %.0f x %.0f x %.0f; %s\n", before.origin_voxel[3],
+           after.origin_voxel[3], after.dims[0], after.dims[1], after.dims[2], rebuilt);
+    for (int k = 0; k < 3; k++)
+        assert_true(after.dims[k] == before.dims[k]);
+    assert_true(after.origin_voxel[3] > before.origin_voxel[3]);
+    assert_non_null(strstr(rebuilt, "geometry voxelized ("));
+    /* The bounds now: every instance's box (translations only), inside the volume by the padding. */
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (int i = 0; i < 3; i++)
+        for (int k = 0; k < 3; k++) {
+            lo[k] = fmin(lo[k], s.meshes[i].bounds_min[k] + s.instances[i].world[12 + k]);
+            hi[k] = fmax(hi[k], s.meshes[i].bounds_max[k] + s.instances[i].world[12 + k]);
+        }
+    double voxel = after.origin_voxel[3];
+    for (int k = 0; k < 3; k++) {
+        double first = (lo[k] - after.origin_voxel[k]) / voxel, last = (hi[k] - after.origin_voxel[k]) / voxel;
+        printf("# axis %d: bounds at voxels %.3f .. %.3f of %.0f\n", k, first, last, after.dims[k]);
+        assert_true(first >= PADDING - 1e-3);
+        assert_true(last <= after.dims[k] - PADDING + 1e-3);
+    }
+    /* The risen wall is in the volume: its top row (the highest voxel of the scene) is occupied. */
+    int dims[3];
+    float *albedo = read_volume(&box, "vox.albedo", 0, dims);
+    int top = -1;
+    for (int i = 0; i < dims[0] * dims[1] * dims[2]; i++)
+        if (albedo[4 * i + 3] > 0.0f)
+            top = top > (i / dims[0]) % dims[1] ? top : (i / dims[0]) % dims[1];
+    free(albedo);
+    int want = (int)floor((hi[1] - after.origin_voxel[1]) / voxel);
+    printf("# highest occupied row %d, the wall's top in row %d\n", top, want);
+    assert_true(top >= want - 1 && top <= want + 1);
+    vf_stop(&box);
+    hf_free(&s);
+}
+
 static void
 test_box_holds_the_cube(void **state)
 {
@@ -225,6 +286,7 @@ main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_box_holds_the_cube),
+        cmocka_unit_test(test_box_grows_its_voxel_for_moved_meshes),
     };
     return cmocka_run_group_tests(tests, cg_test_gl_setup, cg_test_gl_teardown);
 }
