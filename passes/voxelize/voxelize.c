@@ -221,7 +221,7 @@ box_dims(int resolution, double padding, const double extent[3], double voxel, i
         shortest = fmin(shortest, need[k]);
     }
     int block = resolution / 8;
-    while (block * 2 <= shortest && block * 2 <= resolution)
+    while (block * 2 <= shortest)  /* shortest starts at resolution: B stays within it */
         block *= 2;
     for (int k = 0; k < 3; k++) {
         /* The longest side's need is resolution up to rounding: never more than resolution. */
