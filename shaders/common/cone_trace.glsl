@@ -4,7 +4,8 @@
 //           cg_cone_tan_half(), cg_cone_accumulate(), cg_cone_trace(), cg_cone_lod(), cg_cone_origin(),
 //           cg_cone_reach(), CgConeSample, cg_cone_composite(), cg_cone_composite_span(), cg_cone_step(),
 //           cg_cone_trace_surface(), cg_cone_gather_diffuse(), cg_tangent_frame(); with CG_CONE_SURFACE
-//           also cg_cone_sample_surface(_from, _as)(), cg_cone_surface_level(), _gap(), _cover().
+//           also cg_cone_sample_surface_from(), _as(), cg_cone_surface_level(), _gap(), _cover(), _sample_at(),
+//           _recentre(), _read_position().
 //
 // VCT paper 3.2 (after Crassin et al. 2011): the cone's footprint at distance t has the
 // diameter d = 2 t tan(half angle); the sample is read from the mip level whose voxels
@@ -22,7 +23,9 @@
 //   CG_CONE_SURFACE      voxel_light's surface voxels (docs/vct.md): one-sided voxels with a mean
 //                  normal and plane, per-axis coverage; the lit side by which side of the voxel's
 //                  plane the cone's origin lies on, the cone's own plane left out, one level per
-//                  surface crossing (CgConeState). Three reads per occupied sample, one per empty one.
+//                  surface crossing, read centred on the surface's plane (CgConeState,
+//                  cg_cone_surface_recentre). Three reads per occupied sample (four at a crossing's
+//                  first), one per empty one.
 // CG_CONE_COUNT_READS counts the volume reads of every march in cg_cone_reads (a cost measure).
 #ifndef CG_COMMON_CONE_TRACE_GLSL
 #define CG_COMMON_CONE_TRACE_GLSL
@@ -130,12 +133,13 @@ struct CgConeState {
     float held_lod;     // the level may not grow past this while the last sample read coverage
     float prev_span;    // the previous step's span; < 0 before the first step
     float gained;       // coverage added since the current surface crossing began
+    vec3 shift;         // where the current crossing reads, off the axis (cg_cone_surface_recentre); 0 between
 };
 
 CgConeState
 cg_cone_state()
 {
-    return CgConeState(1e30, -1.0, 0.0);
+    return CgConeState(1e30, -1.0, 0.0, vec3(0.0));
 }
 
 #ifdef CG_CONE_ANISOTROPIC
@@ -187,12 +191,15 @@ layout(binding = CG_UNIT_OCCUPANCY) uniform sampler3D cg_surface_occupancy;
 // `centre`: the volume's centre m.
 // `profile` = (sigma / w, L / L_lit): what the sample's coverage and colour are per unit of the
 // weight w and of the lit radiance, for cg_cone_sample_surface_as; 0 for an empty sample.
+// `plane` = (N, N . (x - m)) of the sample's mean plane, in world units, for cg_cone_surface_recentre;
+// 0 for an empty sample.
 // cg_cone_sample_surface_from: the same once the first read, `a` of the radiance, is made.
 vec4
 cg_cone_sample_surface_from(vec4 a, vec3 uvw, float lod, float cell, float voxel, vec3 centre, vec3 d, vec3 origin,
-                            vec4 surface, out vec2 profile)
+                            vec4 surface, out vec2 profile, out vec4 plane)
 {
     profile = vec2(0.0);
+    plane = vec4(0.0);
     if (a.a <= 0.0)
         return vec4(0.0);   // empty: one read
     vec4 b = textureLod(cg_surface_sides, uvw, lod);
@@ -203,9 +210,10 @@ cg_cone_sample_surface_from(vec4 a, vec3 uvw, float lod, float cell, float voxel
     float cover = dot(abs(d), alpha);
     vec3 n = c.rgb / w;
     float coherence = length(n);
-    float plane = b.g / w * voxel;
-    float e = dot(n, origin - centre) - plane;
+    float offset = b.g / w * voxel;
+    float e = dot(n, origin - centre) - offset;
     float lit = 0.5 + 0.5 * clamp(e / (0.5 * cell), -1.0, 1.0);
+    plane = vec4(n, offset);
     if (surface.w >= 0.0 && coherence > 0.0) {
         float facing = abs(dot(n, surface.xyz)) / coherence;
         float height = abs(abs(e) / coherence - surface.w);
@@ -216,16 +224,7 @@ cg_cone_sample_surface_from(vec4 a, vec3 uvw, float lod, float cell, float voxel
     return vec4(a.rgb * (profile.y * profile.x), cover);
 }
 
-vec4
-cg_cone_sample_surface(sampler3D radiance, vec3 uvw, float lod, float cell, float voxel, vec3 centre, vec3 d,
-                       vec3 origin, vec4 surface, out vec2 profile)
-{
-    vec4 a = textureLod(radiance, uvw, lod);
-    CG_CONE_READ(1);
-    return cg_cone_sample_surface_from(a, uvw, lod, cell, voxel, centre, d, origin, surface, profile);
-}
-
-// A sample near one of cg_cone_sample_surface that reads the same surface: its weight and lit
+// A sample near one of cg_cone_sample_surface_from that reads the same surface: its weight and lit
 // radiance read at uvw, its coverage and colour per unit of them taken from that sample's
 // `profile`. One read instead of three: for the tail of a crossing's trilinear tent (cg_cone_step),
 // whose texels are those of the surface the full sample read (one plane: the same normal, plane and
@@ -236,6 +235,48 @@ cg_cone_sample_surface_as(sampler3D radiance, vec3 uvw, float lod, vec2 profile)
     vec4 a = textureLod(radiance, uvw, lod);
     CG_CONE_READ(1);
     return vec4(a.rgb * (profile.y * profile.x), a.a * profile.x);
+}
+
+// Where a surface crossing reads the voxels, off the cone's axis. A mip level keeps a surface's
+// coverage at the centre of the texel that holds it, so at a level with cells c wide an axis-aligned
+// surface lies anywhere up to c/2 from where that level's trilinear tent across it peaks. A cone
+// crossing it at theta from its normal meets the tent up to c / (2 cos theta) early or late along its
+// path, which puts the surface c tan(theta) / 2 nearer to or farther from the cone's origin across:
+// on builtin:plates, an outer cone whose tent lies on the near side fills up on a plate whose far edge
+// already lets half of that cone pass (docs/vct.md, "Alignment"). The voxels hold the surface's plane
+// (`plane` of cg_cone_sample_surface_from), so the crossing reads the volume moved along the plane's
+// dominant axis k by the offset of that texel's centre from the plane: its tent then peaks on the plane.
+// The move is one for all samples of a crossing (CgConeState.shift, set at its first sample), so the
+// crossing stays a partition of unity (the white furnace). The grid is that of the nearer whole level
+// (a fractional level mixes two). Only for a plane along one layer of texels: its height changes by
+// tan(tilt) c across a cell, so the move fades from whole at |n_k| = 0.981 (a fifth of a cell) to none
+// at 0.894 (half a cell: its offsets within the texels are spread and average out, as on the turned
+// plates), and only where one plane fills the cell: none below a coherence |N| of 0.8 (the two faces of
+// a corner give 0.71).
+vec3
+cg_cone_surface_recentre(CgVolume v, vec3 x, vec3 centre, float lod, vec4 plane)
+{
+    float coherence = length(plane.xyz);
+    if (coherence <= 0.0)
+        return vec3(0.0);
+    vec3 n = plane.xyz / coherence;
+    vec3 a = abs(n);
+    int k = a.x >= a.y && a.x >= a.z ? 0 : (a.y >= a.z ? 1 : 2);
+    // The plane's coordinate along k where it passes x, from n . (q - m) = D.
+    vec3 r = x - centre;
+    float q = centre[k] + (plane.w / coherence - (dot(n, r) - n[k] * r[k])) / n[k];
+    float cell = v.voxel_size * exp2(floor(lod + 0.5));
+    float u = (q - v.origin[k]) / cell;
+    vec3 shift = vec3(0.0);
+    shift[k] = (floor(u) + 0.5 - u) * cell * smoothstep(0.894, 0.981, a[k]) * smoothstep(0.8, 0.95, coherence);
+    return shift;
+}
+
+// Where a step on the axis at p reads the surface voxels: p, moved by the current crossing's shift.
+vec3
+cg_cone_read_position(CgConeState state, vec3 p)
+{
+    return p + state.shift;
 }
 #endif
 
@@ -330,11 +371,12 @@ cg_cone_surface_gap(inout CgConeState state, float span)
     state.gained = 0.0;
     state.prev_span = span;
     state.held_lod = 1e30;
+    state.shift = vec3(0.0);
     return span;
 }
 
 // A sample s (premultiplied, coverage > 0) at `at`, read at level `lod` with the surface `profile`
-// (cg_cone_sample_surface): the crossing's half-cell step, the midpoint weight, and on entering a
+// (cg_cone_sample_surface_from): the crossing's half-cell step, the midpoint weight, and on entering a
 // surface the reads behind it (see cg_cone_step). Returns the span.
 float
 cg_cone_surface_cover(sampler3D volume, CgVolume v, CgCone c, CgConeSample at, float lod, float cell, float span,
@@ -356,11 +398,11 @@ cg_cone_surface_cover(sampler3D volume, CgVolume v, CgCone c, CgConeSample at, f
         // with three each (six reads in a branch, which llvmpipe runs for every lane of a lockstep
         // group, taken or not) the gather took 1.8x its time (docs/vct.md, Cost).
         float h = state.prev_span;
-        vec4 back0 = cg_cone_sample_surface_as(volume, cg_volume_uvw(v, at.position - c.direction * h), lod, profile);
+        vec3 read = cg_cone_read_position(state, at.position);
+        vec4 back0 = cg_cone_sample_surface_as(volume, cg_volume_uvw(v, read - c.direction * h), lod, profile);
         vec4 back1 = vec4(0.0);
         if (back0.a > 0.0)  // the second only where the first is this surface's too
-            back1 = cg_cone_sample_surface_as(volume, cg_volume_uvw(v, at.position - c.direction * (2.0 * h)), lod,
-                                              profile);
+            back1 = cg_cone_sample_surface_as(volume, cg_volume_uvw(v, read - c.direction * (2.0 * h)), lod, profile);
         float before = acc.a;
         cg_cone_composite_span(acc, vec4(back1.rgb * scale, back1.a), h, cell);
         cg_cone_composite_span(acc, vec4(back0.rgb * scale, back0.a), h, cell);
@@ -372,6 +414,26 @@ cg_cone_surface_cover(sampler3D volume, CgVolume v, CgCone c, CgConeSample at, f
     cg_cone_composite_span(acc, vec4(s.rgb * scale, s.a), weight, cell);
     state.gained += acc.a - before;
     return span;
+}
+#endif
+
+#ifdef CG_CONE_SURFACE
+// The sample of a step whose read position (cg_cone_read_position) is occupied, `a` the radiance read
+// there at `lod`: the sides and normals read there too and, at a crossing's first sample, the
+// crossing's shift (cg_cone_surface_recentre) and the radiance read again where it moves the reads.
+// Returns the premultiplied sample and its `profile`, as cg_cone_sample_surface_from.
+vec4
+cg_cone_surface_sample_at(sampler3D volume, CgVolume v, CgCone c, vec4 surface, CgConeSample at, float lod, float cell,
+                          vec3 centre, vec4 a, inout CgConeState state, out vec2 profile)
+{
+    vec4 plane;
+    vec4 s = cg_cone_sample_surface_from(a, cg_volume_uvw(v, cg_cone_read_position(state, at.position)), lod, cell,
+                                         v.voxel_size, centre, c.direction, c.origin, surface, profile, plane);
+    if (s.a > 0.0 && state.held_lod > 1e29) {
+        state.shift = cg_cone_surface_recentre(v, at.position, centre, lod, plane);
+        s = cg_cone_sample_surface_as(volume, cg_volume_uvw(v, cg_cone_read_position(state, at.position)), lod, profile);
+    }
+    return s;
 }
 #endif
 
@@ -393,7 +455,7 @@ cg_cone_surface_cover(sampler3D volume, CgVolume v, CgCone c, CgConeSample at, f
 // support stays above the plane, and the span at one voxel of that level (step 0.5), which
 // keeps cg_cone_composite_span exact.
 //
-// The surface model (one-sided voxels that leave their own plane out, cg_cone_sample_surface): no
+// The surface model (one-sided voxels that leave their own plane out, cg_cone_sample_surface_from): no
 // cap. Instead each surface crossing is integrated at one level: while the previous sample read
 // coverage the level may not grow (a crossing whose level grows half-way meets two different
 // profiles of the wall, and the coverage that has no margin here, exactly 1 across a plane, falls
@@ -409,8 +471,9 @@ cg_cone_step(sampler3D volume, CgVolume v, CgCone c, vec4 surface, CgConeSample 
     float lod = cg_cone_surface_level(v, c, at, state, cell, span);
     vec3 centre = v.origin + 0.5 * cg_volume_extent(v);
     vec2 profile;
-    vec4 s = cg_cone_sample_surface(volume, cg_volume_uvw(v, at.position), lod, cell, v.voxel_size, centre,
-                                    c.direction, c.origin, surface, profile);
+    vec4 a = textureLod(volume, cg_volume_uvw(v, cg_cone_read_position(state, at.position)), lod);
+    CG_CONE_READ(1);
+    vec4 s = cg_cone_surface_sample_at(volume, v, c, surface, at, lod, cell, centre, a, state, profile);
     return s.a > 0.0 ? cg_cone_surface_cover(volume, v, c, at, lod, cell, span, s, profile, scale, state, acc)
                      : cg_cone_surface_gap(state, span);
 #else
@@ -471,6 +534,7 @@ cg_cone_trace_surface(sampler3D volume, CgVolume v, CgCone c, vec4 surface)
             if (done)
                 break;  // the whole footprint is outside the volume: nothing more to gather
             lod = cg_cone_surface_level(v, c, at, state, cell, span);
+            uvw = cg_volume_uvw(v, cg_cone_read_position(state, at.position));
             // Empty at the fractional level `lod` (its two levels mixed) is empty at ceil(lod): the
             // 2x2x2 texels that a read there touches hold, as their children, every texel of the
             // finer level's read (dyadic, aligned grids), and a mip texel has coverage wherever a
@@ -485,8 +549,7 @@ cg_cone_trace_surface(sampler3D volume, CgVolume v, CgCone c, vec4 surface)
         vec2 profile;
         a = textureLod(volume, uvw, lod);
         CG_CONE_READ(1);
-        vec4 s = cg_cone_sample_surface_from(a, uvw, lod, cell, v.voxel_size, centre, c.direction, c.origin, surface,
-                                             profile);
+        vec4 s = cg_cone_surface_sample_at(volume, v, c, surface, at, lod, cell, centre, a, state, profile);
         t += s.a > 0.0 ? cg_cone_surface_cover(volume, v, c, at, lod, cell, span, s, profile, 1.0, state, acc)
                        : cg_cone_surface_gap(state, span);
     }

@@ -635,7 +635,8 @@ trace_horizon(vec3 p, vec3 origin, vec3 dir, float tan_half, float t_start, floa
                     float cell3, span3;
                     float lod3 = cg_cone_surface_level(v, cone, at, state, cell3, span3);
                     CG_CONE_READ(1);
-                    occupied = textureLod(cg_surface_occupancy, cg_volume_uvw(v, x3), ceil(lod3)).a > 0.0;
+                    occupied = textureLod(cg_surface_occupancy, cg_volume_uvw(v, cg_cone_read_position(state, x3)),
+                                           ceil(lod3)).a > 0.0;
                     if (!occupied) {
                         was_in3 = true;
                         dt = cg_cone_surface_gap(state, span3);
