@@ -296,8 +296,9 @@ test_cornell_equals_vct(void **state)
     cg_error err = {0};
     assert_cg_ok(cg_scene_load("builtin:cornell", &scene, &err), &err);
     /* hybrid.json's 3D part is vct.json's (voxelize model=surface, voxel_light, the same cones and
-     * march); both at one resolution and start offset (hybrid.json starts half a voxel of its 64^3
-     * off the surface, vct.json one of its 128^3), so that they march alike. */
+     * march); both at one resolution and start offset (hybrid.json starts 0.75 voxel off the
+     * surface, vct.json one), so that they march alike. Cornell's bounds are a cube, so
+     * hybrid.json's box is vct.json's cube. */
     const char *const set[] = {"vox.resolution=32", "shadow.resolution=512", "gather.start_offset=1", NULL};
     const char *const set_vct[] = {"vox.resolution=32", "shadow.resolution=512", NULL};
     vf_runner r;
@@ -509,13 +510,14 @@ test_openworld(void **state)
     free(indirect);
     assert_no_gl_errors(ctx);
 
-    /* GI memory: hybrid.json (64^3 surface voxels of the complex meshes + the 512^2 2D lightmap)
-     * against vct.json (128^3 surface voxels of everything): the issue asks for at most half. */
+    /* GI memory: hybrid.json (surface voxels of the complex meshes' box at 128, 128 x 32 x 112 here,
+     * + the 512^2 2D lightmap) against vct.json (128^3 surface voxels of everything): the issue
+     * asks for at most half (measured 77 332 360 against 233 682 648 bytes, 0.33). */
     const char *const vct256[] = {"vox.resolution=256", NULL};
     size_t hybrid = gi_bytes(&scene, "hybrid.json", NULL);
     size_t vct_256 = gi_bytes(&scene, "vct.json", vct256);
     size_t vct_128 = gi_bytes(&scene, "vct.json", NULL);
-    printf("# builtin:openworld GI bytes: hybrid.json (64^3 + 512^2) %zu, vct.json 128^3 %zu, vct.json 256^3 %zu\n",
+    printf("# builtin:openworld GI bytes: hybrid.json (box at 128 + 512^2) %zu, vct.json 128^3 %zu, vct.json 256^3 %zu\n",
            hybrid, vct_128, vct_256);
     assert_true(2 * hybrid <= vct_128);
     /* The paper's setting compiles too (2048^2 map, eq. 14 HSAT, eq. 17). */
