@@ -306,7 +306,7 @@ test_wallfloor_form_factor(void **state)
  * surface in sight is lit, so the indirect light there is exactly 0. Asserted: its mean luminance
  * below 2% of the lit side's true mean indirect light (view=1). One-sided voxels leave a residue
  * where a cell holds the wall and the lit front floor (one mean plane for both, the lit side blended
- * over half a cell): 1.1% at 160x90; the old two-sided volume showed the dark side as much light
+ * over half a cell): 1.0% at 160x90, 0.69% here; the old two-sided volume showed the dark side as much light
  * as the lit side gets (0.039 against 0.038, docs/vct.md, cause 1). */
 static void
 test_thinwall_dark_side(void **state)
