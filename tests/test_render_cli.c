@@ -217,6 +217,52 @@ test_frames_end_at_the_last_time(void **state)
 
 /* An animated scene exported to glTF renders as the built-in does at the same time: the
  * animation goes through the file. */
+/* OpenImageIO (260 shared libraries, half a second to load) is loaded on the first image, not
+ * at start-up; and a render whose image module is missing fails before it renders, with the
+ * file it looked for, and writes nothing. */
+static void
+test_images_load_their_library_on_use(void **state)
+{
+    (void)state;
+    const char *exe = getenv("CONEGRAPH_EXE");
+    assert_non_null(exe);
+    char cmd[8192], out[65536];
+    const struct { const char *args; bool loads; } runs[] = {
+        { "info builtin:cornell", false },
+        { "passes", false },
+        { "render builtin:cornell --graph direct.json --size 16x16 -o '%s'", true },
+    };
+    for (size_t i = 0; i < sizeof runs / sizeof runs[0]; i++) {
+        char args[4096];
+        snprintf(args, sizeof args, runs[i].args, tmp("lazy.exr"));
+        snprintf(cmd, sizeof cmd, "LD_DEBUG=files '%s' %s 2>&1 >/dev/null", exe, args);
+        FILE *p = popen(cmd, "r");
+        assert_non_null(p);
+        bool loaded = false; /* the loader's trace, line by line to its end */
+        while (fgets(out, sizeof out, p))
+            loaded = loaded || strstr(out, "libOpenImageIO") != NULL;
+        assert_int_equal(pclose(p), 0);
+        if (loaded != runs[i].loads)
+            fail_msg("conegraph %s: OpenImageIO %s, expected %s", args, loaded ? "loaded" : "not loaded",
+                     runs[i].loads ? "loaded" : "not loaded");
+    }
+
+    const char *missing = tmp("missing.exr");
+    snprintf(cmd, sizeof cmd,
+             "CONEGRAPH_OIIO_MODULE=/nonexistent/libcg-oiio.so '%s' render builtin:cornell --size 16x16 -o '%s' 2>&1",
+             exe, missing);
+    FILE *p = popen(cmd, "r");
+    assert_non_null(p);
+    size_t n = fread(out, 1, sizeof out - 1, p);
+    out[n] = '\0';
+    int status = pclose(p);
+    assert_true(WIFEXITED(status));
+    assert_int_equal(WEXITSTATUS(status), 1);
+    assert_non_null(strstr(out, "/nonexistent/libcg-oiio.so"));
+    assert_null(strstr(out, "median frame")); /* refused before the first frame */
+    assert_false(exists(missing));
+}
+
 static void
 test_exported_animation_renders(void **state)
 {
@@ -245,6 +291,7 @@ main(void)
         cmocka_unit_test(test_render_png_exr_dump_report),
         cmocka_unit_test(test_frames_end_at_the_last_time),
         cmocka_unit_test(test_exported_animation_renders),
+        cmocka_unit_test(test_images_load_their_library_on_use),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -12,6 +12,7 @@
 #include "cg/fg.h"
 #include "cg/fs.h"
 #include "cg/gl.h"
+#include "cg/image.h"
 #include "commands.h"
 
 typedef struct dump_request {
@@ -217,7 +218,7 @@ render(const render_options *o)
     app_run_desc run = { .frames = c->frames, .timing = c->timing, .on_frame = print_progress,
                          .user = &progress, .animate = true, .time = o->time, .fps = o->fps };
     bool ok = app_session_open(&s, &desc, &err) && app_session_load_graph(&s, &graph, &err) &&
-              app_session_check(&s, &err) && app_session_start_gl(&s, &context, &err) &&
+              app_session_check(&s, &err) && cg_image_io_check(&err) && app_session_start_gl(&s, &context, &err) &&
               app_session_compile(&s, &err) && app_session_run(&s, &run, &stats, &err) &&
               app_session_write_image(&s, s.image_source, png, o->output, CG_EXR_FLOAT, &err);
     for (int i = 0; ok && i < o->dump_count; i++)

@@ -1,5 +1,5 @@
 /* Float RGBA images: allocation, sRGB transfer functions, and the format and atomicity
- * rules of cg/image.h around the OpenImageIO adapter (image_oiio.cpp). */
+ * rules of cg/image.h around the OpenImageIO module (image_oiio.cpp, loaded by cg_oiio). */
 #include "cg/image.h"
 
 #include <errno.h>
@@ -83,9 +83,12 @@ cg_image_read_info(const char *path, cg_image *out, cg_image_file_info *info, cg
     memset(info, 0, sizeof *info);
     if (access(path, R_OK) != 0)
         return cg_fail(err, CG_ERR_FILE_NOT_FOUND, "%s: no such readable file", path);
+    const cg_oiio_api *oiio = cg_oiio(err);
+    if (!oiio)
+        return false;
     cg_oiio_transfer transfer = CG_OIIO_LINEAR;
     float gamma = 1.0f;
-    if (!cg_oiio_read(path, out, &transfer, &gamma, info->colour_space, sizeof info->colour_space, &info->bits,
+    if (!oiio->read(path, out, &transfer, &gamma, info->colour_space, sizeof info->colour_space, &info->bits,
                       &info->floating, err))
         return false;
     if (transfer == CG_OIIO_OTHER)
@@ -162,6 +165,9 @@ cg_image_write(const char *path, const cg_image *img, cg_image_exr_type exr_type
     if (exr_type != CG_EXR_HALF && exr_type != CG_EXR_FLOAT)
         return cg_fail(err, CG_ERR_IMAGE_FORMAT, "%s: unknown EXR pixel type %d", path, (int)exr_type);
 
+    const cg_oiio_api *oiio = cg_oiio(err);
+    if (!oiio)
+        return false;
     unsigned char *bytes = NULL;
     if (format == FORMAT_PNG && !encode_png(path, img, &bytes, err))
         return false;
@@ -174,10 +180,10 @@ cg_image_write(const char *path, const cg_image *img, cg_image_exr_type exr_type
     }
     bool ok;
     if (format == FORMAT_PNG)
-        ok = cg_oiio_write(temp, img->width, img->height, CG_OIIO_UINT8, bytes, true, err);
+        ok = oiio->write(temp, img->width, img->height, CG_OIIO_UINT8, bytes, true, err);
     else
-        ok = cg_oiio_write(temp, img->width, img->height, exr_type == CG_EXR_HALF ? CG_OIIO_HALF : CG_OIIO_FLOAT,
-                           img->rgba, false, err);
+        ok = oiio->write(temp, img->width, img->height, exr_type == CG_EXR_HALF ? CG_OIIO_HALF : CG_OIIO_FLOAT,
+                         img->rgba, false, err);
     free(bytes);
     if (ok && rename(temp, path) != 0) {
         ok = cg_fail(err, CG_ERR_IO, "%s: cannot rename %s into place: %s", path, temp, strerror(errno));
@@ -185,4 +191,29 @@ cg_image_write(const char *path, const cg_image *img, cg_image_exr_type exr_type
     if (!ok)
         unlink(temp); /* the target was never touched */
     return ok;
+}
+
+bool
+cg_image_io_check(cg_error *err)
+{
+    return cg_oiio(err) != NULL;
+}
+
+bool
+cg_image_read_samples(const char *path, long long max_samples, cg_image_samples *out, cg_error *err)
+{
+    memset(out, 0, sizeof *out);
+    if (access(path, R_OK) != 0)
+        return cg_fail(err, CG_ERR_FILE_NOT_FOUND, "%s: no such readable file", path);
+    const cg_oiio_api *oiio = cg_oiio(err);
+    return oiio && oiio->read_samples(path, max_samples, out, err);
+}
+
+void
+cg_image_samples_free(cg_image_samples *s)
+{
+    if (!s)
+        return;
+    free(s->value);
+    memset(s, 0, sizeof *s);
 }

@@ -1,4 +1,5 @@
-// OpenImageIO adapter behind cg/image.h (see image_oiio.h): the only C++ in image I/O.
+// The OpenImageIO module behind cg/image.h (see image_oiio.h): the only C++ in image I/O,
+// and the only code that links OpenImageIO.
 #include "image_oiio.h"
 
 #include <cstdio>
@@ -12,6 +13,9 @@
 #include <OpenImageIO/imageio.h>
 
 namespace {
+
+// Core's functions, from the loader (cg_oiio_module).
+const cg_oiio_host *host;
 
 cg_oiio_transfer
 transfer_of(const OIIO::ImageSpec &spec, float *gamma)
@@ -48,13 +52,13 @@ read_pixels(const char *path, cg_image *out, cg_oiio_transfer *transfer, float *
     auto in = OIIO::ImageInput::open(path, &config);
     if (!in) {
         std::string why = OIIO::geterror();
-        return cg_fail(err, CG_ERR_IMAGE_FORMAT, "%s: not an image OpenImageIO can read: %s", path,
+        return host->fail(err, CG_ERR_IMAGE_FORMAT, "%s: not an image OpenImageIO can read: %s", path,
                        why.empty() ? "unknown format" : why.c_str());
     }
     const OIIO::ImageSpec &spec = in->spec();
     int w = spec.width, h = spec.height, n = spec.nchannels;
     if (w <= 0 || h <= 0 || n <= 0 || spec.depth > 1)
-        return cg_fail(err, CG_ERR_IMAGE_FORMAT, "%s: %dx%dx%d image with %d channels: expected a 2D image",
+        return host->fail(err, CG_ERR_IMAGE_FORMAT, "%s: %dx%dx%d image with %d channels: expected a 2D image",
                        path, w, h, spec.depth, n);
     *transfer = transfer_of(spec, gamma);
     *bits = (int)spec.format.size() * 8;
@@ -64,11 +68,11 @@ read_pixels(const char *path, cg_image *out, cg_oiio_transfer *transfer, float *
     std::vector<float> src((size_t)w * h * n);
     if (!in->read_image(0, 0, 0, n, OIIO::TypeDesc::FLOAT, src.data())) {
         std::string why = in->geterror();
-        return cg_fail(err, CG_ERR_IMAGE_FORMAT, "%s: cannot read pixels: %s", path, why.c_str());
+        return host->fail(err, CG_ERR_IMAGE_FORMAT, "%s: cannot read pixels: %s", path, why.c_str());
     }
     in->close();
 
-    if (!cg_image_alloc(out, w, h, err))
+    if (!host->image_alloc(out, w, h, err))
         return false;
     int alpha = spec.alpha_channel >= 0 && spec.alpha_channel < n ? spec.alpha_channel : -1;
     int colour = n - (alpha >= 0 ? 1 : 0); // channels before/around alpha that hold colour
@@ -98,7 +102,7 @@ write_pixels(const char *path, int width, int height, cg_oiio_pixel_type type, c
     auto out = OIIO::ImageOutput::create(path);
     if (!out) {
         std::string why = OIIO::geterror();
-        return cg_fail(err, CG_ERR_IMAGE_FORMAT, "%s: OpenImageIO cannot write this format: %s", path,
+        return host->fail(err, CG_ERR_IMAGE_FORMAT, "%s: OpenImageIO cannot write this format: %s", path,
                        why.c_str());
     }
     OIIO::TypeDesc stored = type == CG_OIIO_UINT8  ? OIIO::TypeDesc::UINT8
@@ -113,7 +117,7 @@ write_pixels(const char *path, int width, int height, cg_oiio_pixel_type type, c
         spec.attribute("compression", "zip"); // lossless, so float files round-trip bit-exactly
     if (!out->open(path, spec)) {
         std::string why = out->geterror();
-        return cg_fail(err, CG_ERR_IO, "%s: cannot create: %s", path, why.c_str());
+        return host->fail(err, CG_ERR_IO, "%s: cannot create: %s", path, why.c_str());
     }
     bool ok = out->write_image(given, pixels);
     std::string why = ok ? std::string() : out->geterror();
@@ -122,37 +126,119 @@ write_pixels(const char *path, int width, int height, cg_oiio_pixel_type type, c
         why = out->geterror();
     }
     if (!ok)
-        return cg_fail(err, CG_ERR_IO, "%s: write failed: %s", path, why.c_str());
+        return host->fail(err, CG_ERR_IO, "%s: write failed: %s", path, why.c_str());
     return true;
 }
 
-} // namespace
+// One channel as stored (cg_image_read_samples): no colour management, since a sample of a
+// data image is a number, not a colour (a 16-bit PNG tagged sRGB or with a gAMA chunk must not
+// be linearised).
+bool
+read_channel(const char *path, long long max_samples, cg_image_samples *out, cg_error *err)
+{
+    OIIO::ImageSpec config;
+    config.attribute("oiio:RawColor", 1);
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    auto in = OIIO::ImageInput::open(path, &config);
+    if (!in) {
+        std::string why = OIIO::geterror();
+        return host->fail(err, CG_ERR_IMAGE_FORMAT, "%s: not an image OpenImageIO can read: %s", path,
+                          why.empty() ? "unknown format" : why.c_str());
+    }
+    const OIIO::ImageSpec &spec = in->spec();
+    int w = spec.width, h = spec.height;
+    if (w <= 0 || h <= 0 || spec.nchannels < 1 || spec.depth > 1)
+        return host->fail(err, CG_ERR_IMAGE_FORMAT, "%s: %dx%dx%d image with %d channels: expected a 2D image",
+                          path, w, h, spec.depth, spec.nchannels);
+    if ((long long)w * h > max_samples)
+        return host->fail(err, CG_ERR_IMAGE_FORMAT, "%s: %dx%d samples: at most %lld are read at once", path, w, h,
+                          max_samples);
+    OIIO::TypeDesc type = spec.format;
+    // Integers as the integers stored: OIIO normalises them to [0, 1] when converting to float,
+    // so undo that by the type's largest value (exact in double for 8, 16 and 32 bits).
+    double scale = 1.0;
+    switch (type.basetype) {
+    case OIIO::TypeDesc::UINT8: scale = 255.0; break;
+    case OIIO::TypeDesc::INT8: scale = 127.0; break;
+    case OIIO::TypeDesc::UINT16: scale = 65535.0; break;
+    case OIIO::TypeDesc::INT16: scale = 32767.0; break;
+    case OIIO::TypeDesc::UINT32: scale = 4294967295.0; break;
+    case OIIO::TypeDesc::INT32: scale = 2147483647.0; break;
+    default: break;
+    }
+    std::vector<double> samples((size_t)w * h);
+    if (!in->read_image(0, 0, 0, 1, OIIO::TypeDesc::DOUBLE, samples.data())) {
+        std::string why = in->geterror();
+        return host->fail(err, CG_ERR_IMAGE_FORMAT, "%s: cannot read the samples: %s", path, why.c_str());
+    }
+    in->close();
+    out->value = (float *)std::malloc((size_t)w * h * sizeof(float));
+    if (!out->value)
+        return host->fail(err, CG_ERR_OUT_OF_MEMORY, "%s: out of memory for %dx%d samples", path, w, h);
+    for (size_t i = 0; i < samples.size(); i++)
+        out->value[i] = (float)(samples[i] * scale);
+    out->width = w;
+    out->height = h;
+    std::snprintf(out->format, sizeof out->format, "%s", type.c_str());
+    return true;
+}
 
 // C entry points: no exception may cross into C.
-extern "C" bool
-cg_oiio_read(const char *path, cg_image *out, cg_oiio_transfer *transfer, float *gamma, char *colour_space,
-             size_t colour_space_size, int *bits, bool *floating, cg_error *err)
+bool
+oiio_read(const char *path, cg_image *out, cg_oiio_transfer *transfer, float *gamma, char *colour_space,
+          size_t colour_space_size, int *bits, bool *floating, cg_error *err)
 {
     try {
         return read_pixels(path, out, transfer, gamma, colour_space, colour_space_size, bits, floating, err);
     } catch (const std::bad_alloc &) {
-        cg_image_free(out);
-        return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "%s: out of memory reading the image", path);
+        host->image_free(out);
+        return host->fail(err, CG_ERR_OUT_OF_MEMORY, "%s: out of memory reading the image", path);
     } catch (const std::exception &e) {
-        cg_image_free(out);
-        return cg_fail(err, CG_ERR_IMAGE_FORMAT, "%s: %s", path, e.what());
+        host->image_free(out);
+        return host->fail(err, CG_ERR_IMAGE_FORMAT, "%s: %s", path, e.what());
     }
 }
 
-extern "C" bool
-cg_oiio_write(const char *path, int width, int height, cg_oiio_pixel_type type, const void *pixels, bool srgb,
-              cg_error *err)
+bool
+oiio_write(const char *path, int width, int height, cg_oiio_pixel_type type, const void *pixels, bool srgb,
+           cg_error *err)
 {
     try {
         return write_pixels(path, width, height, type, pixels, srgb, err);
     } catch (const std::bad_alloc &) {
-        return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "%s: out of memory writing the image", path);
+        return host->fail(err, CG_ERR_OUT_OF_MEMORY, "%s: out of memory writing the image", path);
     } catch (const std::exception &e) {
-        return cg_fail(err, CG_ERR_IO, "%s: %s", path, e.what());
+        return host->fail(err, CG_ERR_IO, "%s: %s", path, e.what());
     }
+}
+
+bool
+oiio_read_samples(const char *path, long long max_samples, cg_image_samples *out, cg_error *err)
+{
+    std::memset(out, 0, sizeof *out);
+    try {
+        return read_channel(path, max_samples, out, err);
+    } catch (const std::bad_alloc &) {
+        std::free(out->value);
+        std::memset(out, 0, sizeof *out);
+        return host->fail(err, CG_ERR_OUT_OF_MEMORY, "%s: out of memory reading the samples", path);
+    } catch (const std::exception &e) {
+        std::free(out->value);
+        std::memset(out, 0, sizeof *out);
+        return host->fail(err, CG_ERR_IMAGE_FORMAT, "%s: %s", path, e.what());
+    }
+}
+
+const cg_oiio_api api = { oiio_read, oiio_write, oiio_read_samples };
+
+} // namespace
+
+// The module's one exported symbol (the module is built with hidden visibility).
+extern "C" __attribute__((visibility("default"))) const cg_oiio_api *
+cg_oiio_module(int abi, const cg_oiio_host *core)
+{
+    if (abi != CG_OIIO_MODULE_ABI)
+        return nullptr;
+    host = core;
+    return &api;
 }

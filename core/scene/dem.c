@@ -17,8 +17,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cg/image.h"
+
 #include "builtin/builtin_internal.h"
-#include "dem_oiio.h"
 #include "scene_internal.h"
 
 enum { PLACE_NONE, PLACE_SCENE, PLACE_INSTANCES };
@@ -150,7 +151,7 @@ grid_min_under(const dem_grid *g, double x0, double z0, double x1, double z1)
 }
 
 static bool
-build_grid(const char *path, const cg_dem_samples *s, const dem_params *p, dem_grid *g, cg_error *err)
+build_grid(const char *path, const cg_image_samples *s, const dem_params *p, dem_grid *g, cg_error *err)
 {
     g->nx = (int)((s->width - 1) / p->stride + 1);
     g->nz = (int)((s->height - 1) / p->stride + 1);
@@ -351,12 +352,13 @@ cg_dem_load(const char *path, const char *query, cg_scene *out, cg_error *err)
     dem_params p;
     if (!parse_params(path, query, &p, err))
         return false;
-    cg_dem_samples s;
-    if (!cg_dem_read(path, &s, err))
+    /* 2^28 samples are read as doubles (2 GiB) before they are reduced to floats. */
+    cg_image_samples s;
+    if (!cg_image_read_samples(path, 1ll << 28, &s, err))
         return false;
     dem_grid g = { 0 };
     bool ok = build_grid(path, &s, &p, &g, err);
-    cg_dem_samples_free(&s);
+    cg_image_samples_free(&s);
     cg_material white = cg_material_default("default");
     ok = ok && cg_scene_add_material(out, &white, err) >= 0;
     int ground = ok ? bs_add_material(out, "terrain", (float)p.albedo, (float)p.albedo, (float)p.albedo, err) : -1;

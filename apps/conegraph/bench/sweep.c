@@ -7,6 +7,8 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "cg/image.h"
+
 #include "app_common.h"
 #include "bench.h"
 
@@ -571,6 +573,9 @@ int
 bench_validate(const bench_config *c, const bench_run *runs, int run_count, bench_scene *scenes)
 {
     cg_error err = { 0 };
+    /* Images are read and written throughout: an installation without them fails first. */
+    if (!cg_image_io_check(&err))
+        return app_fail(TOOL, NULL, &err);
     /* Every scene, then every run on each: a bad one exits 2 before anything renders. */
     for (int s = 0; s < c->scene_count; s++) {
         bench_scene *bs = &scenes[s];
