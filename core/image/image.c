@@ -89,7 +89,7 @@ cg_image_read_info(const char *path, cg_image *out, cg_image_file_info *info, cg
     cg_oiio_transfer transfer = CG_OIIO_LINEAR;
     float gamma = 1.0f;
     if (!oiio->read(path, out, &transfer, &gamma, info->colour_space, sizeof info->colour_space, &info->bits,
-                      &info->floating, err))
+                    &info->floating, err))
         return false;
     if (transfer == CG_OIIO_OTHER)
         cg_log_warn("%s: colour space \"%s\" is not converted: pixels are read as stored", path, info->colour_space);
