@@ -232,10 +232,19 @@ test_images_load_their_library_on_use(void **state)
         { "passes", false },
         { "render builtin:cornell --graph direct.json --size 16x16 -o '%s'", true },
     };
-    /* The sanitizer setup preloads the module (tests/meson.build): every program has it. */
-    const char *preload = getenv("LD_PRELOAD");
-    bool preloaded = preload && strstr(preload, "libcg-oiio");
-    for (size_t i = 0; i < sizeof runs / sizeof runs[0] && !preloaded; i++) {
+    /* A sanitizer build links the module into every program (core/image/meson.build): this one
+     * has OpenImageIO mapped from the start too, then, and there is nothing to check. */
+    bool linked = false;
+    FILE *maps = fopen("/proc/self/maps", "r");
+    assert_non_null(maps);
+    while (fgets(out, sizeof out, maps))
+        linked = linked || strstr(out, "libOpenImageIO") != NULL;
+    fclose(maps);
+    if (linked) {
+        print_message("# the module is linked (a sanitizer build): not checked\n");
+        return;
+    }
+    for (size_t i = 0; i < sizeof runs / sizeof runs[0]; i++) {
         char args[4096];
         snprintf(args, sizeof args, runs[i].args, tmp("lazy.exr"));
         snprintf(cmd, sizeof cmd, "LD_DEBUG=files '%s' %s 2>&1 >/dev/null", exe, args);
