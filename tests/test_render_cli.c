@@ -215,8 +215,6 @@ test_frames_end_at_the_last_time(void **state)
         fail_msg("the frames at 0.5 s and 0.8 s hardly differ (relMSE %g): the motion is not seen", moved);
 }
 
-/* An animated scene exported to glTF renders as the built-in does at the same time: the
- * animation goes through the file. */
 /* OpenImageIO (260 shared libraries, half a second to load) is loaded on the first image, not
  * at start-up; and a render whose image module is missing fails before it renders, with the
  * file it looked for, and writes nothing. */
@@ -275,6 +273,8 @@ test_images_load_their_library_on_use(void **state)
     assert_false(exists(missing));
 }
 
+/* An animated scene exported to glTF renders as the built-in does at the same time: the
+ * animation goes through the file. */
 static void
 test_exported_animation_renders(void **state)
 {

@@ -41,6 +41,19 @@ transfer_of(const OIIO::ImageSpec &spec, float *gamma)
     return CG_OIIO_OTHER;
 }
 
+// The file opened for reading with `config`, or null with *err filled.
+std::unique_ptr<OIIO::ImageInput>
+open_input(const char *path, const OIIO::ImageSpec &config, cg_error *err)
+{
+    auto in = OIIO::ImageInput::open(path, &config);
+    if (!in) {
+        std::string why = OIIO::geterror();
+        host->fail(err, CG_ERR_IMAGE_FORMAT, "%s: not an image OpenImageIO can read: %s", path,
+                   why.empty() ? "unknown format" : why.c_str());
+    }
+    return in;
+}
+
 bool
 read_pixels(const char *path, cg_image *out, cg_oiio_transfer *transfer, float *gamma, char *colour_space,
             size_t colour_space_size, int *bits, bool *floating, cg_error *err)
@@ -49,17 +62,14 @@ read_pixels(const char *path, cg_image *out, cg_oiio_transfer *transfer, float *
     // premultiply it in (lossy at 8 bits, and in encoded space).
     OIIO::ImageSpec config;
     config.attribute("oiio:UnassociatedAlpha", 1);
-    auto in = OIIO::ImageInput::open(path, &config);
-    if (!in) {
-        std::string why = OIIO::geterror();
-        return host->fail(err, CG_ERR_IMAGE_FORMAT, "%s: not an image OpenImageIO can read: %s", path,
-                       why.empty() ? "unknown format" : why.c_str());
-    }
+    auto in = open_input(path, config, err);
+    if (!in)
+        return false;
     const OIIO::ImageSpec &spec = in->spec();
     int w = spec.width, h = spec.height, n = spec.nchannels;
     if (w <= 0 || h <= 0 || n <= 0 || spec.depth > 1)
         return host->fail(err, CG_ERR_IMAGE_FORMAT, "%s: %dx%dx%d image with %d channels: expected a 2D image",
-                       path, w, h, spec.depth, n);
+                          path, w, h, spec.depth, n);
     *transfer = transfer_of(spec, gamma);
     *bits = (int)spec.format.size() * 8;
     *floating = spec.format.is_floating_point();
@@ -103,7 +113,7 @@ write_pixels(const char *path, int width, int height, cg_oiio_pixel_type type, c
     if (!out) {
         std::string why = OIIO::geterror();
         return host->fail(err, CG_ERR_IMAGE_FORMAT, "%s: OpenImageIO cannot write this format: %s", path,
-                       why.c_str());
+                          why.c_str());
     }
     OIIO::TypeDesc stored = type == CG_OIIO_UINT8  ? OIIO::TypeDesc::UINT8
                             : type == CG_OIIO_HALF ? OIIO::TypeDesc::HALF
@@ -139,12 +149,9 @@ read_channel(const char *path, long long max_samples, cg_image_samples *out, cg_
     OIIO::ImageSpec config;
     config.attribute("oiio:RawColor", 1);
     config.attribute("oiio:UnassociatedAlpha", 1);
-    auto in = OIIO::ImageInput::open(path, &config);
-    if (!in) {
-        std::string why = OIIO::geterror();
-        return host->fail(err, CG_ERR_IMAGE_FORMAT, "%s: not an image OpenImageIO can read: %s", path,
-                          why.empty() ? "unknown format" : why.c_str());
-    }
+    auto in = open_input(path, config, err);
+    if (!in)
+        return false;
     const OIIO::ImageSpec &spec = in->spec();
     int w = spec.width, h = spec.height;
     if (w <= 0 || h <= 0 || spec.nchannels < 1 || spec.depth > 1)
