@@ -258,16 +258,12 @@ test_images_load_their_library_on_use(void **state)
     }
 
     const char *missing = tmp("missing.exr");
-    snprintf(cmd, sizeof cmd,
-             "CONEGRAPH_OIIO_MODULE=/nonexistent/libcg-oiio.so '%s' render builtin:cornell --size 16x16 -o '%s' 2>&1",
-             exe, missing);
-    FILE *p = popen(cmd, "r");
-    assert_non_null(p);
-    size_t n = fread(out, 1, sizeof out - 1, p);
-    out[n] = '\0';
-    int status = pclose(p);
-    assert_true(WIFEXITED(status));
-    assert_int_equal(WEXITSTATUS(status), 1);
+    char args[4096];
+    snprintf(args, sizeof args, "render builtin:cornell --size 16x16 -o '%s'", missing);
+    setenv("CONEGRAPH_OIIO_MODULE", "/nonexistent/libcg-oiio.so", 1);
+    int code = cg_test_run_conegraph(args, true, out, sizeof out);
+    unsetenv("CONEGRAPH_OIIO_MODULE");
+    assert_int_equal(code, 1);
     assert_non_null(strstr(out, "/nonexistent/libcg-oiio.so"));
     assert_null(strstr(out, "median frame")); /* refused before the first frame */
     assert_false(exists(missing));
