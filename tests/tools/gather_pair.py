@@ -28,10 +28,22 @@ import tempfile
 GRAPH_DIR = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "graphs")
 
 
+def refuse(message):
+    """Bad input: the message on stderr, exit 2 (as conegraph's own commands)."""
+    sys.stderr.write("gather_pair.py: %s\n" % message)
+    sys.exit(2)
+
+
 def load(name):
     path = name if "/" in name else os.path.join(GRAPH_DIR, name)
-    with open(path) as f:
-        return json.load(f)
+    try:
+        with open(path) as f:
+            graph = json.load(f)
+    except (OSError, ValueError) as e:
+        refuse("%s: %s" % (path, e))
+    if not isinstance(graph.get("passes"), dict) or not isinstance(graph.get("outputs"), list):
+        refuse("%s: a graph file needs \"passes\" (an object) and \"outputs\" (a list)" % path)
+    return graph
 
 
 def pair_graph(a, b):
@@ -75,11 +87,11 @@ def main():
     ap.add_argument("--set", action="append", default=[])
     args = ap.parse_args()
     if args.frames < 2:
-        sys.exit("gather_pair.py: --frames must be at least 2 (the first compiles the shaders)")
+        refuse("--frames must be at least 2 (the first compiles the shaders)")
     graph = pair_graph(load(args.graph_a), load(args.graph_b))
     name_b = "b_" + args.pass_name
     if args.pass_name not in graph["passes"] or name_b not in graph["passes"]:
-        sys.exit("gather_pair.py: pass '%s' is not in both graphs, or is the same in both" % args.pass_name)
+        refuse("pass '%s' is not in both graphs, or is the same in both" % args.pass_name)
     with tempfile.TemporaryDirectory() as tmp:
         path = os.path.join(tmp, "pair.json")
         with open(path, "w") as f:
