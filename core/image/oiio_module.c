@@ -3,8 +3,7 @@
  * The module is $CONEGRAPH_OIIO_MODULE when set (a relocated installation; tests), else the
  * one this build made when it is still there, else the installed one, as with shaders
  * (cg_shader_dir): a build directory runs its own module, an installed program the installed
- * one. It is never unloaded: OpenImageIO keeps threads and caches to the end. A sanitizer build
- * links it instead (CG_OIIO_MODULE_LINKED, core/image/meson.build says why). */
+ * one. It is never unloaded: OpenImageIO keeps threads and caches to the end. */
 #include <dlfcn.h>
 #include <pthread.h>
 #include <stdlib.h>
@@ -18,16 +17,6 @@ static pthread_once_t load_once = PTHREAD_ONCE_INIT;
 static const cg_oiio_api *api;
 static cg_error load_error;
 
-#ifdef CG_OIIO_MODULE_LINKED
-/* A sanitizer build links the module (core/image/meson.build): no file to look for. */
-static void
-load(void)
-{
-    api = cg_oiio_module(CG_OIIO_MODULE_ABI, &host);
-    if (!api)
-        cg_fail(&load_error, CG_ERR_IO, "the OpenImageIO module linked in is of another ABI");
-}
-#else
 static void *module;
 
 static void
@@ -52,7 +41,6 @@ load(void)
                 entry ? "built for another version of conegraph (module ABI mismatch)"
                       : "not conegraph's OpenImageIO module (no " CG_OIIO_MODULE_ENTRY ")");
 }
-#endif
 
 const cg_oiio_api *
 cg_oiio(cg_error *err)
