@@ -63,56 +63,50 @@ test_every_graph_on_every_builtin_scene(void **state)
     int scene_count = 0;
     while (cg_scene_builtin_names()[scene_count])
         scene_count++;
-    int pair_count = scene_count > graph_count ? scene_count : graph_count;
-    int failures = 0, rendered = 0;
-    for (int si = 0; si < scene_count; si++)
-        for (int g = 0; g < graph_count; g++) {
-            const char *const *scene = cg_scene_builtin_names() + si;
-            /* Pair k is scene k % S with graph k % G: (si, g) is one when some k < max(S, G) has both. */
-            bool in_cover = false;
-            for (int k = 0; k < pair_count && !in_cover; k++)
-                in_cover = k % scene_count == si && k % graph_count == g;
-            if (cover && !in_cover)
-                continue;
-            rendered++;
-            static char out[1 << 16];
-            static char kept[1 << 15], fresh[1 << 15], args[1 << 17];
-            snprintf(kept, sizeof kept, "%s/regression/%s-%s.exr", data, *scene, graphs[g]);
-            snprintf(fresh, sizeof fresh, "%s/%s-%s.exr", cg_test_tmpdir(), *scene, graphs[g]);
-            snprintf(args, sizeof args, "render builtin:%s --graph %s.json --size 64x36 -o '%s'", *scene,
-                     graphs[g], updating ? kept : fresh);
-            int code = cg_test_run_conegraph(args, true, out, sizeof out);
-            if (code != 0) {
-                print_error("%s exited %d:\n%s\n", args, code, out);
-                failures++;
-                continue;
-            }
-            if (updating) {
-                print_message("# wrote %s\n", kept);
-                continue;
-            }
-            cg_image a = {0}, b = {0};
-            cg_error err = {0};
-            if (!cg_image_read(kept, &a, &err)) {
-                print_error("builtin:%s with %s.json: no kept image (%s); render it with "
-                            "CONEGRAPH_REGRESSION_UPDATE=1\n", *scene, graphs[g], err.message);
-                failures++;
-                continue;
-            }
-            assert_cg_ok(cg_image_read(fresh, &b, &err), &err);
-            double diff = max_difference(&a, &b);
-            if (diff != 0.0) {
-                cg_metrics m;
-                bool sized = cg_metrics_compute(&b, &a, &m, &err);
-                print_error("builtin:%s with %s.json differs from %s: max |difference| %g, relMSE %g, "
-                            "mean luminance ratio %.6f\n", *scene, graphs[g], kept, diff,
-                            sized ? m.rel_mse : -1.0, sized ? m.mean_luminance_ratio : -1.0);
-                failures++;
-            }
-            cg_image_free(&a);
-            cg_image_free(&b);
+    /* Pair k of the cover is scene k % S with graph k % G, k < max(S, G); all pairs run in order. */
+    int pair_count = cover ? (scene_count > graph_count ? scene_count : graph_count) : scene_count * graph_count;
+    int failures = 0;
+    for (int k = 0; k < pair_count; k++) {
+        const char *const *scene = cg_scene_builtin_names() + (cover ? k % scene_count : k / graph_count);
+        int g = k % graph_count;
+        static char out[1 << 16];
+        static char kept[1 << 15], fresh[1 << 15], args[1 << 17];
+        snprintf(kept, sizeof kept, "%s/regression/%s-%s.exr", data, *scene, graphs[g]);
+        snprintf(fresh, sizeof fresh, "%s/%s-%s.exr", cg_test_tmpdir(), *scene, graphs[g]);
+        snprintf(args, sizeof args, "render builtin:%s --graph %s.json --size 64x36 -o '%s'", *scene,
+                 graphs[g], updating ? kept : fresh);
+        int code = cg_test_run_conegraph(args, true, out, sizeof out);
+        if (code != 0) {
+            print_error("%s exited %d:\n%s\n", args, code, out);
+            failures++;
+            continue;
         }
-    print_message("# %d of %d pairs rendered (%s)\n", rendered, scene_count * graph_count, cover ? "cover" : "all");
+        if (updating) {
+            print_message("# wrote %s\n", kept);
+            continue;
+        }
+        cg_image a = {0}, b = {0};
+        cg_error err = {0};
+        if (!cg_image_read(kept, &a, &err)) {
+            print_error("builtin:%s with %s.json: no kept image (%s); render it with "
+                        "CONEGRAPH_REGRESSION_UPDATE=1\n", *scene, graphs[g], err.message);
+            failures++;
+            continue;
+        }
+        assert_cg_ok(cg_image_read(fresh, &b, &err), &err);
+        double diff = max_difference(&a, &b);
+        if (diff != 0.0) {
+            cg_metrics m;
+            bool sized = cg_metrics_compute(&b, &a, &m, &err);
+            print_error("builtin:%s with %s.json differs from %s: max |difference| %g, relMSE %g, "
+                        "mean luminance ratio %.6f\n", *scene, graphs[g], kept, diff,
+                        sized ? m.rel_mse : -1.0, sized ? m.mean_luminance_ratio : -1.0);
+            failures++;
+        }
+        cg_image_free(&a);
+        cg_image_free(&b);
+    }
+    print_message("# %d of %d pairs rendered (%s)\n", pair_count, scene_count * graph_count, cover ? "cover" : "all");
     assert_int_equal(failures, 0);
 }
 
