@@ -12,15 +12,18 @@ test_sizes(void **state)
     (void)state;
     int n = 0;
     const int *sizes = cgp_cone_set_sizes(&n);
-    assert_int_equal(n, 4);
+    assert_int_equal(n, 5);
     assert_int_equal(sizes[0], 1);
     assert_int_equal(sizes[1], 6);
     assert_int_equal(sizes[2], 9);
     assert_int_equal(sizes[3], 16);
+    assert_int_equal(sizes[4], 26);
+    assert_true(sizes[4] <= CGP_CONE_MAX);
     cgp_cone_set set;
     assert_false(cgp_cone_set_make(0, &set));
     assert_false(cgp_cone_set_make(7, &set));
     assert_false(cgp_cone_set_make(17, &set));
+    assert_false(cgp_cone_set_make(CGP_CONE_MAX, &set));
     assert_false(cgp_cone_set_valid_size(5));
 }
 

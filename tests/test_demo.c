@@ -271,7 +271,7 @@ test_describe(void **state)
     fg_pass *gather = fg_graph_find_pass(graph, "gather"), *vox = fg_graph_find_pass(graph, "vox");
     char line[1024];
     demo_param_describe(gather, desc_of(gather, "cones"), line, sizeof line);
-    assert_true(!strncmp(line, "gather.cones = 6 (int 1, 6, 9, 16): diffuse cones", 49));
+    assert_true(!strncmp(line, "gather.cones = 6 (int 1, 6, 9, 16, 26): diffuse cones", 53));
     demo_param_describe(vox, desc_of(vox, "resolution"), line, sizeof line);
     assert_true(!strncmp(line, "vox.resolution = 128 (int 16..512, power of two): ", 50));
     demo_param_describe(gather, desc_of(gather, "roughness"), line, sizeof line);
@@ -304,9 +304,11 @@ test_adjust(void **state)
     assert_cg_ok(demo_adjust(graph, &sel, 1, &changed, previous, sizeof previous, &err), &err);
     assert_int_equal(fg_param_int(fg_graph_find_pass(graph, "gather"), "cones"), 16);
     assert_cg_ok(demo_adjust(graph, &sel, 1, &changed, previous, sizeof previous, &err), &err);
+    assert_int_equal(fg_param_int(fg_graph_find_pass(graph, "gather"), "cones"), 26);
+    assert_cg_ok(demo_adjust(graph, &sel, 1, &changed, previous, sizeof previous, &err), &err);
     assert_false(changed);
-    assert_int_equal(fg_param_int(fg_graph_find_pass(graph, "gather"), "cones"), 16);
-    for (int i = 0; i < 2; i++)
+    assert_int_equal(fg_param_int(fg_graph_find_pass(graph, "gather"), "cones"), 26);
+    for (int i = 0; i < 3; i++)
         assert_cg_ok(demo_adjust(graph, &sel, -1, &changed, previous, sizeof previous, &err), &err);
     assert_int_equal(fg_param_int(fg_graph_find_pass(graph, "gather"), "cones"), 6);
 

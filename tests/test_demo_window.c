@@ -157,10 +157,10 @@ test_vct_runs(void **state)
     cg_image_free(&a);
     const char *out = read_text(log);
     assert_non_null(strstr(out, "| gather "));
-    /* Shift+Tab twice from the first pass: gather (final, then gather). Left from 16 cones
-     * steps past 15 .. 10, which the pass refuses, to 9. */
-    assert_non_null(strstr(out, "param: gather.cones = 9 "));
-    assert_null(strstr(out, "gather.cones = 10"));
+    /* Shift+Tab twice from the first pass: gather (final, then gather). Left from 26 cones
+     * steps past 25 .. 17, which the pass refuses, to 16. */
+    assert_non_null(strstr(out, "param: gather.cones = 16 "));
+    assert_null(strstr(out, "gather.cones = 17"));
     const char *gi = strstr(out, "| GI ");
     assert_non_null(gi);
     /* The geometry and the three 32^3 RGBA16F volumes with mips of voxel_light: about 1.6 MiB. */

@@ -26,9 +26,9 @@
 #include "cg/shader.h"
 
 static const fg_param_desc cone_gather_params[] = {
-    { .name = "cones", .type = FG_PARAM_INT, .default_value = 6, .min = 1, .max = 16,
+    { .name = "cones", .type = FG_PARAM_INT, .default_value = 6, .min = 1, .max = 26,
       .allowed = FG_PARAM_VALUES(CGP_CONE_SET_SIZES),
-      .doc = "diffuse cones: 1, 6 (Crassin et al.), 9 (VCT paper 3.2.1) or 16; weights integrate the cosine lobe to 1" },
+      .doc = "diffuse cones: 1, 6 (Crassin et al.), 9 (VCT paper 3.2.1), 16 or 26 (16 with its outer ring split in two); weights integrate the cosine lobe to 1" },
     { .name = "aperture", .type = FG_PARAM_FLOAT, .min = 0, .max = 150,
       .step = 5,
       .doc = "full apex angle of the diffuse cones in degrees; 0: per cone, the cone with its cell's solid angle" },
@@ -143,7 +143,7 @@ cone_gather_execute(fg_pass *pass, cone_gather_state *s, cg_error *err)
 }
 
 CGP_PASS(cone_gather, CGP_PARAMS(cone_gather_params),
-         "Indirect diffuse light by voxel cone tracing (VCT paper 3.2.1): 1, 6, 9 or 16 cones "
+         "Indirect diffuse light by voxel cone tracing (VCT paper 3.2.1): 1, 6, 9, 16 or 26 cones "
          "around the normal, weighted by their share of the cosine lobe (hybrid eq. 3-4), each "
          "accumulated front to back through the mip level of its diameter (hybrid eq. 8). "
          "Output: the incident radiance integral E/pi (composite multiplies by the albedo) and "

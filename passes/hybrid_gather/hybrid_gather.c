@@ -41,9 +41,9 @@ enum { ADVANCE_CUBE, ADVANCE_STEP };
 enum { BOX_MESHES, BOX_VOLUME };
 
 static const fg_param_desc hybrid_gather_params[] = {
-    { .name = "cones", .type = FG_PARAM_INT, .default_value = 6, .min = 1, .max = 16,
+    { .name = "cones", .type = FG_PARAM_INT, .default_value = 6, .min = 1, .max = 26,
       .allowed = FG_PARAM_VALUES(CGP_CONE_SET_SIZES),
-      .doc = "diffuse cones: 1, 6, 9 or 16; weights integrate the cosine lobe to 1 (hybrid eq. 3-4)" },
+      .doc = "diffuse cones: 1, 6, 9, 16 or 26; weights integrate the cosine lobe to 1 (hybrid eq. 3-4)" },
     { .name = "aperture", .type = FG_PARAM_FLOAT, .min = 0, .max = 150,
       .step = 5,
       .doc = "full apex angle of the diffuse cones in degrees; 0: per cone, the cone with its cell's solid angle" },

@@ -51,7 +51,7 @@ polar_of_sin2(double s)
 }
 
 static int
-rings_for(int count, cone_ring rings[3])
+rings_for(int count, cone_ring rings[4])
 {
     switch (count) {
     case 1:
@@ -78,6 +78,21 @@ rings_for(int count, cone_ring rings[3])
         rings[2] = (cone_ring){10, polar_of_sin2(11.0 / 16.0), polar_of_sin2(6.0 / 16.0),
                                deg(90.0), deg(18.0)};
         return 3;
+    case 26:
+        /* The 16-cone set with its outer band split into two rings of 10 of equal cosine weight
+         * (sin^2 6/16 to 11/16 and 11/16 to 1): half angles 12.4 and 19.2 deg where the 16 set's
+         * outer ring has 22.9. A wide cone that meets a surface obliquely fills at the crossing
+         * though its far rays pass beyond the surface's edge; narrower cones near the horizon
+         * cut that excess on compact sources (docs/vct.md, "Cone sets"). The inner rings are
+         * the 16 set's; the outer ring is staggered by half its spacing against the middle one. */
+        rings[0] = (cone_ring){1, 0.0, 0.0, polar_of_sin2(1.0 / 16.0), 0.0};
+        rings[1] = (cone_ring){5, polar_of_sin2(3.5 / 16.0), polar_of_sin2(1.0 / 16.0),
+                               polar_of_sin2(6.0 / 16.0), 0.0};
+        rings[2] = (cone_ring){10, polar_of_sin2(8.5 / 16.0), polar_of_sin2(6.0 / 16.0),
+                               polar_of_sin2(11.0 / 16.0), deg(18.0)};
+        rings[3] = (cone_ring){10, polar_of_sin2(13.5 / 16.0), polar_of_sin2(11.0 / 16.0),
+                               deg(90.0), 0.0};
+        return 4;
     default:
         return 0;
     }
@@ -86,7 +101,7 @@ rings_for(int count, cone_ring rings[3])
 bool
 cgp_cone_set_make(int count, cgp_cone_set *out)
 {
-    cone_ring rings[3];
+    cone_ring rings[4];
     int ring_count = rings_for(count, rings);
     if (ring_count == 0)
         return false;
@@ -122,7 +137,7 @@ cgp_cone_set_of_pass(const fg_pass *pass, cgp_cone_set *out, cg_error *err)
 {
     int count = fg_param_int(pass, "cones");
     if (!cgp_cone_set_make(count, out))
-        return cg_fail(err, CG_ERR_GRAPH_PARAM_RANGE, "pass '%s': no cone set of %d cones (1, 6, 9 or 16)",
+        return cg_fail(err, CG_ERR_GRAPH_PARAM_RANGE, "pass '%s': no cone set of %d cones (1, 6, 9, 16 or 26)",
                        fg_pass_name(pass), count);
     return true;
 }

@@ -30,7 +30,7 @@
 #define CGP_CONE_MAX CG_CONE_SET_MAX
 /* The sizes of the sets cgp_cone_set_make makes, as a list for parameter tables:
  * `.allowed = FG_PARAM_VALUES(CGP_CONE_SET_SIZES)`. */
-#define CGP_CONE_SET_SIZES 1, 6, 9, 16
+#define CGP_CONE_SET_SIZES 1, 6, 9, 16, 26
 
 typedef struct cgp_cone {
     float direction[3];     /* tangent space, z = normal; unit length */

@@ -49,9 +49,9 @@ static const fg_param_desc voxel_light_params[] = {
              "holds emission alone (the emitters' direct light on their neighbours); each bounce is one "
              "more diffuse reflection: the volume's light gathered at every occupied voxel and added to it "
              "(N - 1 gathers, N when the voxelized meshes emit: docs/vct.md)" },
-    { .name = "bounce_cones", .type = FG_PARAM_INT, .default_value = 16, .min = 1, .max = 16,
+    { .name = "bounce_cones", .type = FG_PARAM_INT, .default_value = 16, .min = 1, .max = 26,
       .allowed = FG_PARAM_VALUES(CGP_CONE_SET_SIZES),
-      .doc = "diffuse cones of the gathers at the voxels: 1, 6, 9 or 16" },
+      .doc = "diffuse cones of the gathers at the voxels: 1, 6, 9, 16 or 26" },
 };
 
 static const char *const geometry_names[4] = {"albedo", "coverage", "normal", "emission"};
@@ -160,7 +160,7 @@ voxel_light_prepare(fg_pass *pass, voxel_light_state *s, cg_error *err)
     s->one_level = cgp_sampler_volume_one_level(s);
     s->cone_block = cgp_uniform_buffer(s, sizeof(cg_cone_set_block));
     if (!cgp_cone_set_make(fg_param_int(pass, "bounce_cones"), &s->set))
-        return cg_fail(err, CG_ERR_GRAPH_PARAM_RANGE, "pass '%s': no cone set of %d cones (1, 6, 9 or 16)",
+        return cg_fail(err, CG_ERR_GRAPH_PARAM_RANGE, "pass '%s': no cone set of %d cones (1, 6, 9, 16 or 26)",
                        fg_pass_name(pass), fg_param_int(pass, "bounce_cones"));
     return cgp_compute_program(s, "voxel_light/inject.comp", NULL, &s->inject, err) &&
            cgp_compute_program(s, "voxel_light/mip.comp", NULL, &s->mip, err) &&

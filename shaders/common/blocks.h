@@ -57,8 +57,9 @@
 #define CG_UNIT_NORMALS 13              /* surface voxels (voxel_light): w N, alpha_z */
 #define CG_UNIT_OCCUPANCY 14            /* surface voxels: CG_UNIT_VOLUME's texture, one level a read */
 
-/* The most cones a diffuse set holds (sdk/cone.h: CGP_CONE_MAX). */
-#define CG_CONE_SET_MAX 16
+/* The most cones a diffuse set holds (sdk/cone.h: CGP_CONE_MAX): the largest set, 26, rounded up to
+ * a multiple of 4, as cell_width packs four cones per vec4. */
+#define CG_CONE_SET_MAX 28
 /* Levels the hsat info block has means for. */
 #define CG_HSAT_MAX_LEVELS 16
 
@@ -91,7 +92,7 @@
     M(vec4, params)                       /* x mode, y exponent p, z levels */                    \
     A(vec4, means, CG_HSAT_MAX_LEVELS)    /* per level: means of x, x^p, (1 - x)^p subtracted from the tables */
 
-/* A gather's diffuse cone set and march (common/cone_trace.glsl), uploaded by cgp_cone_upload; 544 bytes. */
+/* A gather's diffuse cone set and march (common/cone_trace.glsl), uploaded by cgp_cone_upload; 928 bytes. */
 #define CG_CONE_SET_BLOCK(M, A)                                                                   \
     A(vec4, cones, CG_CONE_SET_MAX)       /* xyz: tangent-space direction (z = normal), w: weight W_k */ \
     A(vec4, apertures, CG_CONE_SET_MAX)   /* x: tan of the half apex angle */                     \
@@ -115,7 +116,7 @@
 #define CG_HYBRID_CELL_POINTS 12
 #define CG_HYBRID_LIFT_POINTS 33
 
-/* hybrid_gather's parameters (passes/hybrid_gather/hybrid_gather.c); 3408 bytes. */
+/* hybrid_gather's parameters (passes/hybrid_gather/hybrid_gather.c); 5760 bytes. */
 #define CG_HYBRID_GATHER_BLOCK(M, A)                                                              \
     M(ivec4, maps)        /* x: a 3D lightmap is bound */                                          \
     M(ivec4, switches)    /* x: eq. 11 (else eq. 10), y: occlusion (0 eq. 16, 1 eq. 17), z: the morphology search, w: skipping */ \
@@ -160,9 +161,9 @@ CG_C_BLOCK(cg_shadow_block, CG_SHADOW_BLOCK, 192);
 CG_C_BLOCK(cg_volume_block, CG_VOLUME_BLOCK, 48);
 CG_C_BLOCK(cg_heightmap_block, CG_HEIGHTMAP_BLOCK, 48);
 CG_C_BLOCK(cg_hsat_info_block, CG_HSAT_INFO_BLOCK, 272);
-CG_C_BLOCK(cg_cone_set_block, CG_CONE_SET_BLOCK, 544);
+CG_C_BLOCK(cg_cone_set_block, CG_CONE_SET_BLOCK, 928);
 CG_C_BLOCK(cg_cone_gather_block, CG_CONE_GATHER_BLOCK, 48);
-CG_C_BLOCK(cg_hybrid_gather_block, CG_HYBRID_GATHER_BLOCK, 3408);
+CG_C_BLOCK(cg_hybrid_gather_block, CG_HYBRID_GATHER_BLOCK, 5760);
 CG_C_BLOCK(cg_sky_block, CG_SKY_BLOCK, 16);
 CG_C_BLOCK(cg_voxel_list_block, CG_VOXEL_LIST_BLOCK, 16);
 
