@@ -282,8 +282,8 @@ test_white_furnace(void **state)
         cg_scene scene;
         cg_error err = {0};
         assert_cg_ok(cg_scene_load(source, &scene, &err), &err);
-        int sizes[] = {1, 6, 9, 16};
-        for (int c = 0; c < (i == 1 ? 4 : 1); c++) {
+        int sizes[] = {1, 6, 9, 16, 26};
+        for (int c = 0; c < (i == 1 ? 5 : 1); c++) {
             int cones = i == 1 ? sizes[c] : 6;
             gather_result g = run_gather(ctx, &scene, 64, "", "max", cones, 0.0, matched, albedo * radiance);
             fprintf(stderr, "# furnace scale %g, %d cones, lod_bias 0: mean %.5f (target %.5f), worst pixel %.3f%%\n",
