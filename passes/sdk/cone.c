@@ -83,8 +83,9 @@ rings_for(int count, cone_ring rings[4])
          * (sin^2 6/16 to 11/16 and 11/16 to 1): half angles 12.4 and 19.2 deg where the 16 set's
          * outer ring has 22.9. A wide cone that meets a surface obliquely fills at the crossing
          * though its far rays pass beyond the surface's edge; narrower cones near the horizon
-         * cut that excess on compact sources (docs/vct.md, "Cone sets"). The inner rings are
-         * the 16 set's; the outer ring is staggered by half its spacing against the middle one. */
+         * cut that excess on compact sources (docs/vct.md, "Cone sets and the oblique
+         * crossings"). The inner rings are the 16 set's; the two rings of 10 are staggered by half
+         * their spacing (18 deg), the inner of them against the ring of 5 as in the 16 set. */
         rings[0] = (cone_ring){1, 0.0, 0.0, polar_of_sin2(1.0 / 16.0), 0.0};
         rings[1] = (cone_ring){5, polar_of_sin2(3.5 / 16.0), polar_of_sin2(1.0 / 16.0),
                                polar_of_sin2(6.0 / 16.0), 0.0};
