@@ -2,7 +2,8 @@
  *
  * Outputs (all the output image's size): depth (GL_DEPTH_COMPONENT32F), position
  * (RGBA32F world position, w = 1 where a surface covers the pixel, 0 on the background),
- * normal (RGBA16F world normal turned towards the camera), albedo (RGBA16F linear
+ * normal (RGBA16F world normal turned towards the camera; a height field's upper side, see
+ * gbuffer.frag), albedo (RGBA16F linear
  * Lambertian albedo) and emissive (RGBA32F emitted radiance).
  *
  * The world position is stored rather than reconstructed from depth: a perspective fp32
@@ -121,7 +122,12 @@ gbuffer_execute(fg_pass *pass, gbuffer_state *st, cg_error *err)
     glClearNamedFramebufferfv(st->fbo, GL_DEPTH, 0, &far_depth);
     glUseProgram(st->program);
     glUniformMatrix4fv(8, 1, GL_FALSE, frame->view.view_proj);
-    cg_gpu_scene_draw(frame->gpu_scene, CG_MESHES_ALL);
+    /* Height fields apart: their normals are turned up where a silhouette shows a back face
+     * (gbuffer.frag). */
+    glUniform1i(9, 0);
+    cg_gpu_scene_draw(frame->gpu_scene, CG_MESHES_COMPLEX);
+    glUniform1i(9, 1);
+    cg_gpu_scene_draw(frame->gpu_scene, CG_MESHES_HEIGHTFIELD);
     glUseProgram(0);
     glDisable(GL_DEPTH_TEST);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
