@@ -134,13 +134,23 @@ cgp_cone_set_make(int count, cgp_cone_set *out)
 }
 
 bool
+cgp_cone_set_of_param(const fg_pass *pass, const char *param, cgp_cone_set *out, cg_error *err)
+{
+    int count = fg_param_int(pass, param);
+    if (cgp_cone_set_make(count, out))
+        return true;
+    char sizes[64] = "";
+    size_t used = 0;
+    for (size_t i = 0; i < sizeof cone_set_sizes / sizeof cone_set_sizes[0] && used < sizeof sizes; i++)
+        used += (size_t)snprintf(sizes + used, sizeof sizes - used, "%s%d", i ? ", " : "", cone_set_sizes[i]);
+    return cg_fail(err, CG_ERR_GRAPH_PARAM_RANGE, "pass '%s': %s: no cone set of %d cones (sets: %s)",
+                   fg_pass_name(pass), param, count, sizes);
+}
+
+bool
 cgp_cone_set_of_pass(const fg_pass *pass, cgp_cone_set *out, cg_error *err)
 {
-    int count = fg_param_int(pass, "cones");
-    if (!cgp_cone_set_make(count, out))
-        return cg_fail(err, CG_ERR_GRAPH_PARAM_RANGE, "pass '%s': no cone set of %d cones (1, 6, 9, 16 or 26)",
-                       fg_pass_name(pass), count);
-    return true;
+    return cgp_cone_set_of_param(pass, "cones", out, err);
 }
 
 void

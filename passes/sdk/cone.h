@@ -1,7 +1,8 @@
 /* sdk/cone.h (pass SDK): diffuse cone sets for cone tracing: directions, apertures and weights.
  *
  * Declares: CGP_CONE_MAX, CGP_CONE_SET_SIZES, cgp_cone, cgp_cone_set, cgp_cone_set_make,
- *           cgp_cone_set_sizes, cgp_cone_set_valid_size, cgp_cone_frame, cgp_cone_set_of_pass,
+ *           cgp_cone_set_sizes, cgp_cone_set_valid_size, cgp_cone_frame, cgp_cone_set_of_param,
+ *           cgp_cone_set_of_pass,
  *           cgp_cone_block_fill, cgp_cone_block_fill_march, cgp_cone_upload, cgp_volume_model,
  *           cgp_gather_declare_volume, cgp_gather_volume_model, cgp_gather_volume_define, cgp_gather,
  *           cgp_gather_prepare, cgp_gather_begin, cgp_gather_bind_volume, cgp_gather_end.
@@ -64,7 +65,10 @@ void cgp_cone_frame(const float n[3], float t[3], float b[3]);
  * degrees, 0: each cone's own), `step`, `start_offset`, `max_distance` and `lod_bias`, which
  * shaders/common/cone_trace.glsl reads from CG_CONE_SET_BLOCK. */
 
-/* The set of the pass's parameter `cones`; CG_ERR_GRAPH_PARAM_RANGE for a size not offered. */
+/* The set of the pass's int parameter `param` (voxel_light's `bounce_cones`);
+ * CG_ERR_GRAPH_PARAM_RANGE, naming the sets offered, for a size not offered. */
+bool cgp_cone_set_of_param(const fg_pass *pass, const char *param, cgp_cone_set *out, cg_error *err);
+/* The set of the pass's parameter `cones`. */
 bool cgp_cone_set_of_pass(const fg_pass *pass, cgp_cone_set *out, cg_error *err);
 /* The block of a set and the pass's march parameters. */
 void cgp_cone_block_fill(const fg_pass *pass, const cgp_cone_set *set, cg_cone_set_block *out);

@@ -159,9 +159,8 @@ voxel_light_prepare(fg_pass *pass, voxel_light_state *s, cg_error *err)
     s->sampler = cgp_sampler_volume(s);
     s->one_level = cgp_sampler_volume_one_level(s);
     s->cone_block = cgp_uniform_buffer(s, sizeof(cg_cone_set_block));
-    if (!cgp_cone_set_make(fg_param_int(pass, "bounce_cones"), &s->set))
-        return cg_fail(err, CG_ERR_GRAPH_PARAM_RANGE, "pass '%s': no cone set of %d cones (1, 6, 9, 16 or 26)",
-                       fg_pass_name(pass), fg_param_int(pass, "bounce_cones"));
+    if (!cgp_cone_set_of_param(pass, "bounce_cones", &s->set, err))
+        return false;
     return cgp_compute_program(s, "voxel_light/inject.comp", NULL, &s->inject, err) &&
            cgp_compute_program(s, "voxel_light/mip.comp", NULL, &s->mip, err) &&
            (!s->gathers ||
