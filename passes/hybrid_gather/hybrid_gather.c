@@ -123,8 +123,7 @@ typedef struct hybrid_gather_state {
     GLuint map_sampler, table_sampler;
     GLuint empty_block;     /* bound where a map is absent, so no block is left unbound */
     bool has_2d, has_3d;
-    cg_hybrid_gather_block block;   /* 3 KiB: kept here rather than on the stack */
-    cg_block_vec4 lift[(CG_HYBRID_LIFT_POINTS + 3) / 4];  /* lift_table(), made at prepare */
+    cg_hybrid_gather_block block;   /* 5.5 KiB: kept here rather than on the stack */
 } hybrid_gather_state;
 
 static bool
@@ -211,50 +210,11 @@ cell_points(const cgp_cone_set *set, cg_hybrid_gather_block *b)
     }
 }
 
-/* The share of a unit disc below the chord at height u (radii from its centre): a circular segment. */
-static double
-disc_below(double u)
-{
-    return 0.5 + (u * sqrt(1.0 - u * u) + asin(u)) / M_PI;
-}
-
-/* The horizon method samples the 3D lightmap on the part of a cone's footprint the terrain left
- * open: the disc above the chord below which lies the covered share c, at the centroid of that
- * circular segment, (2/3) (1 - u^2)^(3/2) / (pi (1 - c)) radii above the centre for the chord
- * height u. Inverting the segment's area for u takes iterations (asin in each) that llvmpipe would
- * run at every step of the march (13% of the gather, docs/hybrid.md), so the centroid is tabulated
- * here against w = (1 - c)^(2/3), in which it is smooth at both ends (1 - 2w/5 + ... as c -> 1,
- * linear in c as c -> 0): CG_HYBRID_LIFT_POINTS points, w = k / (n - 1), u by bisection; the
- * shader interpolates linearly, within 6e-4 radii of the exact centroid. */
-static void
-lift_table(cg_block_vec4 *table)
-{
-    for (int k = 0; k < CG_HYBRID_LIFT_POINTS; k++) {
-        double w = (double)k / (CG_HYBRID_LIFT_POINTS - 1), open = pow(w, 1.5), lift = 1.0;
-        if (k == CG_HYBRID_LIFT_POINTS - 1) {
-            lift = 0.0;         /* nothing covered: the whole disc, its centre */
-        } else if (k > 0) {     /* k = 0: everything covered, the segment's limit is the disc's top */
-            double lo = -1.0, hi = 1.0;
-            for (int i = 0; i < 60; i++) {
-                double mid = 0.5 * (lo + hi);
-                if (disc_below(mid) < 1.0 - open)
-                    lo = mid;
-                else
-                    hi = mid;
-            }
-            double u = 0.5 * (lo + hi);
-            lift = (2.0 / 3.0) * pow(1.0 - u * u, 1.5) / (M_PI * open);
-        }
-        table[k / 4][k % 4] = (float)lift;
-    }
-}
-
 static bool
 hybrid_gather_prepare(fg_pass *pass, hybrid_gather_state *s, cg_error *err)
 {
     s->has_3d = fg_input_present(pass, "volume");
     s->has_2d = fg_input_present(pass, "lightmap2d");
-    lift_table(s->lift);
     /* The cube-centre sample (dda = false) reads the 2D lightmap filtered; the DDA and HSAT fetch. */
     s->map_sampler = cgp_sampler_lightmap2d(s);
     s->table_sampler = cgp_sampler_table(s);
@@ -285,7 +245,6 @@ hybrid_gather_execute(fg_pass *pass, hybrid_gather_state *s, cg_error *err)
                    fg_param_float(pass, "terrain_lod_bias")},
     };
     cell_points(&s->gather.set, block);
-    memcpy(block->lift, s->lift, sizeof s->lift);
     /* Eq. 12's box: the complex meshes' bounds; the shader keeps its part inside the volume. */
     double lo[3] = { -1e30, -1e30, -1e30 }, hi[3] = { 1e30, 1e30, 1e30 };
     if (fg_param_enum(pass, "box3d") == BOX_MESHES && !cgp_mesh_bounds(fg_pass_frame(pass)->scene, CG_MESHES_COMPLEX, lo, hi))

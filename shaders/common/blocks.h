@@ -114,9 +114,24 @@
 
 /* Quadrature points per cone cell in hybrid_gather's horizon method. */
 #define CG_HYBRID_CELL_POINTS 12
-#define CG_HYBRID_LIFT_POINTS 33
 
-/* hybrid_gather's parameters (passes/hybrid_gather/hybrid_gather.c); 5760 bytes. */
+/* hybrid_gather's horizon method samples the 3D lightmap on the part of a cone's footprint the
+ * terrain left open: a unit disc above the chord at height u, whose open share a is
+ * (acos u - u sqrt(1 - u^2)) / pi. The step samples it at that circular segment's centroid,
+ * S(a) = (2/3) (1 - u^2)^(3/2) / (pi a) radii above the centre. Inverting the area for u takes
+ * iterations (asin in each) that llvmpipe would run at every step of the march, so S is a
+ * closed form here, shared by the shader and its unit test:
+ *   - for a <= 1/2, S is a degree-4 polynomial in w = a^(2/3), in which it is smooth
+ *     (1 - 0.84 w + ... as a -> 0); a least-squares fit, within 1.7e-5 radii of the exact
+ *     centroid (degree 3: 1.1e-4; the 33-point table this replaces: 6e-4);
+ *   - for a > 1/2, the disc's centroid is its centre, so a S(a) = (1 - a) S(1 - a) gives
+ *     S(a) = (1 - a) S(1 - a) / a, with no fit of its own (S -> 0 linearly as a -> 1).
+ * CG_SEGMENT_CENTROID_FIT(w) is the polynomial, for w = min(a, 1 - a)^(2/3); GLSL and C alike
+ * (tests/tools/fit_segment_centroid.py fits it). */
+#define CG_SEGMENT_CENTROID_FIT(w)                                                                \
+    ((((-0.04480492 * (w) - 0.0066729) * (w) - 0.09072905) * (w) - 0.84263419) * (w) + 0.99998642)
+
+/* hybrid_gather's parameters (passes/hybrid_gather/hybrid_gather.c); 5616 bytes. */
 #define CG_HYBRID_GATHER_BLOCK(M, A)                                                              \
     M(ivec4, maps)        /* x: a 3D lightmap is bound */                                          \
     M(ivec4, switches)    /* x: eq. 11 (else eq. 10), y: occlusion (0 eq. 16, 1 eq. 17), z: the morphology search, w: skipping */ \
@@ -127,8 +142,7 @@
     M(vec4, box3_lo)      /* xyz: the 3D lightmap's box of eq. 12 (the complex meshes' bounds in the volume) */ \
     M(vec4, box3_hi)                                                                              \
     A(vec4, cell_width, CG_CONE_SET_MAX / 4) /* per cone: the half width (radians) of a quadrature point's band */ \
-    A(vec4, cells, CG_CONE_SET_MAX * CG_HYBRID_CELL_POINTS) /* xyz: tangent-space quadrature points of each cone's cell */ \
-    A(vec4, lift, (CG_HYBRID_LIFT_POINTS + 3) / 4) /* the open segment's centroid against (1 - covered)^(2/3) (hybrid_gather.c) */
+    A(vec4, cells, CG_CONE_SET_MAX * CG_HYBRID_CELL_POINTS) /* xyz: tangent-space quadrature points of each cone's cell */
 
 /* The baked sky (common/sky.glsl), uploaded by cgp_sky_bind (sdk/sky.h); 16 bytes. */
 #define CG_SKY_BLOCK(M, A)                                                                        \
@@ -163,7 +177,7 @@ CG_C_BLOCK(cg_heightmap_block, CG_HEIGHTMAP_BLOCK, 48);
 CG_C_BLOCK(cg_hsat_info_block, CG_HSAT_INFO_BLOCK, 272);
 CG_C_BLOCK(cg_cone_set_block, CG_CONE_SET_BLOCK, 928);
 CG_C_BLOCK(cg_cone_gather_block, CG_CONE_GATHER_BLOCK, 48);
-CG_C_BLOCK(cg_hybrid_gather_block, CG_HYBRID_GATHER_BLOCK, 5760);
+CG_C_BLOCK(cg_hybrid_gather_block, CG_HYBRID_GATHER_BLOCK, 5616);
 CG_C_BLOCK(cg_sky_block, CG_SKY_BLOCK, 16);
 CG_C_BLOCK(cg_voxel_list_block, CG_VOXEL_LIST_BLOCK, 16);
 

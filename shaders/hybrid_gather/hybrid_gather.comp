@@ -559,15 +559,14 @@ terrain_sample(CgHeightmap m, vec3 p, vec3 dir, float t, vec3 x, float d, Cell c
 
 // Where the 3D step samples the part of the footprint the terrain left open (a disc across the
 // cone, cut by the horizon's chord): the centroid of the circular segment above the chord, in
-// radii from the centre up across the cone, for the covered share `covered`; interpolated in the
-// table hybrid_gather.c computes against w = (1 - covered)^(2/3) (within 6e-4 radii).
+// radii from the centre up across the cone, for the covered share `covered` (blocks.h's
+// CG_SEGMENT_CENTROID_FIT: within 1.7e-5 radii; no table, no dynamic index into the block).
 float
 open_lift(float covered)
 {
-    float x = pow(clamp(1.0 - covered, 0.0, 1.0), 2.0 / 3.0) * float(CG_HYBRID_LIFT_POINTS - 1);
-    int k = min(int(x), CG_HYBRID_LIFT_POINTS - 2);
-    float a = cg_hybrid_gather_block.lift[k / 4][k % 4], b = cg_hybrid_gather_block.lift[(k + 1) / 4][(k + 1) % 4];
-    return mix(a, b, x - float(k));
+    float c = clamp(covered, 0.0, 1.0), open = 1.0 - c;
+    float s = CG_SEGMENT_CENTROID_FIT(pow(min(c, open), 2.0 / 3.0));
+    return c <= 0.5 ? s * c / open : s;
 }
 
 // One cone: `p` the surface point, `origin` the 3D march's origin (moved off the surface as
