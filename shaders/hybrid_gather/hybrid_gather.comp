@@ -55,7 +55,7 @@ has_3d()
 #define OCCLUSION_EQ16 0
 #define OCCLUSION_EQ17 1
 #define PI 3.14159265358979
-#define MAX_SLOPE 31.8205159537739    // tan(0.49 pi): slope_of()'s bound
+#define MAX_SLOPE 31.8205159537739    // tan(0.49 pi): a horizon's slope, finite
 
 #ifdef HAS_2D
 // The 3D lightmap as the gather uses it: at most `levels3d` levels (0: all).
@@ -340,13 +340,16 @@ trace_paper(vec3 origin, vec3 dir, float tan_half, float t_start, float t_max)
 #define QUAD_POINTS CG_HYBRID_CELL_POINTS
 
 // The cone's cell as quadrature points of equal cosine weight (hybrid_gather.c, cell_points()),
-// each standing for a band of elevations 2 w wide around its world elevation e: per point the
-// share of its band below the horizon's elevation E is clamp(E / (2 w) + 0.5 - e / (2 w), 0, 1),
-// kept as the offset 0.5 - e / (2 w) and the rate 1 / (2 w), one multiply-add a point in the
-// march's hot loop; and the lowest elevation of the cell (a horizon below it covers nothing).
+// each standing for a band of elevations 2 w wide around its world elevation e. A band's share
+// below the horizon's elevation E is its solid angle's share there, linear in sin E across the band:
+// clamp((sin E - sin(e - w)) / (sin(e + w) - sin(e - w)), 0, 1) (a band ending at a pole ends at
+// sin = +-1), kept per point as a rate and an offset, one multiply-add a point in the march's hot
+// loop, from sin e, cos e (the point's y, a square root) and cos w, sin w (once per cone): no asin
+// per point, no atan per terrain sample. `lowest`: the sine of the cell's lowest elevation (a
+// horizon below it covers nothing).
 struct Cell {
-    float offset[QUAD_POINTS];
-    float rate, lowest;
+    float offset[QUAD_POINTS], rate[QUAD_POINTS];
+    float lowest;
 };
 
 Cell
@@ -354,26 +357,29 @@ cell_of(int k, mat3 frame)
 {
     Cell c;
     float half_width = cg_hybrid_gather_block.cell_width[k / 4][k % 4];
-    c.rate = 0.5 / half_width;
-    c.lowest = 0.5 * PI;
+    float cos_w = cos(half_width), sin_w = sin(half_width);
+    c.lowest = 1.0;
     for (int j = 0; j < QUAD_POINTS; j++) {
-        vec3 d = frame * cg_hybrid_gather_block.cells[k * QUAD_POINTS + j].xyz;
-        float elevation = asin(clamp(d.y, -1.0, 1.0));
-        c.offset[j] = 0.5 - elevation * c.rate;
-        c.lowest = min(c.lowest, elevation - half_width);
+        float sin_e = clamp((frame * cg_hybrid_gather_block.cells[k * QUAD_POINTS + j].xyz).y, -1.0, 1.0);
+        float cos_e = sqrt(max(1.0 - sin_e * sin_e, 0.0));
+        float lo = sin_e <= -cos_w ? -1.0 : sin_e * cos_w - cos_e * sin_w;
+        float hi = sin_e >= cos_w ? 1.0 : sin_e * cos_w + cos_e * sin_w;
+        c.rate[j] = 1.0 / (hi - lo);
+        c.offset[j] = -lo * c.rate[j];
+        c.lowest = min(c.lowest, lo);
     }
     return c;
 }
 
-// The cosine-weighted share of the cell below the world elevation `horizon`: each point's band of
-// elevations covered linearly across its width, so that the share grows continuously. The
-// horizon is the one along the cone's axis, taken for the whole cell.
+// The cosine-weighted share of the cell below the horizon whose elevation has the sine
+// `sin_horizon`: each point's band covered continuously across its width. The horizon is the one
+// along the cone's axis, taken for the whole cell.
 float
-cell_below(Cell c, float horizon)
+cell_below(Cell c, float sin_horizon)
 {
     float share = 0.0;
     for (int j = 0; j < QUAD_POINTS; j++)
-        share += clamp(horizon * c.rate + c.offset[j], 0.0, 1.0);
+        share += clamp(sin_horizon * c.rate[j] + c.offset[j], 0.0, 1.0);
     return share / float(QUAD_POINTS);
 }
 
@@ -421,13 +427,6 @@ float
 disc_below(float u)
 {
     return clamp(0.5 + (u * sqrt(1.0 - u * u) + asin(u)) / PI, 0.0, 1.0);
-}
-
-// tan of an elevation, finite.
-float
-slope_of(float elevation)
-{
-    return tan(clamp(elevation, -0.49 * PI, 0.49 * PI));
 }
 
 // How far the 3D step's footprint (a disc of diameter `d3` at `x3`) and the open segment's top
@@ -522,12 +521,12 @@ terrain_sample(CgHeightmap m, vec3 p, vec3 dir, float t, vec3 x, float d, Cell c
         if (texel.a - p.y > s * h.slope) {
             // Every direction of the cell below the new horizon meets the terrain here: the newly
             // covered share, with the terrain's radiance. The horizon's slope is the rise itself
-            // and its elevation atan of it (s > 0 where the texel rises; at s = 0 both give
-            // atan2's pi / 2): llvmpipe runs this for every step of the march, and atan2 with
-            // tan after it, and the cell's points kept as elevations, made the gather 1.05 times
-            // as dear (docs/hybrid.md).
-            float rise = (texel.a - p.y) / s;
-            float share = cell_below(cell, atan(rise));
+            // and its elevation's sine the rise over the distance to the texel (at s = 0, 1):
+            // llvmpipe runs this for every step of the march, where atan2 with tan after it made
+            // the gather 1.05 times as dear, and atan (with an asin a point in cell_of) 1.03 times
+            // (docs/hybrid.md).
+            float dy = texel.a - p.y, rise = dy / s;
+            float share = cell_below(cell, dy * inversesqrt(s * s + dy * dy));
             if (share > h.covered) {
                 float w = min(share - h.covered, 1.0 - acc.a);
                 acc.rgb += w * m.radiance_scale * texel.rgb;
@@ -607,7 +606,8 @@ trace_horizon(vec3 p, vec3 origin, vec3 dir, float tan_half, float t_start, floa
     up_across = dot(up_across, up_across) > 1e-12 ? normalize(up_across) : vec3(1.0, 0.0, 0.0);
     vec4 acc = vec4(0.0);
     CgConeState state = cg_cone_state();    // what one 3D step tells the next (cg_cone_step)
-    Horizon h = Horizon(slope_of(cell.lowest), 0.0, t_start, int(m.levels) - 1, true);
+    float lowest_slope = cell.lowest * inversesqrt(max(1.0 - cell.lowest * cell.lowest, 1e-12));
+    Horizon h = Horizon(clamp(lowest_slope, -MAX_SLOPE, MAX_SLOPE), 0.0, t_start, int(m.levels) - 1, true);
     float chord_of = 0.0, lift = 0.0;
     float axis_slope = dir.y / max(horizontal, 1e-6);
     bool live3 = has_3d(), was_in3 = false;
