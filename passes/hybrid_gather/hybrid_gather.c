@@ -181,7 +181,7 @@ hybrid_gather_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
 /* The horizon method's quadrature of each cone's cell (sdk/cone.h: a polar band [lo, hi] split
  * into equal azimuth sectors, one per cone of the ring): CG_HYBRID_CELL_POINTS directions of equal
  * cosine weight, 3 polar bands of equal sin^2 (the cosine weight of a band is its share of
- * sin^2) by 4 azimuths, tangent space (z = normal), and the half width of a point's band of
+ * sin^2) by 2 azimuths, tangent space (z = normal), and the half width of a point's band of
  * polar angles, by which the shader smooths the share below a horizon. */
 static void
 cell_points(const cgp_cone_set *set, cg_hybrid_gather_block *b)

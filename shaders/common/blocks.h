@@ -113,7 +113,7 @@
     M(uvec4, dispatch)    /* x groups of 64 voxels, y = z = 1, w voxels listed */
 
 /* Quadrature points per cone cell in hybrid_gather's horizon method. */
-#define CG_HYBRID_CELL_POINTS 12
+#define CG_HYBRID_CELL_POINTS 6
 
 /* hybrid_gather's horizon method samples the 3D lightmap on the part of a cone's footprint the
  * terrain left open: a unit disc above the chord at height u, whose open share a is
@@ -131,7 +131,7 @@
 #define CG_SEGMENT_CENTROID_FIT(w)                                                                \
     ((((-0.04480492 * (w) - 0.0066729) * (w) - 0.09072905) * (w) - 0.84263419) * (w) + 0.99998642)
 
-/* hybrid_gather's parameters (passes/hybrid_gather/hybrid_gather.c); 5616 bytes. */
+/* hybrid_gather's parameters (passes/hybrid_gather/hybrid_gather.c); 2928 bytes. */
 #define CG_HYBRID_GATHER_BLOCK(M, A)                                                              \
     M(ivec4, maps)        /* x: a 3D lightmap is bound */                                          \
     M(ivec4, switches)    /* x: eq. 11 (else eq. 10), y: occlusion (0 eq. 16, 1 eq. 17), z: the morphology search, w: skipping */ \
@@ -177,7 +177,7 @@ CG_C_BLOCK(cg_heightmap_block, CG_HEIGHTMAP_BLOCK, 48);
 CG_C_BLOCK(cg_hsat_info_block, CG_HSAT_INFO_BLOCK, 272);
 CG_C_BLOCK(cg_cone_set_block, CG_CONE_SET_BLOCK, 928);
 CG_C_BLOCK(cg_cone_gather_block, CG_CONE_GATHER_BLOCK, 48);
-CG_C_BLOCK(cg_hybrid_gather_block, CG_HYBRID_GATHER_BLOCK, 5616);
+CG_C_BLOCK(cg_hybrid_gather_block, CG_HYBRID_GATHER_BLOCK, 2928);
 CG_C_BLOCK(cg_sky_block, CG_SKY_BLOCK, 16);
 CG_C_BLOCK(cg_voxel_list_block, CG_VOXEL_LIST_BLOCK, 16);
 
