@@ -84,7 +84,25 @@ cg_material_default(const char *name)
         .emissive_strength = 1,
         .metallic = 0,
         .roughness = 1,
+        .metallic_roughness_texture = -1,
+        .normal_texture = -1,
+        .normal_scale = 1,
+        .occlusion_texture = -1,
+        .occlusion_strength = 1,
+        .alpha_mode = CG_ALPHA_OPAQUE,
+        .alpha_cutoff = 0.5f,
+        .double_sided = true,
+        .ior = 1.5f,
+        .specular = 0,          /* no specular lobe: Lambertian (scene_internal.h) */
+        .specular_color = { 1, 1, 1 },
+        .transmission = 0,
+        .transmission_texture = -1,
+        .thickness = 0,
+        .attenuation_distance = INFINITY,
+        .attenuation_color = { 1, 1, 1 },
     };
+    for (int t = 0; t < CG_TEX_COUNT; t++)
+        m.uv[t] = (cg_uv_transform){ { 1, 0, 0, 1, 0, 0 } };
     cg_copy_name(m.name, name);
     return m;
 }
@@ -331,6 +349,7 @@ cg_scene_free(cg_scene *scene)
         free(scene->meshes[i].positions);
         free(scene->meshes[i].normals);
         free(scene->meshes[i].texcoords);
+        free(scene->meshes[i].tangents);
         free(scene->meshes[i].indices);
     }
     for (int i = 0; i < scene->texture_count; i++)

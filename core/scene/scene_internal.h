@@ -61,8 +61,10 @@ void cg_scene_pose(cg_scene *scene, double t);
  * motion_min/max) and their union, added to lo/hi; false when no instance moves. */
 bool cg_scene_motion_bounds(cg_scene *scene, double lo[3], double hi[3]);
 
-/* A white Lambertian material with the defaults of glTF (base colour 1, roughness 1,
- * metallic 0 here since the renderer is diffuse-only, emissive strength 1). */
+/* A white Lambertian material: base colour 1, metallic 0, roughness 1, and specular 0
+ * (KHR_materials_specular), which leaves glTF's BRDF its Lambertian diffuse lobe alone; the
+ * built-in scenes' materials start from it. The glTF loader starts from glTF's own defaults
+ * (metallic 1, specular 1) instead. */
 cg_material cg_material_default(const char *name);
 
 /* Local-space bounds of the vertices. */

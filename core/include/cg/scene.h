@@ -47,6 +47,33 @@ typedef struct cg_texture {
     bool srgb; /* base colour and emissive textures are sRGB-encoded */
 } cg_texture;
 
+/* glTF 2.0 material.alphaMode. */
+typedef enum cg_alpha_mode {
+    CG_ALPHA_OPAQUE = 0,    /* alpha ignored */
+    CG_ALPHA_MASK,          /* covered where alpha >= alpha_cutoff, else not there at all */
+    CG_ALPHA_BLEND          /* alpha is the coverage of a see-through surface (docs/scenes.md) */
+} cg_alpha_mode;
+
+/* The textures a material can sample, indexing cg_material.uv. */
+typedef enum cg_material_texture {
+    CG_TEX_BASE_COLOR = 0,
+    CG_TEX_EMISSIVE,
+    CG_TEX_METALLIC_ROUGHNESS,
+    CG_TEX_NORMAL,
+    CG_TEX_OCCLUSION,
+    CG_TEX_TRANSMISSION,
+    CG_TEX_COUNT
+} cg_material_texture;
+
+/* KHR_texture_transform as a 2x3 affine matrix, columns first: uv' = m[0..1] u + m[2..3] v + m[4..5]
+ * (T x R x S of the extension). Identity: { 1, 0, 0, 1, 0, 0 }. */
+typedef struct cg_uv_transform {
+    float m[6];
+} cg_uv_transform;
+
+/* glTF 2.0 metallic-roughness material (the spec's Appendix B) with the extensions the renderer
+ * implements. Texture fields index cg_scene.textures (-1 = none); every texture reads TEXCOORD_0
+ * through its uv transform. */
 typedef struct cg_material {
     char name[CG_NAME_MAX];
     float base_color[4];     /* linear RGBA */
@@ -55,6 +82,24 @@ typedef struct cg_material {
     int emissive_texture;    /* -1 = none */
     float emissive_strength; /* KHR_materials_emissive_strength, 1 by default */
     float metallic, roughness;
+    int metallic_roughness_texture; /* B = metallic, G = roughness (linear), x the factors */
+    int normal_texture;      /* tangent-space normal map (linear) */
+    float normal_scale;      /* scales the map's x and y (glTF normalTexture.scale, 1) */
+    int occlusion_texture;   /* R = ambient occlusion (linear): darkens indirect light only */
+    float occlusion_strength; /* 1 + strength x (occlusion - 1) (glTF occlusionTexture.strength, 1) */
+    cg_alpha_mode alpha_mode;
+    float alpha_cutoff;      /* MASK: 0.5 by default */
+    bool double_sided;       /* false: back faces are culled (glTF doubleSided) */
+    float ior;               /* KHR_materials_ior, 1.5; dielectric F0 = ((ior - 1)/(ior + 1))^2 */
+    float specular;          /* KHR_materials_specular specularFactor: scales the dielectric F0 and */
+    float specular_color[3]; /* is its F90; x specularColorFactor (F0 only). 0: no specular lobe, the */
+                             /* pure Lambertian of the built-in scenes (cg_material_default) */
+    float transmission;      /* KHR_materials_transmission factor (0: opaque) */
+    int transmission_texture; /* R x the factor */
+    float thickness;         /* KHR_materials_volume thicknessFactor, mesh units; 0: thin-walled */
+    float attenuation_distance; /* metres light travels in the volume before attenuation_color is */
+    float attenuation_color[3]; /* left of it (Beer-Lambert); INFINITY: no attenuation */
+    cg_uv_transform uv[CG_TEX_COUNT]; /* KHR_texture_transform of each texture above */
 } cg_material;
 
 /* One glTF primitive: a triangle list in the mesh's local space. */
@@ -65,6 +110,9 @@ typedef struct cg_mesh {
     float *positions;       /* vertex_count x 3 */
     float *normals;         /* vertex_count x 3, unit length (generated when the file has none) */
     float *texcoords;       /* vertex_count x 2, or NULL */
+    float *tangents;        /* vertex_count x 4: xyz unit tangent, w = +-1 bitangent sign (glTF
+                             * TANGENT); from the file, else generated when the mesh's material has
+                             * a normal texture; NULL otherwise */
     uint32_t *indices;      /* index_count */
     int material;           /* index into cg_scene.materials; a default white material always exists at 0 */
     cg_mesh_kind kind;
@@ -98,6 +146,9 @@ typedef struct cg_light {
     float range;            /* 0 = infinite */
     float inner_cone_angle; /* spot, radians */
     float outer_cone_angle; /* spot, radians */
+    float angular_diameter; /* directional: the apparent diameter of the source's disc, radians
+                             * (the sun: 0.0093); 0 = a point, hard shadows. glTF has no field for
+                             * it: a light's extras "conegraph_angular_diameter" (radians) */
 } cg_light;
 
 typedef enum cg_camera_type {
