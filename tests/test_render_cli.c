@@ -6,6 +6,7 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "cg/image.h"
@@ -34,6 +35,14 @@ tmp(const char *name)
     char *p = paths[next++ % 8];
     snprintf(p, 4096, "%s/%s", cg_test_tmpdir(), name);
     return p;
+}
+
+static double
+now_ms(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
 }
 
 static bool
@@ -289,12 +298,92 @@ test_exported_animation_renders(void **state)
         fail_msg("the exported scene at 7 s against the built-in at 7 s: relMSE %g", e);
 }
 
+/* Output paths are checked before any work: a missing directory, a directory where a file is
+ * asked for, a wrong extension of -o, --dump, --pass-costs: exit 2 at once, naming the path as
+ * written, and nothing is written. */
+static void
+test_output_paths_refused_before_work(void **state)
+{
+    (void)state;
+    const char *written = tmp("written.png"), *costs = tmp("costs.csv");
+    static char out[1 << 14];
+    char args[8192];
+    struct { const char *options, *named; } cases[] = {
+        { "-o /nonexistent-dir/x.png", "/nonexistent-dir" },
+        { "-o %s/adir.png", "is a directory, expected a file" },
+        { "-o %s/x.png --dump gbuf.albedo=/nonexistent-dir/a.exr", "/nonexistent-dir" },
+        { "-o %s/x.png --pass-costs /nonexistent-dir/c.csv", "/nonexistent-dir" },
+        { "-o %s/x.png --report /nonexistent-dir/r.json", "/nonexistent-dir" },
+        { "-o %s/written.png/x.png", "is not a directory" },
+        { "-o %s/x-%s.png", "%d conversion" },
+    };
+    FILE *f = fopen(written, "w"); /* a file where a case wants a directory */
+    assert_non_null(f);
+    fclose(f);
+    assert_int_equal(mkdir(tmp("adir.png"), 0755), 0); /* a directory where a case wants a file */
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        char options[1024];
+        snprintf(options, sizeof options, cases[i].options, cg_test_tmpdir(), "%s");
+        snprintf(args, sizeof args, "render builtin:cornell --graph vct.json --size 32x32 %s", options);
+        double t0 = now_ms();
+        int code = cg_test_run_conegraph(args, true, out, sizeof out);
+        double ms = now_ms() - t0;
+        if (code != 2 || !strstr(out, cases[i].named))
+            fail_msg("'%s' exited %d, expected 2 naming '%s': %s", options, code, cases[i].named, out);
+        /* Refused before the scene and the graph's GL work: a render of vct.json takes seconds. */
+        if (ms > 3000.0)
+            fail_msg("'%s' took %.0f ms to be refused", options, ms);
+    }
+    assert_false(exists(costs));
+    assert_false(exists(tmp("x.png")));
+}
+
+/* -o with %d writes every frame of --frames N; the default run says one line, --quiet none,
+ * --verbose adds the tables on stdout. */
+static void
+test_sequence_and_verbosity(void **state)
+{
+    (void)state;
+    static char out[1 << 16];
+    char args[8192];
+    snprintf(args, sizeof args, "render builtin:cornell --graph direct.json --size 32x32 --frames 3 -o '%s/f-%%04d.png'",
+             cg_test_tmpdir());
+    assert_int_equal(cg_test_run_conegraph(args, true, out, sizeof out), 0);
+    for (int k = 0; k < 3; k++) {
+        char name[64];
+        snprintf(name, sizeof name, "f-%04d.png", k);
+        if (!exists(tmp(name)))
+            fail_msg("no %s after --frames 3: %s", name, out);
+    }
+    assert_false(exists(tmp("f-0003.png")));
+    snprintf(args, sizeof args, "render builtin:cornell --graph direct.json --size 32x32 -o '%s'", tmp("one.png"));
+    assert_int_equal(cg_test_run_conegraph(args, true, out, sizeof out), 0);
+    int lines = 0;
+    for (const char *p = out; *p; p++)
+        lines += *p == '\n';
+    if (lines > 3)
+        fail_msg("a default render printed %d lines: %s", lines, out);
+    if (!strstr(out, "wrote ") || !strstr(out, "one.png"))
+        fail_msg("the summary does not name the image: %s", out);
+    char quiet[8300];
+    snprintf(quiet, sizeof quiet, "%s --quiet", args);
+    assert_int_equal(cg_test_run_conegraph(quiet, true, out, sizeof out), 0);
+    if (out[0])
+        fail_msg("--quiet printed: %s", out);
+    snprintf(quiet, sizeof quiet, "%s --verbose", args);
+    assert_int_equal(cg_test_run_conegraph(quiet, true, out, sizeof out), 0);
+    if (!strstr(out, "gbuf"))
+        fail_msg("--verbose printed no pass table: %s", out);
+}
+
 int
 main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_help_and_usage),
         cmocka_unit_test(test_bad_input_writes_nothing),
+        cmocka_unit_test(test_output_paths_refused_before_work),
+        cmocka_unit_test(test_sequence_and_verbosity),
         cmocka_unit_test(test_refused_parameter_points_at_its_source),
         cmocka_unit_test(test_render_png_exr_dump_report),
         cmocka_unit_test(test_frames_end_at_the_last_time),

@@ -118,6 +118,12 @@ app_parse_options(const char *tool, int argc, char **argv, unsigned accepted, ap
             o->no_default_light = true;
             continue;
         }
+        if ((accepted & APP_OPT_VERBOSITY) && (!strcmp(a, "--verbose") || !strcmp(a, "--quiet"))) {
+            *(a[2] == 'v' ? &o->verbose : &o->quiet) = true;
+            if (o->verbose && o->quiet)
+                return app_usage_error(tool, "%s", "--verbose and --quiet contradict each other");
+            continue;
+        }
         if (i + 1 == argc)
             return app_usage_error(tool, "%s needs a value", a);
         const char *v = argv[++i];

@@ -32,6 +32,7 @@ typedef enum app_option {
     APP_OPT_TIMING = 1 << 6,            /* --timing sync|queries|none */
     APP_OPT_CONTEXT = 1 << 7,           /* --context egl|osmesa|glfw|auto */
     APP_OPT_MAX_GPU_MEMORY = 1 << 8,    /* --max-gpu-memory SIZE (app_parse_bytes) */
+    APP_OPT_VERBOSITY = 1 << 9,         /* --verbose, --quiet: flags, no value */
 } app_option;
 
 typedef struct app_options {
@@ -44,6 +45,7 @@ typedef struct app_options {
     bool sky_given;                     /* --sky */
     cg_sky sky;
     bool no_default_light;              /* --no-default-light */
+    bool verbose, quiet;                /* --verbose (more on stdout), --quiet (errors only) */
     int width, height;
     const char *sets[APP_MAX_LIST];
     int set_count;
@@ -62,7 +64,8 @@ typedef int (*app_own_option_fn)(void *user, const char *name, const char *value
 
 /* Whether --help or -h is among the arguments. */
 bool app_wants_help(int argc, char **argv);
-/* Walks argv[1..]: every option but --no-default-light takes a value; the common ones in
+/* Walks argv[1..]: every option but the flags --no-default-light, --verbose and --quiet takes a
+ * value; the common ones in
  * `accepted` and the lighting ones go into *o (whose defaults the caller set), the others to
  * `own` (may be NULL). Returns 0, or 2 after printing the usage error (unknown option,
  * missing or bad value, a second scene). */

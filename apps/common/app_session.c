@@ -351,8 +351,10 @@ app_session_run(app_session *s, const app_run_desc *run, app_frame_stats *stats,
             if (pass_ms > 0.0)
                 stats->pass_sum_ms[t] += pass_ms;
         }
-        if (run->on_frame)
-            run->on_frame(run->user, t, run->frames, ms);
+        if (run->on_frame && !run->on_frame(run->user, t, run->frames, ms, err)) {
+            app_frame_stats_free(stats);
+            return false;
+        }
     }
     if (!app_session_check_gl(s, err)) {
         app_frame_stats_free(stats);

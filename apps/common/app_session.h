@@ -148,7 +148,8 @@ typedef struct app_run_desc {
     bool animate;
     double time, fps;
     /* Called after each timed frame (0-based) with its duration in ms; NULL for none. */
-    void (*on_frame)(void *user, int frame, int frames, double ms);
+    /* After each timed frame; false (err filled) ends the run as a failed frame does. */
+    bool (*on_frame)(void *user, int frame, int frames, double ms, cg_error *err);
     void *user;
 } app_run_desc;
 

@@ -13,6 +13,7 @@
 #include "cg/fs.h"
 #include "cg/gl.h"
 #include "cg/image.h"
+#include "cg/log.h"
 #include "commands.h"
 
 typedef struct dump_request {
@@ -28,6 +29,7 @@ typedef struct render_options {
     double fps, time;       /* frame k is posed at time + k / fps */
     dump_request dumps[APP_MAX_LIST];
     int dump_count;
+    bool sequence;          /* -o holds one %d conversion: every frame is written */
 } render_options;
 
 void
@@ -41,15 +43,17 @@ cmd_render_usage(FILE *out)
         "  SCENE                   a .gltf/.glb file or builtin:NAME[?key=value&...]\n"
         "                          (default builtin:openworld)\n"
         "  -o, --output FILE       .exr: the graph output named *.hdr, linear radiance (float);\n"
-        "                          .png: the graph output named *.ldr (exposed, tonemapped, sRGB)\n"
+        "                          .png: the graph output named *.ldr (exposed, tonemapped, sRGB).\n"
+        "                          With a %%d conversion (f-%%04d.png) every frame is written, the\n"
+        "                          frame's number (0, 1, ...) in its place\n"
         "  --graph FILE            graph file (default: vct.json if it exists, else direct.json,\n"
         "                          from the graph directory). A FILE without '/' that does not\n"
         "                          exist here is looked up in the graph directory too.\n"
         "  --size WxH              image size in pixels (default 1280x720)\n"
         APP_CAMERA_USAGE
         APP_LIGHT_USAGE
-        "  --frames N              frames to run (default 1); the image is the last frame's;\n"
-        "                          progress and the median frame time go to stderr\n"
+        "  --frames N              frames to run (default 1); the image is the last frame's\n"
+        "                          unless -o holds a %%d; a line per frame goes to stderr\n"
         "  --time T                seconds into the scene's animation of the first frame\n"
         "                          (default 0; 0..1e9)\n"
         "  --fps F                 frames per second of animation time (default 30; above 0,\n"
@@ -67,12 +71,17 @@ cmd_render_usage(FILE *out)
         "                          unit, e.g. 512M or 2G (B, K, M, G, T: powers of 1024)\n"
         "  --timing sync|queries|none  per-pass timing: glFinish + CPU clock (default, right on\n"
         "                          llvmpipe), GL_TIMESTAMP queries read a frame late, or none\n"
+        "  --verbose               also print the compiled graph's passes, barriers and\n"
+        "                          resources of the last frame on stdout\n"
+        "  --quiet                 print errors only\n"
         "\n"
         "The graph directory is $CONEGRAPH_GRAPH_DIR if set, else the source tree's graphs/\n"
         "(a build run from its build tree), else the installed %s.\n"
-        "After the run, the per-pass times and resources of the last frame go to stdout.\n"
-        "Bad input (scene, graph, parameters, sizes, memory budget) exits with 2 before\n"
-        "anything is rendered or written; a failure while rendering exits with 1.\n",
+        "After the run one line on stderr says what was written, the image size, the graph,\n"
+        "the median frame time and the GI memory (--verbose: the tables too, on stdout).\n"
+        "Bad input (scene, graph, parameters, sizes, memory budget, an output path whose\n"
+        "directory is missing or not writable or whose extension is wrong) exits with 2\n"
+        "before anything is rendered or written; a failure while rendering exits with 1.\n",
         CONEGRAPH_GRAPH_INSTALL_DIR);
 }
 
@@ -121,6 +130,64 @@ own_option(void *user, const char *a, const char *v)
     return 0;
 }
 
+/* Whether `pattern` holds exactly one %d conversion (flag 0 and a width of at most two digits
+ * allowed, as in f-%04d.png) and no other conversion than %%: what -o may hold for a sequence.
+ * *sequence tells whether it held one. False for any other conversion, which would make the
+ * name a format the caller cannot trust. */
+static bool
+frame_pattern(const char *pattern, bool *sequence)
+{
+    int conversions = 0;
+    for (const char *p = pattern; *p; p++) {
+        if (*p != '%')
+            continue;
+        if (p[1] == '%') {
+            p++;
+            continue;
+        }
+        const char *q = p + 1;
+        if (*q == '0')
+            q++;
+        for (int digits = 0; *q >= '0' && *q <= '9'; q++)
+            if (++digits > 2)
+                return false;
+        if (*q != 'd')
+            return false;
+        conversions++;
+        p = q;
+    }
+    *sequence = conversions == 1;
+    return conversions <= 1;
+}
+
+/* The file of frame `frame` of a sequence's pattern (or the path itself). */
+static void
+frame_path(const render_options *o, int frame, char *out, size_t size)
+{
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wformat-nonliteral"
+    if (o->sequence)
+        snprintf(out, size, o->output, frame); /* checked by frame_pattern */
+    else
+        snprintf(out, size, "%s", o->output);
+#pragma GCC diagnostic pop
+}
+
+/* Every file the run will write, checked before any work (cg_output_path_check): exit 2. */
+static int
+check_output_paths(const render_options *o)
+{
+    cg_error err = { 0 };
+    char first[4096];
+    frame_path(o, 0, first, sizeof first);
+    bool ok = cg_output_path_check(first, ".exr|.png", &err) &&
+              (!o->report || cg_output_path_check(o->report, NULL, &err)) &&
+              (!o->pass_costs || cg_output_path_check(o->pass_costs, ".csv", &err));
+    for (int i = 0; ok && i < o->dump_count; i++)
+        ok = cg_output_path_check(o->dumps[i].path, ".exr", &err);
+    return ok ? 0 : app_fail(TOOL, NULL, &err);
+}
+
 static int
 parse_args(int argc, char **argv, render_options *o)
 {
@@ -137,28 +204,39 @@ parse_args(int argc, char **argv, render_options *o)
         return usage_error("%s", "-o OUT.exr|OUT.png is required");
     if (!app_has_extension(o->output, ".exr") && !app_has_extension(o->output, ".png"))
         return usage_error("-o wants a .exr or .png file, not '%s'", o->output);
+    if (!frame_pattern(o->output, &o->sequence))
+        return usage_error("-o may hold one %%d conversion (f-%%04d.png) and %%%% only, not '%s'", o->output);
     if (!o->common.scene)
         o->common.scene = "builtin:openworld";
-    return 0;
+    return check_output_paths(o);
 }
 
 /* What the per-frame callback sees: the session, and the --pass-costs rows so far (in memory
  * until the run is over, so that a failed run leaves no file). */
 typedef struct render_progress {
     app_session *s;
+    const render_options *o;
     char *costs;
     size_t costs_size;
     FILE *costs_fp;         /* open_memstream over costs; NULL without --pass-costs */
 } render_progress;
 
-/* The frame line on stderr (with what each pass that said so rebuilt), and the frame's rows
- * of --pass-costs. */
-static void
-print_progress(void *user, int frame, int frames, double ms)
+/* The frame's image of a sequence (-o f-%04d.png), the frame line on stderr (with what each
+ * pass that said so rebuilt), and the frame's rows of --pass-costs. */
+static bool
+on_frame(void *user, int frame, int frames, double ms, cg_error *err)
 {
     render_progress *p = user;
     fg_graph *graph = p->s->graph;
-    if (frames > 1) {
+    const render_options *o = p->o;
+    if (o->sequence) {
+        char path[4096];
+        frame_path(o, frame, path, sizeof path);
+        if (!app_session_write_image(p->s, p->s->image_source, app_has_extension(o->output, ".png"), path,
+                                     CG_EXR_FLOAT, err))
+            return false;
+    }
+    if (frames > 1 && !o->common.quiet) {
         fprintf(stderr, "render: frame %d/%d %.1f ms", frame + 1, frames, ms);
         for (int i = 0; i < fg_graph_pass_count(graph); i++) {
             const fg_pass *pass = fg_graph_pass_at(graph, i);
@@ -168,7 +246,7 @@ print_progress(void *user, int frame, int frames, double ms)
         fputc('\n', stderr);
     }
     if (!p->costs_fp)
-        return;
+        return true;
     for (int i = 0; i < fg_graph_pass_count(graph); i++) {
         const fg_pass *pass = fg_graph_pass_at(graph, i);
         if (fg_pass_is_culled(pass))
@@ -178,6 +256,7 @@ print_progress(void *user, int frame, int frames, double ms)
         app_csv_field(p->costs_fp, fg_pass_rebuilt(pass));
         fputc('\n', p->costs_fp);
     }
+    return true;
 }
 
 static bool
@@ -191,6 +270,32 @@ write_pass_costs(const char *path, render_progress *p, cg_error *err)
     fputs("frame,time,pass,type,ms,rebuilt\n", f.fp);
     fwrite(p->costs, 1, p->costs_size, f.fp);
     return cg_atomic_commit(&f, err);
+}
+
+/* The one line a run ends with: what it wrote (every file), from what, how fast, how much GI
+ * memory. */
+static void
+print_summary(const render_options *o, app_session *s, const app_frame_stats *stats)
+{
+    const app_options *c = &o->common;
+    fg_memory_report memory;
+    fg_graph_memory_report(s->graph, &memory);
+    char when[96] = "";
+    if (cg_scene_is_animated(&s->scene))
+        snprintf(when, sizeof when, " (animated: the last at t = %g s)", s->scene.time);
+    fprintf(stderr, "render: %s %dx%d, graph %s, %s on %s: median frame %.1f ms over %d frame(s)%s, GI %.1f MiB; wrote %s",
+            s->scene.name, c->width, c->height, s->graph_path,
+            cg_context_backend_name(cg_context_get_backend(s->ctx)), cg_context_renderer(s->ctx),
+            stats->median_frame_ms, c->frames, when, (double)memory.gi_bytes / (1024.0 * 1024.0), o->output);
+    if (o->sequence)
+        fprintf(stderr, " (%d frames)", c->frames);
+    for (int i = 0; i < o->dump_count; i++)
+        fprintf(stderr, ", %s", o->dumps[i].path);
+    if (o->report)
+        fprintf(stderr, ", %s", o->report);
+    if (o->pass_costs)
+        fprintf(stderr, ", %s", o->pass_costs);
+    fputc('\n', stderr);
 }
 
 /* Bad input (scene, graph, parameters, read-backs) exits 2 from app_session_check, before
@@ -212,15 +317,17 @@ render(const render_options *o)
     graph.reads = reads;
     graph.read_count = o->dump_count;
     cg_context_desc context = { .backend = c->backend, .width = c->width, .height = c->height, .debug = true };
-    render_progress progress = { .s = &s };
+    render_progress progress = { .s = &s, .o = o };
+    if (c->quiet)
+        cg_log_set_level(CG_LOG_ERROR);
     if (o->pass_costs)
         progress.costs_fp = open_memstream(&progress.costs, &progress.costs_size);
-    app_run_desc run = { .frames = c->frames, .timing = c->timing, .on_frame = print_progress,
+    app_run_desc run = { .frames = c->frames, .timing = c->timing, .on_frame = on_frame,
                          .user = &progress, .animate = true, .time = o->time, .fps = o->fps };
     bool ok = app_session_open(&s, &desc, &err) && app_session_load_graph(&s, &graph, &err) &&
               app_session_check(&s, &err) && cg_image_io_check(&err) && app_session_start_gl(&s, &context, &err) &&
               app_session_compile(&s, &err) && app_session_run(&s, &run, &stats, &err) &&
-              app_session_write_image(&s, s.image_source, png, o->output, CG_EXR_FLOAT, &err);
+              (o->sequence || app_session_write_image(&s, s.image_source, png, o->output, CG_EXR_FLOAT, &err));
     for (int i = 0; ok && i < o->dump_count; i++)
         ok = app_session_write_image(&s, o->dumps[i].source, false, o->dumps[i].path, CG_EXR_FLOAT, &err);
     if (ok && o->report)
@@ -231,16 +338,10 @@ render(const render_options *o)
         fclose(progress.costs_fp);
     free(progress.costs);
     int code = ok ? 0 : app_fail(TOOL, NULL, &err);
-    if (ok) {
+    if (ok && c->verbose)
         fg_graph_print_report(s.graph, stdout);
-        char when[96] = "";
-        if (cg_scene_is_animated(&s.scene))
-            snprintf(when, sizeof when, " (animated: the last at t = %g s)", s.scene.time);
-        fprintf(stderr, "render: %s %dx%d, graph %s, %s on %s: median frame %.1f ms over %d frame(s)%s; wrote %s\n",
-                s.scene.name, c->width, c->height, s.graph_path,
-                cg_context_backend_name(cg_context_get_backend(s.ctx)), cg_context_renderer(s.ctx),
-                stats.median_frame_ms, c->frames, when, o->output);
-    }
+    if (ok && !c->quiet)
+        print_summary(o, &s, &stats);
     app_frame_stats_free(&stats);
     app_session_close(&s);
     return code;

@@ -6,6 +6,8 @@
 #include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 bool
@@ -109,6 +111,54 @@ cg_temp_path_for(const char *path, char *out, size_t out_size)
     if (n <= 0 || (size_t)n >= out_size)
         return false;
     remove_stale_temporaries(path);
+    return true;
+}
+
+/* Whether `path` ends with one of the '|'-separated extensions (no case). */
+static bool
+has_one_of(const char *path, const char *extensions)
+{
+    size_t len = strlen(path);
+    for (const char *e = extensions; *e;) {
+        const char *bar = strchr(e, '|');
+        size_t n = bar ? (size_t)(bar - e) : strlen(e);
+        if (n > 0 && n <= len && !strncasecmp(path + len - n, e, n))
+            return true;
+        e += bar ? n + 1 : n;
+    }
+    return false;
+}
+
+bool
+cg_output_path_check(const char *path, const char *extensions, cg_error *err)
+{
+    if (!path[0])
+        return cg_fail(err, CG_ERR_OUTPUT_PATH, "an empty output path");
+    if (extensions && !has_one_of(path, extensions))
+        return cg_fail(err, CG_ERR_OUTPUT_PATH, "%s: expected a file name ending in %s", path, extensions);
+    const char *slash = strrchr(path, '/');
+    char dir[4096];
+    if (!slash)
+        snprintf(dir, sizeof dir, ".");
+    else if (slash == path)
+        snprintf(dir, sizeof dir, "/");
+    else if ((size_t)(slash - path) < sizeof dir)
+        snprintf(dir, sizeof dir, "%.*s", (int)(slash - path), path);
+    else
+        return cg_fail(err, CG_ERR_OUTPUT_PATH, "%s: path too long", path);
+    if (slash && !slash[1])
+        return cg_fail(err, CG_ERR_OUTPUT_PATH, "%s: names a directory, expected a file", path);
+    struct stat st;
+    if (stat(dir, &st) != 0)
+        return cg_fail(err, CG_ERR_OUTPUT_PATH, "%s: directory '%s' %s", path, dir,
+                       errno == ENOENT ? "does not exist" : strerror(errno));
+    if (!S_ISDIR(st.st_mode))
+        return cg_fail(err, CG_ERR_OUTPUT_PATH, "%s: '%s' is not a directory", path, dir);
+    if (access(dir, W_OK | X_OK) != 0)
+        return cg_fail(err, CG_ERR_OUTPUT_PATH, "%s: directory '%s' is not writable (%s)", path, dir,
+                       strerror(errno));
+    if (stat(path, &st) == 0 && S_ISDIR(st.st_mode))
+        return cg_fail(err, CG_ERR_OUTPUT_PATH, "%s: is a directory, expected a file", path);
     return true;
 }
 

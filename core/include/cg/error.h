@@ -18,6 +18,7 @@
     X(CG_ERR_USAGE,                2, "bad command-line usage")                     \
     X(CG_ERR_FILE_NOT_FOUND,       2, "input file not found or unreadable")         \
     X(CG_ERR_IO,                   1, "input/output failure")                       \
+    X(CG_ERR_OUTPUT_PATH,          2, "output file cannot be written where it was asked") \
     X(CG_ERR_OUT_OF_MEMORY,        1, "out of memory")                              \
     X(CG_ERR_SCENE_UNKNOWN,        2, "unknown scene name")                         \
     X(CG_ERR_SCENE_PARAM,          2, "bad built-in scene parameter")               \
