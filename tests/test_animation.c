@@ -150,6 +150,10 @@ hierarchy_scene(cg_scene *s)
     s->material_count = 1;
     s->materials = calloc(1, sizeof *s->materials);
     s->materials[0].base_color_texture = s->materials[0].emissive_texture = -1;
+    /* The material's other textures none too, and no attenuation (cg_scene_validate checks them). */
+    s->materials[0].metallic_roughness_texture = s->materials[0].normal_texture = -1;
+    s->materials[0].occlusion_texture = s->materials[0].transmission_texture = -1;
+    s->materials[0].attenuation_distance = INFINITY;
     s->mesh_count = 1;
     s->meshes = calloc(1, sizeof *s->meshes);
     cg_mesh *m = &s->meshes[0];

@@ -83,6 +83,10 @@ one_triangle_scene(cg_scene *s, const cg_camera *cam)
     s->material_count = 1;
     s->materials[0].base_color[0] = s->materials[0].base_color[1] = s->materials[0].base_color[2] = 1;
     s->materials[0].base_color_texture = s->materials[0].emissive_texture = -1;
+    /* The material's other textures none too, and no attenuation (cg_scene_validate checks them). */
+    s->materials[0].metallic_roughness_texture = s->materials[0].normal_texture = -1;
+    s->materials[0].occlusion_texture = s->materials[0].transmission_texture = -1;
+    s->materials[0].attenuation_distance = INFINITY;
     s->meshes = calloc(1, sizeof *s->meshes);
     s->mesh_count = 1;
     cg_mesh *m = &s->meshes[0];

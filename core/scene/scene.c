@@ -102,8 +102,28 @@ cg_material_default(const char *name)
         .attenuation_color = { 1, 1, 1 },
     };
     for (int t = 0; t < CG_TEX_COUNT; t++)
-        m.uv[t] = (cg_uv_transform){ { 1, 0, 0, 1, 0, 0 } };
+        m.uv[t] = cg_uv_transform_identity();
     cg_copy_name(m.name, name);
+    return m;
+}
+
+cg_uv_transform
+cg_uv_transform_identity(void)
+{
+    return (cg_uv_transform){ { 1, 0, 0, 1, 0, 0 } };
+}
+
+cg_material
+cg_material_gltf_default(const char *name)
+{
+    /* glTF 2.0, 5.19 (material), 5.22 (pbrMetallicRoughness): metallicFactor 1, roughnessFactor 1,
+     * doubleSided false; the extensions' defaults: ior 1.5, specularFactor 1, specularColorFactor 1,
+     * transmissionFactor 0, thicknessFactor 0, attenuationDistance +infinity, attenuationColor 1. */
+    cg_material m = cg_material_default(name);
+    m.metallic = 1;
+    m.roughness = 1;
+    m.double_sided = false;
+    m.specular = 1;
     return m;
 }
 
@@ -172,6 +192,85 @@ cg_mesh_generate_normals(cg_mesh *mesh, cg_error *err)
         } else {
             n[0] = 0, n[1] = 1, n[2] = 0;
         }
+    }
+    free(sum);
+    return true;
+}
+
+/* Lengyel's per-triangle tangents ("Computing Tangent Space Basis Vectors for an Arbitrary
+ * Mesh", 2001): for a triangle with edges e1, e2 and UV differences (du1, dv1), (du2, dv2),
+ * T = dP/du = (e1 dv2 - e2 dv1) / det and B = dP/dv' = (e2 du1 - e1 du2) / det with
+ * det = du1 dv2 - du2 dv1, accumulated unnormalised at the triangle's vertices (so larger
+ * triangles weigh more), then T made orthogonal to the vertex normal (Gram-Schmidt) and
+ * w = sign(dot(cross(N, T), B)).
+ *
+ * v' = -v: glTF's v grows downwards in the image, and its normal textures' +Y is the image's
+ * up (glTF 2.0, 3.9.3), which is where bitangent = w cross(N, T) must point (3.7.2.1). A quad
+ * laid out as an image (u right, v down) facing the viewer gets w = +1.
+ *
+ * glTF asks for MikkTSpace; Debian 12 packages no MikkTSpace library, so this is a departure.
+ * It agrees with MikkTSpace inside a smooth UV chart; it differs (1) at UV seams and mirrored
+ * halves: MikkTSpace splits a vertex's tangent by the faces' orientation and by angle, this
+ * sums whatever the faces sharing the vertex give (a vertex shared by a mirrored and an
+ * unmirrored face gets a tangent from their cancelling sum and one sign), and (2) in the
+ * weighting (area here, angle in MikkTSpace). Baked normal maps from MikkTSpace tools then show
+ * small shading errors at seams; a file's TANGENT attribute avoids that. */
+bool
+cg_mesh_generate_tangents(cg_mesh *mesh, cg_error *err)
+{
+    if (!mesh->normals)
+        return cg_fail(err, CG_ERR_USAGE, "mesh '%s': tangents need normals", mesh->name);
+    if (!mesh->tangents) {
+        mesh->tangents = malloc((size_t)mesh->vertex_count * 4 * sizeof(float) + 1);
+        if (!mesh->tangents)
+            return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "mesh '%s': out of memory for tangents", mesh->name);
+    }
+    double *sum = calloc((size_t)mesh->vertex_count * 6 + 1, sizeof(double));
+    if (!sum)
+        return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "mesh '%s': out of memory for tangents", mesh->name);
+    const float *p = mesh->positions, *uv = mesh->texcoords;
+    for (uint32_t t = 0; uv && t + 2 < mesh->index_count; t += 3) {
+        uint32_t i[3] = { mesh->indices[t], mesh->indices[t + 1], mesh->indices[t + 2] };
+        double e1[3], e2[3];
+        for (int k = 0; k < 3; k++) {
+            e1[k] = (double)p[3 * i[1] + k] - p[3 * i[0] + k];
+            e2[k] = (double)p[3 * i[2] + k] - p[3 * i[0] + k];
+        }
+        double du1 = (double)uv[2 * i[1]] - uv[2 * i[0]], dv1 = -((double)uv[2 * i[1] + 1] - uv[2 * i[0] + 1]);
+        double du2 = (double)uv[2 * i[2]] - uv[2 * i[0]], dv2 = -((double)uv[2 * i[2] + 1] - uv[2 * i[0] + 1]);
+        double det = du1 * dv2 - du2 * dv1;
+        if (det == 0 || !isfinite(1 / det))
+            continue; /* degenerate in UV: no direction to give */
+        double r = 1 / det;
+        for (int v = 0; v < 3; v++)
+            for (int k = 0; k < 3; k++) {
+                sum[6 * (size_t)i[v] + k] += (e1[k] * dv2 - e2[k] * dv1) * r;
+                sum[6 * (size_t)i[v] + 3 + k] += (e2[k] * du1 - e1[k] * du2) * r;
+            }
+    }
+    for (uint32_t v = 0; v < mesh->vertex_count; v++) {
+        const float *n = mesh->normals + 3 * (size_t)v;
+        double *s = sum + 6 * (size_t)v, *b = s + 3;
+        double nd = n[0] * s[0] + n[1] * s[1] + n[2] * s[2];
+        double x[3] = { s[0] - nd * n[0], s[1] - nd * n[1], s[2] - nd * n[2] };
+        double len = sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+        if (!(len > 1e-12) || !isfinite(len)) {
+            /* No UV direction: any unit vector perpendicular to the normal, from the axis the
+             * normal is least aligned with. */
+            double a[3] = { 0, 0, 0 };
+            int k = fabs(n[0]) <= fabs(n[1]) && fabs(n[0]) <= fabs(n[2]) ? 0 : fabs(n[1]) <= fabs(n[2]) ? 1 : 2;
+            a[k] = 1;
+            nd = n[k];
+            for (int c = 0; c < 3; c++)
+                x[c] = a[c] - nd * n[c];
+            len = sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+            b[0] = b[1] = b[2] = 0;
+        }
+        float *out = mesh->tangents + 4 * (size_t)v;
+        for (int c = 0; c < 3; c++)
+            out[c] = (float)(x[c] / len);
+        double cx = n[1] * x[2] - n[2] * x[1], cy = n[2] * x[0] - n[0] * x[2], cz = n[0] * x[1] - n[1] * x[0];
+        out[3] = cx * b[0] + cy * b[1] + cz * b[2] < 0 ? -1.0f : 1.0f;
     }
     free(sum);
     return true;
@@ -474,19 +573,61 @@ validate_mesh(const cg_scene *scene, int index, cg_error *err)
         return cg_fail(err, CG_ERR_GLTF_INDEX_RANGE,
                        "%s: mesh %d '%s': material %d out of range (%d materials)", src, index,
                        m->name, m->material, scene->material_count);
+    for (uint32_t v = 0; m->tangents && v < m->vertex_count; v++) {
+        const float *t = m->tangents + 4 * (size_t)v;
+        if (!all_finite(t, 4) || (t[3] != 1 && t[3] != -1))
+            return cg_fail(err, CG_ERR_GLTF_NONFINITE,
+                           "%s: mesh %d '%s': vertex %u tangent is NaN or infinite, or its w is not +-1", src,
+                           index, m->name, v);
+    }
     return true;
+}
+
+static bool
+in_range(float x, float lo, float hi)
+{
+    return x >= lo && x <= hi;
 }
 
 static bool
 validate_material(const cg_scene *scene, int index, cg_error *err)
 {
     const cg_material *m = &scene->materials[index];
+    bool uv_finite = true;
+    for (int t = 0; t < CG_TEX_COUNT; t++)
+        uv_finite = uv_finite && all_finite(m->uv[t].m, 6);
     if (!all_finite(m->base_color, 4) || !all_finite(m->emissive, 3) ||
-        !isfinite(m->emissive_strength) || !isfinite(m->metallic) || !isfinite(m->roughness))
+        !isfinite(m->emissive_strength) || !isfinite(m->metallic) || !isfinite(m->roughness) ||
+        !isfinite(m->normal_scale) || !isfinite(m->occlusion_strength) || !isfinite(m->alpha_cutoff) ||
+        !isfinite(m->ior) || !isfinite(m->specular) || !all_finite(m->specular_color, 3) ||
+        !isfinite(m->transmission) || !isfinite(m->thickness) || isnan(m->attenuation_distance) ||
+        !all_finite(m->attenuation_color, 3) || !uv_finite)
         return cg_fail(err, CG_ERR_GLTF_NONFINITE, "%s: material %d '%s': a factor is NaN or infinite",
                        scene->name, index, m->name);
-    int tex[2] = { m->base_color_texture, m->emissive_texture };
-    for (int k = 0; k < 2; k++)
+    /* The ranges the glTF schemas give (core and KHR_materials_*): factors in [0, 1] where they
+     * are fractions, ior 0 (KHR_materials_ior: infinite) or >= 1, attenuation distance > 0. */
+    const char *bad = NULL;
+    if (!in_range(m->metallic, 0, 1) || !in_range(m->roughness, 0, 1))
+        bad = "metallic and roughness must lie in [0, 1]";
+    else if (!in_range(m->occlusion_strength, 0, 1))
+        bad = "occlusion strength must lie in [0, 1]";
+    else if (!in_range(m->transmission, 0, 1) || !in_range(m->specular, 0, 1))
+        bad = "transmission and specular must lie in [0, 1]";
+    else if (!(m->ior == 0 || m->ior >= 1))
+        bad = "ior must be 0 (infinite) or at least 1";
+    else if (m->alpha_cutoff < 0 || m->emissive_strength < 0 || m->thickness < 0 || m->specular_color[0] < 0 ||
+             m->specular_color[1] < 0 || m->specular_color[2] < 0)
+        bad = "alpha cutoff, emissive strength, thickness and specular colour must be >= 0";
+    else if (!(m->attenuation_distance > 0) || !in_range(m->attenuation_color[0], 0, 1) ||
+             !in_range(m->attenuation_color[1], 0, 1) || !in_range(m->attenuation_color[2], 0, 1))
+        bad = "attenuation distance must be > 0 and the attenuation colour in [0, 1]";
+    else if ((unsigned)m->alpha_mode > CG_ALPHA_BLEND)
+        bad = "unknown alpha mode";
+    if (bad)
+        return cg_fail(err, CG_ERR_GLTF_SCHEMA, "%s: material %d '%s': %s", scene->name, index, m->name, bad);
+    int tex[CG_TEX_COUNT] = { m->base_color_texture, m->emissive_texture, m->metallic_roughness_texture,
+                              m->normal_texture, m->occlusion_texture, m->transmission_texture };
+    for (int k = 0; k < CG_TEX_COUNT; k++)
         if (tex[k] < -1 || tex[k] >= scene->texture_count)
             return cg_fail(err, CG_ERR_GLTF_INDEX_RANGE,
                            "%s: material %d '%s': texture %d out of range (%d textures)",
@@ -600,14 +741,16 @@ cg_scene_validate(const cg_scene *scene, cg_error *err)
         const cg_light *l = &scene->lights[i];
         bool ok = all_finite(l->color, 3) && isfinite(l->intensity) && l->intensity >= 0 &&
                   all_finite(l->position, 3) && all_finite(l->direction, 3) &&
-                  isfinite(l->range) && l->range >= 0;
+                  isfinite(l->range) && l->range >= 0 && l->angular_diameter >= 0 &&
+                  l->angular_diameter <= 1.5707964f && (l->type == CG_LIGHT_DIRECTIONAL || l->angular_diameter == 0);
         if (l->type == CG_LIGHT_SPOT)
             ok = ok && l->inner_cone_angle >= 0 && l->inner_cone_angle < l->outer_cone_angle &&
                  l->outer_cone_angle <= 1.5707964f;
         if (!ok)
             return cg_fail(err, CG_ERR_GLTF_PARSE,
-                           "%s: light %d '%s': needs finite values, intensity >= 0, range >= 0 and "
-                           "for a spot 0 <= inner < outer <= pi/2",
+                           "%s: light %d '%s': needs finite values, intensity >= 0, range >= 0, "
+                           "for a spot 0 <= inner < outer <= pi/2, and an angular diameter in [0, pi/2] "
+                           "(directional lights only)",
                            scene->name, i, l->name);
     }
     for (int i = 0; i < scene->camera_count; i++)

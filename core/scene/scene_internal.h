@@ -3,7 +3,9 @@
  *
  * Declares: cg_scene_add_material, cg_scene_add_mesh, cg_scene_add_instance,
  *           cg_scene_add_light, cg_scene_add_camera, cg_scene_add_texture,
- *           cg_mesh_compute_bounds, cg_mesh_generate_normals, CG_HEIGHTFIELD_MIN_NY,
+ *           cg_material_default, cg_material_gltf_default, cg_uv_transform_identity,
+ *           cg_mesh_compute_bounds, cg_mesh_generate_normals, cg_mesh_generate_tangents,
+ *           CG_HEIGHTFIELD_MIN_NY,
  *           cg_scene_set_kind_source, cg_scene_classify, cg_dem_load, cg_builtin_scene_load,
  *           cg_gltf_load, cg_gltf_check_json, cg_copy_name, cg_node_default,
  *           cg_node_local, cg_scene_add_node, cg_scene_attach, cg_anim_channel_alloc,
@@ -66,12 +68,27 @@ bool cg_scene_motion_bounds(cg_scene *scene, double lo[3], double hi[3]);
  * built-in scenes' materials start from it. The glTF loader starts from glTF's own defaults
  * (metallic 1, specular 1) instead. */
 cg_material cg_material_default(const char *name);
+/* glTF 2.0's default material (spec 5.19, with the defaults of KHR_materials_ior, _specular,
+ * _transmission, _volume, _emissive_strength): base colour 1, metallic 1, roughness 1, ior 1.5,
+ * specular 1 (colour 1), no transmission, thin (thickness 0), no attenuation, OPAQUE with cutoff
+ * 0.5, single-sided, no textures, identity uv transforms. The glTF loader's material 0 (what a
+ * primitive without a material uses) and the start of every material it reads. */
+cg_material cg_material_gltf_default(const char *name);
+/* { 1, 0, 0, 1, 0, 0 } (cg_uv_transform). */
+cg_uv_transform cg_uv_transform_identity(void);
 
 /* Local-space bounds of the vertices. */
 void cg_mesh_compute_bounds(cg_mesh *mesh);
 /* Area-weighted vertex normals from the triangles (allocates mesh->normals when NULL).
  * A vertex used by no triangle with non-zero area gets (0, 1, 0). */
 bool cg_mesh_generate_normals(cg_mesh *mesh, cg_error *err);
+/* Per-vertex tangents (allocates mesh->tangents when NULL; normals must be there) from the
+ * triangles' texture-coordinate derivatives, accumulated per vertex, made orthogonal to the
+ * normal (Gram-Schmidt), w = the handedness glTF's TANGENT has: bitangent = w cross(N, T)
+ * points where the image's +Y (up, towards smaller v) lies. Not MikkTSpace (scene.c says
+ * where it differs). Without texcoords, or where the UVs give no direction, a tangent
+ * perpendicular to the normal is chosen (w = 1). */
+bool cg_mesh_generate_tangents(cg_mesh *mesh, cg_error *err);
 
 /* The normal rule's bound (classify.c): every triangle's world normal has y above it. */
 #define CG_HEIGHTFIELD_MIN_NY 1e-3f
