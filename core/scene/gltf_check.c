@@ -340,10 +340,31 @@ get_index_list(checker *c, const json_t *o, const char *name, bool req, const ch
     return ok;
 }
 
+/* The extensions conegraph reads, each on the objects it belongs to. */
+static const char *const read_extensions[] = { "KHR_lights_punctual",        "KHR_materials_emissive_strength",
+                                               "KHR_materials_ior",          "KHR_materials_specular",
+                                               "KHR_materials_transmission", "KHR_materials_volume",
+                                               "KHR_texture_transform" };
+
+/* Whether `key` is one of the space-separated names of `list` (NULL: none). */
+static bool
+listed(const char *list, const char *key)
+{
+    size_t n = strlen(key);
+    for (const char *p = list; p && *p;) {
+        const char *end = strchr(p, ' ');
+        size_t len = end ? (size_t)(end - p) : strlen(p);
+        if (len == n && !strncmp(p, key, n))
+            return true;
+        p = end ? end + 1 : p + len;
+    }
+    return false;
+}
+
 /* The members every glTF object may have: "extensions" (an object whose keys are declared in
- * extensionsUsed, each an object; those listed in `allowed` are the ones conegraph reads
- * here, checked by the caller; one that conegraph reads elsewhere may not appear) and
- * "extras" (anything). */
+ * extensionsUsed, each an object; those listed in `allowed` (space-separated) are the ones
+ * conegraph reads here, checked by the caller; one that conegraph reads elsewhere may not
+ * appear) and "extras" (anything). */
 static bool
 check_extensions(checker *c, const json_t *o, const char *allowed)
 {
@@ -369,8 +390,10 @@ check_extensions(checker *c, const json_t *o, const char *allowed)
             ok = type_error(c, key, value, "an object");
             break;
         }
-        bool ours = !strcmp(key, "KHR_lights_punctual") || !strcmp(key, "KHR_materials_emissive_strength");
-        if (ours && !(allowed && !strcmp(allowed, key))) {
+        bool ours = false;
+        for (size_t r = 0; r < sizeof read_extensions / sizeof *read_extensions; r++)
+            ours = ours || !strcmp(key, read_extensions[r]);
+        if (ours && !listed(allowed, key)) {
             ok = bad(c, CG_ERR_GLTF_SCHEMA, key, "this extension does not belong here");
             break;
         }
@@ -561,6 +584,23 @@ check_buffer_view(checker *c, const json_t *o)
     return true;
 }
 
+/* KHR_texture_transform on a textureInfo: offset and scale two numbers each, rotation a number
+ * (radians), texCoord a set index. */
+static bool
+check_texture_transform(checker *c, const json_t *t)
+{
+    json_t *ext = json_object_get(json_object_get(t, "extensions"), "KHR_texture_transform");
+    if (!ext)
+        return true;
+    size_t mark = enter_key(c, "extensions.KHR_texture_transform");
+    bool ok = get_numbers(c, ext, "offset", false, 2, -HUGE_VAL, HUGE_VAL, NULL) &&
+              get_number(c, ext, "rotation", false, -HUGE_VAL, HUGE_VAL, false, NULL) &&
+              get_numbers(c, ext, "scale", false, 2, -HUGE_VAL, HUGE_VAL, NULL) &&
+              get_uint(c, ext, "texCoord", false, 0, INT32_MAX, NULL) && check_extensions(c, ext, NULL);
+    leave(c, mark);
+    return ok;
+}
+
 static bool
 check_texture_info(checker *c, const json_t *o, const char *name, bool normal, bool occlusion)
 {
@@ -573,8 +613,56 @@ check_texture_info(checker *c, const json_t *o, const char *name, bool normal, b
     bool ok = get_index(c, t, "index", true, "textures", NULL) &&
               get_uint(c, t, "texCoord", false, 0, INT32_MAX, NULL) &&
               (!normal || get_number(c, t, "scale", false, -INFINITY, INFINITY, false, NULL)) &&
-              (!occlusion || get_number(c, t, "strength", false, 0, 1, false, NULL)) && check_extensions(c, t, NULL);
+              (!occlusion || get_number(c, t, "strength", false, 0, 1, false, NULL)) &&
+              check_extensions(c, t, "KHR_texture_transform") && check_texture_transform(c, t);
     leave(c, mark);
+    return ok;
+}
+
+/* The material extensions conegraph reads (their schemas' types and ranges). */
+static bool
+check_material_extensions(checker *c, const json_t *o)
+{
+    json_t *exts = json_object_get(o, "extensions");
+    json_t *e;
+    bool ok = true;
+    size_t mark;
+    if (ok && (e = json_object_get(exts, "KHR_materials_emissive_strength"))) {
+        mark = enter_key(c, "extensions.KHR_materials_emissive_strength");
+        ok = get_number(c, e, "emissiveStrength", false, 0, INFINITY, false, NULL);
+        leave(c, mark);
+    }
+    if (ok && (e = json_object_get(exts, "KHR_materials_ior"))) {
+        mark = enter_key(c, "extensions.KHR_materials_ior");
+        double ior = 1.5;
+        ok = get_number(c, e, "ior", false, 0, INFINITY, false, &ior);
+        /* KHR_materials_ior: "ior": at least 1, or exactly 0 (an infinite ior). */
+        if (ok && ior != 0 && ior < 1)
+            ok = bad(c, CG_ERR_GLTF_SCHEMA, "ior", "%.17g is out of range (expected 0 or a number at least 1)", ior);
+        leave(c, mark);
+    }
+    if (ok && (e = json_object_get(exts, "KHR_materials_specular"))) {
+        mark = enter_key(c, "extensions.KHR_materials_specular");
+        ok = get_number(c, e, "specularFactor", false, 0, 1, false, NULL) &&
+             check_texture_info(c, e, "specularTexture", false, false) &&
+             get_numbers(c, e, "specularColorFactor", false, 3, 0, HUGE_VAL, NULL) &&
+             check_texture_info(c, e, "specularColorTexture", false, false);
+        leave(c, mark);
+    }
+    if (ok && (e = json_object_get(exts, "KHR_materials_transmission"))) {
+        mark = enter_key(c, "extensions.KHR_materials_transmission");
+        ok = get_number(c, e, "transmissionFactor", false, 0, 1, false, NULL) &&
+             check_texture_info(c, e, "transmissionTexture", false, false);
+        leave(c, mark);
+    }
+    if (ok && (e = json_object_get(exts, "KHR_materials_volume"))) {
+        mark = enter_key(c, "extensions.KHR_materials_volume");
+        ok = get_number(c, e, "thicknessFactor", false, 0, INFINITY, false, NULL) &&
+             check_texture_info(c, e, "thicknessTexture", false, false) &&
+             get_number(c, e, "attenuationDistance", false, 0, INFINITY, true, NULL) &&
+             get_numbers(c, e, "attenuationColor", false, 3, 0, 1, NULL);
+        leave(c, mark);
+    }
     return ok;
 }
 
@@ -590,7 +678,9 @@ check_material(checker *c, const json_t *o)
         !get_numbers(c, o, "emissiveFactor", false, 3, 0, 1, NULL) ||
         !get_enum_string(c, o, "alphaMode", false, modes, 3, NULL) ||
         !get_number(c, o, "alphaCutoff", false, 0, INFINITY, false, NULL) || !get_bool(c, o, "doubleSided") ||
-        !check_extensions(c, o, "KHR_materials_emissive_strength"))
+        !check_extensions(c, o,
+                          "KHR_materials_emissive_strength KHR_materials_ior KHR_materials_specular "
+                          "KHR_materials_transmission KHR_materials_volume"))
         return false;
     if (pbr) {
         size_t mark = enter_key(c, "pbrMetallicRoughness");
@@ -604,14 +694,7 @@ check_material(checker *c, const json_t *o)
         if (!ok)
             return false;
     }
-    json_t *ext = json_object_get(json_object_get(o, "extensions"), "KHR_materials_emissive_strength");
-    if (ext) {
-        size_t mark = enter_key(c, "extensions.KHR_materials_emissive_strength");
-        bool ok = get_number(c, ext, "emissiveStrength", false, 0, INFINITY, false, NULL);
-        leave(c, mark);
-        return ok;
-    }
-    return true;
+    return check_material_extensions(c, o);
 }
 
 /* TEXCOORD_0, COLOR_1, ...: the set name and a decimal index without leading zeros. */
@@ -1049,6 +1132,15 @@ check_light(checker *c, const json_t *o)
         !get_number(c, o, "range", false, 0, INFINITY, true, NULL) || !get_string(c, o, "name", false, NULL) ||
         !check_extensions(c, o, NULL))
         return false;
+    /* conegraph's own extra: a directional light's angular diameter, radians (cg/scene.h). */
+    json_t *extras = json_object_get(o, "extras");
+    if (json_is_object(extras) && json_object_get(extras, "conegraph_angular_diameter")) {
+        size_t mark = enter_key(c, "extras");
+        bool ok = get_number(c, extras, "conegraph_angular_diameter", false, 0, M_PI / 2, false, NULL);
+        leave(c, mark);
+        if (!ok)
+            return false;
+    }
     json_t *spot = json_object_get(o, "spot");
     if (!strcmp(type, "spot") && !spot)
         return missing(c, "spot", "object (the light is a spot light)");
@@ -1071,7 +1163,9 @@ check_light(checker *c, const json_t *o)
 
 /* ------------------------------------------------------------------ the whole file */
 
-static const char *const supported_extensions[] = { "KHR_lights_punctual", "KHR_materials_emissive_strength" };
+/* What extensionsRequired may name: the extensions conegraph implements (gltf_adapter.cpp keeps
+ * the same list). */
+#define supported_extensions read_extensions
 
 static bool
 check_string_list(checker *c, const char *name)
@@ -1172,10 +1266,14 @@ check_required_extensions(checker *c)
         snprintf(item, sizeof item, "extensionsRequired[%zu]", i);
         if (!used)
             return bad(c, CG_ERR_GLTF_SCHEMA, item, "\"%s\" is required but not listed in extensionsUsed", name);
-        if (!known)
+        if (!known) {
+            char list[512] = "";
+            for (size_t s = 0; s < sizeof supported_extensions / sizeof *supported_extensions; s++)
+                snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", s ? ", " : "", supported_extensions[s]);
             return cg_fail(c->err, CG_ERR_GLTF_EXTENSION,
-                           "%s: requires extension '%s', which conegraph does not support (supported: "
-                           "KHR_lights_punctual, KHR_materials_emissive_strength)", c->file, name);
+                           "%s: requires extension '%s', which conegraph does not support (supported: %s)", c->file,
+                           name, list);
+        }
     }
     return true;
 }
