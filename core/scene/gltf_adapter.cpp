@@ -33,7 +33,11 @@ extern "C" {
 
 namespace {
 
-const char *const supported_extensions[] = { "KHR_lights_punctual", "KHR_materials_emissive_strength" };
+// What extensionsRequired may name (gltf_check.c keeps the same list).
+const char *const supported_extensions[] = { "KHR_lights_punctual",        "KHR_materials_emissive_strength",
+                                             "KHR_materials_ior",          "KHR_materials_specular",
+                                             "KHR_materials_transmission", "KHR_materials_volume",
+                                             "KHR_texture_transform" };
 
 // ------------------------------------------------------------------ loading
 
@@ -45,7 +49,16 @@ struct loader {
     // glTF mesh -> its cg meshes (one per triangle primitive), filled on first use.
     std::vector<std::vector<int>> mesh_map;
     std::vector<bool> mesh_done;
-    std::vector<int> texture_map;         // glTF texture -> cg texture or -1
+    // glTF texture -> its cg texture read as sRGB (base colour, emissive) and as linear data
+    // (the others), or -1.
+    std::vector<int> texture_srgb, texture_linear;
+    // Material features the file asks for and conegraph leaves out, each "feature (material):
+    // fallback", for the one notice at load (report_left_out).
+    std::vector<std::string> left_out;
+    // glTF material i is cg material i + material_base: 1, after the loader's own material 0
+    // (glTF's default material), or 0 when the file's material 0 is a conegraph export's
+    // material 0 (extras "conegraph_material_0": true, export_materials).
+    int material_base = 1;
     std::vector<int> explicit_kind;       // per cg mesh: -1 none, else a cg_mesh_kind
     std::map<int, std::string> image_problem; // image -> why its data cannot be used
     // The node hierarchy animation needs (visit_nodes): per glTF node, its parent, whether a
@@ -70,6 +83,9 @@ struct loader {
             }
     }
 };
+
+void note(loader &L, const std::string &feature, const std::string &material, const std::string &fallback);
+double number_or(const tinygltf::Value &o, const char *name, double fallback);
 
 std::string
 one_line(std::string s)
@@ -554,6 +570,36 @@ add_primitive(loader &L, int mesh_index, int prim_index, std::vector<int> *out)
     if (has_uv && uv.component_type != TINYGLTF_COMPONENT_TYPE_FLOAT && !uv.normalized)
         return fail(L, CG_ERR_GLTF_ACCESSOR,
                     what + " TEXCOORD_0: integer texture coordinates must be normalized");
+    // TANGENT (glTF 2.0, 3.7.2.1): xyz unit, w +-1. Ignored where the primitive has no
+    // NORMAL (the spec says so: the normals are computed then, and tangents with them).
+    auto tan_it = prim.attributes.find("TANGENT");
+    bool has_tangents = tan_it != prim.attributes.end() && has_normals;
+    accessor_view tan;
+    if (has_tangents && (!view_accessor(L, tan_it->second, what + " TANGENT", { TINYGLTF_TYPE_VEC4 },
+                                        { TINYGLTF_COMPONENT_TYPE_FLOAT }, &tan) ||
+                         !check_accessor_data(L, what + " TANGENT", tan_it->second, "vertex", tan)))
+        return false;
+    for (size_t v = 0; has_tangents && v < tan.count; v++) {
+        double x = tan.component(v, 0), y = tan.component(v, 1), z = tan.component(v, 2), w = tan.component(v, 3);
+        double len = std::sqrt(x * x + y * y + z * z);
+        if (std::fabs(len - 1) > 0.00674 || (w != 1 && w != -1))
+            return fail(L, CG_ERR_GLTF_ACCESSOR,
+                        what + " TANGENT: vertex " + std::to_string(v) + " has a tangent of length " +
+                            std::to_string(len) + " and w " + std::to_string(w) +
+                            ", not a unit vector with w = 1 or -1 (accessor " + std::to_string(tan_it->second) + ")");
+    }
+    if (has_tangents && tan.count != nv)
+        return fail(L, CG_ERR_GLTF_ACCESSOR,
+                    what + ": attribute counts differ (POSITION has " + std::to_string(nv) + ", TANGENT " +
+                        std::to_string(tan.count) + ")");
+    if (prim.attributes.count("COLOR_0") && prim.material >= 0 && (size_t)prim.material < L.model.materials.size())
+        note(L, "COLOR_0 vertex colours of " + what,
+             L.model.materials[(size_t)prim.material].name.empty()
+                 ? "material " + std::to_string(prim.material)
+                 : "material '" + L.model.materials[(size_t)prim.material].name + "'",
+             "not multiplied into the base colour");
+    else if (prim.attributes.count("COLOR_0"))
+        note(L, "COLOR_0 vertex colours of " + what, "default material", "not multiplied into the base colour");
     if ((has_normals && nrm.count != nv) || (has_uv && uv.count != nv))
         return fail(L, CG_ERR_GLTF_ACCESSOR,
                     what + ": attribute counts differ (POSITION has " + std::to_string(nv) +
@@ -608,9 +654,11 @@ add_primitive(loader &L, int mesh_index, int prim_index, std::vector<int> *out)
     m.positions = (float *)std::malloc(nv * 3 * sizeof(float));
     m.normals = (float *)std::malloc(nv * 3 * sizeof(float));
     m.texcoords = has_uv ? (float *)std::malloc(nv * 2 * sizeof(float)) : nullptr;
+    m.tangents = has_tangents ? (float *)std::malloc(nv * 4 * sizeof(float)) : nullptr;
     m.indices = (uint32_t *)std::malloc(tris.size() * sizeof(uint32_t));
-    if (!m.positions || !m.normals || !m.indices || (has_uv && !m.texcoords)) {
+    if (!m.positions || !m.normals || !m.indices || (has_uv && !m.texcoords) || (has_tangents && !m.tangents)) {
         std::free(m.positions), std::free(m.normals), std::free(m.texcoords), std::free(m.indices);
+        std::free(m.tangents);
         return fail(L, CG_ERR_OUT_OF_MEMORY, what + ": out of memory");
     }
     std::memcpy(m.indices, tris.data(), tris.size() * sizeof(uint32_t));
@@ -639,7 +687,15 @@ add_primitive(loader &L, int mesh_index, int prim_index, std::vector<int> *out)
         for (size_t v = 0; v < nv; v++)
             for (int k = 0; k < 2; k++)
                 m.texcoords[2 * v + k] = (float)uv.component(v, k);
-    int material = prim.material < 0 ? 0 : prim.material + 1;
+    if (has_tangents)
+        for (size_t v = 0; v < nv; v++) {
+            double t[3] = { tan.component(v, 0), tan.component(v, 1), tan.component(v, 2) };
+            double len = std::sqrt(t[0] * t[0] + t[1] * t[1] + t[2] * t[2]);
+            for (int k = 0; k < 3; k++)
+                m.tangents[4 * v + k] = (float)(t[k] / len);
+            m.tangents[4 * v + 3] = (float)tan.component(v, 3);
+        }
+    int material = prim.material < 0 ? 0 : prim.material + L.material_base;
     m.material = material;
     cg_error local = {};
     bool ok = true;
@@ -654,14 +710,21 @@ add_primitive(loader &L, int mesh_index, int prim_index, std::vector<int> *out)
                   what + ": material " + std::to_string(prim.material) + " does not exist");
     else if (!has_normals && !cg_mesh_generate_normals(&m, &local))
         ok = fail(L, local.status, local.message);
+    // Tangents for a normal map when the file gives none (glTF 2.0, 3.7.2.1: the client
+    // computes them; scene.c's generator says how it departs from MikkTSpace).
+    else if (!m.tangents && L.scene->materials[material].normal_texture >= 0 &&
+             !cg_mesh_generate_tangents(&m, &local))
+        ok = fail(L, local.status, local.message);
     if (!ok) {
         std::free(m.positions), std::free(m.normals), std::free(m.texcoords), std::free(m.indices);
+        std::free(m.tangents);
         return false;
     }
     cg_mesh_compute_bounds(&m);
     int index = cg_scene_add_mesh(L.scene, &m, L.err);
     if (index < 0) {
         std::free(m.positions), std::free(m.normals), std::free(m.texcoords), std::free(m.indices);
+        std::free(m.tangents);
         return false;
     }
     // A kind stored by conegraph export wins over the classification rule.
@@ -846,6 +909,16 @@ add_light(loader &L, int node, const double world[16], int *added)
     if (l.type == CG_LIGHT_SPOT) { // tinygltf fills the spot defaults (0, pi/4) for every light
         l.inner_cone_angle = (float)gl.spot.innerConeAngle;
         l.outer_cone_angle = (float)gl.spot.outerConeAngle;
+    }
+    // glTF has no field for a light's size: conegraph's extras "conegraph_angular_diameter"
+    // (radians, gltf_check.c checks it is a number in [0, pi)) gives a sun its disc.
+    if (gl.extras.IsObject() && gl.extras.Has("conegraph_angular_diameter")) {
+        double d = number_or(gl.extras, "conegraph_angular_diameter", 0);
+        if (l.type == CG_LIGHT_DIRECTIONAL)
+            l.angular_diameter = (float)d;
+        else if (d != 0)
+            cg_log_warn("%s: light %d '%s': conegraph_angular_diameter is read on directional lights only; "
+                        "this %s light stays a point", L.path.c_str(), li, l.name, gl.type.c_str());
     }
     // KHR_lights_punctual: the light sits at the node's origin and shines down its -Z.
     double d[3] = { -world[8], -world[9], -world[10] };
@@ -1150,19 +1223,176 @@ visit_nodes(loader &L, const std::vector<int> &roots)
     return true;
 }
 
+// ------------------------------------------------------------------ materials
+
+// A textureInfo wherever it stands: the core ones (tinygltf parses them) and those inside
+// material extensions (raw JSON values).
+struct texture_ref {
+    int index = -1;
+    int texcoord = 0;
+    const tinygltf::Value *transform = nullptr; // its KHR_texture_transform object, if any
+};
+
+template <class Info>
+texture_ref
+core_ref(const Info &info)
+{
+    texture_ref r;
+    r.index = info.index;
+    r.texcoord = info.texCoord;
+    auto it = info.extensions.find("KHR_texture_transform");
+    if (it != info.extensions.end() && it->second.IsObject())
+        r.transform = &it->second;
+    return r;
+}
+
+// A textureInfo inside an extension object (gltf_check.c has checked its types).
+texture_ref
+value_ref(const tinygltf::Value &ext, const char *name)
+{
+    texture_ref r;
+    if (!ext.IsObject() || !ext.Has(name))
+        return r;
+    const tinygltf::Value &t = ext.Get(name);
+    if (!t.IsObject() || !t.Has("index") || !t.Get("index").IsNumber())
+        return r;
+    r.index = t.Get("index").GetNumberAsInt();
+    if (t.Has("texCoord") && t.Get("texCoord").IsNumber())
+        r.texcoord = t.Get("texCoord").GetNumberAsInt();
+    if (t.Has("extensions") && t.Get("extensions").IsObject() && t.Get("extensions").Has("KHR_texture_transform") &&
+        t.Get("extensions").Get("KHR_texture_transform").IsObject())
+        r.transform = &t.Get("extensions").Get("KHR_texture_transform");
+    return r;
+}
+
+double
+number_or(const tinygltf::Value &o, const char *name, double fallback)
+{
+    if (o.IsObject() && o.Has(name) && o.Get(name).IsNumber())
+        return o.Get(name).GetNumberAsDouble();
+    return fallback;
+}
+
+// KHR_texture_transform: uv' = T(offset) R(rotation) S(scale) uv. The rotation is the one
+// the extension's implementations (Babylon.js, three.js, Blender, the TextureTransformTest
+// sample) use, u' = cos r u + sin r v, v' = -sin r u + cos r v: counter-clockwise in glTF's
+// UV space, whose v axis points down. The GLSL listing of the extension's README has the
+// transpose (KhronosGroup/glTF issue 1563 says so). Columns first, as cg_uv_transform.
+cg_uv_transform
+uv_transform_of(const tinygltf::Value *t)
+{
+    cg_uv_transform m = cg_uv_transform_identity();
+    if (!t)
+        return m;
+    double off[2] = { 0, 0 }, sc[2] = { 1, 1 }, r = number_or(*t, "rotation", 0);
+    for (int k = 0; k < 2; k++) {
+        if (t->Has("offset") && t->Get("offset").IsArray() && t->Get("offset").ArrayLen() == 2)
+            off[k] = t->Get("offset").Get(k).GetNumberAsDouble();
+        if (t->Has("scale") && t->Get("scale").IsArray() && t->Get("scale").ArrayLen() == 2)
+            sc[k] = t->Get("scale").Get(k).GetNumberAsDouble();
+    }
+    double c = std::cos(r), s = std::sin(r);
+    m.m[0] = (float)(c * sc[0]);
+    m.m[1] = (float)(-s * sc[0]);
+    m.m[2] = (float)(s * sc[1]);
+    m.m[3] = (float)(c * sc[1]);
+    m.m[4] = (float)off[0];
+    m.m[5] = (float)off[1];
+    return m;
+}
+
+// Which way a material samples each of its textures: base colour and emissive hold sRGB
+// colours, the others linear data (glTF 2.0, 3.9). A glTF texture used both ways becomes two
+// cg textures with the same pixels.
+enum { USE_SRGB = 1, USE_LINEAR = 2 };
+
+void
+note(loader &L, const std::string &feature, const std::string &material, const std::string &fallback)
+{
+    std::string item = feature + " (" + material + "): " + fallback;
+    if (std::find(L.left_out.begin(), L.left_out.end(), item) == L.left_out.end())
+        L.left_out.push_back(item);
+}
+
 bool
-texture_info(loader &L, const std::string &what, int index, int texcoord, int *out)
+read_texture(loader &L, const std::string &material, const char *slot, const texture_ref &ref, bool srgb,
+             int *out, cg_uv_transform *uv)
 {
     *out = -1;
-    if (index < 0)
+    *uv = cg_uv_transform_identity();
+    if (ref.index < 0)
         return true;
-    if ((size_t)index >= L.model.textures.size())
-        return fail(L, CG_ERR_GLTF_INDEX_RANGE, what + ": texture " + std::to_string(index) + " does not exist");
+    if ((size_t)ref.index >= L.model.textures.size())
+        return fail(L, CG_ERR_GLTF_INDEX_RANGE,
+                    material + " " + slot + ": texture " + std::to_string(ref.index) + " does not exist");
+    int texcoord = ref.texcoord;
+    if (ref.transform && ref.transform->Has("texCoord") && ref.transform->Get("texCoord").IsNumber())
+        texcoord = ref.transform->Get("texCoord").GetNumberAsInt();
     if (texcoord != 0)
-        cg_log_warn("%s: %s uses TEXCOORD_%d; conegraph reads TEXCOORD_0 only", L.path.c_str(), what.c_str(),
-                    texcoord);
-    *out = L.texture_map[(size_t)index];
+        note(L, std::string(slot) + " on TEXCOORD_" + std::to_string(texcoord), material,
+             "sampled with TEXCOORD_0 (conegraph reads one texture coordinate set)");
+    *out = srgb ? L.texture_srgb[(size_t)ref.index] : L.texture_linear[(size_t)ref.index];
+    if (*out < 0)
+        note(L, std::string(slot) + " (texture " + std::to_string(ref.index) + " without a PNG or JPEG image)",
+             material, "its factor alone");
+    *uv = uv_transform_of(ref.transform);
     return true;
+}
+
+// What conegraph does instead of a material extension it does not implement.
+const char *
+extension_fallback(const std::string &name)
+{
+    static const std::pair<const char *, const char *> known[] = {
+        { "KHR_materials_clearcoat", "no clear coat; the base layer alone" },
+        { "KHR_materials_sheen", "no sheen; the base layer alone" },
+        { "KHR_materials_iridescence", "no thin-film iridescence; plain Fresnel" },
+        { "KHR_materials_anisotropy", "isotropic GGX with the material's roughness" },
+        { "KHR_materials_dispersion", "one ior for every wavelength" },
+        { "KHR_materials_diffuse_transmission", "no diffuse transmission; opaque diffuse" },
+        { "KHR_materials_unlit", "shaded as a lit metallic-roughness material" },
+        { "KHR_materials_pbrSpecularGlossiness", "its pbrMetallicRoughness values (glTF's defaults where absent)" },
+        { "KHR_materials_volume_scatter", "no scattering in the volume; attenuation alone" },
+    };
+    for (const auto &k : known)
+        if (name == k.first)
+            return k.second;
+    return "ignored";
+}
+
+bool
+is_read_material_extension(const std::string &name)
+{
+    return name == "KHR_materials_emissive_strength" || name == "KHR_materials_ior" ||
+           name == "KHR_materials_specular" || name == "KHR_materials_transmission" || name == "KHR_materials_volume";
+}
+
+const tinygltf::Value *
+material_extension(const tinygltf::Material &gm, const char *name)
+{
+    auto it = gm.extensions.find(name);
+    return it != gm.extensions.end() && it->second.IsObject() ? &it->second : nullptr;
+}
+
+// The sRGB and linear uses of every glTF texture (texture_srgb / texture_linear get filled by
+// convert_textures from these).
+void
+texture_uses(const loader &L, std::vector<int> *uses)
+{
+    uses->assign(L.model.textures.size(), 0);
+    auto mark = [&](int index, int use) {
+        if (index >= 0 && (size_t)index < uses->size())
+            (*uses)[(size_t)index] |= use;
+    };
+    for (const tinygltf::Material &gm : L.model.materials) {
+        mark(gm.pbrMetallicRoughness.baseColorTexture.index, USE_SRGB);
+        mark(gm.emissiveTexture.index, USE_SRGB);
+        mark(gm.pbrMetallicRoughness.metallicRoughnessTexture.index, USE_LINEAR);
+        mark(gm.normalTexture.index, USE_LINEAR);
+        mark(gm.occlusionTexture.index, USE_LINEAR);
+        if (const tinygltf::Value *t = material_extension(gm, "KHR_materials_transmission"))
+            mark(value_ref(*t, "transmissionTexture").index, USE_LINEAR);
+    }
 }
 
 bool
@@ -1171,8 +1401,8 @@ convert_materials(loader &L)
     for (size_t i = 0; i < L.model.materials.size(); i++) {
         const tinygltf::Material &gm = L.model.materials[i];
         std::string what = gm.name.empty() ? "material " + std::to_string(i) : "material '" + gm.name + "'";
-        cg_material m = cg_material_default(gm.name.empty() ? ("material" + std::to_string(i)).c_str()
-                                                             : gm.name.c_str());
+        cg_material m = cg_material_gltf_default(gm.name.empty() ? ("material" + std::to_string(i)).c_str()
+                                                                  : gm.name.c_str());
         const auto &pbr = gm.pbrMetallicRoughness;
         for (size_t k = 0; k < 4 && pbr.baseColorFactor.size() == 4; k++)
             m.base_color[k] = (float)pbr.baseColorFactor[k];
@@ -1180,22 +1410,85 @@ convert_materials(loader &L)
             m.emissive[k] = (float)gm.emissiveFactor[k];
         m.metallic = (float)pbr.metallicFactor;
         m.roughness = (float)pbr.roughnessFactor;
-        auto it = gm.extensions.find("KHR_materials_emissive_strength");
-        if (it != gm.extensions.end() && it->second.IsObject() && it->second.Has("emissiveStrength")) {
-            const tinygltf::Value &v = it->second.Get("emissiveStrength");
-            if (!v.IsNumber())
-                return fail(L, CG_ERR_GLTF_PARSE, what + ": emissiveStrength is not a number");
-            m.emissive_strength = (float)v.GetNumberAsDouble();
+        m.normal_scale = (float)gm.normalTexture.scale;
+        m.occlusion_strength = (float)gm.occlusionTexture.strength;
+        m.alpha_mode = gm.alphaMode == "MASK" ? CG_ALPHA_MASK : gm.alphaMode == "BLEND" ? CG_ALPHA_BLEND : CG_ALPHA_OPAQUE;
+        m.alpha_cutoff = (float)gm.alphaCutoff;
+        m.double_sided = gm.doubleSided;
+        if (const tinygltf::Value *e = material_extension(gm, "KHR_materials_emissive_strength"))
+            m.emissive_strength = (float)number_or(*e, "emissiveStrength", 1);
+        // KHR_materials_ior: ior 0 is allowed and means an infinite ior (F0 = 1, the formula
+        // ((ior - 1) / (ior + 1))^2 gives exactly that), kept as 0.
+        if (const tinygltf::Value *e = material_extension(gm, "KHR_materials_ior"))
+            m.ior = (float)number_or(*e, "ior", 1.5);
+        if (const tinygltf::Value *e = material_extension(gm, "KHR_materials_specular")) {
+            m.specular = (float)number_or(*e, "specularFactor", 1);
+            if (e->Has("specularColorFactor") && e->Get("specularColorFactor").IsArray() &&
+                e->Get("specularColorFactor").ArrayLen() == 3)
+                for (int k = 0; k < 3; k++)
+                    m.specular_color[k] = (float)e->Get("specularColorFactor").Get(k).GetNumberAsDouble();
+            if (e->Has("specularTexture"))
+                note(L, "KHR_materials_specular specularTexture", what, "specularFactor alone");
+            if (e->Has("specularColorTexture"))
+                note(L, "KHR_materials_specular specularColorTexture", what, "specularColorFactor alone");
         }
-        if (!texture_info(L, what + " baseColorTexture", pbr.baseColorTexture.index,
-                          pbr.baseColorTexture.texCoord, &m.base_color_texture) ||
-            !texture_info(L, what + " emissiveTexture", gm.emissiveTexture.index, gm.emissiveTexture.texCoord,
-                          &m.emissive_texture))
+        texture_ref transmission_ref;
+        if (const tinygltf::Value *e = material_extension(gm, "KHR_materials_transmission")) {
+            m.transmission = (float)number_or(*e, "transmissionFactor", 0);
+            transmission_ref = value_ref(*e, "transmissionTexture");
+        }
+        if (const tinygltf::Value *e = material_extension(gm, "KHR_materials_volume")) {
+            m.thickness = (float)number_or(*e, "thicknessFactor", 0);
+            m.attenuation_distance = (float)number_or(*e, "attenuationDistance", INFINITY);
+            if (e->Has("attenuationColor") && e->Get("attenuationColor").IsArray() &&
+                e->Get("attenuationColor").ArrayLen() == 3)
+                for (int k = 0; k < 3; k++)
+                    m.attenuation_color[k] = (float)e->Get("attenuationColor").Get(k).GetNumberAsDouble();
+            if (e->Has("thicknessTexture"))
+                note(L, "KHR_materials_volume thicknessTexture", what, "thicknessFactor alone");
+            if (!material_extension(gm, "KHR_materials_transmission") && m.thickness > 0)
+                note(L, "KHR_materials_volume without KHR_materials_transmission", what,
+                     "opaque (a volume is only seen through transmission)");
+        }
+        for (const auto &e : gm.extensions)
+            if (!is_read_material_extension(e.first))
+                note(L, e.first, what, extension_fallback(e.first));
+        if (!read_texture(L, what, "baseColorTexture", core_ref(pbr.baseColorTexture), true, &m.base_color_texture,
+                          &m.uv[CG_TEX_BASE_COLOR]) ||
+            !read_texture(L, what, "emissiveTexture", core_ref(gm.emissiveTexture), true, &m.emissive_texture,
+                          &m.uv[CG_TEX_EMISSIVE]) ||
+            !read_texture(L, what, "metallicRoughnessTexture", core_ref(pbr.metallicRoughnessTexture), false,
+                          &m.metallic_roughness_texture, &m.uv[CG_TEX_METALLIC_ROUGHNESS]) ||
+            !read_texture(L, what, "normalTexture", core_ref(gm.normalTexture), false, &m.normal_texture,
+                          &m.uv[CG_TEX_NORMAL]) ||
+            !read_texture(L, what, "occlusionTexture", core_ref(gm.occlusionTexture), false, &m.occlusion_texture,
+                          &m.uv[CG_TEX_OCCLUSION]) ||
+            !read_texture(L, what, "transmissionTexture", transmission_ref, false, &m.transmission_texture,
+                          &m.uv[CG_TEX_TRANSMISSION]))
             return false;
-        if (cg_scene_add_material(L.scene, &m, L.err) < 0)
+        bool is_zero = i == 0 && gm.extras.IsObject() && gm.extras.Has("conegraph_material_0") &&
+                       gm.extras.Get("conegraph_material_0").IsBool() && gm.extras.Get("conegraph_material_0").Get<bool>();
+        if (is_zero) {
+            L.scene->materials[0] = m;
+            L.material_base = 0;
+        } else if (cg_scene_add_material(L.scene, &m, L.err) < 0) {
             return false;
+        }
     }
     return true;
+}
+
+// The one notice of what the file's materials ask for and conegraph does not render.
+void
+report_left_out(loader &L)
+{
+    if (L.left_out.empty())
+        return;
+    std::string list;
+    for (const std::string &item : L.left_out)
+        list += (list.empty() ? "" : "; ") + item;
+    cg_log_warn("%s: material features not rendered (feature (material): what is used instead): %s", L.path.c_str(),
+                list.c_str());
 }
 
 // RGBA8, rows bottom to top (cg_texture), from tinygltf's decoded image (top to bottom,
@@ -1261,34 +1554,46 @@ convert_image(loader &L, size_t image_index, cg_texture *t)
 bool
 convert_textures(loader &L)
 {
-    L.texture_map.assign(L.model.textures.size(), -1);
-    std::vector<int> image_texture(L.model.images.size(), -2); // -2 not yet converted
+    std::vector<int> uses;
+    texture_uses(L, &uses);
+    L.texture_srgb.assign(L.model.textures.size(), -1);
+    L.texture_linear.assign(L.model.textures.size(), -1);
+    // Per image and encoding, its cg texture: -2 not yet converted, -1 none.
+    std::vector<int> image_texture[2] = { std::vector<int>(L.model.images.size(), -2),
+                                          std::vector<int>(L.model.images.size(), -2) };
     for (size_t i = 0; i < L.model.textures.size(); i++) {
         int src = L.model.textures[i].source;
         if (src < 0) { // glTF allows a texture whose image comes from an extension only
             cg_log_warn("%s: texture %zu has no source image conegraph can read; ignored", L.path.c_str(), i);
             continue;
         }
-        if (image_texture[(size_t)src] == -2) {
-            cg_texture t = {};
-            const auto &img = L.model.images[(size_t)src];
-            std::string name = !img.name.empty() ? img.name : !img.uri.empty() && img.uri.compare(0, 5, "data:")
-                                                                   ? img.uri : "image" + std::to_string(src);
-            cg_copy_name(t.name, name.c_str());
-            t.srgb = true; // base colour and emissive textures are the only ones read
-            if (!convert_image(L, (size_t)src, &t))
-                return false;
-            image_texture[(size_t)src] = -1;
-            if (t.rgba) {
-                int index = cg_scene_add_texture(L.scene, &t, L.err);
-                if (index < 0) {
-                    std::free(t.rgba);
+        // A texture no material uses is converted as sRGB, so that its image is still checked.
+        int use = uses[i] ? uses[i] : USE_SRGB;
+        for (int linear = 0; linear < 2; linear++) {
+            if (!(use & (linear ? USE_LINEAR : USE_SRGB)))
+                continue;
+            int &done = image_texture[linear][(size_t)src];
+            if (done == -2) {
+                cg_texture t = {};
+                const auto &img = L.model.images[(size_t)src];
+                std::string name = !img.name.empty() ? img.name : !img.uri.empty() && img.uri.compare(0, 5, "data:")
+                                                                       ? img.uri : "image" + std::to_string(src);
+                cg_copy_name(t.name, name.c_str());
+                t.srgb = !linear;
+                if (!convert_image(L, (size_t)src, &t))
                     return false;
+                done = -1;
+                if (t.rgba) {
+                    int index = cg_scene_add_texture(L.scene, &t, L.err);
+                    if (index < 0) {
+                        std::free(t.rgba);
+                        return false;
+                    }
+                    done = index;
                 }
-                image_texture[(size_t)src] = index;
             }
+            (linear ? L.texture_linear : L.texture_srgb)[i] = done;
         }
-        L.texture_map[i] = image_texture[(size_t)src];
     }
     return true;
 }
@@ -1450,13 +1755,24 @@ check_model(loader &L)
                     { "emissiveTexture", &mat.emissiveTexture },
                 };
                 std::vector<std::pair<std::string, int>> uses;
+                // The set sampled: textureInfo.texCoord, or KHR_texture_transform's override.
+                auto set = [](const texture_ref &r) {
+                    return r.transform && r.transform->Has("texCoord") && r.transform->Get("texCoord").IsNumber()
+                               ? r.transform->Get("texCoord").GetNumberAsInt()
+                               : r.texcoord;
+                };
                 for (const auto &info : infos)
                     if (info.second->index >= 0)
-                        uses.push_back({ info.first, info.second->texCoord });
+                        uses.push_back({ info.first, set(core_ref(*info.second)) });
                 if (mat.normalTexture.index >= 0)
-                    uses.push_back({ "normalTexture", mat.normalTexture.texCoord });
+                    uses.push_back({ "normalTexture", set(core_ref(mat.normalTexture)) });
                 if (mat.occlusionTexture.index >= 0)
-                    uses.push_back({ "occlusionTexture", mat.occlusionTexture.texCoord });
+                    uses.push_back({ "occlusionTexture", set(core_ref(mat.occlusionTexture)) });
+                if (const tinygltf::Value *t = material_extension(mat, "KHR_materials_transmission")) {
+                    texture_ref r = value_ref(*t, "transmissionTexture");
+                    if (r.index >= 0)
+                        uses.push_back({ "extensions.KHR_materials_transmission.transmissionTexture", set(r) });
+                }
                 for (const auto &u : uses)
                     if (!prim.attributes.count("TEXCOORD_" + std::to_string(u.second)))
                         return fail(L, CG_ERR_GLTF_ACCESSOR,
@@ -1482,11 +1798,12 @@ check_extensions(loader &L)
         bool known = false;
         for (const char *s : supported_extensions)
             known = known || e == s;
+        std::string list;
+        for (const char *s : supported_extensions)
+            list += (list.empty() ? "" : ", ") + std::string(s);
         if (!known)
             return fail(L, CG_ERR_GLTF_EXTENSION,
-                        "requires extension '" + e +
-                            "', which conegraph does not support (supported: KHR_lights_punctual, "
-                            "KHR_materials_emissive_strength)");
+                        "requires extension '" + e + "', which conegraph does not support (supported: " + list + ")");
     }
     return true;
 }
@@ -1637,8 +1954,12 @@ load(loader &L)
     L.mesh_map.assign(L.model.meshes.size(), {});
     L.mesh_done.assign(L.model.meshes.size(), false);
     std::vector<int> roots;
-    return check_extensions(L) && check_model(L) && convert_textures(L) && convert_materials(L) && check_node_graph(L) &&
-           read_animations(L) && scene_roots(L, &roots) && visit_nodes(L, roots) && finish_animations(L);
+    ok = check_extensions(L) && check_model(L) && convert_textures(L) && convert_materials(L) &&
+              check_node_graph(L) && read_animations(L) && scene_roots(L, &roots) && visit_nodes(L, roots) &&
+              finish_animations(L);
+    if (ok)
+        report_left_out(L);
+    return ok;
 }
 
 // ------------------------------------------------------------------ export
@@ -1693,21 +2014,91 @@ quat_from_minus_z(const float d[3], std::vector<double> *q)
     *q = { x / len, y / len, z / len, w / len };
 }
 
-void
-export_materials(const cg_scene *S, tinygltf::Model &M, bool *uses_strength)
+// KHR_texture_transform of a cg_uv_transform (uv_transform_of's inverse): scale, rotation
+// and offset of A = R(r) S; a matrix with shear (no file gives one) keeps the nearest such.
+tinygltf::Value
+texture_transform_value(const cg_uv_transform &t)
 {
-    // cg material 0 is the loader's default white: meshes using it get no glTF material
-    // (which loads back as the default), so material i becomes glTF material i - 1.
-    for (int i = 1; i < S->material_count; i++) {
+    double sx = std::hypot(t.m[0], t.m[1]);
+    double r = sx > 0 ? std::atan2(-t.m[1], t.m[0]) : std::atan2(t.m[2], t.m[3]);
+    double c = std::cos(r), s = std::sin(r);
+    double sy = sx > 0 ? t.m[2] * s + t.m[3] * c : std::hypot(t.m[2], t.m[3]);
+    tinygltf::Value::Object o;
+    if (t.m[4] != 0 || t.m[5] != 0)
+        o["offset"] = tinygltf::Value(tinygltf::Value::Array{ tinygltf::Value((double)t.m[4]),
+                                                              tinygltf::Value((double)t.m[5]) });
+    if (r != 0)
+        o["rotation"] = tinygltf::Value(r);
+    if (sx != 1 || sy != 1)
+        o["scale"] = tinygltf::Value(tinygltf::Value::Array{ tinygltf::Value(sx), tinygltf::Value(sy) });
+    return tinygltf::Value(o);
+}
+
+bool
+is_identity_uv(const cg_uv_transform &t)
+{
+    cg_uv_transform id = cg_uv_transform_identity();
+    return std::memcmp(t.m, id.m, sizeof t.m) == 0;
+}
+
+// Every material, in order, so that indices stay: material 0 too, marked with extras
+// "conegraph_material_0" so that the loader takes it as its material 0 (instead of glTF's
+// default material, which a built-in scene's Lambertian material 0 is not). Each field is
+// written where it differs from glTF's default, an extension where one of its fields does
+// (its name added to `used`). A texture index outside the scene's textures is left out.
+void
+export_materials(const cg_scene *S, tinygltf::Model &M, std::vector<std::string> *used)
+{
+    auto use = [&](const char *name) {
+        if (std::find(used->begin(), used->end(), name) == used->end())
+            used->push_back(name);
+    };
+    auto valid = [&](int t) { return t >= 0 && t < S->texture_count; };
+    auto transform = [&](const cg_material &c, int slot, tinygltf::ExtensionMap *ext) {
+        if (is_identity_uv(c.uv[slot]))
+            return;
+        (*ext)["KHR_texture_transform"] = texture_transform_value(c.uv[slot]);
+        use("KHR_texture_transform");
+    };
+    for (int i = 0; i < S->material_count; i++) {
         const cg_material &c = S->materials[i];
         tinygltf::Material m;
         m.name = c.name;
-        m.pbrMetallicRoughness.baseColorFactor = { c.base_color[0], c.base_color[1], c.base_color[2],
-                                                   c.base_color[3] };
-        m.pbrMetallicRoughness.metallicFactor = c.metallic;
-        m.pbrMetallicRoughness.roughnessFactor = c.roughness;
-        m.pbrMetallicRoughness.baseColorTexture.index = c.base_color_texture;
-        m.emissiveTexture.index = c.emissive_texture;
+        if (i == 0) {
+            tinygltf::Value::Object extras;
+            extras["conegraph_material_0"] = tinygltf::Value(true);
+            m.extras = tinygltf::Value(extras);
+        }
+        auto &pbr = m.pbrMetallicRoughness;
+        pbr.baseColorFactor = { c.base_color[0], c.base_color[1], c.base_color[2], c.base_color[3] };
+        pbr.metallicFactor = c.metallic;
+        pbr.roughnessFactor = c.roughness;
+        if (valid(c.base_color_texture)) {
+            pbr.baseColorTexture.index = c.base_color_texture;
+            transform(c, CG_TEX_BASE_COLOR, &pbr.baseColorTexture.extensions);
+        }
+        if (valid(c.metallic_roughness_texture)) {
+            pbr.metallicRoughnessTexture.index = c.metallic_roughness_texture;
+            transform(c, CG_TEX_METALLIC_ROUGHNESS, &pbr.metallicRoughnessTexture.extensions);
+        }
+        if (valid(c.emissive_texture)) {
+            m.emissiveTexture.index = c.emissive_texture;
+            transform(c, CG_TEX_EMISSIVE, &m.emissiveTexture.extensions);
+        }
+        if (valid(c.normal_texture)) {
+            m.normalTexture.index = c.normal_texture;
+            m.normalTexture.scale = c.normal_scale;
+            transform(c, CG_TEX_NORMAL, &m.normalTexture.extensions);
+        }
+        if (valid(c.occlusion_texture)) {
+            m.occlusionTexture.index = c.occlusion_texture;
+            m.occlusionTexture.strength = c.occlusion_strength;
+            transform(c, CG_TEX_OCCLUSION, &m.occlusionTexture.extensions);
+        }
+        m.alphaMode = c.alpha_mode == CG_ALPHA_MASK ? "MASK" : c.alpha_mode == CG_ALPHA_BLEND ? "BLEND" : "OPAQUE";
+        if (c.alpha_mode == CG_ALPHA_MASK)
+            m.alphaCutoff = c.alpha_cutoff;
+        m.doubleSided = c.double_sided;
         // glTF keeps emissiveFactor in [0, 1]; anything brighter moves into the strength.
         double peak = std::fmax(c.emissive[0], std::fmax(c.emissive[1], c.emissive[2]));
         double scale = peak > 1 ? peak : 1;
@@ -1717,7 +2108,57 @@ export_materials(const cg_scene *S, tinygltf::Model &M, bool *uses_strength)
             tinygltf::Value::Object o;
             o["emissiveStrength"] = tinygltf::Value(strength);
             m.extensions["KHR_materials_emissive_strength"] = tinygltf::Value(o);
-            *uses_strength = true;
+            use("KHR_materials_emissive_strength");
+        }
+        if (c.ior != 1.5f && (c.ior == 0 || c.ior >= 1)) {
+            tinygltf::Value::Object o;
+            o["ior"] = tinygltf::Value((double)c.ior);
+            m.extensions["KHR_materials_ior"] = tinygltf::Value(o);
+            use("KHR_materials_ior");
+        }
+        if (c.specular != 1 || c.specular_color[0] != 1 || c.specular_color[1] != 1 || c.specular_color[2] != 1) {
+            tinygltf::Value::Object o;
+            if (c.specular != 1)
+                o["specularFactor"] = tinygltf::Value((double)c.specular);
+            if (c.specular_color[0] != 1 || c.specular_color[1] != 1 || c.specular_color[2] != 1)
+                o["specularColorFactor"] = tinygltf::Value(tinygltf::Value::Array{
+                    tinygltf::Value((double)c.specular_color[0]), tinygltf::Value((double)c.specular_color[1]),
+                    tinygltf::Value((double)c.specular_color[2]) });
+            m.extensions["KHR_materials_specular"] = tinygltf::Value(o);
+            use("KHR_materials_specular");
+        }
+        if (c.transmission != 0 || valid(c.transmission_texture)) {
+            tinygltf::Value::Object o;
+            if (c.transmission != 0)
+                o["transmissionFactor"] = tinygltf::Value((double)c.transmission);
+            if (valid(c.transmission_texture)) {
+                tinygltf::Value::Object info;
+                info["index"] = tinygltf::Value(c.transmission_texture);
+                if (!is_identity_uv(c.uv[CG_TEX_TRANSMISSION])) {
+                    tinygltf::Value::Object ext;
+                    ext["KHR_texture_transform"] = texture_transform_value(c.uv[CG_TEX_TRANSMISSION]);
+                    info["extensions"] = tinygltf::Value(ext);
+                    use("KHR_texture_transform");
+                }
+                o["transmissionTexture"] = tinygltf::Value(info);
+            }
+            m.extensions["KHR_materials_transmission"] = tinygltf::Value(o);
+            use("KHR_materials_transmission");
+        }
+        bool attenuates = c.attenuation_distance > 0 && std::isfinite(c.attenuation_distance);
+        bool tinted = c.attenuation_color[0] != 1 || c.attenuation_color[1] != 1 || c.attenuation_color[2] != 1;
+        if (c.thickness > 0 || attenuates || tinted) {
+            tinygltf::Value::Object o;
+            if (c.thickness > 0)
+                o["thicknessFactor"] = tinygltf::Value((double)c.thickness);
+            if (attenuates)
+                o["attenuationDistance"] = tinygltf::Value((double)c.attenuation_distance);
+            if (tinted)
+                o["attenuationColor"] = tinygltf::Value(tinygltf::Value::Array{
+                    tinygltf::Value((double)c.attenuation_color[0]), tinygltf::Value((double)c.attenuation_color[1]),
+                    tinygltf::Value((double)c.attenuation_color[2]) });
+            m.extensions["KHR_materials_volume"] = tinygltf::Value(o);
+            use("KHR_materials_volume");
         }
         M.materials.push_back(m);
     }
@@ -1758,7 +2199,7 @@ export_meshes(const cg_scene *S, tinygltf::Model &M)
         const cg_mesh &c = S->meshes[i];
         tinygltf::Primitive p;
         p.mode = TINYGLTF_MODE_TRIANGLES;
-        p.material = c.material - 1;
+        p.material = c.material; // every material is written, 0 included (export_materials)
         p.attributes["POSITION"] = add_accessor(M, c.positions, c.vertex_count, TINYGLTF_TYPE_VEC3,
                                                 TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TARGET_ARRAY_BUFFER,
                                                 c.bounds_min, c.bounds_max);
@@ -1767,6 +2208,9 @@ export_meshes(const cg_scene *S, tinygltf::Model &M)
         if (c.texcoords)
             p.attributes["TEXCOORD_0"] = add_accessor(M, c.texcoords, c.vertex_count, TINYGLTF_TYPE_VEC2,
                                                       TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TARGET_ARRAY_BUFFER);
+        if (c.tangents)
+            p.attributes["TANGENT"] = add_accessor(M, c.tangents, c.vertex_count, TINYGLTF_TYPE_VEC4,
+                                                   TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TARGET_ARRAY_BUFFER);
         p.indices = add_accessor(M, c.indices, c.index_count, TINYGLTF_TYPE_SCALAR,
                                  TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
         tinygltf::Mesh m;
@@ -1830,6 +2274,11 @@ export_nodes(const cg_scene *S, tinygltf::Model &M)
         if (c.type == CG_LIGHT_SPOT) {
             l.spot.innerConeAngle = c.inner_cone_angle;
             l.spot.outerConeAngle = c.outer_cone_angle;
+        }
+        if (c.type == CG_LIGHT_DIRECTIONAL && c.angular_diameter != 0) {
+            tinygltf::Value::Object extras;
+            extras["conegraph_angular_diameter"] = tinygltf::Value((double)c.angular_diameter);
+            l.extras = tinygltf::Value(extras);
         }
         M.lights.push_back(l);
         if (light_node_of[(size_t)i] >= 0)
@@ -2023,15 +2472,14 @@ cg_scene_export_gltf(const cg_scene *scene, const char *path, cg_error *err)
         M.asset.version = "2.0";
         M.asset.generator = "conegraph";
         M.buffers.resize(1);
-        bool uses_strength = false;
-        export_materials(scene, M, &uses_strength);
+        std::vector<std::string> used;
+        export_materials(scene, M, &used);
         export_textures(scene, M);
         export_meshes(scene, M);
         export_animations(scene, M, export_nodes(scene, M));
         if (!M.lights.empty())
             M.extensionsUsed.push_back("KHR_lights_punctual");
-        if (uses_strength)
-            M.extensionsUsed.push_back("KHR_materials_emissive_strength");
+        M.extensionsUsed.insert(M.extensionsUsed.end(), used.begin(), used.end());
         tinygltf::TinyGLTF gltf;
         std::ostringstream stream;
         if (!gltf.WriteGltfSceneToStream(&M, stream, !binary, binary))
@@ -2061,7 +2509,8 @@ cg_gltf_load(const char *path, cg_scene *out, cg_error *err)
 {
     std::memset(out, 0, sizeof *out);
     std::snprintf(out->name, sizeof out->name, "%s", path);
-    cg_material white = cg_material_default("default");
+    // glTF's default material (spec 5.19) for primitives without one.
+    cg_material white = cg_material_gltf_default("default");
     if (cg_scene_add_material(out, &white, err) < 0)
         return false;
     bool ok;
