@@ -101,7 +101,7 @@ good_graph_loads(void **state)
     assert_non_null(strstr(f->err.message, "--set use.rays=7: pass type t has no parameter 'rays' (parameters: "));
     assert_cg_status(fg_graph_apply_override(f->graph, "ghost.rays=7", &f->err), &f->err,
                      CG_ERR_GRAPH_DANGLING);
-    assert_string_equal(f->err.message, "--set ghost.rays=7: the graph has no pass named 'ghost'");
+    assert_non_null(strstr(f->err.message, "--set ghost.rays=7: the graph has no pass named 'ghost' (its passes: "));
     /* A --set value that breaks a dependency is found at compile, and still quoted. */
     assert_cg_ok(fg_graph_apply_override(f->graph, "use.margin=20", &f->err), &f->err);
     assert_cg_status(compile(f, 0), &f->err, CG_ERR_GRAPH_PARAM_RANGE);

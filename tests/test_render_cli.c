@@ -376,6 +376,24 @@ test_sequence_and_verbosity(void **state)
         fail_msg("--verbose printed no pass table: %s", out);
 }
 
+/* A graph file is looked for in the working directory, then in the graph directory, and a
+ * missing one names both places; an unknown pass in --set lists the graph's passes. */
+static void
+test_graph_lookup_and_unknown_pass(void **state)
+{
+    (void)state;
+    static char out[1 << 14];
+    assert_int_equal(cg_test_run_conegraph("graph no_such_dir/vct.json", true, out, sizeof out), 2);
+    if (!strstr(out, "working directory") || !strstr(out, "graph directory") || strstr(out, ": graph: "))
+        fail_msg("the missing graph's message: %s", out);
+    char args[8192];
+    snprintf(args, sizeof args, "render builtin:cornell --graph vct.json --size 32x32 -o '%s' --set nosuch.x=1",
+             tmp("unknown.png"));
+    assert_int_equal(cg_test_run_conegraph(args, true, out, sizeof out), 2);
+    if (!strstr(out, "its passes: shadow, gbuf, direct"))
+        fail_msg("the unknown pass's message does not list the passes: %s", out);
+}
+
 int
 main(void)
 {
@@ -384,6 +402,7 @@ main(void)
         cmocka_unit_test(test_bad_input_writes_nothing),
         cmocka_unit_test(test_output_paths_refused_before_work),
         cmocka_unit_test(test_sequence_and_verbosity),
+        cmocka_unit_test(test_graph_lookup_and_unknown_pass),
         cmocka_unit_test(test_refused_parameter_points_at_its_source),
         cmocka_unit_test(test_render_png_exr_dump_report),
         cmocka_unit_test(test_frames_end_at_the_last_time),

@@ -9,6 +9,7 @@
 #include <string.h>
 #include <strings.h>
 #include <sys/stat.h>
+#include <unistd.h>
 #include <sys/types.h>
 #include <time.h>
 
@@ -31,23 +32,30 @@ app_graph_dir(void)
     return CONEGRAPH_GRAPH_INSTALL_DIR;
 }
 
-void
-app_resolve_graph(const char *given, char *out, size_t size)
+bool
+app_resolve_graph(const char *given, char *out, size_t size, cg_error *err)
 {
-    if (given && (file_exists(given) || strchr(given, '/'))) {
-        snprintf(out, size, "%s", given);
-        return;
-    }
-    if (given) {
-        snprintf(out, size, "%s/%s", app_graph_dir(), given);
+    if (!given) {
+        snprintf(out, size, "%s/vct.json", app_graph_dir());
         if (!file_exists(out))
-            snprintf(out, size, "%s", given);
-        return;
+            snprintf(out, size, "%s/direct.json", app_graph_dir());
+        return true;
     }
-    snprintf(out, size, "%s/vct.json", app_graph_dir());
-    if (file_exists(out))
-        return;
-    snprintf(out, size, "%s/direct.json", app_graph_dir());
+    snprintf(out, size, "%s", given);
+    if (file_exists(given) || given[0] == '/')
+        return true;
+    char in_dir[4096];
+    snprintf(in_dir, sizeof in_dir, "%s/%s", app_graph_dir(), given);
+    if (file_exists(in_dir)) {
+        snprintf(out, size, "%s", in_dir);
+        return true;
+    }
+    char cwd[4096];
+    if (!getcwd(cwd, sizeof cwd))
+        snprintf(cwd, sizeof cwd, ".");
+    return cg_fail(err, CG_ERR_FILE_NOT_FOUND,
+                   "graph file '%s' not found: neither in the working directory (%s/%s) nor in the graph "
+                   "directory (%s)", given, cwd, given, in_dir);
 }
 
 bool

@@ -20,9 +20,11 @@
 
 /* $CONEGRAPH_GRAPH_DIR, else the source tree's graphs/ when it exists, else the installed one. */
 const char *app_graph_dir(void);
-/* The graph file to read: as given when it exists or names a directory, else from the graph
- * directory; NULL = vct.json from the graph directory if it exists, else direct.json. */
-void app_resolve_graph(const char *given, char *out, size_t size);
+/* The graph file to read: `given` relative to the working directory when it is there, else
+ * relative to the graph directory (an absolute path only as it is); NULL = vct.json from the
+ * graph directory if it exists, else direct.json. Fails with CG_ERR_FILE_NOT_FOUND naming both
+ * places it looked. */
+bool app_resolve_graph(const char *given, char *out, size_t size, cg_error *err);
 
 /* Decimal integer in min..max, nothing after it. */
 bool app_parse_int(const char *text, long min, long max, long *out);

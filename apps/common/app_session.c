@@ -180,7 +180,8 @@ app_session_load_graph(app_session *s, const app_graph_desc *desc, cg_error *err
     s->image_source = NULL;
     s->reads = desc->reads;
     s->read_count = desc->read_count;
-    app_resolve_graph(desc->graph, s->graph_path, sizeof s->graph_path);
+    if (!app_resolve_graph(desc->graph, s->graph_path, sizeof s->graph_path, err))
+        return false; /* the message names the graph file: no prefix */
     s->graph = fg_graph_create(s->registry);
     if (!s->graph) {
         cg_fail(err, CG_ERR_OUT_OF_MEMORY, "%s: out of memory", s->graph_path);

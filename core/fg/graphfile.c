@@ -546,7 +546,16 @@ fg_graph_apply_override(fg_graph *graph, const char *assignment, cg_error *err)
     char place[1200];
     snprintf(place, sizeof place, "--set %s", assignment);
     fg_source_loc loc = { place, 0, 0 };
-    if (!fg_graph_find_pass(graph, pass))
-        return cg_fail(err, CG_ERR_GRAPH_DANGLING, "%s: the graph has no pass named '%s'", place, pass);
+    if (!fg_graph_find_pass(graph, pass)) {
+        char names[1024] = "";
+        size_t len = 0;
+        for (int i = 0; i < fg_graph_pass_count(graph) && len < sizeof names; i++) {
+            int n = snprintf(names + len, sizeof names - len, "%s%s", i ? ", " : "",
+                             fg_pass_name(fg_graph_pass_at(graph, i)));
+            len += n > 0 ? (size_t)n : 0;
+        }
+        return cg_fail(err, CG_ERR_GRAPH_DANGLING, "%s: the graph has no pass named '%s' (its passes: %s)", place,
+                       pass, names);
+    }
     return fg_graph_set_param(graph, pass, param, eq + 1, &loc, err);
 }
