@@ -52,9 +52,13 @@ struct loader {
     // glTF texture -> its cg texture read as sRGB (base colour, emissive) and as linear data
     // (the others), or -1.
     std::vector<int> texture_srgb, texture_linear;
-    // Material features the file asks for and conegraph leaves out, each "feature (material):
-    // fallback", for the one notice at load (report_left_out).
-    std::vector<std::string> left_out;
+    // Material features the file asks for and conegraph leaves out, for the one notice at
+    // load (report_left_out): feature and fallback, and the materials that ask for it.
+    struct left_out_item {
+        std::string feature, fallback;
+        std::vector<std::string> materials;
+    };
+    std::vector<left_out_item> left_out;
     // glTF material i is cg material i + material_base: 1, after the loader's own material 0
     // (glTF's default material), or 0 when the file's material 0 is a conegraph export's
     // material 0 (extras "conegraph_material_0": true, export_materials).
@@ -1292,12 +1296,9 @@ uv_transform_of(const tinygltf::Value *t)
             sc[k] = t->Get("scale").Get(k).GetNumberAsDouble();
     }
     double c = std::cos(r), s = std::sin(r);
-    m.m[0] = (float)(c * sc[0]);
-    m.m[1] = (float)(-s * sc[0]);
-    m.m[2] = (float)(s * sc[1]);
-    m.m[3] = (float)(c * sc[1]);
-    m.m[4] = (float)off[0];
-    m.m[5] = (float)off[1];
+    double v[6] = { c * sc[0], -s * sc[0], s * sc[1], c * sc[1], off[0], off[1] };
+    for (int k = 0; k < 6; k++)
+        m.m[k] = (float)v[k] + 0.0f; // + 0: no -0 from a rotation of 0
     return m;
 }
 
@@ -1309,9 +1310,13 @@ enum { USE_SRGB = 1, USE_LINEAR = 2 };
 void
 note(loader &L, const std::string &feature, const std::string &material, const std::string &fallback)
 {
-    std::string item = feature + " (" + material + "): " + fallback;
-    if (std::find(L.left_out.begin(), L.left_out.end(), item) == L.left_out.end())
-        L.left_out.push_back(item);
+    for (auto &item : L.left_out)
+        if (item.feature == feature && item.fallback == fallback) {
+            if (std::find(item.materials.begin(), item.materials.end(), material) == item.materials.end())
+                item.materials.push_back(material);
+            return;
+        }
+    L.left_out.push_back({ feature, fallback, { material } });
 }
 
 bool
@@ -1485,10 +1490,14 @@ report_left_out(loader &L)
     if (L.left_out.empty())
         return;
     std::string list;
-    for (const std::string &item : L.left_out)
-        list += (list.empty() ? "" : "; ") + item;
-    cg_log_warn("%s: material features not rendered (feature (material): what is used instead): %s", L.path.c_str(),
-                list.c_str());
+    for (const auto &item : L.left_out) {
+        std::string materials;
+        for (const std::string &m : item.materials)
+            materials += (materials.empty() ? "" : ", ") + m;
+        list += (list.empty() ? "" : "; ") + item.feature + " (" + materials + "): " + item.fallback;
+    }
+    cg_log_warn("%s: material features not rendered, each as FEATURE (MATERIALS): WHAT IS USED INSTEAD: %s",
+                L.path.c_str(), list.c_str());
 }
 
 // RGBA8, rows bottom to top (cg_texture), from tinygltf's decoded image (top to bottom,
