@@ -111,9 +111,9 @@ print_scene(const cg_scene *s, int file_lights, cg_error *err)
         printf("  %d '%s' ", i, m->name);
         if (!print_class(s, i, &eq5_ms, err))
             return false;
-        printf(": %u triangles, %u vertices, material %d, %d instance%s%s\n", m->index_count / 3,
+        printf(": %u triangles, %u vertices, material %d, %d instance%s%s%s\n", m->index_count / 3,
                m->vertex_count, m->material, instances, instances == 1 ? "" : "s",
-               m->texcoords ? ", texcoords" : "");
+               m->texcoords ? ", texcoords" : "", m->tangents ? ", tangents" : "");
     }
     printf("eq. 5 over the %d meshes: %.0f ms\n", s->mesh_count, eq5_ms);
     printf("materials %d\n", s->material_count);
@@ -124,11 +124,32 @@ print_scene(const cg_scene *s, int file_lights, cg_error *err)
                i, m->name, m->base_color[0], m->base_color[1], m->base_color[2], m->base_color[3],
                m->base_color_texture, m->emissive[0], m->emissive[1], m->emissive[2],
                m->emissive_strength, m->emissive_texture, m->metallic, m->roughness);
+        static const char *const modes[] = { "OPAQUE", "MASK", "BLEND" };
+        printf("      metallicRoughness tex %d, normal tex %d x %g, occlusion tex %d x %g, alpha %s",
+               m->metallic_roughness_texture, m->normal_texture, m->normal_scale, m->occlusion_texture,
+               m->occlusion_strength, (unsigned)m->alpha_mode <= CG_ALPHA_BLEND ? modes[m->alpha_mode] : "?");
+        if (m->alpha_mode == CG_ALPHA_MASK)
+            printf(" cutoff %g", m->alpha_cutoff);
+        printf(", %s\n", m->double_sided ? "double-sided" : "single-sided");
+        printf("      ior %g, specular %g [%g %g %g], transmission %g tex %d, thickness %g, attenuation %g m "
+               "[%g %g %g]\n",
+               m->ior, m->specular, m->specular_color[0], m->specular_color[1], m->specular_color[2],
+               m->transmission, m->transmission_texture, m->thickness, m->attenuation_distance,
+               m->attenuation_color[0], m->attenuation_color[1], m->attenuation_color[2]);
+        /* KHR_texture_transform of each texture that is not the identity (cg/scene.h's matrix). */
+        static const char *const slots[CG_TEX_COUNT] = { "baseColor", "emissive", "metallicRoughness",
+                                                         "normal", "occlusion", "transmission" };
+        for (int t = 0; t < CG_TEX_COUNT; t++) {
+            const float *u = m->uv[t].m;
+            if (u[0] != 1 || u[1] != 0 || u[2] != 0 || u[3] != 1 || u[4] != 0 || u[5] != 0)
+                printf("      %s uv' = [%g %g] u + [%g %g] v + [%g %g]\n", slots[t], u[0], u[1], u[2], u[3],
+                       u[4], u[5]);
+        }
     }
     printf("textures %d\n", s->texture_count);
     for (int i = 0; i < s->texture_count; i++)
-        printf("  %d '%s' %dx%d%s\n", i, s->textures[i].name, s->textures[i].width,
-               s->textures[i].height, s->textures[i].srgb ? " sRGB" : "");
+        printf("  %d '%s' %dx%d %s\n", i, s->textures[i].name, s->textures[i].width,
+               s->textures[i].height, s->textures[i].srgb ? "sRGB" : "linear");
     printf("lights %d\n", s->light_count);
     for (int i = 0; i < s->light_count; i++) {
         const cg_light *l = &s->lights[i];
@@ -143,6 +164,8 @@ print_scene(const cg_scene *s, int file_lights, cg_error *err)
             printf(" cone %g..%g rad", l->inner_cone_angle, l->outer_cone_angle);
         if (l->range > 0)
             printf(" range %g", l->range);
+        if (l->angular_diameter > 0)
+            printf(" angular diameter %g rad", l->angular_diameter);
         printf("\n");
     }
     char sky[128];
