@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "cg/camera.h"
 #include "cg/fs.h"
@@ -15,6 +16,17 @@
 #include "test_support.h"
 
 /* ------------------------------------------------------------------ writing test files */
+
+/* A file of the test data (CONEGRAPH_TEST_DATA/gltf/NAME). */
+static const char *
+data_file(const char *name)
+{
+    static char path[4200];
+    const char *data = getenv("CONEGRAPH_TEST_DATA");
+    assert_non_null(data);
+    snprintf(path, sizeof path, "%s/gltf/%s", data, name);
+    return path;
+}
 
 typedef struct blob {
     unsigned char data[8192];
@@ -711,6 +723,321 @@ missing_file(void **state)
     assert_non_null(strstr(err.message, "nothing_here.gltf"));
 }
 
+/* ------------------------------------------------------------------ materials (glTF 2.0 and
+ * KHR_materials_*, KHR_texture_transform), tangents, a sun's angular diameter
+ *
+ * tests/data/gltf/materials/materials.gltf: five unit quads in the z = 0 plane facing +z, laid
+ * out as an image (u right, v down: uv (0,1) at the origin, (1,0) at (1,1)); "generated" and
+ * "from_file" use material "full" (every field read), "mirrored" the same with u mirrored,
+ * "plain" material "unsupported" (features conegraph leaves out), "no_material" none; a sun
+ * with conegraph_angular_diameter 0.0093. */
+
+static const cg_mesh *
+mesh_named(const cg_scene *s, const char *name)
+{
+    for (int i = 0; i < s->mesh_count; i++)
+        if (!strcmp(s->meshes[i].name, name))
+            return &s->meshes[i];
+    fail_msg("no mesh '%s'", name);
+    return NULL;
+}
+
+static const cg_material *
+material_named(const cg_scene *s, const char *name)
+{
+    for (int i = 0; i < s->material_count; i++)
+        if (!strcmp(s->materials[i].name, name))
+            return &s->materials[i];
+    fail_msg("no material '%s'", name);
+    return NULL;
+}
+
+static void
+check_uv(const cg_uv_transform *t, const double want[6], double tol)
+{
+    for (int k = 0; k < 6; k++)
+        if (!(fabs(t->m[k] - want[k]) <= tol))
+            fail_msg("uv transform m[%d] = %.9g, expected %.9g", k, t->m[k], want[k]);
+}
+
+/* glTF's defaults (spec 5.19 and the extensions' schemas): what "defaults" and the loader's
+ * material 0 must be. */
+static void
+check_gltf_defaults(const cg_material *m)
+{
+    for (int k = 0; k < 4; k++)
+        assert_true(m->base_color[k] == 1);
+    assert_true(m->metallic == 1 && m->roughness == 1);
+    assert_true(m->emissive[0] == 0 && m->emissive_strength == 1);
+    assert_int_equal(m->base_color_texture, -1);
+    assert_int_equal(m->emissive_texture, -1);
+    assert_int_equal(m->metallic_roughness_texture, -1);
+    assert_int_equal(m->normal_texture, -1);
+    assert_int_equal(m->occlusion_texture, -1);
+    assert_int_equal(m->transmission_texture, -1);
+    assert_true(m->normal_scale == 1 && m->occlusion_strength == 1);
+    assert_int_equal(m->alpha_mode, CG_ALPHA_OPAQUE);
+    assert_true(m->alpha_cutoff == 0.5f);
+    assert_false(m->double_sided);
+    assert_true(m->ior == 1.5f && m->specular == 1);
+    for (int k = 0; k < 3; k++)
+        assert_true(m->specular_color[k] == 1 && m->attenuation_color[k] == 1);
+    assert_true(m->transmission == 0 && m->thickness == 0);
+    assert_true(isinf(m->attenuation_distance) && m->attenuation_distance > 0);
+    static const double identity[6] = { 1, 0, 0, 1, 0, 0 };
+    for (int t = 0; t < CG_TEX_COUNT; t++)
+        check_uv(&m->uv[t], identity, 0);
+}
+
+static void
+check_tangents(const cg_mesh *m, const float want[4])
+{
+    assert_non_null(m->tangents);
+    for (uint32_t v = 0; v < m->vertex_count; v++)
+        for (int k = 0; k < 4; k++)
+            if (!(fabsf(m->tangents[4 * v + k] - want[k]) <= 1e-6f))
+                fail_msg("mesh '%s' vertex %u tangent[%d] = %g, expected %g", m->name, v, k, m->tangents[4 * v + k],
+                         want[k]);
+}
+
+/* Every field of "full" as the file gives it, with its textures' encodings. */
+static void
+check_full_material(const cg_scene *s)
+{
+    const cg_material *m = material_named(s, "full");
+    const float base[4] = { 0.8f, 0.6f, 0.4f, 0.9f };
+    for (int k = 0; k < 4; k++)
+        assert_true(m->base_color[k] == base[k]);
+    assert_true(m->metallic == 0.25f && m->roughness == 0.125f);
+    assert_true(m->normal_scale == 0.5f && m->occlusion_strength == 0.25f);
+    assert_int_equal(m->alpha_mode, CG_ALPHA_MASK);
+    assert_true(m->alpha_cutoff == 0.3f);
+    assert_true(m->double_sided);
+    assert_true(m->emissive[1] * m->emissive_strength == 1.0f);
+    assert_true(m->ior == 1.33f && m->specular == 0.5f);
+    assert_true(m->specular_color[0] == 0.9f && m->specular_color[1] == 0.8f && m->specular_color[2] == 0.7f);
+    assert_true(m->transmission == 0.75f && m->thickness == 0.1f && m->attenuation_distance == 2);
+    assert_true(m->attenuation_color[0] == 0.5f && m->attenuation_color[1] == 0.6f && m->attenuation_color[2] == 0.7f);
+    /* Base colour and emissive are sRGB; metallicRoughness, normal, occlusion and transmission
+     * linear. glTF texture 0 serves base colour (sRGB) and metallicRoughness and transmission
+     * (linear), texture 1 emissive (sRGB) and normal and occlusion (linear): four cg textures,
+     * the two of a pair with the same pixels. */
+    assert_int_equal(s->texture_count, 4);
+    int srgb[] = { m->base_color_texture, m->emissive_texture };
+    int linear[] = { m->metallic_roughness_texture, m->normal_texture, m->occlusion_texture, m->transmission_texture };
+    for (int k = 0; k < 2; k++) {
+        assert_in_range(srgb[k], 0, s->texture_count - 1);
+        assert_true(s->textures[srgb[k]].srgb);
+    }
+    for (int k = 0; k < 4; k++) {
+        assert_in_range(linear[k], 0, s->texture_count - 1);
+        assert_false(s->textures[linear[k]].srgb);
+    }
+    assert_int_not_equal(m->base_color_texture, m->metallic_roughness_texture);
+    assert_int_equal(m->metallic_roughness_texture, m->transmission_texture);
+    assert_int_equal(m->normal_texture, m->occlusion_texture);
+    const cg_texture *a = &s->textures[m->base_color_texture], *b = &s->textures[m->metallic_roughness_texture];
+    assert_memory_equal(a->rgba, b->rgba, 16);
+    /* glTF's top row (red, green) is the last row of cg_texture; the texel (1, 1) of the image
+     * has alpha 128. */
+    assert_int_equal(a->rgba[8], 255);
+    assert_int_equal(a->rgba[13], 255);
+    assert_int_equal(a->rgba[7], 128);
+    /* KHR_texture_transform: T(0.5, 0.25) R(pi/2) S(2, 3), with u' = cos r u + sin r v,
+     * v' = -sin r u + cos r v: A = [[0, 3], [-2, 0]] (rows), columns first (0, -2, 3, 0). */
+    static const double base_uv[6] = { 0, -2, 3, 0, 0.5, 0.25 };
+    static const double mr_uv[6] = { 4, 0, 0, 4, 0, 0 };
+    static const double occ_uv[6] = { 1, 0, 0, 1, 0.125, 0 };
+    const double c = cos(0.5), sn = sin(0.5);
+    const double tr_uv[6] = { c, -sn, sn, c, 0, 0 };
+    static const double identity[6] = { 1, 0, 0, 1, 0, 0 };
+    check_uv(&m->uv[CG_TEX_BASE_COLOR], base_uv, 1e-6);
+    check_uv(&m->uv[CG_TEX_METALLIC_ROUGHNESS], mr_uv, 1e-6);
+    check_uv(&m->uv[CG_TEX_OCCLUSION], occ_uv, 1e-6);
+    check_uv(&m->uv[CG_TEX_TRANSMISSION], tr_uv, 1e-6);
+    check_uv(&m->uv[CG_TEX_NORMAL], identity, 0);
+    check_uv(&m->uv[CG_TEX_EMISSIVE], identity, 0);
+    /* The extension's own example: offset (0, 1), rotation pi/2, scale 0.5 takes the unit square
+     * to the image's lower left quadrant (u in [0, 0.5], v in [0.5, 1]), seen through its corner
+     * uv (1, 1) -> (0.5, 0.5). */
+    const cg_uv_transform *t = &m->uv[CG_TEX_BASE_COLOR];
+    double u = t->m[0] * 1 + t->m[2] * 0 + t->m[4], v = t->m[1] * 1 + t->m[3] * 0 + t->m[5];
+    assert_float_equal(u, 0.5, 1e-6);  /* (1, 0): u' = 0 + 0.5 */
+    assert_float_equal(v, -1.75, 1e-6); /* v' = -2 + 0.25 */
+}
+
+static void
+materials_as_gltf_defines_them(void **state)
+{
+    (void)state;
+    cg_scene s;
+    load_ok(data_file("materials/materials.gltf"), &s);
+    /* The loader's material 0 (for a primitive without one) and a material with nothing given
+     * are glTF's default material. */
+    check_gltf_defaults(&s.materials[0]);
+    check_gltf_defaults(material_named(&s, "defaults"));
+    assert_int_equal(mesh_named(&s, "no_material")->material, 0);
+    check_full_material(&s);
+    const cg_material *u = material_named(&s, "unsupported");
+    assert_int_equal(u->alpha_mode, CG_ALPHA_BLEND);
+    assert_true(u->ior == 0); /* KHR_materials_ior: 0 is an infinite ior, kept as 0 */
+    assert_true(u->transmission == 1 && u->thickness == 0.5f && u->specular == 1);
+
+    /* Tangents: generated for the quad laid out as the image, T = +x and w = +1 (bitangent
+     * cross(N, T) = +y, the image's up); u mirrored gives T = -x and w = -1; the file's TANGENT
+     * is kept as it is; a material without normal texture gets none. */
+    static const float generated[4] = { 1, 0, 0, 1 }, mirrored[4] = { -1, 0, 0, -1 }, file[4] = { 0, 1, 0, -1 };
+    check_tangents(mesh_named(&s, "generated"), generated);
+    check_tangents(mesh_named(&s, "mirrored"), mirrored);
+    check_tangents(mesh_named(&s, "from_file"), file);
+    assert_null(mesh_named(&s, "plain")->tangents);
+    assert_null(mesh_named(&s, "no_material")->tangents);
+
+    assert_int_equal(s.light_count, 1);
+    assert_true(s.lights[0].angular_diameter == 0.0093f);
+    cg_scene_free(&s);
+}
+
+/* The one notice at load names each feature left out, the material and the fallback. The
+ * log goes to stderr: captured here through a file. */
+static void
+notice_lists_what_is_left_out(void **state)
+{
+    (void)state;
+    char path[4200];
+    snprintf(path, sizeof path, "%s/notice.txt", cg_test_tmpdir());
+    fflush(stderr);
+    int saved = dup(2);
+    assert_true(saved >= 0);
+    FILE *capture = fopen(path, "w+");
+    assert_non_null(capture);
+    assert_true(dup2(fileno(capture), 2) >= 0);
+    cg_scene s;
+    cg_error err = { 0 };
+    bool ok = cg_scene_load(data_file("materials/materials.gltf"), &s, &err);
+    fflush(stderr);
+    dup2(saved, 2);
+    close(saved);
+    fclose(capture);
+    assert_cg_ok(ok, &err);
+    cg_scene_free(&s);
+    char *text;
+    size_t size;
+    assert_cg_ok(cg_read_file(path, &text, &size, &err), &err);
+    printf("# %s", text);
+    static const char *const parts[] = {
+        "material features not rendered",
+        "KHR_materials_clearcoat (material 'unsupported'): no clear coat; the base layer alone",
+        "KHR_materials_specular specularTexture (material 'unsupported'): specularFactor alone",
+        "KHR_materials_volume thicknessTexture (material 'unsupported'): thicknessFactor alone",
+    };
+    for (size_t i = 0; i < sizeof parts / sizeof *parts; i++)
+        if (!strstr(text, parts[i]))
+            fail_msg("the notice lacks '%s'", parts[i]);
+    /* One notice: the heading once. */
+    assert_null(strstr(strstr(text, parts[0]) + 1, parts[0]));
+    free(text);
+}
+
+static void
+assert_same_material(const cg_material *x, const cg_material *y, double uv_tol)
+{
+    assert_string_equal(x->name, y->name);
+    cg_material a = *x, b = *y;
+    for (int t = 0; t < CG_TEX_COUNT; t++) {
+        double want[6];
+        for (int k = 0; k < 6; k++)
+            want[k] = a.uv[t].m[k];
+        check_uv(&b.uv[t], want, uv_tol);
+        a.uv[t] = b.uv[t];
+    }
+    /* Every other field exactly (the structs are copies made field by field, padding included
+     * through the same initialisation: compare fields, not bytes). */
+    assert_memory_equal(a.base_color, b.base_color, sizeof a.base_color);
+    assert_memory_equal(a.emissive, b.emissive, sizeof a.emissive);
+    assert_true(a.emissive_strength == b.emissive_strength);
+    assert_true(a.metallic == b.metallic && a.roughness == b.roughness);
+    assert_int_equal(a.base_color_texture, b.base_color_texture);
+    assert_int_equal(a.emissive_texture, b.emissive_texture);
+    assert_int_equal(a.metallic_roughness_texture, b.metallic_roughness_texture);
+    assert_int_equal(a.normal_texture, b.normal_texture);
+    assert_int_equal(a.occlusion_texture, b.occlusion_texture);
+    assert_int_equal(a.transmission_texture, b.transmission_texture);
+    assert_true(a.normal_scale == b.normal_scale && a.occlusion_strength == b.occlusion_strength);
+    assert_int_equal(a.alpha_mode, b.alpha_mode);
+    assert_true(a.alpha_cutoff == b.alpha_cutoff);
+    assert_int_equal(a.double_sided, b.double_sided);
+    assert_true(a.ior == b.ior && a.specular == b.specular && a.transmission == b.transmission);
+    assert_memory_equal(a.specular_color, b.specular_color, sizeof a.specular_color);
+    assert_true(a.thickness == b.thickness && a.attenuation_distance == b.attenuation_distance);
+    assert_memory_equal(a.attenuation_color, b.attenuation_color, sizeof a.attenuation_color);
+}
+
+/* Export and load back (.gltf and .glb): every material field, the textures' encodings, the
+ * tangents and the sun's angular diameter come back. */
+static void
+materials_round_trip(void **state)
+{
+    (void)state;
+    cg_scene a;
+    load_ok(data_file("materials/materials.gltf"), &a);
+    const char *outs[2] = { "materials_out.gltf", "materials_out.glb" };
+    for (int i = 0; i < 2; i++) {
+        char path[4200];
+        snprintf(path, sizeof path, "%s/%s", cg_test_tmpdir(), outs[i]);
+        cg_error err = { 0 };
+        assert_cg_ok(cg_scene_export_gltf(&a, path, &err), &err);
+        cg_scene b;
+        load_ok(path, &b);
+        assert_int_equal(a.material_count, b.material_count);
+        for (int m = 0; m < a.material_count; m++)
+            assert_same_material(&a.materials[m], &b.materials[m], 1e-6);
+        assert_int_equal(a.texture_count, b.texture_count);
+        for (int t = 0; t < a.texture_count; t++) {
+            assert_int_equal(a.textures[t].srgb, b.textures[t].srgb);
+            assert_memory_equal(a.textures[t].rgba, b.textures[t].rgba, 16);
+        }
+        assert_int_equal(a.mesh_count, b.mesh_count);
+        for (int m = 0; m < a.mesh_count; m++) {
+            assert_int_equal(a.meshes[m].material, b.meshes[m].material);
+            assert_int_equal(a.meshes[m].tangents != NULL, b.meshes[m].tangents != NULL);
+            if (a.meshes[m].tangents)
+                assert_memory_equal(a.meshes[m].tangents, b.meshes[m].tangents,
+                                    16 * (size_t)a.meshes[m].vertex_count);
+        }
+        assert_true(b.lights[0].angular_diameter == a.lights[0].angular_diameter);
+        cg_scene_free(&b);
+    }
+    cg_scene_free(&a);
+}
+
+/* A built-in scene's Lambertian materials (specular 0, metallic 0, double-sided) are not
+ * glTF's defaults: exported, they load back the same, material 0 included. */
+static void
+builtin_materials_round_trip(void **state)
+{
+    (void)state;
+    const char *sources[] = { "builtin:cornell", "builtin:furnace" };
+    for (size_t i = 0; i < sizeof sources / sizeof *sources; i++) {
+        cg_scene a, b;
+        load_ok(sources[i], &a);
+        char path[4200];
+        snprintf(path, sizeof path, "%s/builtin_materials_%zu.gltf", cg_test_tmpdir(), i);
+        cg_error err = { 0 };
+        assert_cg_ok(cg_scene_export_gltf(&a, path, &err), &err);
+        load_ok(path, &b);
+        assert_int_equal(a.material_count, b.material_count);
+        for (int m = 0; m < a.material_count; m++) {
+            assert_true(a.materials[m].specular == 0);
+            assert_same_material(&a.materials[m], &b.materials[m], 0);
+        }
+        for (int m = 0; m < a.mesh_count; m++)
+            assert_int_equal(a.meshes[m].material, b.meshes[m].material);
+        cg_scene_free(&a);
+        cg_scene_free(&b);
+    }
+}
+
 int
 main(void)
 {
@@ -728,6 +1055,10 @@ main(void)
         cmocka_unit_test(malformed_corpus),
         cmocka_unit_test(buffer_from_a_device_is_refused),
         cmocka_unit_test(missing_file),
+        cmocka_unit_test(materials_as_gltf_defines_them),
+        cmocka_unit_test(notice_lists_what_is_left_out),
+        cmocka_unit_test(materials_round_trip),
+        cmocka_unit_test(builtin_materials_round_trip),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
