@@ -267,6 +267,10 @@ merge_scene(cg_scene *scene, cg_scene *add, cg_error *err)
         cg_material m = add->materials[i];
         if (m.base_color_texture >= 0) m.base_color_texture += tex0;
         if (m.emissive_texture >= 0) m.emissive_texture += tex0;
+        if (m.metallic_roughness_texture >= 0) m.metallic_roughness_texture += tex0;
+        if (m.normal_texture >= 0) m.normal_texture += tex0;
+        if (m.occlusion_texture >= 0) m.occlusion_texture += tex0;
+        if (m.transmission_texture >= 0) m.transmission_texture += tex0;
         if (cg_scene_add_material(scene, &m, err) < 0)
             return false;
     }
