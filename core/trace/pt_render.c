@@ -1,6 +1,8 @@
 /* The CPU path tracer on Embree 3: see pt_render.h for the physics and the conventions. */
 #include "cg/pt_render.h"
 
+#include "cg/bsdf.h"
+
 #include "pt_sky.h"
 
 #include <embree3/rtcore.h>
@@ -92,6 +94,8 @@ typedef struct pt_geometry {
     const float *vertices;    /* world space, x y z per vertex: Embree's own vertex buffer */
     float normal_matrix[9];   /* cofactor of the upper 3x3 of the instance matrix, column-major */
     int64_t emitter_base;     /* emitter index of triangle 0 (triangle k is base + k); -1: emits nothing */
+    bool mirrored;            /* the instance matrix flips orientation: front faces wind clockwise */
+    const float *world;       /* the instance's local-to-world matrix (tangents) */
 } pt_geometry;
 
 /* Every triangle of an emissive material, for next-event estimation: one is chosen with
@@ -119,7 +123,8 @@ pt_settings
 pt_settings_default(void)
 {
     return (pt_settings){ .spp = 64, .bounces = 1, .seed = 1, .threads = 0, .jitter = false,
-                          .progress = false };
+                          .progress = false, .glossy_bounces = 1, .transmission_bounces = 4,
+                          .caustics = false };
 }
 
 static void
@@ -289,6 +294,16 @@ emitters_create(pt_scene *pts, cg_error *err)
     return true;
 }
 
+static void ray_filter(const struct RTCFilterFunctionNArguments *args);
+
+/* The determinant of the upper 3x3 of a column-major 4x4. */
+static float
+det3(const float m[16])
+{
+    return m[0] * (m[5] * m[10] - m[9] * m[6]) - m[4] * (m[1] * m[10] - m[9] * m[2]) +
+           m[8] * (m[1] * m[6] - m[5] * m[2]);
+}
+
 static void
 rtc_error_to_log(void *user, enum RTCError code, const char *str)
 {
@@ -360,12 +375,20 @@ pt_scene_create(const cg_scene *scene, pt_scene **out, cg_error *err)
             }
             idx[k] = mesh->indices[k];
         }
+        const cg_material *mat = material_of(scene, mesh);
+        /* Only surfaces that can be missed pay for a filter call on every hit. */
+        if (mat->alpha_mode != CG_ALPHA_OPAQUE || !mat->double_sided) {
+            rtcSetGeometryIntersectFilterFunction(geom, ray_filter);
+            rtcSetGeometryOccludedFilterFunction(geom, ray_filter);
+        }
         rtcCommitGeometry(geom);
         unsigned id = pts->geometry_count++;
         rtcAttachGeometryByID(pts->rtc, geom, id);
         rtcReleaseGeometry(geom);
         pts->geometries[id].mesh = mesh;
-        pts->geometries[id].material = material_of(scene, mesh);
+        pts->geometries[id].material = mat;
+        pts->geometries[id].mirrored = det3(inst->world) < 0.0f;
+        pts->geometries[id].world = inst->world;
         pts->geometries[id].vertices = vtx;
         cofactor3(inst->world, pts->geometries[id].normal_matrix);
         pts->triangles += tris;
@@ -479,8 +502,12 @@ typedef struct pt_hit {
     float offset;         /* and their tnear */
     v3 geometric_normal;  /* unit, facing the incoming ray */
     v3 shading_normal;    /* unit, same hemisphere as geometric_normal */
-    v3 albedo;
+    v3 albedo;            /* base colour (factor x texture): the Lambertian albedo */
     v3 emission;
+    cg_bsdf bsdf;
+    bool lambertian;      /* no glossy or transmission lobe: shaded as before the BSDF (bit for bit) */
+    bool back;            /* the ray came from the back of the triangle (its winding's normal) */
+    float eta;            /* for a solid's transmission: ior entering, 1/ior leaving (cg/bsdf.h) */
 } pt_hit;
 
 /* Relative size of the offset that lifts a spawned ray's origin off its surface: 2^-19, 16
@@ -524,6 +551,34 @@ triangle_texcoords(const cg_mesh *mesh, const uint32_t *tri, float u, float v, f
     st[1] = w * t0[1] + u * t1[1] + v * t2[1];
 }
 
+/* KHR_texture_transform's affine map of TEXCOORD_0 (cg_uv_transform). An all-zero matrix (a
+ * material record filled by hand, never a loader's) is the identity. */
+static inline void
+uv_of(const cg_material *mat, cg_material_texture which, const float st[2], float out[2])
+{
+    const float *m = mat->uv[which].m;
+    if (m[0] == 0.0f && m[1] == 0.0f && m[2] == 0.0f && m[3] == 0.0f) {
+        out[0] = st[0], out[1] = st[1];
+        return;
+    }
+    out[0] = m[0] * st[0] + m[2] * st[1] + m[4];
+    out[1] = m[1] * st[0] + m[3] * st[1] + m[5];
+}
+
+/* Samples texture `index` of the scene at TEXCOORD_0 st through the material's transform for
+ * `which`; false (out untouched) where the material has no such texture. */
+static bool
+material_texel(const pt_scene *pts, const cg_material *mat, int index, cg_material_texture which,
+               const float st[2], float out[4])
+{
+    if (index < 0 || index >= pts->scene->texture_count)
+        return false;
+    float uv[2];
+    uv_of(mat, which, st, uv);
+    texture_sample(&pts->textures[index], uv[0], uv[1], out);
+    return true;
+}
+
 /* Emitted radiance = emissive x emissive texture x emissive_strength (the same from both sides). */
 static v3
 emission_at(const pt_scene *pts, const cg_material *mat, const float st[2])
@@ -532,7 +587,7 @@ emission_at(const pt_scene *pts, const cg_material *mat, const float st[2])
     if (mat->emissive_texture >= 0 && mat->emissive_texture < pts->scene->texture_count &&
         (emission.x > 0.0f || emission.y > 0.0f || emission.z > 0.0f)) {
         float texel[4];
-        texture_sample(&pts->textures[mat->emissive_texture], st[0], st[1], texel);
+        material_texel(pts, mat, mat->emissive_texture, CG_TEX_EMISSIVE, st, texel);
         emission = mul(emission, mk(texel[0], texel[1], texel[2]));
     }
     return emission;
@@ -567,6 +622,13 @@ shade_hit(const pt_scene *pts, const RTCRayHit *rh, pt_hit *hit)
     if (dot(ng, dir) > 0.0f)
         ng = neg(ng);
     hit->geometric_normal = ng;
+    {
+        /* The side by the winding (glTF: counter-clockwise is the front), not by Embree's Ng. */
+        v3 e1 = mk(p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]);
+        v3 e2 = mk(p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]);
+        v3 front = mk(e1.y * e2.z - e1.z * e2.y, e1.z * e2.x - e1.x * e2.z, e1.x * e2.y - e1.y * e2.x);
+        hit->back = (dot(front, dir) > 0.0f) != g->mirrored;
+    }
 
     const float *n0 = &mesh->normals[3 * tri[0]], *n1 = &mesh->normals[3 * tri[1]],
                 *n2 = &mesh->normals[3 * tri[2]];
@@ -577,35 +639,148 @@ shade_hit(const pt_scene *pts, const RTCRayHit *rh, pt_hit *hit)
     v3 ns = normalize(mk(m[0] * nl[0] + m[3] * nl[1] + m[6] * nl[2],
                          m[1] * nl[0] + m[4] * nl[1] + m[7] * nl[2],
                          m[2] * nl[0] + m[5] * nl[1] + m[8] * nl[2]));
+
+    const cg_material *mat = g->material;
+    float st[2];
+    triangle_texcoords(mesh, tri, u, v, st);
+    float texel[4];
+    if (mesh->tangents && mesh->texcoords &&
+        material_texel(pts, mat, mat->normal_texture, CG_TEX_NORMAL, st, texel) && dot(ns, ns) > 0.5f) {
+        /* glTF 2.0 normalTexture: n = normalize(T x + B y + N z) with (x, y, z) = (2 texel - 1) x
+         * (scale, scale, 1) and B = cross(N, T) x the tangent's w (glTF 3.7.2.1, TANGENT). */
+        const float *t0 = &mesh->tangents[4 * tri[0]], *t1 = &mesh->tangents[4 * tri[1]],
+                    *t2 = &mesh->tangents[4 * tri[2]];
+        v3 tl = mk(w * t0[0] + u * t1[0] + v * t2[0], w * t0[1] + u * t1[1] + v * t2[1],
+                   w * t0[2] + u * t1[2] + v * t2[2]);
+        const float *x = g->world;
+        v3 tw = mk(x[0] * tl.x + x[4] * tl.y + x[8] * tl.z, x[1] * tl.x + x[5] * tl.y + x[9] * tl.z,
+                   x[2] * tl.x + x[6] * tl.y + x[10] * tl.z);
+        tw = normalize(sub(tw, scale(ns, dot(tw, ns)))); /* Gram-Schmidt against the interpolated N */
+        float sign = (t0[3] < 0.0f ? -1.0f : 1.0f) * (g->mirrored ? -1.0f : 1.0f);
+        v3 bw = scale(mk(ns.y * tw.z - ns.z * tw.y, ns.z * tw.x - ns.x * tw.z, ns.x * tw.y - ns.y * tw.x), sign);
+        float tx = (2.0f * texel[0] - 1.0f) * mat->normal_scale, ty = (2.0f * texel[1] - 1.0f) * mat->normal_scale;
+        float tz = 2.0f * texel[2] - 1.0f;
+        v3 nm = normalize(add(add(scale(tw, tx), scale(bw, ty)), scale(ns, tz)));
+        if (dot(nm, nm) > 0.5f && dot(tw, tw) > 0.5f)
+            ns = nm;
+    }
     if (dot(ns, ng) < 0.0f)
         ns = neg(ns);
     if (!(dot(ns, ns) > 0.5f)) /* zero or NaN interpolated normal */
         ns = ng;
     hit->shading_normal = ns;
 
-    const cg_scene *scene = pts->scene;
-    const cg_material *mat = g->material;
-    float st[2];
-    triangle_texcoords(mesh, tri, u, v, st);
-    v3 albedo = mk(mat->base_color[0], mat->base_color[1], mat->base_color[2]);
-    if (mat->base_color_texture >= 0 && mat->base_color_texture < scene->texture_count) {
-        float texel[4];
-        texture_sample(&pts->textures[mat->base_color_texture], st[0], st[1], texel);
+    float base[4] = { mat->base_color[0], mat->base_color[1], mat->base_color[2], mat->base_color[3] };
+    v3 albedo = mk(base[0], base[1], base[2]);
+    if (material_texel(pts, mat, mat->base_color_texture, CG_TEX_BASE_COLOR, st, texel)) {
         albedo = mul(albedo, mk(texel[0], texel[1], texel[2]));
+        base[3] *= texel[3];
     }
+    base[0] = albedo.x, base[1] = albedo.y, base[2] = albedo.z;
     hit->albedo = albedo;
+    float metallic = mat->metallic, roughness = mat->roughness, transmission = mat->transmission;
+    if (material_texel(pts, mat, mat->metallic_roughness_texture, CG_TEX_METALLIC_ROUGHNESS, st, texel)) {
+        roughness *= texel[1];
+        metallic *= texel[2];
+    }
+    if (transmission > 0.0f &&
+        material_texel(pts, mat, mat->transmission_texture, CG_TEX_TRANSMISSION, st, texel))
+        transmission *= texel[0];
+    cg_bsdf_from_material(mat, base, metallic, roughness, transmission, &hit->bsdf);
+    const cg_bsdf *b = &hit->bsdf;
+    hit->lambertian = b->f0[0] == 0.0f && b->f0[1] == 0.0f && b->f0[2] == 0.0f && b->f90 == 0.0f &&
+                      b->transmission[0] == 0.0f && b->transmission[1] == 0.0f && b->transmission[2] == 0.0f;
+    hit->eta = hit->back && b->thickness > 0.0f ? 1.0f / b->ior : b->ior;
     hit->emission = emission_at(pts, mat, st);
     spawn_point(hit);
 }
 
+/* What the filter functions need to know of the ray being traced: Embree passes the context it
+ * was given, and this record starts with it (the extended-context idiom of Embree 3's manual,
+ * rtcInitIntersectContext). */
+typedef struct pt_ray_context {
+    RTCIntersectContext ictx;
+    const pt_scene *pts;
+    uint64_t key;         /* the ray's random key: BLEND's pass-through draws hash it */
+    bool camera;          /* a camera ray: back faces of single-sided materials are not there */
+} pt_ray_context;
+
 typedef struct pt_worker_ctx {
     const pt_scene *pts;
-    RTCIntersectContext ictx;
+    pt_ray_context rc;
     uint64_t rays;
 } pt_worker_ctx;
 
+/* Whether the surface is there for the ray at (u, v) of triangle prim of geometry g, t along
+ * it: MASK's holes and BLEND's pass-through for every ray, back faces of single-sided materials
+ * for camera rays only. BLEND passes with probability 1 - alpha by a hash of the ray's key, the
+ * geometry and t rounded to 12 bits of mantissa (2^-12 relative): the same crossing of a
+ * surface decides the same way every time Embree asks, also where a ray meets the shared edge
+ * of two triangles and Embree reports both (hashing the triangle made those edges pass twice as
+ * often: 0.56 instead of 0.75 on a quad's diagonal), while two faces of a closed mesh are two
+ * draws. */
 static bool
-occluded(pt_worker_ctx *wc, v3 org, v3 dir, float tnear, float tfar)
+surface_there(const pt_ray_context *rc, unsigned geometry, unsigned prim, float u, float v, float t, v3 dir)
+{
+    const pt_scene *pts = rc->pts;
+    const pt_geometry *g = &pts->geometries[geometry];
+    const cg_material *mat = g->material;
+    const uint32_t *tri = &g->mesh->indices[3 * (size_t)prim];
+    if (rc->camera && !mat->double_sided) {
+        const float *p0 = &g->vertices[3 * tri[0]], *p1 = &g->vertices[3 * tri[1]], *p2 = &g->vertices[3 * tri[2]];
+        v3 e1 = mk(p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]);
+        v3 e2 = mk(p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]);
+        v3 front = mk(e1.y * e2.z - e1.z * e2.y, e1.z * e2.x - e1.x * e2.z, e1.x * e2.y - e1.y * e2.x);
+        if ((dot(front, dir) > 0.0f) != g->mirrored)
+            return false;
+    }
+    if (mat->alpha_mode == CG_ALPHA_OPAQUE)
+        return true;
+    float alpha = mat->base_color[3];
+    float st[2], texel[4];
+    triangle_texcoords(g->mesh, tri, u, v, st);
+    if (material_texel(pts, mat, mat->base_color_texture, CG_TEX_BASE_COLOR, st, texel))
+        alpha *= texel[3];
+    if (mat->alpha_mode == CG_ALPHA_MASK)
+        return alpha >= mat->alpha_cutoff;
+    uint32_t tbits;
+    memcpy(&tbits, &t, sizeof tbits);
+    uint64_t h = mix64(rc->key ^ mix64(((uint64_t)geometry << 32 | (tbits >> 11)) + 0x632BE59BD9B4E019ull));
+    return (float)(h >> 40) * (1.0f / 16777216.0f) < alpha;
+}
+
+/* Embree's RTCRayN and RTCHitN accessors are C++ only; these read the same SOA layouts
+ * (rtcore_ray.h: a ray's dir_x at float 4N + i, tfar at 8N + i, a hit's u, v, primID, geomID at
+ * 3N, 4N, 5N, 6N). */
+static void
+ray_filter(const struct RTCFilterFunctionNArguments *args)
+{
+    const pt_ray_context *rc = (const pt_ray_context *)args->context;
+    const float *ray = (const float *)args->ray;
+    const float *hitf = (const float *)args->hit;
+    const unsigned *hitu = (const unsigned *)args->hit;
+    unsigned N = args->N;
+    for (unsigned i = 0; i < N; i++) {
+        if (args->valid[i] != -1)
+            continue;
+        v3 dir = mk(ray[4 * N + i], ray[5 * N + i], ray[6 * N + i]);
+        /* Embree sets the ray's tfar (float 8N + i) to the candidate hit's distance for the filter. */
+        if (!surface_there(rc, hitu[6 * N + i], hitu[5 * N + i], hitf[3 * N + i], hitf[4 * N + i], ray[8 * N + i],
+                           dir))
+            args->valid[i] = 0;
+    }
+}
+
+/* A ray's random key, from the sample's generator without drawing from it (so that the draws of
+ * a scene without BLEND materials stay what they were): its key, its count so far and a salt. */
+static inline uint64_t
+ray_key(const pt_rng *rng, uint64_t salt)
+{
+    return mix64(rng->key ^ (rng->counter * 0xD6E8FEB86659FD93ull + salt));
+}
+
+static bool
+occluded(pt_worker_ctx *wc, v3 org, v3 dir, float tnear, float tfar, uint64_t key)
 {
     RTCRay ray = { 0 };
     ray.org_x = org.x; ray.org_y = org.y; ray.org_z = org.z;
@@ -615,13 +790,51 @@ occluded(pt_worker_ctx *wc, v3 org, v3 dir, float tnear, float tfar)
     ray.mask = 0xFFFFFFFFu;
     ray.flags = 0;
     wc->rays++;
-    rtcOccluded1(wc->pts->rtc, &wc->ictx, &ray);
+    wc->rc.camera = false;
+    wc->rc.key = key;
+    rtcOccluded1(wc->pts->rtc, &wc->rc.ictx, &ray);
     return ray.tfar < 0.0f;
 }
 
-/* Irradiance at the hit from every punctual light (next-event estimation, hard shadows). */
+/* A direction drawn uniformly in solid angle in the cone of half angle `half` about unit d
+ * (cos theta uniform in [cos half, 1]), on the basis of Duff et al. 2017. */
 static v3
-punctual_irradiance(pt_worker_ctx *wc, const pt_hit *hit)
+sample_cone(v3 d, float half, float u1, float u2)
+{
+    float cos_max = cosf(half);
+    float ct = 1.0f - u1 * (1.0f - cos_max), st = sqrtf(fmaxf(0.0f, 1.0f - ct * ct));
+    float sign = copysignf(1.0f, d.z);
+    float a = -1.0f / (sign + d.z);
+    float b = d.x * d.y * a;
+    v3 t = mk(1.0f + sign * d.x * d.x * a, sign * b, -sign * d.x);
+    v3 bt = mk(b, sign + d.y * d.y * a, -d.y);
+    float phi = 2.0f * PT_PI * u2;
+    return normalize(add(add(scale(t, st * cosf(phi)), scale(bt, st * sinf(phi))), scale(d, ct)));
+}
+
+/* f x |n.l| of the hit's BSDF for light arriving from wi, seen from wo (cg_bsdf_eval). */
+static v3
+bsdf_f_cos(const pt_hit *hit, v3 wo, v3 wi, int lobes)
+{
+    float n[3] = { hit->shading_normal.x, hit->shading_normal.y, hit->shading_normal.z };
+    float v[3] = { wo.x, wo.y, wo.z }, l[3] = { wi.x, wi.y, wi.z }, f[3];
+    cg_bsdf_eval(&hit->bsdf, n, v, l, hit->eta, lobes, f);
+    return mk(f[0], f[1], f[2]);
+}
+
+static double
+bsdf_pdf(const pt_hit *hit, v3 wo, v3 wi, int lobes)
+{
+    float n[3] = { hit->shading_normal.x, hit->shading_normal.y, hit->shading_normal.z };
+    float v[3] = { wo.x, wo.y, wo.z }, l[3] = { wi.x, wi.y, wi.z };
+    return (double)cg_bsdf_pdf(&hit->bsdf, n, v, l, hit->eta, lobes);
+}
+
+/* Light of every punctual light reflected at the hit towards wo (next-event estimation): for a
+ * Lambertian hit the irradiance x albedo/pi as it always was, else sum E f |n.l|. A directional
+ * light with an angular diameter is sampled in its disc (one direction per vertex). */
+static v3
+punctual_light(pt_worker_ctx *wc, const pt_hit *hit, v3 wo, int lobes, pt_rng *rng)
 {
     const cg_scene *scene = wc->pts->scene;
     v3 total = mk(0, 0, 0);
@@ -632,6 +845,10 @@ punctual_irradiance(pt_worker_ctx *wc, const pt_hit *hit)
         float dist = INFINITY, factor = 1.0f;
         if (l->type == CG_LIGHT_DIRECTIONAL) {
             wi = normalize(neg(mk(l->direction[0], l->direction[1], l->direction[2])));
+            if (l->angular_diameter > 0.0f) {
+                float u1 = rng_next(rng), u2 = rng_next(rng);
+                wi = sample_cone(wi, 0.5f * l->angular_diameter, u1, u2);
+            }
         } else {
             v3 to_light = sub(mk(l->position[0], l->position[1], l->position[2]), hit->position);
             float d2 = dot(to_light, to_light);
@@ -663,11 +880,14 @@ punctual_irradiance(pt_worker_ctx *wc, const pt_hit *hit)
             continue;
         /* Shorten the shadow ray so that it does not hit a surface at the light itself. */
         float tfar = isinf(dist) ? INFINITY : dist * (1.0f - 1e-5f);
-        if (occluded(wc, hit->origin, wi, hit->offset, tfar))
+        if (occluded(wc, hit->origin, wi, hit->offset, tfar, ray_key(rng, 0x1000u + (uint64_t)i)))
             continue;
-        total = add(total, scale(color, factor * cos_theta));
+        if (hit->lambertian)
+            total = add(total, scale(color, factor * cos_theta));
+        else
+            total = add(total, mul(scale(color, factor), bsdf_f_cos(hit, wo, wi, lobes)));
     }
-    return total;
+    return hit->lambertian ? scale(mul(hit->albedo, total), 1.0f / PT_PI) : total;
 }
 
 /* Cosine-weighted direction about n (Malley's method) on the orthonormal basis of
@@ -758,7 +978,7 @@ emitter_pdf(const pt_scene *pts, unsigned geometry, unsigned triangle, v3 from, 
  * pdf for a point chosen by power, then uniformly on its triangle (Shirley's square-root
  * map of the unit square onto a triangle), with a shadow ray between the two offset ends. */
 static v3
-emitter_direct(pt_worker_ctx *wc, const pt_hit *hit, pt_rng *rng)
+emitter_direct(pt_worker_ctx *wc, const pt_hit *hit, v3 wo, int lobes, pt_rng *rng)
 {
     const pt_scene *pts = wc->pts;
     const pt_emitters *e = &pts->emitters;
@@ -805,8 +1025,12 @@ emitter_direct(pt_worker_ctx *wc, const pt_hit *hit, pt_rng *rng)
     float seg_len = sqrtf(dot(seg, seg));
     if (!(seg_len > 0.0f))
         return mk(0, 0, 0);
-    if (occluded(wc, hit->origin, seg, hit->offset / seg_len, 1.0f - 1e-5f))
+    if (occluded(wc, hit->origin, seg, hit->offset / seg_len, 1.0f - 1e-5f, ray_key(rng, 0x2000u)))
         return mk(0, 0, 0);
+    if (!hit->lambertian) {
+        float w = power_heuristic(pdf, bsdf_pdf(hit, wo, wi, lobes));
+        return scale(mul(bsdf_f_cos(hit, wo, wi, lobes), le), (float)((double)w / pdf));
+    }
     float w = power_heuristic(pdf, cos_x / PT_PI);
     float k = (float)((double)cos_x * w / (PT_PI * pdf));
     return scale(mul(hit->albedo, le), k);
@@ -838,7 +1062,7 @@ sky_pdf(const pt_scene *pts, v3 n, v3 dir)
  * (the BRDF's own density, so both weights are 1/2 and an unoccluded surface gets exactly
  * albedo x L), an analytic one from its table. */
 static v3
-sky_direct(pt_worker_ctx *wc, const pt_hit *hit, pt_rng *rng)
+sky_direct(pt_worker_ctx *wc, const pt_hit *hit, v3 wo, int lobes, pt_rng *rng)
 {
     const pt_scene *pts = wc->pts;
     float u1 = rng_next(rng), u2 = rng_next(rng);
@@ -859,8 +1083,12 @@ sky_direct(pt_worker_ctx *wc, const pt_hit *hit, pt_rng *rng)
     v3 l = sky_radiance(pts, wi);
     if (l.x <= 0.0f && l.y <= 0.0f && l.z <= 0.0f)
         return mk(0, 0, 0);
-    if (occluded(wc, hit->origin, wi, hit->offset, INFINITY))
+    if (occluded(wc, hit->origin, wi, hit->offset, INFINITY, ray_key(rng, 0x3000u)))
         return mk(0, 0, 0);
+    if (!hit->lambertian) {
+        float w = power_heuristic(pdf, bsdf_pdf(hit, wo, wi, lobes));
+        return scale(mul(bsdf_f_cos(hit, wo, wi, lobes), l), (float)((double)w / pdf));
+    }
     float w = power_heuristic(pdf, cos_x / PT_PI);
     float k = (float)((double)cos_x * w / (PT_PI * pdf));
     return scale(mul(hit->albedo, l), k);
@@ -893,23 +1121,29 @@ part_received(int depth, pt_part direct)
 }
 
 static v3
-radiance(pt_worker_ctx *wc, v3 org, v3 dir, float tnear, int bounces, pt_rng *rng, v3 parts[PT_PART_COUNT])
+radiance(pt_worker_ctx *wc, v3 org, v3 dir, float tnear, const pt_settings *settings, pt_rng *rng,
+         v3 parts[PT_PART_COUNT])
 {
     const pt_scene *pts = wc->pts;
     const bool emitters = pts->emitters.count > 0;
     const bool sky = pts->sky.model.type != CG_SKY_NONE;
     v3 sum = mk(0, 0, 0), throughput = mk(1, 1, 1);
     v3 prev_position = mk(0, 0, 0), prev_normal = mk(0, 0, 0);
-    float prev_pdf = 0.0f; /* solid-angle density of the cosine sample that made this ray */
+    float prev_pdf = 0.0f;  /* solid-angle density of the BSDF sample that made this ray */
+    bool prev_mis = false;  /* light sampling could have found this ray's light too */
+    int diffuse = 0, glossy = 0, transmission = 0; /* scatterings of each kind so far */
+    bool last = false;      /* a limit is passed: this vertex shows its emission only */
     RTCRayHit rh;
     ray_init(&rh, org, dir, tnear);
     for (int depth = 0;; depth++) {
         wc->rays++;
-        rtcIntersect1(pts->rtc, &wc->ictx, &rh);
+        wc->rc.camera = depth == 0;
+        wc->rc.key = ray_key(rng, 0x4000u + (uint64_t)depth);
+        rtcIntersect1(pts->rtc, &wc->rc.ictx, &rh);
         if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
             if (sky) {
                 v3 d = mk(rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z);
-                float w = depth == 0 ? 1.0f : power_heuristic(prev_pdf, sky_pdf(pts, prev_normal, d));
+                float w = !prev_mis ? 1.0f : power_heuristic(prev_pdf, sky_pdf(pts, prev_normal, d));
                 v3 c = mul(throughput, scale(sky_radiance(pts, d), w));
                 sum = add(sum, c);
                 parts[part_seen(depth, PT_PART_DIRECT_SKY)] = add(parts[part_seen(depth, PT_PART_DIRECT_SKY)], c);
@@ -918,9 +1152,18 @@ radiance(pt_worker_ctx *wc, v3 org, v3 dir, float tnear, int bounces, pt_rng *rn
         }
         pt_hit hit;
         shade_hit(pts, &rh, &hit);
+        if (hit.back && hit.bsdf.thickness > 0.0f && !hit.lambertian &&
+            (hit.bsdf.sigma[0] > 0.0f || hit.bsdf.sigma[1] > 0.0f || hit.bsdf.sigma[2] > 0.0f)) {
+            /* The ray travelled inside this solid from its last vertex: Beer-Lambert over that length
+             * (KHR_materials_volume). */
+            v3 d = mk(rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z);
+            float t = rh.ray.tfar * sqrtf(dot(d, d));
+            throughput = mul(throughput, mk(expf(-hit.bsdf.sigma[0] * t), expf(-hit.bsdf.sigma[1] * t),
+                                            expf(-hit.bsdf.sigma[2] * t)));
+        }
         if (hit.emission.x > 0.0f || hit.emission.y > 0.0f || hit.emission.z > 0.0f) {
-            float w = 1.0f; /* the camera ray: no other strategy finds this light */
-            if (depth > 0) {
+            float w = 1.0f; /* the camera ray, or a sample no light sampling draws */
+            if (prev_mis) {
                 v3 d = mk(rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z);
                 w = power_heuristic(prev_pdf, emitter_pdf(pts, hit.geometry, hit.triangle, prev_position,
                                                            hit.position, d));
@@ -930,39 +1173,76 @@ radiance(pt_worker_ctx *wc, v3 org, v3 dir, float tnear, int bounces, pt_rng *rn
             pt_part part = part_seen(depth, PT_PART_DIRECT_EMITTERS);
             parts[part] = add(parts[part], c);
         }
-        if (depth > bounces)
+        if (last)
             break; /* the continuation of the last vertex: emitters and sky only */
+        /* Without caustics, a path that has scattered diffusely sees no glossy or transmission lobe. */
+        int lobes = settings->caustics || diffuse == 0 ? CG_BSDF_ALL_LOBES : CG_BSDF_DIFFUSE;
+        v3 wo = neg(mk(rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z));
+        wo = normalize(wo);
         /* `sum` adds the terms in the order it always did, so that the image does not depend
          * on whether the parts are asked for; the parts are summed beside it. */
-        v3 c = mul(throughput, scale(mul(hit.albedo, punctual_irradiance(wc, &hit)), 1.0f / PT_PI));
+        v3 c = mul(throughput, punctual_light(wc, &hit, wo, lobes, rng));
         sum = add(sum, c);
         pt_part part = part_received(depth, PT_PART_DIRECT_PUNCTUAL);
         parts[part] = add(parts[part], c);
         if (emitters) {
-            c = mul(throughput, emitter_direct(wc, &hit, rng));
+            c = mul(throughput, emitter_direct(wc, &hit, wo, lobes, rng));
             sum = add(sum, c);
             part = part_received(depth, PT_PART_DIRECT_EMITTERS);
             parts[part] = add(parts[part], c);
         }
         if (sky) {
-            c = mul(throughput, sky_direct(wc, &hit, rng));
+            c = mul(throughput, sky_direct(wc, &hit, wo, lobes, rng));
             sum = add(sum, c);
             part = part_received(depth, PT_PART_DIRECT_SKY);
             parts[part] = add(parts[part], c);
         }
-        if (depth == bounces && !emitters && !sky)
+        v3 next, origin = hit.origin;
+        if (hit.lambertian) {
+            /* The Lambertian BRDF albedo/pi times cos over the cosine pdf cos/pi leaves the albedo. */
+            if (diffuse == settings->bounces && !emitters && !sky)
+                break;
+            throughput = mul(throughput, hit.albedo);
+            if (throughput.x <= 0.0f && throughput.y <= 0.0f && throughput.z <= 0.0f)
+                break;
+            float u1 = rng_next(rng), u2 = rng_next(rng);
+            next = sample_cosine(hit.shading_normal, u1, u2);
+            if (dot(next, hit.geometric_normal) <= 0.0f)
+                break; /* below the true surface (shading normal tilted away): no light */
+            prev_pdf = dot(hit.shading_normal, next) / PT_PI;
+            prev_mis = true;
+            diffuse++;
+        } else {
+            float u[3] = { rng_next(rng), rng_next(rng), rng_next(rng) };
+            float n[3] = { hit.shading_normal.x, hit.shading_normal.y, hit.shading_normal.z };
+            float v[3] = { wo.x, wo.y, wo.z };
+            cg_bsdf_sample_result bs;
+            if (!cg_bsdf_sample(&hit.bsdf, n, v, hit.eta, lobes, u, &bs))
+                break;
+            next = mk(bs.l[0], bs.l[1], bs.l[2]);
+            bool through = bs.lobe == CG_BSDF_TRANSMISSION;
+            /* The geometric normal decides the side (a shading normal can tilt a sample across). */
+            if ((dot(next, hit.geometric_normal) > 0.0f) == through)
+                break;
+            if (through)
+                origin = sub(hit.position, scale(hit.geometric_normal, hit.offset));
+            diffuse += bs.lobe == CG_BSDF_DIFFUSE;
+            glossy += bs.lobe == CG_BSDF_GLOSSY;
+            transmission += through;
+            throughput = mul(throughput, mk(bs.weight[0], bs.weight[1], bs.weight[2]));
+            if (!(throughput.x > 0.0f || throughput.y > 0.0f || throughput.z > 0.0f))
+                break;
+            /* Light sampling covers the reflection side's non-delta lobes only (pt_render.h). */
+            prev_mis = !bs.delta && !through;
+            prev_pdf = bs.pdf;
+        }
+        last = diffuse > settings->bounces || glossy > settings->glossy_bounces ||
+               transmission > settings->transmission_bounces;
+        if (last && !emitters && !sky)
             break;
-        throughput = mul(throughput, hit.albedo);
-        if (throughput.x <= 0.0f && throughput.y <= 0.0f && throughput.z <= 0.0f)
-            break;
-        float u1 = rng_next(rng), u2 = rng_next(rng);
-        v3 next = sample_cosine(hit.shading_normal, u1, u2);
-        if (dot(next, hit.geometric_normal) <= 0.0f)
-            break; /* below the true surface (shading normal tilted away): no light */
-        prev_pdf = dot(hit.shading_normal, next) / PT_PI;
         prev_position = hit.position;
         prev_normal = hit.shading_normal;
-        ray_init(&rh, hit.origin, next, hit.offset);
+        ray_init(&rh, origin, next, hit.offset);
     }
     return sum;
 }
@@ -1047,7 +1327,7 @@ render_tile(pt_job *job, pt_worker_ctx *wc, int tile)
                 v3 parts[PT_PART_COUNT];
                 for (int p = 0; p < PT_PART_COUNT; p++)
                     parts[p] = mk(0, 0, 0);
-                v3 l = radiance(wc, org, dir, tnear, s->bounces, &rng, parts);
+                v3 l = radiance(wc, org, dir, tnear, s, &rng, parts);
                 acc[0] += l.x;
                 acc[1] += l.y;
                 acc[2] += l.z;
@@ -1105,7 +1385,8 @@ worker(void *arg)
     pt_thread_arg *ta = arg;
     pt_job *job = ta->job;
     pt_worker_ctx wc = { .pts = job->pts, .rays = 0 };
-    rtcInitIntersectContext(&wc.ictx);
+    rtcInitIntersectContext(&wc.rc.ictx);
+    wc.rc.pts = job->pts;
     int last_shown = -1;
     for (;;) {
         int tile = atomic_fetch_add(&job->next_tile, 1);
@@ -1147,6 +1428,12 @@ pt_render_parts(const pt_scene *pts, const cg_view *view, const pt_settings *set
     if (settings->bounces < 0 || settings->bounces > PT_MAX_BOUNCES)
         return cg_fail(err, CG_ERR_USAGE, "path_trace: bounces %d, expected 0..%d", settings->bounces,
                        PT_MAX_BOUNCES);
+    if (settings->glossy_bounces < 0 || settings->glossy_bounces > PT_MAX_BOUNCES)
+        return cg_fail(err, CG_ERR_USAGE, "path_trace: glossy_bounces %d, expected 0..%d",
+                       settings->glossy_bounces, PT_MAX_BOUNCES);
+    if (settings->transmission_bounces < 0 || settings->transmission_bounces > PT_MAX_BOUNCES)
+        return cg_fail(err, CG_ERR_USAGE, "path_trace: transmission_bounces %d, expected 0..%d",
+                       settings->transmission_bounces, PT_MAX_BOUNCES);
     if (settings->threads < 0 || settings->threads > PT_MAX_THREADS)
         return cg_fail(err, CG_ERR_USAGE, "path_trace: threads %d, expected 0..%d", settings->threads,
                        PT_MAX_THREADS);

@@ -25,6 +25,17 @@ static const fg_param_desc path_trace_params[] = {
       .doc = "diffuse bounces, counted as Cycles counts them: 0 = direct light of every source (punctual "
              "lights, emissive surfaces, the sky) and what the camera sees; each bounce adds a diffuse "
              "reflection" },
+    { .name = "glossy_bounces", .type = FG_PARAM_INT, .default_value = 1, .min = 0, .max = 16,
+      .doc = "glossy bounces, counted as Cycles counts them: reflections off a GGX lobe (metal, polished "
+             "dielectric, and the reflection off glass); a path past the limit shows only the emission it "
+             "meets next" },
+    { .name = "transmission_bounces", .type = FG_PARAM_INT, .default_value = 4, .min = 0, .max = 16,
+      .doc = "transmission bounces, counted as Cycles counts them: refractions into or out of a solid and "
+             "crossings of a thin (thickness 0) transmissive sheet" },
+    { .name = "caustics", .type = FG_PARAM_BOOL,
+      .doc = "false: glossy and transmission lobes only on paths from the camera before their first diffuse "
+             "reflection (Cycles' caustics_reflective and caustics_refractive off); glass casts a full "
+             "shadow either way (light sampling does not pass glass)" },
     { .name = "seed", .type = FG_PARAM_INT, .default_value = 1, .min = 0, .max = 2147483647.0,
       .doc = "random seed; the image is a function of the seed alone, whatever the thread count" },
     { .name = "threads", .type = FG_PARAM_INT, .min = 0, .max = 256,
@@ -94,6 +105,9 @@ settings_of(const fg_pass *pass)
     s.threads = fg_param_int(pass, "threads");
     s.jitter = fg_param_bool(pass, "jitter");
     s.progress = fg_param_bool(pass, "progress");
+    s.glossy_bounces = fg_param_int(pass, "glossy_bounces");
+    s.transmission_bounces = fg_param_int(pass, "transmission_bounces");
+    s.caustics = fg_param_bool(pass, "caustics");
     return s;
 }
 
@@ -103,7 +117,9 @@ same_image(const path_trace_state *st, const cg_view *view, const pt_settings *s
     /* threads and progress do not change the image. */
     return st->valid && !memcmp(&st->view, view, sizeof *view) && st->settings.spp == s->spp &&
            st->settings.bounces == s->bounces && st->settings.seed == s->seed &&
-           st->settings.jitter == s->jitter && (st->with_parts || !with_parts);
+           st->settings.jitter == s->jitter && st->settings.glossy_bounces == s->glossy_bounces &&
+           st->settings.transmission_bounces == s->transmission_bounces &&
+           st->settings.caustics == s->caustics && (st->with_parts || !with_parts);
 }
 
 /* cg_image rows run top to bottom, GL's bottom to top. */
@@ -191,8 +207,10 @@ path_trace_execute(fg_pass *pass, path_trace_state *st, cg_error *err)
 }
 
 CGP_PASS(path_trace, CGP_PARAMS(path_trace_params),
-         "CPU path-traced reference on Embree 3: Lambertian materials with base colour "
-         "textures, emissive surfaces, directional/point/spot lights by next-event estimation "
-         "with hard shadows, cosine-sampled diffuse bounces; camera rays through the pixel "
+         "CPU path-traced reference on Embree 3: glTF 2.0 materials (Lambertian diffuse, GGX "
+         "reflection, GGX transmission with Beer-Lambert volumes, alpha MASK and BLEND, normal maps), "
+         "emissive surfaces, directional (with an angular diameter)/point/spot lights, emitters and "
+         "the sky by next-event estimation with multiple importance sampling; diffuse, glossy and "
+         "transmission bounces counted as Cycles counts them; camera rays through the pixel "
          "centres of the raster passes' view. Output `radiance`: linear RGBA32F. Bit-identical "
          "for a seed whatever the thread count (counter-based random numbers per pixel and sample).");
