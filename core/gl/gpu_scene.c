@@ -12,12 +12,18 @@
 
 #include "cg/log.h"
 
-/* std430 struct CgMaterial in scene.glsl: four vec4-sized members, 64 bytes. */
+/* std430 struct CgMaterial in scene.glsl: twenty vec4-sized members, 320 bytes. */
 typedef struct gpu_material {
     float base_color[4];
-    float emissive[4];      /* rgb = emissive factor x emissive strength */
-    int32_t textures[4];    /* x = base colour texture (-1 none), y = emissive texture */
-    float pbr[4];           /* x = metallic, y = roughness */
+    float emissive[4];      /* rgb = emissive factor x emissive strength, w = alpha cutoff */
+    int32_t textures[4];    /* base colour, emissive, metallicRoughness, normal (-1 none) */
+    int32_t textures2[4];   /* x = occlusion, y = transmission (-1 none), z = alpha mode,
+                             * w = flags (CG_GPU_MATERIAL_DOUBLE_SIDED) */
+    float pbr[4];           /* x = metallic, y = roughness, z = normal scale, w = occlusion strength */
+    float specular[4];      /* rgb = KHR_materials_specular colour, a = specular factor */
+    float volume[4];        /* x = ior, y = transmission, z = thickness (mesh units), w = 0 */
+    float attenuation[4];   /* rgb = sigma = -ln(attenuation colour) / distance (1/m), w = 0 */
+    float uv[CG_TEX_COUNT][2][4]; /* KHR_texture_transform: (m0, m1, m2, m3), (m4, m5, 0, 0) */
 } gpu_material;
 
 /* std430 struct CgLight in lights.glsl. */
@@ -28,7 +34,8 @@ typedef struct gpu_light {
     float cone[4];              /* x = angle scale, y = angle offset (KHR_lights_punctual) */
 } gpu_light;
 
-_Static_assert(sizeof(gpu_material) == 64, "CgMaterial is 64 bytes in std430");
+_Static_assert(sizeof(gpu_material) == 320, "CgMaterial is 320 bytes in std430");
+_Static_assert(CG_TEX_COUNT == 6, "scene.glsl reads six uv transforms");
 _Static_assert(sizeof(gpu_light) == 64, "CgLight is 64 bytes in std430");
 
 #define LIGHT_HEADER_BYTES 16
@@ -60,19 +67,24 @@ mip_levels(int width, int height)
 static bool
 upload_mesh(const cg_mesh *mesh, cg_gpu_mesh *out, size_t *bytes, cg_error *err)
 {
-    size_t vertex_bytes = (size_t)mesh->vertex_count * 8u * sizeof(float);
+    size_t vertex_bytes = (size_t)mesh->vertex_count * CG_GPU_VERTEX_FLOATS * sizeof(float);
     float *interleaved = malloc(vertex_bytes ? vertex_bytes : 1);
     if (!interleaved)
         return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "gpu scene: mesh '%s': %zu bytes of vertices",
                        mesh->name, vertex_bytes);
     for (uint32_t v = 0; v < mesh->vertex_count; v++) {
-        float *dst = interleaved + (size_t)v * 8u;
+        float *dst = interleaved + (size_t)v * CG_GPU_VERTEX_FLOATS;
         memcpy(dst, mesh->positions + (size_t)v * 3u, 3 * sizeof(float));
         memcpy(dst + 3, mesh->normals + (size_t)v * 3u, 3 * sizeof(float));
         if (mesh->texcoords)
             memcpy(dst + 6, mesh->texcoords + (size_t)v * 2u, 2 * sizeof(float));
         else
             dst[6] = dst[7] = 0.0f;
+        /* A zero tangent tells the shaders that the mesh has none: no normal mapping there. */
+        if (mesh->tangents)
+            memcpy(dst + 8, mesh->tangents + (size_t)v * 4u, 4 * sizeof(float));
+        else
+            dst[8] = dst[9] = dst[10] = dst[11] = 0.0f;
     }
     size_t index_bytes = (size_t)mesh->index_count * sizeof(uint32_t);
 
@@ -85,10 +97,10 @@ upload_mesh(const cg_mesh *mesh, cg_gpu_mesh *out, size_t *bytes, cg_error *err)
                          index_bytes ? mesh->indices : NULL, 0);
 
     glCreateVertexArrays(1, &out->vao);
-    glVertexArrayVertexBuffer(out->vao, 0, out->vertex_buffer, 0, 8 * sizeof(float));
+    glVertexArrayVertexBuffer(out->vao, 0, out->vertex_buffer, 0, CG_GPU_VERTEX_FLOATS * sizeof(float));
     glVertexArrayElementBuffer(out->vao, out->index_buffer);
     static const struct { GLuint location; GLint size; GLuint offset; } attribs[] = {
-        { 0, 3, 0 }, { 1, 3, 3 * sizeof(float) }, { 2, 2, 6 * sizeof(float) },
+        { 0, 3, 0 }, { 1, 3, 3 * sizeof(float) }, { 2, 2, 6 * sizeof(float) }, { 3, 4, 8 * sizeof(float) },
     };
     for (size_t i = 0; i < sizeof attribs / sizeof attribs[0]; i++) {
         glEnableVertexArrayAttrib(out->vao, attribs[i].location);
@@ -167,17 +179,65 @@ write_lights(cg_gpu_scene *gpu, bool create, cg_error *err)
     return true;
 }
 
+/* A texture index as the shaders test it: -1 where the scene has no such texture. */
+static int32_t
+texture_index(const cg_scene *scene, int index)
+{
+    return index >= 0 && index < scene->texture_count ? index : -1;
+}
+
 static void
-pack_material(const cg_material *m, gpu_material *out)
+pack_material(const cg_scene *scene, const cg_material *m, gpu_material *out)
 {
     memset(out, 0, sizeof *out);
     memcpy(out->base_color, m->base_color, sizeof m->base_color);
     for (int c = 0; c < 3; c++)
         out->emissive[c] = m->emissive[c] * m->emissive_strength;
-    out->textures[0] = m->base_color_texture;
-    out->textures[1] = m->emissive_texture;
+    out->emissive[3] = m->alpha_cutoff;
+    out->textures[0] = texture_index(scene, m->base_color_texture);
+    out->textures[1] = texture_index(scene, m->emissive_texture);
+    out->textures[2] = texture_index(scene, m->metallic_roughness_texture);
+    out->textures[3] = texture_index(scene, m->normal_texture);
+    out->textures2[0] = texture_index(scene, m->occlusion_texture);
+    out->textures2[1] = texture_index(scene, m->transmission_texture);
+    out->textures2[2] = (int32_t)m->alpha_mode;
+    out->textures2[3] = m->double_sided ? CG_GPU_MATERIAL_DOUBLE_SIDED : 0;
     out->pbr[0] = m->metallic;
     out->pbr[1] = m->roughness;
+    out->pbr[2] = m->normal_scale;
+    out->pbr[3] = m->occlusion_strength;
+    memcpy(out->specular, m->specular_color, sizeof m->specular_color);
+    out->specular[3] = m->specular;
+    out->volume[0] = m->ior;
+    out->volume[1] = m->transmission;
+    out->volume[2] = m->thickness;
+    /* KHR_materials_volume: attenuationDistance is in world units (metres), so sigma is per metre
+     * whatever the instance's scale; an infinite distance attenuates nothing. As cg_bsdf_from_material. */
+    for (int c = 0; c < 3; c++)
+        if (isfinite(m->attenuation_distance) && m->attenuation_distance > 0.0f)
+            out->attenuation[c] = -logf(fmaxf(m->attenuation_color[c], 1e-6f)) / m->attenuation_distance;
+    for (int t = 0; t < CG_TEX_COUNT; t++) {
+        memcpy(out->uv[t][0], m->uv[t].m, 4 * sizeof(float));
+        out->uv[t][1][0] = m->uv[t].m[4];
+        out->uv[t][1][1] = m->uv[t].m[5];
+    }
+}
+
+/* What a scene without materials draws with: white and Lambertian, both sides (cg_material_default). */
+static cg_material
+white_lambertian(void)
+{
+    cg_material m = {
+        .base_color = { 1, 1, 1, 1 }, .base_color_texture = -1, .emissive_texture = -1,
+        .emissive_strength = 1, .roughness = 1, .metallic_roughness_texture = -1,
+        .normal_texture = -1, .normal_scale = 1, .occlusion_texture = -1, .occlusion_strength = 1,
+        .alpha_mode = CG_ALPHA_OPAQUE, .alpha_cutoff = 0.5f, .double_sided = true, .ior = 1.5f,
+        .specular = 0, .specular_color = { 1, 1, 1 }, .transmission_texture = -1,
+        .attenuation_distance = INFINITY, .attenuation_color = { 1, 1, 1 },
+    };
+    for (int t = 0; t < CG_TEX_COUNT; t++)
+        m.uv[t] = (cg_uv_transform){ { 1, 0, 0, 1, 0, 0 } };
+    return m;
 }
 
 bool
@@ -208,10 +268,11 @@ cg_gpu_scene_upload(const cg_scene *scene, cg_gpu_scene *out, cg_error *err)
     }
     if (scene->material_count > 0) {
         for (int i = 0; i < scene->material_count; i++)
-            pack_material(&scene->materials[i], &materials[i]);
+            pack_material(scene, &scene->materials[i], &materials[i]);
     } else {
         /* A scene without materials still draws: a white Lambertian default. */
-        materials[0] = (gpu_material){ { 1, 1, 1, 1 }, { 0, 0, 0, 0 }, { -1, -1, 0, 0 }, { 0, 1, 0, 0 } };
+        cg_material white = white_lambertian();
+        pack_material(scene, &white, &materials[0]);
     }
     glCreateBuffers(1, &out->material_buffer);
     glNamedBufferStorage(out->material_buffer, (GLsizeiptr)(material_count * sizeof *materials),
@@ -330,8 +391,17 @@ bind_instance(const cg_gpu_scene *gpu, const cg_instance *inst, const bool activ
     if (active[2])
         glUniform1i(2, material);
     const cg_material *m = scene->material_count > 0 ? &scene->materials[material] : NULL;
-    glBindTextureUnit(0, material_texture(gpu, m ? m->base_color_texture : -1));
-    glBindTextureUnit(1, material_texture(gpu, m ? m->emissive_texture : -1));
+    glBindTextureUnit(CG_SCENE_UNIT_BASE_COLOR, material_texture(gpu, m ? m->base_color_texture : -1));
+    glBindTextureUnit(CG_SCENE_UNIT_EMISSIVE, material_texture(gpu, m ? m->emissive_texture : -1));
+    glBindTextureUnit(CG_SCENE_UNIT_METALLIC_ROUGHNESS,
+                      material_texture(gpu, m ? m->metallic_roughness_texture : -1));
+    glBindTextureUnit(CG_SCENE_UNIT_NORMAL, material_texture(gpu, m ? m->normal_texture : -1));
+    glBindTextureUnit(CG_SCENE_UNIT_OCCLUSION, material_texture(gpu, m ? m->occlusion_texture : -1));
+    glBindTextureUnit(CG_SCENE_UNIT_TRANSMISSION, material_texture(gpu, m ? m->transmission_texture : -1));
+    /* glTF 2.0, 3.7.4 (meshes): a world matrix with a negative determinant mirrors the mesh, and
+     * its triangles' winding must be reversed for the front face to stay the front (single-sided
+     * materials cull by gl_FrontFacing, gbuffer.frag). */
+    glFrontFace(glm_mat3_det(linear) < 0.0f ? GL_CW : GL_CCW);
     glBindVertexArray(gpu->meshes[inst->mesh].vao);
 }
 
@@ -364,6 +434,7 @@ cg_gpu_scene_draw(const cg_gpu_scene *gpu, cg_mesh_filter filter)
         triangles += (size_t)mesh->index_count / 3u;
     }
     glBindVertexArray(0);
+    glFrontFace(GL_CCW);
     return triangles;
 }
 
@@ -400,6 +471,7 @@ cg_gpu_scene_draw_ranges(const cg_gpu_scene *gpu, int instance, GLuint index_buf
     if (index_buffer)
         glVertexArrayElementBuffer(mesh->vao, mesh->index_buffer);
     glBindVertexArray(0);
+    glFrontFace(GL_CCW);
     return triangles;
 }
 

@@ -40,7 +40,7 @@ main()
     vec3 p[3], nv[3], w[3];
     vec2 uv[3];
     for (int i = 0; i < 3; i++) {
-        uint v = cg_indices[3u * t + uint(i)] * 8u;
+        uint v = cg_indices[3u * t + uint(i)] * CG_VERTEX_FLOATS;
         vec3 pos = vec3(cg_vertices[v], cg_vertices[v + 1u], cg_vertices[v + 2u]);
         w[i] = (cg_model * vec4(pos, 1.0)).xyz;
         p[i] = (w[i] - u_origin_voxel.xyz) / u_origin_voxel.w;
@@ -74,7 +74,10 @@ main()
                 vec3 world = l0 * w[0] + l1 * w[1] + l2 * w[2];
                 vec3 normal = normalize(l0 * nv[0] + l1 * nv[1] + l2 * nv[2]);
                 vec2 tex = l0 * uv[0] + l1 * uv[1] + l2 * uv[2];
-                vec3 albedo = clamp(cg_material_albedo(cg_material_index, tex).rgb, 0.0, 1.0);
+                // alphaMode MASK: nothing there below the cutoff (voxelize.frag).
+                if (cg_material_masked_out(cg_material_index, tex))
+                    continue;
+                vec3 albedo = clamp(cg_material_diffuse(cg_material_index, tex), 0.0, 1.0);
                 vec3 emission = max(cg_material_emissive(cg_material_index, tex), vec3(0.0));
                 uvec3 q_albedo = uvec3(albedo * u_surface_fixed.x + 0.5);
                 uvec3 q_emission = uvec3(min(emission * u_surface_fixed.y + 0.5, vec3(4294967295.0)));

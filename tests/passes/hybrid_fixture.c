@@ -18,6 +18,18 @@ hf_init(hf_scene *s)
         for (int k = 0; k < 4; k++)
             mat->base_color[k] = 1.0f;
         mat->base_color_texture = -1;
+        /* Lambertian (specular 0), double-sided, no texture, identity uv transforms: the built-in
+         * scenes' default material (cg_material_default), which the GPU scene uploads field by field. */
+        mat->metallic_roughness_texture = mat->normal_texture = mat->occlusion_texture = mat->transmission_texture = -1;
+        mat->double_sided = true;
+        mat->alpha_cutoff = 0.5f;
+        mat->ior = 1.5f;
+        mat->normal_scale = mat->occlusion_strength = 1.0f;
+        mat->attenuation_distance = INFINITY;
+        for (int k = 0; k < 3; k++)
+            mat->specular_color[k] = mat->attenuation_color[k] = 1.0f;
+        for (int t = 0; t < CG_TEX_COUNT; t++)
+            mat->uv[t] = (cg_uv_transform){ { 1, 0, 0, 1, 0, 0 } };
         mat->emissive_texture = -1;
         mat->emissive_strength = 1.0f;
         mat->roughness = 1.0f;

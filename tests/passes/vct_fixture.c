@@ -22,6 +22,18 @@ vf_scene_init(vf_scene *s, float albedo, float emission)
         mat->base_color[0] = mat->base_color[1] = mat->base_color[2] = a;
         mat->base_color[3] = 1.0f;
         mat->base_color_texture = -1;
+        /* Lambertian (specular 0), double-sided, no texture, identity uv transforms: the built-in
+         * scenes' default material (cg_material_default), which the GPU scene uploads field by field. */
+        mat->metallic_roughness_texture = mat->normal_texture = mat->occlusion_texture = mat->transmission_texture = -1;
+        mat->double_sided = true;
+        mat->alpha_cutoff = 0.5f;
+        mat->ior = 1.5f;
+        mat->normal_scale = mat->occlusion_strength = 1.0f;
+        mat->attenuation_distance = INFINITY;
+        for (int k = 0; k < 3; k++)
+            mat->specular_color[k] = mat->attenuation_color[k] = 1.0f;
+        for (int t = 0; t < CG_TEX_COUNT; t++)
+            mat->uv[t] = (cg_uv_transform){ { 1, 0, 0, 1, 0, 0 } };
         mat->emissive_texture = -1;
         mat->emissive_strength = 1.0f;
         mat->roughness = 1.0f;

@@ -2,12 +2,16 @@
  *
  * Declares: cg_gpu_scene, cg_gpu_scene_upload, cg_gpu_scene_destroy, cg_gpu_scene_draw,
  *           cg_gpu_scene_draw_ranges, cg_gpu_scene_bind_instance, cg_mesh_filter, CG_BINDING_MATERIALS, CG_BINDING_LIGHTS,
- *           cg_gpu_scene_bind_lights, cg_gpu_scene_update_lights.
+ *           cg_gpu_scene_bind_lights, cg_gpu_scene_update_lights, CG_GPU_VERTEX_FLOATS,
+ *           CG_SCENE_UNIT_*, CG_GPU_MATERIAL_DOUBLE_SIDED.
  *
  * Shader interface (shaders/common/scene.glsl): vertex attributes 0 = position,
- * 1 = normal, 2 = texcoord; uniform location 0 = mat4 model, 1 = mat3 normal matrix,
- * 2 = int material index; SSBO binding 0 = materials (see scene.glsl); texture units
- * 0 = base colour, 1 = emissive (a 1x1 white texture when absent).
+ * 1 = normal, 2 = texcoord, 3 = tangent (vec4, glTF TANGENT; all zero where the mesh has
+ * none, and the shaders then skip normal mapping); uniform location 0 = mat4 model, 1 = mat3
+ * normal matrix, 2 = int material index; SSBO binding 0 = materials (struct CgMaterial in
+ * scene.glsl: every field of cg_material the shaders need); texture units CG_SCENE_UNIT_*
+ * (a 1x1 white texture where the material has none: the factors alone). A draw sets the front
+ * face by the sign of the instance's determinant (glTF 3.7.4) and leaves GL_CCW after it.
  * Every program drawn with cg_gpu_scene_draw includes common/scene.glsl, which declares
  * all three uniforms; cg_gpu_scene_draw sets those the program keeps active.
  *
@@ -31,6 +35,23 @@
 #define CG_BINDING_MATERIALS 0
 #define CG_BINDING_LIGHTS 1
 
+/* Texture units of a material's textures (scene.glsl repeats them). The four glTF 2.0 textures
+ * beyond base colour and emission sit at 24..27, clear of the units passes number for their own
+ * inputs (0..20 today: blocks.h's CG_UNIT_*, a shadow map at 2), since a draw binds them after the
+ * pass bound its own. GL 4.5 guarantees 80 combined units. */
+#define CG_SCENE_UNIT_BASE_COLOR 0
+#define CG_SCENE_UNIT_EMISSIVE 1
+#define CG_SCENE_UNIT_METALLIC_ROUGHNESS 24
+#define CG_SCENE_UNIT_NORMAL 25
+#define CG_SCENE_UNIT_OCCLUSION 26
+#define CG_SCENE_UNIT_TRANSMISSION 27
+
+/* Floats per vertex in cg_gpu_mesh.vertex_buffer: position 3, normal 3, texcoord 2, tangent 4. */
+#define CG_GPU_VERTEX_FLOATS 12
+
+/* CgMaterial.textures2.w bits. */
+#define CG_GPU_MATERIAL_DOUBLE_SIDED 1
+
 typedef enum cg_mesh_filter {
     CG_MESHES_ALL,
     CG_MESHES_COMPLEX,      /* everything but height fields */
@@ -39,7 +60,7 @@ typedef enum cg_mesh_filter {
 
 typedef struct cg_gpu_mesh {
     GLuint vao;
-    GLuint vertex_buffer;   /* interleaved position(3) normal(3) texcoord(2) floats */
+    GLuint vertex_buffer;   /* interleaved position(3) normal(3) texcoord(2) tangent(4) floats */
     GLuint index_buffer;
     GLsizei index_count;
     cg_mesh_kind kind;
