@@ -2,9 +2,19 @@
  *
  * Outputs (all the output image's size): depth (GL_DEPTH_COMPONENT32F), position
  * (RGBA32F world position, w = 1 where a surface covers the pixel, 0 on the background),
- * normal (RGBA16F world normal turned towards the camera; a height field's upper side, see
- * gbuffer.frag), albedo (RGBA16F linear
- * Lambertian albedo) and emissive (RGBA32F emitted radiance).
+ * normal (RGBA16F shading normal, the normal map applied, turned towards the camera; a height
+ * field's upper side, see gbuffer.frag), emissive (RGBA32F emitted radiance) and the material
+ * of glTF 2.0's BSDF (common/bsdf.glsl, cg/bsdf.h) in RGBA16F:
+ *   albedo        rgb = the diffuse weight rho = (1-m)(1-T) baseColor (x coverage for BLEND),
+ *                 a = occlusion 1 + strength (occ - 1) (1 = none; it darkens indirect light only)
+ *   specular      rgb = F0 (metal and dielectric mixed by metallic), a = F90
+ *   transmission  rgb = tau = (1-m) T baseColor (BLEND: alpha tau + (1 - alpha)), a = ior
+ *   material      x = perceptual roughness, y = metallic, z = thickness in world metres (0 thin), w = 1
+ *   attenuation   rgb = Beer-Lambert sigma (1/m, 0 = none), a = 1
+ * A Lambertian material (cg_material_default) gives albedo = baseColor, specular 0,
+ * transmission (0, 0, 0, ior): what direct_light and composite read is what it was before.
+ * alphaMode MASK discards below the cutoff; a single-sided material's back faces are not seen
+ * (glTF doubleSided false: discarded by gl_FrontFacing, which cg_gpu_scene_draw sets per instance).
  *
  * The world position is stored rather than reconstructed from depth: a perspective fp32
  * depth buffer loses ~z^2/near x 6e-8 metres, about half a metre at 1 km with a 10 cm
@@ -36,9 +46,12 @@ typedef struct gbuffer_state {
     cgp_sky sky;
 } gbuffer_state;
 
-static const char *const color_outputs[] = { "position", "normal", "albedo", "emissive" };
-static const GLenum color_formats[] = { GL_RGBA32F, GL_RGBA16F, GL_RGBA16F, GL_RGBA32F };
-#define COLOR_OUTPUTS 4
+static const char *const color_outputs[] = { "position", "normal", "albedo", "emissive",
+                                            "specular", "transmission", "material", "attenuation" };
+static const GLenum color_formats[] = { GL_RGBA32F, GL_RGBA16F, GL_RGBA16F, GL_RGBA32F,
+                                        GL_RGBA16F, GL_RGBA16F, GL_RGBA16F, GL_RGBA16F };
+/* GL 4.5 guarantees GL_MAX_DRAW_BUFFERS >= 8: the material takes every one of them. */
+#define COLOR_OUTPUTS 8
 
 static bool
 gbuffer_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
@@ -60,6 +73,7 @@ gbuffer_prepare(fg_pass *pass, gbuffer_state *st, cg_error *err)
     st->fbo = cgp_framebuffer(st);
     static const GLenum draw_buffers[COLOR_OUTPUTS] = {
         GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3,
+        GL_COLOR_ATTACHMENT4, GL_COLOR_ATTACHMENT5, GL_COLOR_ATTACHMENT6, GL_COLOR_ATTACHMENT7,
     };
     glNamedFramebufferDrawBuffers(st->fbo, COLOR_OUTPUTS, draw_buffers);
     cgp_sky_prepare(st, &st->sky);
@@ -136,6 +150,8 @@ gbuffer_execute(fg_pass *pass, gbuffer_state *st, cg_error *err)
 
 CGP_PASS(gbuffer, CGP_NO_PARAMS,
          "The visible surface of each pixel of the output image: depth, world position "
-         "(w = 1 where covered), world normal facing the camera, linear albedo and emitted "
-         "radiance, and on the background the scene's sky as the emission the camera sees. "
+         "(w = 1 where covered), shading normal facing the camera, emitted radiance and glTF 2.0's "
+         "BSDF (albedo = diffuse weight and occlusion, specular = F0 and F90, transmission = "
+         "tint and ior, material = roughness, metallic, thickness, attenuation = sigma), and on "
+         "the background the scene's sky as the emission the camera sees. "
          "Deferred shading's G-buffer; the VCT paper's cones start from it.");

@@ -42,6 +42,7 @@ static const fg_param_desc shadow_params[] = {
 
 typedef struct shadow_map_state {
     GLuint program;
+    GLuint masked_program;  /* with mask.frag, for scenes with an alphaMode MASK material; 0 until one */
     GLuint fbo;
     GLuint staging;
 } shadow_map_state;
@@ -119,6 +120,17 @@ shadow_map_prepare(fg_pass *pass, shadow_map_state *st, cg_error *err)
     /* The block is written here and copied into the graph's buffer `matrix`. */
     st->staging = cgp_buffer(st, sizeof(cg_shadow_block), NULL, GL_DYNAMIC_STORAGE_BIT);
     return cgp_graphics_program(st, "shadow_map/depth.vert", NULL, NULL, NULL, &st->program, err);
+}
+
+/* glTF alphaMode MASK: a texel below the cutoff casts no shadow. Only a scene that has such a
+ * material pays for a fragment shader (llvmpipe runs none for a depth-only program). */
+static bool
+scene_has_mask(const cg_scene *scene)
+{
+    for (int i = 0; i < scene->material_count; i++)
+        if (scene->materials[i].alpha_mode == CG_ALPHA_MASK)
+            return true;
+    return false;
 }
 
 static void
@@ -235,6 +247,11 @@ shadow_map_execute(fg_pass *pass, shadow_map_state *st, cg_error *err)
     if (index < 0)
         return cg_fail(err, CG_ERR_PASS, "pass '%s': the scene lost its shadowed light", fg_pass_name(pass));
     const cg_light *light = &frame->scene->lights[index];
+    bool masked = scene_has_mask(frame->scene);
+    if (masked && !st->masked_program &&
+        !cgp_graphics_program(st, "shadow_map/depth.vert", NULL, "shadow_map/mask.frag", "#define CG_SHADOW_MASK\n",
+                              &st->masked_program, err))
+        return false;
     int resolution = fg_param_int(pass, "resolution");
     static const int filter_radius[] = { [FILTER_NONE] = 0, [FILTER_PCF3] = 1, [FILTER_PCF5] = 2 };
 
@@ -264,7 +281,7 @@ shadow_map_execute(fg_pass *pass, shadow_map_state *st, cg_error *err)
     glDisable(GL_CULL_FACE);
     const float far_depth = 1.0f;
     glClearNamedFramebufferfv(st->fbo, GL_DEPTH, 0, &far_depth);
-    glUseProgram(st->program);
+    glUseProgram(masked ? st->masked_program : st->program);
     /* The view and the projection apart, not view_proj (shaders/shadow_map/depth.vert). */
     glUniformMatrix4fv(8, 1, GL_FALSE, block.view);
     glUniformMatrix4fv(12, 1, GL_FALSE, (const float *)proj);

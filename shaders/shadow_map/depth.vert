@@ -6,6 +6,11 @@
 layout(location = 8) uniform mat4 light_view;
 layout(location = 12) uniform mat4 light_proj;
 
+#ifdef CG_SHADOW_MASK
+// For mask.frag: alphaMode MASK's texels below the cutoff cast no shadow.
+layout(location = 0) out vec2 texcoord;
+#endif
+
 void
 main()
 {
@@ -16,4 +21,7 @@ main()
     // off by centimetres, its bias millimetres). Light-space coordinates are small, so the
     // projection then rounds only what the depth format rounds anyway.
     gl_Position = light_proj * (light_view * (cg_model * vec4(cg_position, 1.0)));
+#ifdef CG_SHADOW_MASK
+    texcoord = cg_texcoord;
+#endif
 }
