@@ -1,6 +1,8 @@
-// direct_light: outgoing radiance of every G-buffer pixel lit by every scene light,
-// Lambertian (DESIGN.md units), shadowed by the one shadow map when present.
+// direct_light: outgoing radiance of every G-buffer pixel lit by every scene light through glTF
+// 2.0's BSDF (common/bsdf.glsl; DESIGN.md units), shadowed by the one shadow map when present.
+// passes/direct_light/direct_light.c says which lobes a punctual light reaches.
 #version 450 core
+#include "common/bsdf.glsl"
 #include "common/lights.glsl"
 #include "common/shadow.glsl"
 
@@ -10,6 +12,16 @@ layout(binding = 2) uniform sampler2D gbuffer_position;
 layout(binding = 3) uniform sampler2D gbuffer_normal;
 layout(binding = 4) uniform sampler2D gbuffer_albedo;
 layout(binding = 5) uniform sampler2D shadow_map;
+layout(binding = 6) uniform sampler2D gbuffer_specular;
+layout(binding = 7) uniform sampler2D gbuffer_material;
+layout(binding = 8) uniform sampler2D gbuffer_transmission;
+
+// Whether the inputs specular and material (u_glossy) and transmission are connected.
+layout(location = 0) uniform bool u_glossy;
+layout(location = 1) uniform bool u_transmission;
+layout(location = 2) uniform vec3 u_camera;         // world position
+layout(location = 3) uniform vec3 u_camera_back;    // the camera's +z (towards the viewer), world
+layout(location = 4) uniform bool u_orthographic;
 
 // fp32: radiance from starlight to sunlit snow without clipping (direct_light.c).
 layout(binding = 0, rgba32f) uniform writeonly image2D radiance;
@@ -25,13 +37,38 @@ main()
     vec3 result = vec3(0.0);
     if (position.w > 0.0) {
         vec3 n = normalize(texelFetch(gbuffer_normal, pixel, 0).xyz);
-        vec3 albedo = texelFetch(gbuffer_albedo, pixel, 0).rgb;
+        vec4 albedo = texelFetch(gbuffer_albedo, pixel, 0);
+        CgBsdf b;
+        bool lambertian = true;
+        if (u_glossy) {
+            vec4 transmission = u_transmission ? texelFetch(gbuffer_transmission, pixel, 0) : vec4(0.0, 0.0, 0.0, 1.5);
+            b = cg_bsdf_from_gbuffer(albedo, texelFetch(gbuffer_specular, pixel, 0), transmission,
+                                     texelFetch(gbuffer_material, pixel, 0), vec4(0.0));
+            lambertian = cg_bsdf_is_lambertian(b);
+        }
+        vec3 v = u_orthographic ? normalize(u_camera_back) : normalize(u_camera - position.xyz);
+        // The G-buffer's normal faces the camera; a normal map can still tilt it past the view
+        // ray at grazing angles, where n.v <= 0 gives the microfacet terms nothing to stand on.
+        float nv = dot(n, v);
+        // Lobes punctual lights reach: reflection; a thin sheet's transmission (not a hole's).
+        int lobes = CG_BSDF_DIFFUSE | CG_BSDF_GLOSSY;
+        if (!lambertian && b.thickness <= 0.0 && b.ior != 1.0)
+            lobes |= CG_BSDF_TRANSMISSION;
         for (uint i = 0u; i < cg_light_count(); i++) {
             CgLightSample s = cg_light_sample(cg_lights[i], position.xyz);
-            if (dot(n, s.to_light) <= 0.0)
+            float nl = dot(n, s.to_light);
+            if (lambertian || nv <= 0.0) {
+                if (nl <= 0.0)
+                    continue;
+                float visibility = cg_shadow_visibility(shadow_map, int(i), position.xyz, n);
+                result += visibility * cg_lambert_radiance(albedo.rgb, n, s);
+                continue;
+            }
+            if (nl == 0.0 || (nl < 0.0 && (lobes & CG_BSDF_TRANSMISSION) == 0))
                 continue;
             float visibility = cg_shadow_visibility(shadow_map, int(i), position.xyz, n);
-            result += visibility * cg_lambert_radiance(albedo, n, s);
+            // eta = ior: the camera is outside (only a solid's Fresnel from inside uses it).
+            result += visibility * s.irradiance * cg_bsdf_eval(b, n, v, s.to_light, b.ior, lobes);
         }
     }
     imageStore(radiance, pixel, vec4(result, 1.0));

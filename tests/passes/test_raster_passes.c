@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "sdk/builtin.h"
+#include "cg/bsdf.h"
 #include "cg/error.h"
 #include "cg/graphfile.h"
 #include "cg/image.h"
@@ -439,6 +440,328 @@ test_composite_sums_inputs(void **state)
     assert_no_gl_errors(ctx);
 }
 
+static const char *const gbuffer_material_graph =
+    "{ \"version\": 1, \"passes\": { \"gbuf\": { \"type\": \"gbuffer\" } },"
+    "  \"outputs\": [ \"gbuf.position\", \"gbuf.normal\", \"gbuf.albedo\", \"gbuf.specular\", \"gbuf.transmission\","
+    "               \"gbuf.material\", \"gbuf.attenuation\" ] }";
+
+/* The G-buffer of a material with known factors holds the contract's values (gbuffer.c): rho =
+ * (1-m)(1-T) base, occlusion 1 + strength (occ - 1), F0 = mix(min(((ior-1)/(ior+1))^2 specColor, 1)
+ * specular, base, m), F90 = mix(specular, 1, m), tau = (1-m) T base and the ior, roughness,
+ * metallic, thickness x the instance's scale (world metres), sigma = -ln(colour)/distance; beside it
+ * a Lambertian material (cg_material_default's: specular 0) gives its albedo, F0 = F90 = 0 and
+ * transmission (0, 0, 0, 1.5), what direct_light and composite read as before. */
+static void
+test_gbuffer_material_outputs(void **state)
+{
+    cg_context *ctx = cg_test_gl_context(state);
+    fx_scene s;
+    fx_scene_init(&s);
+    int lambert = fx_add_material(&s, 0.3f, 0.5f, 0.7f);
+    int m = fx_add_material(&s, 0.8f, 0.6f, 0.4f);
+    cg_material *mat = &s.materials[m];
+    mat->metallic = 0.25f;
+    mat->roughness = 0.4f;
+    mat->transmission = 0.5f;
+    mat->ior = 1.4f;
+    mat->specular = 0.8f;
+    mat->specular_color[1] = 0.5f;
+    mat->thickness = 0.1f;
+    mat->attenuation_distance = 0.5f;
+    mat->attenuation_color[0] = 0.25f;
+    mat->occlusion_texture = 0;
+    mat->occlusion_strength = 0.5f;
+    static uint8_t occlusion[4] = { 128, 0, 0, 255 };
+    s.textures[0] = (cg_texture){ .name = "occlusion", .width = 1, .height = 1, .rgba = occlusion };
+    s.scene.texture_count = 1;
+    fx_add_quad(&s, 2, 0.0f, -0.75f, -0.05f, -0.5f, 0.5f, lambert);
+    fx_add_quad(&s, 2, 0.0f, 0.025f, 0.375f, -0.25f, 0.25f, m);
+    /* The second quad twice as large in the world: its thickness too. */
+    for (int k = 0; k < 3; k++)
+        s.instances[1].world[5 * k] = 2.0f;
+    fx_scene_finish(&s);
+    cg_view view;
+    fx_view_look_at((float[3]){ 0, 0, 3 }, (float[3]){ 0, 0, 0 }, up_y, 60.0f, SIZE, SIZE, &view);
+    fx_runner r;
+    fx_run(&r, &s, &view, gbuffer_material_graph, NULL);
+    float *out[6];
+    static const char *const names[6] = { "gbuf.position", "gbuf.albedo", "gbuf.specular", "gbuf.transmission",
+                                          "gbuf.material", "gbuf.attenuation" };
+    for (int i = 0; i < 6; i++)
+        out[i] = cg_test_read_texture(fg_graph_texture(r.graph, names[i]), 0, NULL, NULL, NULL);
+
+    int x, y;
+    fx_pixel_of(&view, (float[3]){ 0.4f, 0.0f, 0.0f }, &x, &y);
+    assert_float_equal(texel(out[0], SIZE, x, y)[3], 1.0, 0.0);
+    const double base[3] = { 0.8, 0.6, 0.4 }, spec_color[3] = { 1.0, 0.5, 1.0 };
+    double metal = 0.25, trans = 0.5, specular = 0.8, r_ior = 0.4 / 2.4;
+    for (int c = 0; c < 3; c++) {
+        double rho = (1 - metal) * (1 - trans) * base[c];
+        double f0_d = fmin(r_ior * r_ior * spec_color[c], 1.0) * specular;
+        double f0 = f0_d + (base[c] - f0_d) * metal;
+        double tau = (1 - metal) * trans * base[c];
+        assert_float_equal(texel(out[1], SIZE, x, y)[c], rho, 1e-3 * rho);
+        assert_float_equal(texel(out[2], SIZE, x, y)[c], f0, 1e-3 * f0);
+        assert_float_equal(texel(out[3], SIZE, x, y)[c], tau, 1e-3 * tau);
+    }
+    assert_float_equal(texel(out[1], SIZE, x, y)[3], 1.0 + 0.5 * (128.0 / 255.0 - 1.0), 1e-3);
+    assert_float_equal(texel(out[2], SIZE, x, y)[3], specular + (1 - specular) * metal, 1e-3);
+    assert_float_equal(texel(out[3], SIZE, x, y)[3], 1.4, 1e-3);
+    assert_float_equal(texel(out[4], SIZE, x, y)[0], 0.4, 1e-3);
+    assert_float_equal(texel(out[4], SIZE, x, y)[1], 0.25, 1e-3);
+    assert_float_equal(texel(out[4], SIZE, x, y)[2], 0.2, 1e-3);   /* 0.1 mesh units x 2 */
+    assert_float_equal(texel(out[4], SIZE, x, y)[3], 1.0, 0.0);
+    assert_float_equal(texel(out[5], SIZE, x, y)[0], -log(0.25) / 0.5, 1e-3 * -log(0.25) / 0.5);
+    assert_float_equal(texel(out[5], SIZE, x, y)[1], 0.0, 0.0);
+    assert_float_equal(texel(out[5], SIZE, x, y)[3], 1.0, 0.0);
+
+    fx_pixel_of(&view, (float[3]){ -0.4f, 0.0f, 0.0f }, &x, &y);
+    const float lambert_albedo[3] = { 0.3f, 0.5f, 0.7f };
+    for (int c = 0; c < 3; c++) {
+        /* Bit for bit what the Lambertian G-buffer held: the half float of the base colour. */
+        assert_float_equal(texel(out[1], SIZE, x, y)[c], lambert_albedo[c], 5e-4);
+        assert_float_equal(texel(out[2], SIZE, x, y)[c], 0.0, 0.0);
+        assert_float_equal(texel(out[3], SIZE, x, y)[c], 0.0, 0.0);
+    }
+    assert_float_equal(texel(out[1], SIZE, x, y)[3], 1.0, 0.0);
+    assert_float_equal(texel(out[2], SIZE, x, y)[3], 0.0, 0.0);
+    assert_float_equal(texel(out[3], SIZE, x, y)[3], 1.5, 0.0);
+    assert_float_equal(texel(out[4], SIZE, x, y)[0], 1.0, 0.0);
+    for (int i = 0; i < 6; i++)
+        free(out[i]);
+    fx_runner_free(&r);
+    assert_no_gl_errors(ctx);
+}
+
+/* A normal map bends the normal in the tangent frame (glTF 3.9.3: T, B = w N x T, N; xy x scale);
+ * alphaMode MASK leaves holes below the cutoff (the quad behind shows through); a single-sided
+ * material's back face is not seen, a double-sided one's is, its normal turned to the viewer. */
+static void
+test_gbuffer_normal_map_mask_and_sides(void **state)
+{
+    cg_context *ctx = cg_test_gl_context(state);
+    fx_scene s;
+    fx_scene_init(&s);
+    int bumpy = fx_add_material(&s, 1.0f, 1.0f, 1.0f);
+    s.materials[bumpy].normal_texture = 0;
+    s.materials[bumpy].normal_scale = 0.5f;
+    int masked = fx_add_material(&s, 1.0f, 1.0f, 1.0f);
+    s.materials[masked].alpha_mode = CG_ALPHA_MASK;
+    s.materials[masked].alpha_cutoff = 0.5f;
+    s.materials[masked].base_color_texture = 1;
+    int one_sided = fx_add_material(&s, 1.0f, 1.0f, 1.0f);
+    s.materials[one_sided].double_sided = false;
+    static uint8_t normal_texel[4] = { 200, 90, 220, 255 };
+    static uint8_t alpha_texels[16] = { 255, 255, 255, 0, 255, 255, 255, 0, 255, 255, 255, 255, 255, 255, 255, 255 };
+    s.textures[0] = (cg_texture){ .name = "normal", .width = 1, .height = 1, .rgba = normal_texel };
+    s.textures[1] = (cg_texture){ .name = "alpha", .width = 4, .height = 1, .rgba = alpha_texels };
+    s.scene.texture_count = 2;
+    fx_add_quad(&s, 2, 0.0f, -1.0f, -0.1f, -1.0f, 1.0f, bumpy);        /* left, facing +z */
+    static float tangents[16] = { 1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1 };
+    s.meshes[0].tangents = tangents;
+    fx_add_quad(&s, 2, 0.0f, 0.1f, 1.0f, -1.0f, 1.0f, masked);         /* right, u along x */
+    fx_add_quad(&s, 2, -1.0f, -2.0f, 2.0f, -2.0f, 2.0f, 0);            /* behind both */
+    fx_scene_finish(&s);
+    cg_view view;
+    fx_view_look_at((float[3]){ 0, 0, 3 }, (float[3]){ 0, 0, 0 }, up_y, 60.0f, SIZE, SIZE, &view);
+    fx_runner r;
+    fx_run(&r, &s, &view, gbuffer_material_graph, NULL);
+    float *position = cg_test_read_texture(fg_graph_texture(r.graph, "gbuf.position"), 0, NULL, NULL, NULL);
+    float *normal = cg_test_read_texture(fg_graph_texture(r.graph, "gbuf.normal"), 0, NULL, NULL, NULL);
+
+    int x, y;
+    fx_pixel_of(&view, (float[3]){ -0.55f, 0.0f, 0.0f }, &x, &y);
+    double m[3];
+    for (int c = 0; c < 3; c++)
+        m[c] = normal_texel[c] / 255.0 * 2.0 - 1.0;
+    m[0] *= 0.5, m[1] *= 0.5;
+    double len = sqrt(m[0] * m[0] + m[1] * m[1] + m[2] * m[2]);
+    /* T = +x, N = +z, B = N x T = +y. */
+    for (int c = 0; c < 3; c++)
+        assert_float_equal(texel(normal, SIZE, x, y)[c], m[c] / len, 2e-3);
+    /* The masked quad: x = 0.1 + 0.9 u; texels 0 and 1 have alpha 0, 2 and 3 alpha 1, so between
+     * the centres of 0 and 1 (u 0.125..0.375) the filtered alpha is 0: a hole, the quad behind shows;
+     * between those of 2 and 3 it is 1. */
+    fx_pixel_of(&view, (float[3]){ 0.1f + 0.9f * 0.25f, 0.0f, 0.0f }, &x, &y);
+    assert_float_equal(texel(position, SIZE, x, y)[2], -1.0, 1e-4);
+    fx_pixel_of(&view, (float[3]){ 0.1f + 0.9f * 0.75f, 0.0f, 0.0f }, &x, &y);
+    assert_float_equal(texel(position, SIZE, x, y)[2], 0.0, 1e-4);
+    free(position);
+    free(normal);
+    fx_runner_free(&r);
+
+    /* From behind (-z): the single-sided quad is not there, the double-sided one is. */
+    s.meshes[1].material = one_sided;
+    fx_view_look_at((float[3]){ 0, 0, -3 }, (float[3]){ 0, 0, 0 }, up_y, 60.0f, SIZE, SIZE, &view);
+    fx_scene_finish(&s);
+    s.instances[2].world[14] = 2.0f;   /* the back quad to z = +1, behind both from here */
+    fx_run(&r, &s, &view, gbuffer_material_graph, NULL);
+    position = cg_test_read_texture(fg_graph_texture(r.graph, "gbuf.position"), 0, NULL, NULL, NULL);
+    normal = cg_test_read_texture(fg_graph_texture(r.graph, "gbuf.normal"), 0, NULL, NULL, NULL);
+    fx_pixel_of(&view, (float[3]){ 0.5f, 0.0f, 0.0f }, &x, &y);
+    assert_float_equal(texel(position, SIZE, x, y)[2], 1.0, 1e-4);     /* through the culled quad */
+    fx_pixel_of(&view, (float[3]){ -0.5f, 0.0f, 0.0f }, &x, &y);
+    assert_float_equal(texel(position, SIZE, x, y)[2], 0.0, 1e-4);
+    assert_true(texel(normal, SIZE, x, y)[2] < 0.0f);                   /* turned to the viewer */
+    free(position);
+    free(normal);
+    fx_runner_free(&r);
+    assert_no_gl_errors(ctx);
+}
+
+/* alphaMode MASK in the shadow map: the occluder's cut-out half casts no shadow. */
+static void
+test_shadow_map_mask(void **state)
+{
+    cg_context *ctx = cg_test_gl_context(state);
+    const float E = 3.0f;
+    fx_scene s;
+    floor_and_occluder(&s);
+    int masked = fx_add_material(&s, 1.0f, 1.0f, 1.0f);
+    s.materials[masked].alpha_mode = CG_ALPHA_MASK;
+    s.materials[masked].base_color_texture = 0;
+    /* u runs along z on a y quad (fx_add_quad), z = -0.25 + 0.5 u: texels 0 and 1 alpha 0, 2 and 3
+     * alpha 1 (as in test_gbuffer_normal_map_mask_and_sides). */
+    static uint8_t alpha_texels[16] = { 255, 255, 255, 0, 255, 255, 255, 0, 255, 255, 255, 255, 255, 255, 255, 255 };
+    s.textures[0] = (cg_texture){ .name = "alpha", .width = 4, .height = 1, .rgba = alpha_texels };
+    s.scene.texture_count = 1;
+    s.meshes[1].material = masked;
+    fx_add_light(&s, CG_LIGHT_DIRECTIONAL, E);
+    fx_scene_finish(&s);
+    cg_view view;
+    fx_view_look_at((float[3]){ 3, 4, 0 }, (float[3]){ 0, 0, 0 }, up_y, 60.0f, SIZE, SIZE, &view);
+    fx_runner r;
+    fx_run(&r, &s, &view, graph_with_filter("none"), NULL);
+    float *radiance = cg_test_read_texture(fg_graph_texture(r.graph, "direct.radiance"), 0, NULL, NULL, NULL);
+    int x, y;
+    /* Under u = 0.25 (alpha 0): lit; under u = 0.75 (alpha 1): shadowed. */
+    fx_pixel_of(&view, (float[3]){ 0.0f, 0.0f, -0.125f }, &x, &y);
+    assert_float_equal(texel(radiance, SIZE, x, y)[0], E / PI, 0.01 * E / PI);
+    fx_pixel_of(&view, (float[3]){ 0.0f, 0.0f, 0.125f }, &x, &y);
+    assert_float_equal(texel(radiance, SIZE, x, y)[0], 0.0, 1e-6);
+    free(radiance);
+    fx_runner_free(&r);
+    assert_no_gl_errors(ctx);
+}
+
+static const char *const glossy_graph =
+    "{ \"version\": 1, \"passes\": {"
+    "  \"gbuf\": { \"type\": \"gbuffer\" },"
+    "  \"direct\": { \"type\": \"direct_light\", \"inputs\": { \"position\": \"gbuf\", \"normal\": \"gbuf\","
+    "               \"albedo\": \"gbuf\", \"specular\": \"gbuf\", \"material\": \"gbuf\", \"transmission\": \"gbuf\" } } },"
+    "  \"outputs\": [ \"direct.radiance\", \"gbuf.position\", \"gbuf.normal\" ] }";
+
+/* GGX highlights: a floor of a dielectric (left), a gold metal (middle) and a rough thin glass sheet
+ * (right) under a directional light, seen near the mirror direction; at pixels across the highlight
+ * direct_light's radiance equals the C BSDF's f |n.l| E (cg_bsdf_eval, reflection lobes) at the
+ * pixel's G-buffer position and normal, v towards the camera. Light from below reaches the sheet
+ * through its transmission lobe. */
+static void
+test_direct_ggx(void **state)
+{
+    cg_context *ctx = cg_test_gl_context(state);
+    const float E = 2.0f;
+    fx_scene s;
+    fx_scene_init(&s);
+    int dielectric = fx_add_material(&s, 0.5f, 0.3f, 0.2f);
+    s.materials[dielectric].roughness = 0.3f;
+    s.materials[dielectric].specular = 1.0f;
+    int gold = fx_add_material(&s, 1.0f, 0.78f, 0.34f);
+    s.materials[gold].metallic = 1.0f;
+    s.materials[gold].roughness = 0.45f;
+    s.materials[gold].specular = 1.0f;
+    int glass = fx_add_material(&s, 1.0f, 1.0f, 1.0f);
+    s.materials[glass].transmission = 1.0f;
+    s.materials[glass].roughness = 0.5f;
+    s.materials[glass].specular = 1.0f;
+    /* Strips along z (a y quad's first span), side by side in x (its second). */
+    fx_add_quad(&s, 1, 0.0f, -2.0f, 2.0f, -3.0f, -1.0f, dielectric);
+    fx_add_quad(&s, 1, 0.0f, -2.0f, 2.0f, -1.0f, 1.0f, gold);
+    fx_add_quad(&s, 1, 0.0f, -2.0f, 2.0f, 1.0f, 3.0f, glass);
+    cg_light *sun = fx_add_light(&s, CG_LIGHT_DIRECTIONAL, E);
+    sun->direction[0] = 0.0f;
+    sun->direction[1] = -0.8f;
+    sun->direction[2] = 0.6f;     /* travels down and towards +z: the mirror ray goes on to +z */
+    fx_scene_finish(&s);
+    const float eye[3] = { 0.0f, 2.5f, 2.0f };
+    cg_view view;
+    fx_view_look_at(eye, (float[3]){ 0, 0, 0 }, up_y, 90.0f, SIZE, SIZE, &view);
+    fx_runner r;
+    fx_run(&r, &s, &view, glossy_graph, NULL);
+    float *radiance = cg_test_read_texture(fg_graph_texture(r.graph, "direct.radiance"), 0, NULL, NULL, NULL);
+    float *position = cg_test_read_texture(fg_graph_texture(r.graph, "gbuf.position"), 0, NULL, NULL, NULL);
+    float *normal = cg_test_read_texture(fg_graph_texture(r.graph, "gbuf.normal"), 0, NULL, NULL, NULL);
+    float len = sqrtf(0.64f + 0.36f);
+    const float l[3] = { 0.0f, 0.8f / len, -0.6f / len };
+    /* The mirror ray of the eye meets the floor at z = 2 - 2.5 x 0.6/0.8 = 0.125. */
+    const float points[][3] = { { 0.0f, 0.0f, 0.125f }, { 0.4f, 0.0f, -0.3f }, { -0.3f, 0.0f, 0.5f },
+                                { -1.5f, 0.0f, 0.1f }, { -2.0f, 0.0f, -0.5f }, { 1.5f, 0.0f, 0.1f } };
+    double highlight = 0.0;
+    for (size_t i = 0; i < sizeof points / sizeof points[0]; i++) {
+        int x, y;
+        fx_pixel_of(&view, points[i], &x, &y);
+        const float *pos = texel(position, SIZE, x, y);
+        assert_float_equal(pos[3], 1.0, 0.0);
+        int mat = pos[0] < -1.0f ? dielectric : pos[0] < 1.0f ? gold : glass;
+        const cg_material *m = &s.materials[mat];
+        cg_bsdf b;
+        cg_bsdf_from_material(m, m->base_color, m->metallic, m->roughness, m->transmission, &b);
+        float v[3] = { eye[0] - pos[0], eye[1] - pos[1], eye[2] - pos[2] };
+        float vl = sqrtf(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+        for (int k = 0; k < 3; k++)
+            v[k] /= vl;
+        float n[3] = { texel(normal, SIZE, x, y)[0], texel(normal, SIZE, x, y)[1], texel(normal, SIZE, x, y)[2] };
+        float f[3];
+        cg_bsdf_eval(&b, n, v, l, b.ior, CG_BSDF_DIFFUSE | CG_BSDF_GLOSSY, f);
+        for (int c = 0; c < 3; c++) {
+            double expected = (double)f[c] * E;
+            assert_float_equal(texel(radiance, SIZE, x, y)[c], expected, 0.01 * expected + 1e-6);
+        }
+        highlight = fmax(highlight, texel(radiance, SIZE, x, y)[1] / (E / PI));
+    }
+    /* The grid reaches the highlights: well above what a white Lambertian floor would return. */
+    print_message("# brightest sample: %.2f x E/pi\n", highlight);
+    assert_true(highlight > 1.5);
+    free(radiance);
+    free(position);
+    free(normal);
+    fx_runner_free(&r);
+
+    /* The sun from below: the dielectric and gold floors are dark, the thin sheet glows through its
+     * GGX transmission lobe (cg_bsdf_eval's transmission at l below the sheet). */
+    sun->direction[1] = 0.8f;
+    fx_run(&r, &s, &view, glossy_graph, NULL);
+    radiance = cg_test_read_texture(fg_graph_texture(r.graph, "direct.radiance"), 0, NULL, NULL, NULL);
+    position = cg_test_read_texture(fg_graph_texture(r.graph, "gbuf.position"), 0, NULL, NULL, NULL);
+    normal = cg_test_read_texture(fg_graph_texture(r.graph, "gbuf.normal"), 0, NULL, NULL, NULL);
+    const float below[3] = { 0.0f, -0.8f / len, -0.6f / len };
+    for (int i = 0; i < 2; i++) {
+        int x, y;
+        fx_pixel_of(&view, (float[3]){ i == 0 ? -1.5f : 0.0f, 0.0f, 0.0f }, &x, &y);
+        assert_float_equal(texel(radiance, SIZE, x, y)[0], 0.0, 0.0);
+    }
+    int x, y;
+    fx_pixel_of(&view, (float[3]){ 1.5f, 0.0f, 0.1f }, &x, &y);
+    const float *pos = texel(position, SIZE, x, y);
+    const cg_material *m = &s.materials[glass];
+    cg_bsdf b;
+    cg_bsdf_from_material(m, m->base_color, m->metallic, m->roughness, m->transmission, &b);
+    float v[3] = { eye[0] - pos[0], eye[1] - pos[1], eye[2] - pos[2] };
+    float vl = sqrtf(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    for (int k = 0; k < 3; k++)
+        v[k] /= vl;
+    float n[3] = { texel(normal, SIZE, x, y)[0], texel(normal, SIZE, x, y)[1], texel(normal, SIZE, x, y)[2] };
+    float f[3];
+    cg_bsdf_eval(&b, n, v, below, b.ior, CG_BSDF_ALL_LOBES, f);
+    assert_true(f[0] > 0.0f);
+    assert_float_equal(texel(radiance, SIZE, x, y)[0], f[0] * E, 0.01 * f[0] * E);
+    free(radiance);
+    free(position);
+    free(normal);
+    fx_runner_free(&r);
+    assert_no_gl_errors(ctx);
+}
+
 /* The parameter tables drive validation: a shadow map for a light the scene lacks, or for
  * a point light, is refused when the graph compiles. */
 static void
@@ -486,6 +809,10 @@ main(void)
         cmocka_unit_test(test_direct_spot_light),
         cmocka_unit_test(test_composite_sums_inputs),
         cmocka_unit_test(test_shadow_map_refuses_bad_light),
+        cmocka_unit_test(test_gbuffer_material_outputs),
+        cmocka_unit_test(test_gbuffer_normal_map_mask_and_sides),
+        cmocka_unit_test(test_shadow_map_mask),
+        cmocka_unit_test(test_direct_ggx),
     };
     return cmocka_run_group_tests(tests, cg_test_gl_setup, cg_test_gl_teardown);
 }
