@@ -82,7 +82,7 @@ vec3
 outgoing_radiance()
 {
     vec3 n = normalize(gs_normal);
-    vec3 albedo = cg_material_albedo(cg_material_index, gs_texcoord).rgb;
+    vec3 albedo = cg_material_diffuse(cg_material_index, gs_texcoord);
     vec3 radiance = cg_material_emissive(cg_material_index, gs_texcoord);
     for (uint i = 0u; i < cg_light_count(); i++) {
         CgLightSample s = cg_light_sample(cg_lights[i], gs_world);
@@ -99,6 +99,9 @@ outgoing_radiance()
 void
 main()
 {
+    // alphaMode MASK: below the cutoff the surface is not there, for the voxels too (glTF 3.9.4).
+    if (cg_material_masked_out(cg_material_index, gs_texcoord))
+        return;
     ivec2 column = ivec2(floor(gl_FragCoord.xy));
     vec3 a = gs_tri_a, b = gs_tri_b, c = gs_tri_c;
     // Depth range of the triangle's plane over this pixel's square; the dominant axis
@@ -121,7 +124,10 @@ main()
 
 #ifdef SURFACE
     vec3 normal = normalize(gs_normal);
-    vec3 albedo = clamp(cg_material_albedo(cg_material_index, gs_texcoord).rgb, 0.0, 1.0);
+    // The diffuse weight rho (cg_material_diffuse): a metal's voxel holds no diffuse light and a
+    // glass's none either (its transmission is not diffuse), while its coverage (the count and the
+    // shares) still makes it opaque: with caustics off, glass and metal shadow fully (DESIGN.md).
+    vec3 albedo = clamp(cg_material_diffuse(cg_material_index, gs_texcoord), 0.0, 1.0);
     vec3 emission = max(cg_material_emissive(cg_material_index, gs_texcoord), vec3(0.0));
     // The triangle's own plane (in volume axes) for the coverage: the voxels it touches form a
     // slab of its geometric normal, whatever the shading normal says.
