@@ -1,10 +1,14 @@
-/* composite: the final image. hdr = direct + albedo x indirect + emissive (linear
- * radiance, RGBA32F, what .exr files hold); ldr = hdr x 2^exposure, tonemapped, sRGB-encoded
- * (RGBA8 holding sRGB-encoded values, what .png files hold).
+/* composite: the final image. hdr = direct + albedo.rgb x indirect x albedo.a + reflection +
+ * refraction + emissive (linear radiance, RGBA32F, what .exr files hold); ldr = hdr x 2^exposure,
+ * tonemapped, sRGB-encoded (RGBA8 holding sRGB-encoded values, what .png files hold).
  *
  * Convention with the gather passes (docs/passes.md): the `indirect` input holds the
- * gathered incident radiance integral divided by pi, so that the outgoing Lambertian
- * radiance is albedo x indirect (VCT paper 3.2: the diffuse cones' weighted sum).
+ * gathered incident radiance integral divided by pi (x the diffuse lobe's Fresnel share where the
+ * gather has the material), so that the outgoing diffuse radiance is albedo x indirect (VCT paper
+ * 3.2: the diffuse cones' weighted sum), darkened by the G-buffer's occlusion (albedo.a: the glTF
+ * occlusion texture darkens indirect light only; 1 = none). `reflection` and `refraction` (a cone
+ * gather's specular and refracted cones, VCT paper 3.2.2) are radiance already weighted by the
+ * BSDF, added as they are; both optional, so graphs without them are unchanged.
  */
 #include <math.h>
 #include <stdlib.h>
@@ -38,17 +42,19 @@ composite_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
 {
     const fg_resource_desc *direct =
         fg_declare_input(decl, "direct", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, true);
-    const fg_resource_desc *inputs[3] = {
+    const fg_resource_desc *inputs[5] = {
         fg_declare_input(decl, "indirect", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, false),
         fg_declare_input(decl, "albedo", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, false),
         fg_declare_input(decl, "emissive", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, false),
+        fg_declare_input(decl, "reflection", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, false),
+        fg_declare_input(decl, "refraction", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, false),
     };
-    static const char *const names[3] = { "indirect", "albedo", "emissive" };
+    static const char *const names[5] = { "indirect", "albedo", "emissive", "reflection", "refraction" };
     if (inputs[0] && !inputs[1])
         return cg_fail(err, CG_ERR_GRAPH_MISSING_INPUT,
                        "pass '%s': input 'indirect' needs 'albedo' (outgoing = albedo x indirect)",
                        fg_pass_name(pass));
-    for (int i = 0; i < 3; i++)
+    for (int i = 0; i < 5; i++)
         if (direct && inputs[i] && !same_size(direct, inputs[i]))
             return cg_fail(err, CG_ERR_GRAPH_INCOMPATIBLE,
                            "pass '%s': input '%s' is %dx%d, input 'direct' %dx%d; composite reads "
@@ -76,6 +82,8 @@ composite_execute(fg_pass *pass, composite_state *st, cg_error *err)
     GLuint direct = fg_texture(pass, "direct");
     bool has_indirect = fg_input_present(pass, "indirect");
     bool has_emissive = fg_input_present(pass, "emissive");
+    bool has_reflection = fg_input_present(pass, "reflection");
+    bool has_refraction = fg_input_present(pass, "refraction");
 
     glUseProgram(st->program);
     /* Absent inputs are never read (the flags say so); a valid texture stays bound anyway. */
@@ -83,8 +91,12 @@ composite_execute(fg_pass *pass, composite_state *st, cg_error *err)
     glBindTextureUnit(1, has_indirect ? fg_texture(pass, "indirect") : direct);
     glBindTextureUnit(2, has_indirect ? fg_texture(pass, "albedo") : direct);
     glBindTextureUnit(3, has_emissive ? fg_texture(pass, "emissive") : direct);
+    glBindTextureUnit(4, has_reflection ? fg_texture(pass, "reflection") : direct);
+    glBindTextureUnit(5, has_refraction ? fg_texture(pass, "refraction") : direct);
     glUniform1i(0, has_indirect);
     glUniform1i(1, has_emissive);
+    glUniform1i(4, has_reflection);
+    glUniform1i(5, has_refraction);
     glUniform1f(2, exp2f(fg_param_float(pass, "exposure")));
     glUniform1i(3, fg_param_enum(pass, "tonemap"));
     glBindImageTexture(0, fg_texture(pass, "hdr"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
@@ -95,7 +107,8 @@ composite_execute(fg_pass *pass, composite_state *st, cg_error *err)
 }
 
 CGP_PASS(composite, CGP_PARAMS(composite_params),
-         "The final image: hdr = direct + albedo x indirect + emissive, linear radiance "
-         "(RGBA32F); ldr = hdr x 2^exposure, tonemapped and sRGB-encoded (RGBA8). The optional "
-         "indirect input holds the gathered incident radiance integral over pi, so that "
-         "outgoing = albedo x indirect.");
+         "The final image: hdr = direct + albedo x indirect x occlusion + reflection + refraction + "
+         "emissive, linear radiance (RGBA32F); ldr = hdr x 2^exposure, tonemapped and sRGB-encoded "
+         "(RGBA8). The optional indirect input holds the gathered incident radiance integral over pi, "
+         "so that outgoing = albedo x indirect (occlusion: albedo's alpha); the optional reflection and "
+         "refraction inputs (a cone gather's specular and refracted cones) are weighted radiance.");

@@ -1,6 +1,8 @@
 /* Diffuse cone sets; see sdk/cone.h and docs/vct.md for the weight derivation. */
 #include "sdk/cone.h"
 
+#include "cg/bsdf.h"
+
 #include "sdk/pass.h"
 #include "sdk/sampler.h"
 
@@ -274,13 +276,74 @@ cgp_gather_bind_volume(const fg_pass *pass, cgp_volume_model model, GLuint sampl
     }
 }
 
+static const char *const material_names[5] = {"albedo", "specular", "material", "transmission", "attenuation"};
+static const GLuint material_units[5] = {CG_UNIT_ALBEDO, CG_UNIT_SPECULAR, CG_UNIT_MATERIAL, CG_UNIT_TRANSMISSION,
+                                         CG_UNIT_ATTENUATION};
+
+bool
+cgp_gather_declare_material(fg_pass *pass, fg_declare *decl, bool *present, cg_error *err)
+{
+    int count = 0;
+    for (int i = 0; i < 5; i++)
+        count += fg_declare_input(decl, material_names[i], FG_TEXTURE_2D, FG_ACCESS_SAMPLED, false) != NULL;
+    *present = count == 5;
+    if (count != 0 && count != 5)
+        return cg_fail(err, CG_ERR_GRAPH_MISSING_INPUT,
+                       "pass '%s': the material inputs albedo, specular, material, transmission and attenuation go "
+                       "together (a gbuffer pass's outputs); %d of 5 are connected", fg_pass_name(pass), count);
+    return true;
+}
+
+/* ---- the split-sum table (cgp_brdf_table_fill) */
+
+void
+cgp_brdf_table_fill(int size, float *rgba)
+{
+    /* The integrals are cg/bsdf.h's, the path tracer's BSDF: one definition of the lobes. */
+    for (int i = 0; i < size; i++) {
+        float nv = ((float)i + 0.5f) / (float)size, keep = 0.0f, c = 0.0f;
+        cg_bsdf_diffuse_albedo_terms(nv, &keep, &c);
+        for (int j = 0; j < size; j++) {
+            float roughness = ((float)j + 0.5f) / (float)size, scale = 0.0f, bias = 0.0f;
+            cg_bsdf_specular_albedo_terms(roughness * roughness, nv, &scale, &bias);
+            float *t = &rgba[4 * ((size_t)j * (size_t)size + (size_t)i)];
+            t[0] = scale;
+            t[1] = bias;
+            t[2] = c;
+            t[3] = 1.0f;
+        }
+    }
+}
+
+GLuint
+cgp_brdf_table_texture(void *state)
+{
+    static float table[4 * CGP_BRDF_TABLE_SIZE * CGP_BRDF_TABLE_SIZE];
+    static bool made;
+    if (!made) {
+        cgp_brdf_table_fill(CGP_BRDF_TABLE_SIZE, table);
+        made = true;
+    }
+    GLuint tex = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &tex);
+    glTextureStorage2D(tex, 1, GL_RGBA32F, CGP_BRDF_TABLE_SIZE, CGP_BRDF_TABLE_SIZE);
+    glTextureSubImage2D(tex, 0, 0, 0, CGP_BRDF_TABLE_SIZE, CGP_BRDF_TABLE_SIZE, GL_RGBA, GL_FLOAT, table);
+    glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(tex, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    return cgp_own(state, CGP_GL_TEXTURE, tex);
+}
+
 bool
 cgp_gather_prepare(void *state, const fg_pass *pass, cgp_gather *g, const char *shader, const char *defines,
                    size_t gather_bytes, cg_error *err)
 {
     g->model = cgp_gather_volume_model(pass);
+    g->material = fg_resource(pass, "specular") && fg_resource(pass, "material");
     char all[1024];
-    snprintf(all, sizeof all, "%s%s", defines ? defines : "", cgp_gather_volume_define(g->model));
+    snprintf(all, sizeof all, "%s%s%s", defines ? defines : "", cgp_gather_volume_define(g->model),
+             g->material ? "#define CG_GATHER_MATERIAL\n" : "");
     if (!cgp_cone_set_of_pass(pass, &g->set, err) || !cgp_compute_program(state, shader, all, &g->program, err))
         return false;
     g->volume_sampler = cgp_sampler_volume(state);
@@ -288,6 +351,8 @@ cgp_gather_prepare(void *state, const fg_pass *pass, cgp_gather *g, const char *
     g->cone_block = cgp_uniform_buffer(state, sizeof(cg_cone_set_block));
     g->gather_block = cgp_uniform_buffer(state, gather_bytes);
     g->state = state;
+    if (g->material)
+        g->brdf_table = cgp_brdf_table_texture(state);
     cgp_sky_prepare(state, &g->sky);
     return true;
 }
@@ -313,6 +378,11 @@ cgp_gather_begin(const fg_pass *pass, cgp_gather *g, const void *block, size_t g
     }
     glBindTextureUnit(CG_UNIT_POSITION, fg_texture(pass, "position"));
     glBindTextureUnit(CG_UNIT_NORMAL, fg_texture(pass, "normal"));
+    if (g->material) {
+        for (int i = 0; i < 5; i++)
+            glBindTextureUnit(material_units[i], fg_texture(pass, material_names[i]));
+        glBindTextureUnit(CG_UNIT_BRDF_TABLE, g->brdf_table);
+    }
     glBindImageTexture(0, fg_texture(pass, "radiance"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     return true;
 }

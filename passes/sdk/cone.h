@@ -107,6 +107,8 @@ const char *cgp_gather_volume_define(cgp_volume_model model);
  * `radiance` (RGBA32F) at image unit 0. */
 typedef struct cgp_gather {
     cgp_cone_set set;
+    bool material;          /* the G-buffer's material inputs are connected (cgp_gather_declare_material) */
+    GLuint brdf_table;      /* with `material`: the split-sum table at CG_UNIT_BRDF_TABLE */
     cgp_volume_model model;
     GLuint program;
     GLuint volume_sampler;
@@ -131,6 +133,34 @@ bool cgp_gather_begin(const fg_pass *pass, cgp_gather *g, const void *block, siz
 /* Binds the model's volumes beside `volume` (the directional chains at CG_UNIT_ANISO.., or `sides`
  * and `normals` at CG_UNIT_SIDES and CG_UNIT_NORMALS) with `sampler`; with unbind, unbinds them. */
 void cgp_gather_bind_volume(const fg_pass *pass, cgp_volume_model model, GLuint sampler, bool unbind);
+/* ---- the material terms of a gather (common/gather.glsl, CG_GATHER_MATERIAL)
+ *
+ * The G-buffer's material outputs as optional inputs of a gather: `albedo` (rho, occlusion),
+ * `specular` (F0, F90), `material` (roughness, metallic, thickness), `transmission` (tau, ior) and
+ * `attenuation` (sigma), docs/passes.md. They come all five or none (CG_ERR_GRAPH_MISSING_INPUT
+ * otherwise); with them the program gets CG_GATHER_MATERIAL and cgp_gather_begin binds them and the
+ * split-sum table. Returns whether they are connected. */
+bool cgp_gather_declare_material(fg_pass *pass, fg_declare *decl, bool *present, cg_error *err);
+
+/* The split-sum table (Karis 2013, "Real Shading in Unreal Engine 4", eq. 8 and its environment BRDF)
+ * of the GGX lobe with height-correlated Smith visibility and Schlick Fresnel (the glTF spec's
+ * Appendix B), size x size texels, texel (i, j) at n.v = (i + 0.5) / size and perceptual roughness
+ * (j + 0.5) / size (alpha = roughness^2), RGBA:
+ *   r = A(n.v, alpha) = integral of D V (1 - (1 - v.h)^5) n.l dl,
+ *   g = B(n.v, alpha) = integral of D V (1 - v.h)^5 n.l dl,
+ *     so that the lobe's directional albedo is F0 A + F90 B;
+ *   b = c(n.v) = (1/pi) integral of (1 - v.h)^5 n.l dl, the cosine-weighted mean of (1 - v.h)^5 over
+ *     the Lambertian lobe, so that the diffuse lobe rho/pi (1 - F(v.h)) has the directional albedo
+ *     rho (1 - F0 - (F90 - F0) c);
+ *   a = 1.
+ * A and B are cg_bsdf_specular_albedo_terms, c is the b of cg_bsdf_diffuse_albedo_terms (cg/bsdf.h,
+ * the path tracer's BSDF: 64 x 64 stratified points each). */
+#define CGP_BRDF_TABLE_SIZE 32
+void cgp_brdf_table_fill(int size, float *rgba);
+/* The table of CGP_BRDF_TABLE_SIZE as an RGBA32F texture owned by `state` (linear, clamped),
+ * computed once per process. */
+GLuint cgp_brdf_table_texture(void *state);
+
 /* Dispatches over `radiance` and unbinds what cgp_gather_begin bound. */
 void cgp_gather_end(const fg_pass *pass);
 

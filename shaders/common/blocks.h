@@ -56,6 +56,14 @@
 #define CG_UNIT_SIDES 12                /* surface voxels (voxel_light): w beta, w delta, -, alpha_y */
 #define CG_UNIT_NORMALS 13              /* surface voxels (voxel_light): w N, alpha_z */
 #define CG_UNIT_OCCUPANCY 14            /* surface voxels: CG_UNIT_VOLUME's texture, one level a read */
+/* ---- texture units of a gather's material inputs (common/gather.glsl, CG_GATHER_MATERIAL): the
+ * G-buffer's material outputs (docs/passes.md, gbuffer) and the split-sum table (sdk/cone.h) */
+#define CG_UNIT_ALBEDO 15               /* rgb diffuse weight rho, a occlusion */
+#define CG_UNIT_SPECULAR 16             /* rgb F0, a F90 */
+#define CG_UNIT_MATERIAL 17             /* x roughness, y metallic, z thickness (m) */
+#define CG_UNIT_TRANSMISSION 18         /* rgb tau, a ior */
+#define CG_UNIT_ATTENUATION 19          /* rgb sigma (1/m) */
+#define CG_UNIT_BRDF_TABLE 20           /* the GGX directional-albedo table (cgp_brdf_table_fill) */
 
 /* The most cones a diffuse set holds (sdk/cone.h: CGP_CONE_MAX): the largest set, 26, rounded up to
  * a multiple of 4, as cell_width packs four cones per vec4. */
@@ -100,10 +108,10 @@
     M(vec4, march)        /* x step (fraction of the diameter), y start offset (xels), */        \
                           /* z max distance (m; <= 0: the maps' diagonal), w lod bias */
 
-/* cone_gather's specular and shadow cones; 48 bytes. */
+/* cone_gather's specular, refracted and shadow cones; 48 bytes. */
 #define CG_CONE_GATHER_BLOCK(M, A)                                                                \
     M(vec4, camera)       /* xyz: the camera's world position (the specular cone's view direction) */ \
-    M(vec4, tan_half)     /* x: specular cone, y: shadow cone */                                  \
+    M(vec4, tan_half)     /* x: specular cone without a material input (its roughness^2), y: shadow cone */ \
     M(ivec4, shadow)      /* x: index of the light the shadow cone points at */
 
 /* voxel_light's occupied voxels, std430: this header, then one uint per voxel (its level-0 index,

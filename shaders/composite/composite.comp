@@ -1,5 +1,5 @@
-// composite: direct + albedo x indirect + emissive as linear HDR radiance, and an
-// exposed, tonemapped, sRGB-encoded 8-bit image.
+// composite: direct + albedo x indirect x occlusion + reflection + refraction + emissive as linear
+// HDR radiance, and an exposed, tonemapped, sRGB-encoded 8-bit image.
 #version 450 core
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -8,6 +8,8 @@ layout(binding = 0) uniform sampler2D direct;
 layout(binding = 1) uniform sampler2D indirect;
 layout(binding = 2) uniform sampler2D albedo;
 layout(binding = 3) uniform sampler2D emissive;
+layout(binding = 4) uniform sampler2D reflection;
+layout(binding = 5) uniform sampler2D refraction;
 
 layout(binding = 0, rgba32f) uniform writeonly image2D hdr;
 layout(binding = 1, rgba8) uniform writeonly image2D ldr;
@@ -16,6 +18,8 @@ layout(location = 0) uniform int has_indirect;
 layout(location = 1) uniform int has_emissive;
 layout(location = 2) uniform float exposure_scale;   // 2^EV
 layout(location = 3) uniform int tonemap;            // 0 none, 1 reinhard, 2 aces
+layout(location = 4) uniform int has_reflection;
+layout(location = 5) uniform int has_refraction;
 
 #define TONEMAP_NONE 0
 #define TONEMAP_REINHARD 1
@@ -52,9 +56,17 @@ main()
         return;
     vec3 radiance = texelFetch(direct, pixel, 0).rgb;
     // The indirect input holds the gathered incident radiance integral E_i/pi such that
-    // the outgoing Lambertian radiance is albedo x indirect (docs/passes.md).
-    if (has_indirect != 0)
-        radiance += texelFetch(albedo, pixel, 0).rgb * texelFetch(indirect, pixel, 0).rgb;
+    // the outgoing Lambertian radiance is albedo x indirect (docs/passes.md); albedo's alpha is the
+    // occlusion texture's factor, which darkens indirect light only (1: none).
+    if (has_indirect != 0) {
+        vec4 a = texelFetch(albedo, pixel, 0);
+        radiance += a.rgb * texelFetch(indirect, pixel, 0).rgb * a.a;
+    }
+    // The specular and refracted cones' radiance, already weighted by the BSDF (cone_gather).
+    if (has_reflection != 0)
+        radiance += texelFetch(reflection, pixel, 0).rgb;
+    if (has_refraction != 0)
+        radiance += texelFetch(refraction, pixel, 0).rgb;
     if (has_emissive != 0)
         radiance += texelFetch(emissive, pixel, 0).rgb;
     imageStore(hdr, pixel, vec4(radiance, 1.0));

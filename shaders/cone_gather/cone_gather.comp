@@ -6,8 +6,16 @@
 // the incident radiance integral E_i / pi, which composite multiplies by the albedo. The
 // weights sum to 1 (passes/sdk/cone.c), so a uniform incident radiance L gathers to L.
 // Alpha holds the ambient visibility sum_k W_k (1 - a_k) (VCT paper 3.2.3: rough AO).
+// With the G-buffer's material (CG_GATHER_MATERIAL, common/gather.glsl) the sum is multiplied by
+// the diffuse lobe's share rho/pi (1 - F) leaves (cg_gather_diffuse_share; 1 for a Lambertian
+// material) and not traced where rho = 0 (metals, clear glass: composite multiplies it by rho).
 // Specular (3.2.2, with SPECULAR): one cone along the mirror direction, its aperture from
-// the roughness. Shadow (3.2.3, with SHADOW_CONE): one narrow cone towards a light; its
+// the roughness, weighted by the lobe's directional albedo F0 A + F90 B (split sum); none where
+// F0 = F90 = 0. Without the material: the parameter's roughness, weight 1.
+// Refraction (3.2.2, with REFRACTION and the material): one cone by Snell's law through both faces
+// of a solid, or straight on through a thin sheet, weighted (cg_gather_refraction_lobe); none where
+// tau = 0.
+// Shadow (3.2.3, with SHADOW_CONE): one narrow cone towards a light; its
 // transmittance 1 - a is a soft visibility.
 #version 450 core
 #include "common/cone_trace.glsl"
@@ -15,7 +23,10 @@
 #include "common/lights.glsl"
 
 #ifdef SPECULAR
-layout(binding = 1, rgba32f) writeonly uniform image2D u_specular;
+layout(binding = 1, rgba32f) writeonly uniform image2D u_reflection;
+#endif
+#ifdef REFRACTION
+layout(binding = 4, rgba32f) writeonly uniform image2D u_refraction;
 #endif
 #ifdef SHADOW_CONE
 layout(binding = 2, r16f) writeonly uniform image2D u_visibility;
@@ -26,6 +37,16 @@ layout(binding = 3, r32f) writeonly uniform image2D u_reads;
 
 // The cone set and march: cg_cone_set_block (common/cone_trace.glsl); the mirror and shadow cones:
 CG_UNIFORM_BLOCK(CgConeGather, cg_cone_gather_block, CG_BINDING_GATHER, CG_CONE_GATHER_BLOCK);
+
+// A material lobe's cone (common/gather.glsl), traced from the surface it leaves, the sky seen
+// through what it left open; rgb x the lobe's weight, a its coverage.
+vec4
+trace_lobe(CgVolume v, CgMarch march, float t_max, CgGatherLobe lobe)
+{
+    CgCone c = CgCone(lobe.origin, lobe.direction, lobe.tan_half, v.voxel_size, t_max, march.step, march.lod_bias);
+    vec4 traced = cg_sky_gather(cg_cone_trace_surface(cg_gather_volume, v, c, lobe.surface), c.direction, c.tan_half);
+    return vec4(traced.rgb * lobe.weight, traced.a);
+}
 
 void
 main()
@@ -38,26 +59,45 @@ main()
 #ifdef CG_CONE_COUNT_READS
     float diffuse_reads = 0.0;
 #endif
-    vec4 specular = vec4(0.0);
+    vec4 reflection = vec4(0.0), refraction = vec4(0.0);
     float visibility = 1.0;
     if (cg_gather_surface(pixel, position, n)) {
         CgVolume v = cg_volume();
         CgMarch march = cg_cone_march();
         float t_max = cg_cone_reach(v, march.max_distance);
         vec3 origin = cg_cone_origin(v, position, n, march.start_offset);
+        float offset = march.start_offset * v.voxel_size;
+        vec3 view = normalize(position - cg_cone_gather_block.camera.xyz);
         mat3 frame = cg_tangent_frame(n);
         // The surface every cone leaves: no sample may read its voxels (cg_cone_trace_surface).
-        vec4 surface = vec4(n, march.start_offset * v.voxel_size);
-        diffuse = cg_cone_gather_diffuse(cg_gather_volume, v, origin, frame, t_max, surface.w);
+        vec4 surface = vec4(n, offset);
+#ifdef CG_GATHER_MATERIAL
+        CgGatherMaterial m = cg_gather_material(pixel);
+        bool diffuse_lobe = any(greaterThan(m.rho, vec3(0.0)));
+#else
+        bool diffuse_lobe = true;
+#endif
+        if (diffuse_lobe)
+            diffuse = cg_cone_gather_diffuse(cg_gather_volume, v, origin, frame, t_max, surface.w);
 #ifdef CG_CONE_COUNT_READS
         diffuse_reads = cg_cone_reads;    // the diffuse cones' alone
 #endif
+#ifdef CG_GATHER_MATERIAL
+        diffuse.rgb *= cg_gather_diffuse_share(m, cg_gather_brdf(max(dot(n, -view), 0.0), m.roughness));
+#endif
 #ifdef SPECULAR
-        vec3 view = normalize(position - cg_cone_gather_block.camera.xyz);
-        CgCone mirror = CgCone(origin, reflect(view, n), cg_cone_gather_block.tan_half.x, v.voxel_size, t_max,
-                               march.step, march.lod_bias);
-        specular = cg_sky_gather(cg_cone_trace_surface(cg_gather_volume, v, mirror, surface), mirror.direction,
-                                 mirror.tan_half);
+#ifdef CG_GATHER_MATERIAL
+        CgGatherLobe mirror = cg_gather_reflection_lobe(m, position, n, view, offset);
+#else
+        CgGatherLobe mirror = CgGatherLobe(origin, reflect(view, n), cg_cone_gather_block.tan_half.x, surface, vec3(1.0));
+#endif
+        if (any(greaterThan(mirror.weight, vec3(0.0))))
+            reflection = trace_lobe(v, march, t_max, mirror);
+#endif
+#ifdef REFRACTION
+        CgGatherLobe through = cg_gather_refraction_lobe(m, position, n, view, offset);
+        if (any(greaterThan(through.weight, vec3(0.0))))
+            refraction = trace_lobe(v, march, t_max, through);
 #endif
 #ifdef SHADOW_CONE
         int light = cg_cone_gather_block.shadow.x;
@@ -71,7 +111,10 @@ main()
     }
     imageStore(cg_gather_radiance, pixel, diffuse);
 #ifdef SPECULAR
-    imageStore(u_specular, pixel, specular);
+    imageStore(u_reflection, pixel, reflection);
+#endif
+#ifdef REFRACTION
+    imageStore(u_refraction, pixel, refraction);
 #endif
 #ifdef SHADOW_CONE
     imageStore(u_visibility, pixel, vec4(visibility));

@@ -163,7 +163,7 @@ static const char gather_graph[] =
     " \"gather\": { \"type\": \"cone_gather\", \"params\": { \"cones\": %d, \"aperture\": %g,"
     "   \"specular\": true, \"shadow_cone\": true %s },"
     "   \"inputs\": { \"position\": \"gbuf\", \"normal\": \"gbuf\", \"volume\": \"mip.volume\", \"region\": \"vox.region\" } } },"
-    " \"outputs\": [ \"gather.radiance\", \"gather.specular\", \"gather.visibility\", \"gbuf.albedo\", \"gbuf.position\" ] }";
+    " \"outputs\": [ \"gather.radiance\", \"gather.reflection\", \"gather.visibility\", \"gbuf.albedo\", \"gbuf.position\" ] }";
 
 typedef struct gather_result {
     int pixels;         /* covered pixels */
@@ -196,7 +196,7 @@ run_gather(cg_context *ctx, const cg_scene *scene, int resolution, const char *v
     float *gathered = read_2d(&r, "gather.radiance", &w, &h);
     float *albedo = read_2d(&r, "gbuf.albedo", &w, &h);
     float *position = read_2d(&r, "gbuf.position", &w, &h);
-    float *specular = read_2d(&r, "gather.specular", &w, &h);
+    float *specular = read_2d(&r, "gather.reflection", &w, &h);
     float *visibility = read_2d(&r, "gather.visibility", &w, &h);
     gather_result g = {0};
     for (int i = 0; i < w * h; i++) {
