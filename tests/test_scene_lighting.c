@@ -1,6 +1,7 @@
 /* Whether a scene is lit, the default light, and skies written back as text
  * (core/scene/lighting.c). */
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "cg/scene.h"
@@ -32,6 +33,60 @@ what_lights_a_scene(void **state)
     assert_false(cg_sky_is_black(&sky));
     assert_cg_ok(cg_scene_set_sky(&s, &sky, &err), &err);
     assert_true(cg_scene_is_lit(&s));
+    cg_scene_free(&s);
+}
+
+/* Emitters light a scene when their radiance x area over all the surfaces' area reaches 1% of
+ * a white surface under the default sun: the furnace (a sphere of emitting walls) gives its
+ * radiance itself; a furnace that faint is not lit, and a small emitter among large walls is
+ * not, as ClearCoatTest's labels. */
+static void
+faint_emitters_do_not_light(void **state)
+{
+    (void)state;
+    cg_scene s;
+    cg_error err = { 0 };
+    assert_cg_ok(cg_scene_load("builtin:furnace?radiance=0.5", &s, &err), &err);
+    assert_true(cg_scene_emits(&s));
+    assert_float_equal(cg_scene_emitted_light(&s), 0.5, 1e-6);
+    assert_true(cg_scene_is_lit(&s));
+    cg_scene_free(&s);
+    assert_cg_ok(cg_scene_load("builtin:furnace?radiance=0.009", &s, &err), &err);
+    assert_true(cg_scene_emits(&s));
+    assert_true(CG_EMITTERS_MIN_LIGHT > 0.009 && CG_EMITTERS_MIN_LIGHT < 0.0096);
+    assert_false(cg_scene_is_lit(&s));
+    /* The same walls at 0.5, and a second instance of the sphere, not emitting, 30 times its
+     * size: the emitters' share of the area is 1/901. */
+    s.materials[s.meshes[0].material].emissive_strength *= 0.5f / 0.009f;
+    assert_true(cg_scene_is_lit(&s));
+    /* Grown by hand as the loaders do (cg_scene_free frees these arrays). */
+    s.materials = realloc(s.materials, sizeof *s.materials * (size_t)(s.material_count + 1));
+    s.meshes = realloc(s.meshes, sizeof *s.meshes * (size_t)(s.mesh_count + 1));
+    s.instances = realloc(s.instances, sizeof *s.instances * (size_t)(s.instance_count + 1));
+    assert_true(s.materials && s.meshes && s.instances);
+    cg_material *dark = &s.materials[s.material_count];
+    *dark = s.materials[s.meshes[0].material];
+    dark->emissive[0] = dark->emissive[1] = dark->emissive[2] = 0.0f;
+    cg_mesh *copy = &s.meshes[s.mesh_count];
+    *copy = s.meshes[0];
+    size_t vb = sizeof(float) * 3 * copy->vertex_count, ib = sizeof(uint32_t) * copy->index_count;
+    copy->positions = malloc(vb);
+    copy->normals = malloc(vb);
+    copy->indices = malloc(ib);
+    copy->texcoords = NULL;
+    copy->tangents = NULL;
+    memcpy(copy->positions, s.meshes[0].positions, vb);
+    memcpy(copy->normals, s.meshes[0].normals, vb);
+    memcpy(copy->indices, s.meshes[0].indices, ib);
+    copy->material = s.material_count++;
+    cg_instance *big = &s.instances[s.instance_count];
+    *big = s.instances[0];
+    big->mesh = s.mesh_count++;
+    s.instance_count++;
+    for (int k = 0; k < 3; k++)
+        big->world[5 * k] *= 30.0f;
+    assert_float_equal(cg_scene_emitted_light(&s), 0.5 / 901.0, 1e-6);
+    assert_false(cg_scene_is_lit(&s));
     cg_scene_free(&s);
 }
 
@@ -96,6 +151,7 @@ main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(what_lights_a_scene),
+        cmocka_unit_test(faint_emitters_do_not_light),
         cmocka_unit_test(default_light),
         cmocka_unit_test(sky_text_round_trip),
     };

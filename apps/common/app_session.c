@@ -59,8 +59,13 @@ app_light_scene(const char *tool, cg_scene *scene, const cg_sky *sky, const char
         if (!cg_scene_add_default_sun(scene, err) || !cg_scene_set_sky(scene, &fallback, err))
             return false;
         cg_sky_format(&fallback, text, sizeof text);
-        fprintf(stderr, "%s: scene %s has no light: added %s and a uniform sky (%s W/(m^2 sr)); "
-                "--no-default-light turns this off\n", tool, scene->name, sun, text);
+        char why[256] = "has no light";
+        if (cg_scene_emits(scene))
+            snprintf(why, sizeof why, "has no light but emissive surfaces too small or faint to light it (%.3g "
+                     "W/(m^2 sr) spread over its surfaces, below %.3g)", cg_scene_emitted_light(scene),
+                     CG_EMITTERS_MIN_LIGHT);
+        fprintf(stderr, "%s: scene %s %s: added %s and a uniform sky (%s W/(m^2 sr)); "
+                "--no-default-light turns this off\n", tool, scene->name, why, sun, text);
         return true;
     }
     if (sky->type == CG_SKY_PREETHAM && !has_directional_light(scene) && !no_default_light) {
@@ -75,8 +80,9 @@ app_light_scene(const char *tool, cg_scene *scene, const cg_sky *sky, const char
         return false;
     }
     if (!cg_scene_is_lit(scene))
-        fprintf(stderr, "%s: warning: scene %s has no light, no emissive surface and no sky, and "
-                "--no-default-light keeps it so: the image will be black\n", tool, scene->name);
+        fprintf(stderr, "%s: warning: scene %s has no light, no sky and no emissive surface that could "
+                "light it, and --no-default-light keeps it so: the image will be %s\n", tool, scene->name,
+                cg_scene_emits(scene) ? "black but for the emitters" : "black");
     return true;
 }
 

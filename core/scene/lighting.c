@@ -20,9 +20,16 @@
  *   Uniform rather than Preetham's daylight: every method reproduces a constant radiance
  *   exactly (it is a visibility integral), it tints nothing, and it has no absolute scale to
  *   match with the sun (Preetham's luminance is in kcd/m^2).
- * A scene is lit when it has a light, an instanced mesh whose material emits, or a sky that
- * is not black. */
+ * A scene is lit when it has a light, a sky that is not black, or emissive surfaces bright and
+ * large enough to light it: their radiance times their area over the area of every surface,
+ * the mean radiance of a white surface that all their light reached (a Lambertian emitter of
+ * radiance L and area A sends pi L A per side; spread over both sides of area A_all, each
+ * receives E = pi L A / A_all, reflected as E / pi), at least CG_EMITTERS_MIN_LIGHT, 1% of a
+ * white surface facing the default sun (3/pi W/(m^2 sr)). A third-party model whose emissive
+ * labels or LEDs cover a speck of it (ClearCoatTest: 0.0004) is not lit by them: it gets the
+ * default light, and says so. */
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -48,6 +55,51 @@ emits(const cg_scene *scene)
     return false;
 }
 
+/* Area of a mesh's triangles placed by an instance's world matrix (column-major). */
+static double
+instance_area(const cg_mesh *mesh, const float *w)
+{
+    double area = 0.0;
+    for (uint32_t t = 0; t + 2 < mesh->index_count; t += 3) {
+        double p[3][3];
+        for (int k = 0; k < 3; k++) {
+            const float *v = &mesh->positions[3 * (size_t)mesh->indices[t + (uint32_t)k]];
+            for (int r = 0; r < 3; r++)
+                p[k][r] = (double)w[r] * v[0] + (double)w[4 + r] * v[1] + (double)w[8 + r] * v[2] + w[12 + r];
+        }
+        double e1[3], e2[3];
+        for (int r = 0; r < 3; r++) {
+            e1[r] = p[1][r] - p[0][r];
+            e2[r] = p[2][r] - p[0][r];
+        }
+        double c[3] = { e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0] };
+        area += 0.5 * sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+    }
+    return area;
+}
+
+double
+cg_scene_emitted_light(const cg_scene *scene)
+{
+    double emitted = 0.0, total = 0.0;
+    for (int i = 0; i < scene->instance_count; i++) {
+        int mesh = scene->instances[i].mesh;
+        if (mesh < 0 || mesh >= scene->mesh_count)
+            continue;
+        const cg_mesh *m = &scene->meshes[mesh];
+        double area = instance_area(m, scene->instances[i].world);
+        total += area;
+        int material = m->material;
+        if (material < 0 || material >= scene->material_count)
+            continue;
+        const cg_material *mat = &scene->materials[material];
+        /* The factor bounds the textured radiance (a texel is at most 1). */
+        double mean = ((double)mat->emissive[0] + mat->emissive[1] + mat->emissive[2]) / 3.0 * mat->emissive_strength;
+        emitted += mean > 0.0 ? mean * area : 0.0;
+    }
+    return total > 0.0 ? emitted / total : 0.0;
+}
+
 bool
 cg_sky_is_black(const cg_sky *sky)
 {
@@ -61,7 +113,14 @@ cg_sky_is_black(const cg_sky *sky)
 bool
 cg_scene_is_lit(const cg_scene *scene)
 {
-    return scene->light_count > 0 || !cg_sky_is_black(&scene->sky) || emits(scene);
+    return scene->light_count > 0 || !cg_sky_is_black(&scene->sky) ||
+           (emits(scene) && cg_scene_emitted_light(scene) >= CG_EMITTERS_MIN_LIGHT);
+}
+
+bool
+cg_scene_emits(const cg_scene *scene)
+{
+    return emits(scene);
 }
 
 void

@@ -8,7 +8,8 @@
  *           cg_mesh_classify, cg_scene_export_gltf, cg_scene_compute_bounds,
  *           cg_scene_triangle_count, cg_scene_builtin_names, cg_scene_validate, cg_scene_set_sky,
  *           cg_sky_parse, cg_sky_model, cg_sky_model_init, cg_sky_model_radiance, cg_sky_format,
- *           cg_sky_equal, cg_sky_is_black, cg_scene_is_lit, the CG_DEFAULT_* constants,
+ *           cg_sky_equal, cg_sky_is_black, cg_scene_is_lit, cg_scene_emits, cg_scene_emitted_light,
+ *           CG_EMITTERS_MIN_LIGHT, the CG_DEFAULT_* constants,
  *           cg_default_sun, cg_default_sky, cg_scene_add_default_sun, cg_scene_changes,
  *           cg_scene_evaluate, cg_scene_is_animated, cg_scene_animation_range,
  *           cg_scene_lights_changed, cg_anim_channel_sample.
@@ -383,9 +384,18 @@ bool cg_sky_equal(const cg_sky *a, const cg_sky *b);
 
 /* Whether the sky gives no light: none, a uniform radiance of 0, a Preetham scale of 0. */
 bool cg_sky_is_black(const cg_sky *sky);
-/* Whether anything lights the scene: a light, an instanced mesh whose material emits, or a sky
- * that is not black. */
+/* Whether anything lights the scene: a light, a sky that is not black, or emissive surfaces
+ * whose light (cg_scene_emitted_light) reaches CG_EMITTERS_MIN_LIGHT. */
 bool cg_scene_is_lit(const cg_scene *scene);
+/* Whether an instanced mesh's material emits. */
+bool cg_scene_emits(const cg_scene *scene);
+/* The emitters' light spread over the scene: sum of emitted radiance x area over the area of
+ * every instanced surface, W/(m^2 sr): the mean radiance of a white surface if all of it arrived
+ * (core/scene/lighting.c says why). */
+double cg_scene_emitted_light(const cg_scene *scene);
+/* 1% of the radiance of a white surface facing the default sun: below it, emitters do not light
+ * a scene. */
+#define CG_EMITTERS_MIN_LIGHT (0.01 * CG_DEFAULT_SUN_IRRADIANCE / 3.14159265358979323846)
 /* The default sun as a light, and the default sky. */
 void cg_default_sun(cg_light *out);
 void cg_default_sky(cg_sky *out);
