@@ -1179,19 +1179,28 @@ radiance(pt_worker_ctx *wc, v3 org, v3 dir, float tnear, const pt_settings *sett
         int lobes = settings->caustics || diffuse == 0 ? CG_BSDF_ALL_LOBES : CG_BSDF_DIFFUSE;
         v3 wo = neg(mk(rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z));
         wo = normalize(wo);
+        /* A mirror or a smooth glass (no diffuse lobe, deltas only) has nothing light sampling
+         * can find: no shadow rays for it. */
+        const cg_bsdf *b = &hit.bsdf;
+        bool lit = hit.lambertian || !cg_bsdf_is_smooth(b) ||
+                   ((lobes & CG_BSDF_DIFFUSE) && (b->diffuse[0] > 0.0f || b->diffuse[1] > 0.0f || b->diffuse[2] > 0.0f));
         /* `sum` adds the terms in the order it always did, so that the image does not depend
          * on whether the parts are asked for; the parts are summed beside it. */
-        v3 c = mul(throughput, punctual_light(wc, &hit, wo, lobes, rng));
-        sum = add(sum, c);
-        pt_part part = part_received(depth, PT_PART_DIRECT_PUNCTUAL);
-        parts[part] = add(parts[part], c);
-        if (emitters) {
+        v3 c = mk(0, 0, 0);
+        pt_part part;
+        if (lit) {
+            c = mul(throughput, punctual_light(wc, &hit, wo, lobes, rng));
+            sum = add(sum, c);
+            part = part_received(depth, PT_PART_DIRECT_PUNCTUAL);
+            parts[part] = add(parts[part], c);
+        }
+        if (emitters && lit) {
             c = mul(throughput, emitter_direct(wc, &hit, wo, lobes, rng));
             sum = add(sum, c);
             part = part_received(depth, PT_PART_DIRECT_EMITTERS);
             parts[part] = add(parts[part], c);
         }
-        if (sky) {
+        if (sky && lit) {
             c = mul(throughput, sky_direct(wc, &hit, wo, lobes, rng));
             sum = add(sum, c);
             part = part_received(depth, PT_PART_DIRECT_SKY);
