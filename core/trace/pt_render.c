@@ -1177,8 +1177,12 @@ radiance(pt_worker_ctx *wc, v3 org, v3 dir, float tnear, const pt_settings *sett
             break; /* the continuation of the last vertex: emitters and sky only */
         /* Without caustics, a path that has scattered diffusely sees no glossy or transmission lobe. */
         int lobes = settings->caustics || diffuse == 0 ? CG_BSDF_ALL_LOBES : CG_BSDF_DIFFUSE;
-        v3 wo = neg(mk(rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z));
-        wo = normalize(wo);
+        v3 wo = normalize(neg(mk(rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z)));
+        /* A shading normal (interpolated or mapped) that turns away from the viewer leaves the
+         * BSDF nothing to reflect (cg/bsdf.h wants n.v > 0): there the geometric normal shades.
+         * The Lambertian path keeps its old rule (the cosine about the shading normal). */
+        if (!hit.lambertian && dot(hit.shading_normal, wo) <= 0.0f)
+            hit.shading_normal = hit.geometric_normal;
         /* A mirror or a smooth glass (no diffuse lobe, deltas only) has nothing light sampling
          * can find: no shadow rays for it. */
         const cg_bsdf *b = &hit.bsdf;
