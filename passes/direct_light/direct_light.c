@@ -5,18 +5,15 @@
  *
  * The BSDF is glTF 2.0's (common/bsdf.glsl, Appendix B): f |n.l| E with f = rho/pi (1 - F) +
  * F D V, F by Schlick on v.h, v towards the camera, from the gbuffer's optional inputs specular
- * and material (and transmission, for a thin sheet's lobe). Without them, or where a pixel's
- * material has no glossy lobe (F0 = F90 = 0: the built-in scenes), the Lambertian albedo E cos/pi,
- * the arithmetic as before. Light from behind the surface (n.l < 0) reaches a thin-walled
- * transmissive sheet's GGX transmission lobe only: through a solid it would have crossed its far
+ * and material (and transmission: the ior). Without them, or where a pixel's material has no glossy
+ * lobe (F0 = F90 = 0: the built-in scenes), the Lambertian albedo E cos/pi, the arithmetic as before.
+ * Light from behind the surface (n.l < 0) is not used: through a solid it would have crossed its far
  * face first, a caustic, which the renderer's caustics-free light transport leaves out (the glass
- * shadows fully, DESIGN.md); a BLEND layer's hole (ior 1) passes light straight on, which no pixel
- * but those looking at the light itself would see.
- *
- * Output `radiance` is RGBA32F: a half float clips at 65504 W/sr/m^2 (a white surface under
- * 2e5 W/m^2; 1e9 W/m^2 gives 3e8) and loses precision below 6e-5 (starlight's 1e-6 W/m^2 lights
- * a white surface at 3e-7); fp32 holds 1e-38 to 3e38 at full precision for 8 more bytes a pixel
- * (docs/architecture.md, "Radiance range").
+ * shadows fully, DESIGN.md); a thin sheet's transmission lobe lit from behind is left out too, as
+ * the path tracer's light sampling leaves it out (a shadow ray only towards the viewer's side), and
+ * so is a BLEND layer's hole (ior 1), which passes light straight on to pixels that look at the
+ * light itself. The diffuse lobe is reflection only (glTF has no diffuse transmission without
+ * KHR_materials_diffuse_transmission): a thin sheet's side facing away from a light stays dark.
  */
 #include <stdlib.h>
 #include <string.h>
@@ -39,7 +36,7 @@ direct_light_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
         fg_declare_input(decl, "position", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, true);
     fg_declare_input(decl, "normal", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, true);
     fg_declare_input(decl, "albedo", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, true);
-    /* The glossy and transmission lobes (gbuffer's outputs of the same names); Lambertian without. */
+    /* The glossy lobe (gbuffer's outputs of the same names; transmission for its ior); Lambertian without. */
     fg_declare_input(decl, "specular", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, false);
     fg_declare_input(decl, "material", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, false);
     fg_declare_input(decl, "transmission", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, false);
@@ -92,8 +89,8 @@ direct_light_execute(fg_pass *pass, direct_light_state *st, cg_error *err)
 CGP_PASS(direct_light, CGP_NO_PARAMS,
          "Outgoing radiance of the G-buffer's surfaces lit directly by every scene light: "
          "glTF 2.0's BSDF x cos x E (Lambertian albedo x E x cos / pi plus GGX highlights where the "
-         "optional inputs specular and material are connected; a thin sheet's transmission lobe "
-         "lit from behind with the optional transmission) with E from KHR_lights_punctual (directional: "
+         "optional inputs specular and material are connected, transmission for the ior; light from "
+         "behind a surface is not transmitted) with E from KHR_lights_punctual (directional: "
          "intensity x color; point: I/d^2; spot: I/d^2 with the smooth cone falloff). The light "
          "served by the optional shadow map (inputs shadow and shadow_matrix) is shadowed; "
          "the others, point lights included, are not.");

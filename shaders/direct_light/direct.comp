@@ -14,7 +14,7 @@ layout(binding = 4) uniform sampler2D gbuffer_albedo;
 layout(binding = 5) uniform sampler2D shadow_map;
 layout(binding = 6) uniform sampler2D gbuffer_specular;
 layout(binding = 7) uniform sampler2D gbuffer_material;
-layout(binding = 8) uniform sampler2D gbuffer_transmission;
+layout(binding = 8) uniform sampler2D gbuffer_transmission;   // the ior: a solid's Fresnel
 
 // Whether the inputs specular and material (u_glossy) and transmission are connected.
 layout(location = 0) uniform bool u_glossy;
@@ -50,10 +50,8 @@ main()
         // The G-buffer's normal faces the camera; a normal map can still tilt it past the view
         // ray at grazing angles, where n.v <= 0 gives the microfacet terms nothing to stand on.
         float nv = dot(n, v);
-        // Lobes punctual lights reach: reflection; a thin sheet's transmission (not a hole's).
-        int lobes = CG_BSDF_DIFFUSE | CG_BSDF_GLOSSY;
-        if (!lambertian && b.thickness <= 0.0 && b.ior != 1.0)
-            lobes |= CG_BSDF_TRANSMISSION;
+        // Punctual lights reach the reflection lobes only (direct_light.c says why).
+        const int lobes = CG_BSDF_DIFFUSE | CG_BSDF_GLOSSY;
         for (uint i = 0u; i < cg_light_count(); i++) {
             CgLightSample s = cg_light_sample(cg_lights[i], position.xyz);
             float nl = dot(n, s.to_light);
@@ -64,7 +62,7 @@ main()
                 result += visibility * cg_lambert_radiance(albedo.rgb, n, s);
                 continue;
             }
-            if (nl == 0.0 || (nl < 0.0 && (lobes & CG_BSDF_TRANSMISSION) == 0))
+            if (nl <= 0.0)
                 continue;
             float visibility = cg_shadow_visibility(shadow_map, int(i), position.xyz, n);
             // eta = ior: the camera is outside (only a solid's Fresnel from inside uses it).
