@@ -388,8 +388,9 @@ check_texture(const cg_texture *t)
     assert_int_equal(t->width, 2);
     assert_int_equal(t->height, 2);
     assert_true(t->srgb);
-    /* Rows bottom to top: row 0 holds the PNG's bottom row (blue, white). */
-    const uint8_t expected[16] = { 0, 0, 255, 255, 255, 255, 255, 255, 255, 0, 0, 255, 0, 255, 0, 255 };
+    /* Rows top to bottom as in the file: row 0 is the PNG's top row (red, green), where glTF's
+     * v = 0 lies and GL's t = 0 samples. */
+    const uint8_t expected[16] = { 255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 255, 255, 255, 255, 255 };
     assert_memory_equal(t->rgba, expected, 16);
 }
 
@@ -838,11 +839,11 @@ check_full_material(const cg_scene *s)
     assert_int_equal(m->normal_texture, m->occlusion_texture);
     const cg_texture *a = &s->textures[m->base_color_texture], *b = &s->textures[m->metallic_roughness_texture];
     assert_memory_equal(a->rgba, b->rgba, 16);
-    /* glTF's top row (red, green) is the last row of cg_texture; the texel (1, 1) of the image
-     * has alpha 128. */
-    assert_int_equal(a->rgba[8], 255);
-    assert_int_equal(a->rgba[13], 255);
-    assert_int_equal(a->rgba[7], 128);
+    /* glTF's top row (red, green) is the first row of cg_texture; the texel (1, 1) of the image
+     * (its bottom right) has alpha 128. */
+    assert_int_equal(a->rgba[0], 255);
+    assert_int_equal(a->rgba[5], 255);
+    assert_int_equal(a->rgba[15], 128);
     /* KHR_texture_transform: T(0.5, 0.25) R(pi/2) S(2, 3), with u' = cos r u + sin r v,
      * v' = -sin r u + cos r v: A = [[0, 3], [-2, 0]] (rows), columns first (0, -2, 3, 0). */
     static const double base_uv[6] = { 0, -2, 3, 0, 0.5, 0.25 };

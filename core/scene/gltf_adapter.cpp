@@ -1500,8 +1500,8 @@ report_left_out(loader &L)
                 L.path.c_str(), list.c_str());
 }
 
-// RGBA8, rows bottom to top (cg_texture), from tinygltf's decoded image (top to bottom,
-// 1-4 channels of 8 or 16 bits).
+// RGBA8, rows top to bottom as in the file (cg_texture), from tinygltf's decoded image (1-4
+// channels of 8 or 16 bits).
 bool
 convert_image(loader &L, size_t image_index, cg_texture *t)
 {
@@ -1552,7 +1552,7 @@ convert_image(loader &L, size_t image_index, cg_texture *t)
                 c[3] = img.component == 2 ? c[1] : 255;
                 c[1] = c[2] = c[0];
             }
-            std::memcpy(rgba + ((h - 1 - y) * w + x) * 4, c, 4);
+            std::memcpy(rgba + (y * w + x) * 4, c, 4);
         }
     t->width = img.width;
     t->height = img.height;
@@ -2191,8 +2191,7 @@ export_textures(const cg_scene *S, tinygltf::Model &M)
         img.mimeType = "image/png";
         size_t row = (size_t)t.width * 4;
         img.image.resize(row * (size_t)t.height);
-        for (int y = 0; y < t.height; y++) // back to glTF's top-to-bottom rows
-            std::memcpy(img.image.data() + (size_t)y * row, t.rgba + (size_t)(t.height - 1 - y) * row, row);
+        std::memcpy(img.image.data(), t.rgba, row * (size_t)t.height); // both top to bottom
         M.images.push_back(img);
         tinygltf::Texture tex;
         tex.name = t.name;

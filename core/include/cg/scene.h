@@ -40,7 +40,10 @@ typedef enum cg_mesh_kind {
     CG_MESH_HEIGHTFIELD = 1
 } cg_mesh_kind;
 
-/* 8-bit RGBA texels, rows bottom to top as GL expects (glTF images are top to bottom: the loader flips). */
+/* 8-bit RGBA texels, rows top to bottom as glTF images store them. Uploaded as they are, the
+ * first row lies at GL's t = 0, which is where glTF's v = 0 is: the image's top edge (glTF 2.0,
+ * 3.9.1: "the origin of the UV coordinates (0, 0) corresponds to the upper left corner"), so
+ * texture coordinates go to GL and the path tracer unchanged. */
 typedef struct cg_texture {
     char name[CG_NAME_MAX];
     int width, height;
