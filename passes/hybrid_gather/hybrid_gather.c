@@ -14,8 +14,12 @@
  * region, declared by the SDK as cone_gather's); lightmap + region2d (mip2d'd heightmap_raster lightmap and its block) and
  * hsat + hsat_info (an hsat pass's table and info; mode pyramid for the horizon's skipping).
  * Each group is optional; with neither lightmap the pass has nothing to do.
+ * Optional, all five or none: the G-buffer's material (albedo, specular, material, transmission,
+ * attenuation), as cone_gather's (cgp_gather_declare_material).
  * Output: radiance, RGBA32F: rgb = sum_k W_k L_k (E_i / pi, composite multiplies by the
- * albedo), a = ambient visibility. The same convention as cone_gather.
+ * albedo), a = ambient visibility. The same convention as cone_gather, the material's diffuse
+ * share included; with `specular` and `refraction` (and the material) also cone_gather's
+ * `reflection` and `refraction`, the same cones (common/gather.glsl) through this gather's march.
  */
 #include <math.h>
 #include <stdio.h>
@@ -116,13 +120,18 @@ static const fg_param_desc hybrid_gather_params[] = {
       .active_when = "method=paper",
       .doc = "VI.C mix case: paper = the 3D sample's opacity raises the heights inside the 3D lightmap's "
              "projection before Case 2; sequential = 3D then 2D, each on its own" },
+    { .name = "specular", .type = FG_PARAM_BOOL,
+      .doc = "also trace a specular cone (output 'reflection', VCT paper 3.2.2) with the material inputs, as "
+             "cone_gather's (common/gather.glsl), through this gather's march" },
+    { .name = "refraction", .type = FG_PARAM_BOOL,
+      .doc = "also trace a refracted cone where the material transmits (output 'refraction'), as cone_gather's" },
 };
 
 typedef struct hybrid_gather_state {
     cgp_gather gather;      /* its block: CG_HYBRID_GATHER_BLOCK */
     GLuint map_sampler, table_sampler;
     GLuint empty_block;     /* bound where a map is absent, so no block is left unbound */
-    bool has_2d, has_3d;
+    bool has_2d, has_3d, specular, refraction;
     cg_hybrid_gather_block block;   /* 5.5 KiB: kept here rather than on the stack */
 } hybrid_gather_state;
 
@@ -171,10 +180,21 @@ hybrid_gather_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
         fg_declare_nothing_to_do(decl, "no lightmap (inputs 'volume' and 'lightmap2d' both absent)");
         return true;
     }
+    bool material = false;
+    if (!cgp_gather_declare_material(pass, decl, &material, err))
+        return false;
+    if ((fg_param_bool(pass, "specular") || fg_param_bool(pass, "refraction")) && !material)
+        return cg_fail(err, CG_ERR_GRAPH_MISSING_INPUT,
+                       "pass '%s': specular and refraction need the material inputs (albedo, specular, material, "
+                       "transmission, attenuation: a gbuffer pass's outputs)", fg_pass_name(pass));
     if (!position)
         return true;
     fg_resource_desc out = cgp_image_like(pass, position, GL_RGBA32F);
     fg_declare_output(decl, "radiance", &out, FG_ACCESS_IMAGE_STORE);
+    if (fg_param_bool(pass, "specular"))
+        fg_declare_output(decl, "reflection", &out, FG_ACCESS_IMAGE_STORE);
+    if (fg_param_bool(pass, "refraction"))
+        fg_declare_output(decl, "refraction", &out, FG_ACCESS_IMAGE_STORE);
     return true;
 }
 
@@ -220,9 +240,14 @@ hybrid_gather_prepare(fg_pass *pass, hybrid_gather_state *s, cg_error *err)
     s->table_sampler = cgp_sampler_table(s);
     static const cg_hsat_info_block zero;
     s->empty_block = cgp_buffer(s, sizeof zero, &zero, 0);
-    const char *defines = !s->has_2d ? NULL
-                          : fg_param_enum(pass, "method") == METHOD_PAPER ? "#define HAS_2D\n#define METHOD_PAPER\n"
-                                                                          : "#define HAS_2D\n";
+    s->specular = fg_param_bool(pass, "specular");
+    s->refraction = fg_param_bool(pass, "refraction");
+    const char *maps = !s->has_2d ? ""
+                       : fg_param_enum(pass, "method") == METHOD_PAPER ? "#define HAS_2D\n#define METHOD_PAPER\n"
+                                                                       : "#define HAS_2D\n";
+    char defines[160];
+    snprintf(defines, sizeof defines, "%s%s%s", maps, s->specular ? "#define SPECULAR\n" : "",
+             s->refraction ? "#define REFRACTION\n" : "");
     return cgp_gather_prepare(s, pass, &s->gather, "hybrid_gather/hybrid_gather.comp", defines,
                               sizeof(cg_hybrid_gather_block), err);
 }
@@ -231,7 +256,9 @@ static bool
 hybrid_gather_execute(fg_pass *pass, hybrid_gather_state *s, cg_error *err)
 {
     cg_hybrid_gather_block *block = &s->block;
+    const cg_view *view = &fg_pass_frame(pass)->view;
     *block = (cg_hybrid_gather_block){
+        .camera = {view->position[0], view->position[1], view->position[2], 0.0f},
         .maps = {s->has_3d},
         .switches = {fg_param_enum(pass, "cube") == CUBE_EQ11, fg_param_enum(pass, "occlusion"),
                      fg_param_bool(pass, "dda"), fg_param_bool(pass, "skip")},
@@ -265,6 +292,10 @@ hybrid_gather_execute(fg_pass *pass, hybrid_gather_state *s, cg_error *err)
     glBindSampler(CG_UNIT_LIGHTMAP2D, s->map_sampler);
     glBindTextureUnit(CG_UNIT_HSAT, s->has_2d ? fg_texture(pass, "hsat") : 0);
     glBindSampler(CG_UNIT_HSAT, s->table_sampler);
+    if (s->specular)
+        glBindImageTexture(1, fg_texture(pass, "reflection"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    if (s->refraction)
+        glBindImageTexture(4, fg_texture(pass, "refraction"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     cgp_gather_end(pass);
     glBindSampler(CG_UNIT_LIGHTMAP2D, 0);
     glBindSampler(CG_UNIT_HSAT, 0);

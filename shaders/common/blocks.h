@@ -139,8 +139,9 @@
 #define CG_SEGMENT_CENTROID_FIT(w)                                                                \
     ((((-0.04480492 * (w) - 0.0066729) * (w) - 0.09072905) * (w) - 0.84263419) * (w) + 0.99998642)
 
-/* hybrid_gather's parameters (passes/hybrid_gather/hybrid_gather.c); 2928 bytes. */
+/* hybrid_gather's parameters (passes/hybrid_gather/hybrid_gather.c); 2944 bytes. */
 #define CG_HYBRID_GATHER_BLOCK(M, A)                                                              \
+    M(vec4, camera)       /* xyz: the camera's world position (the specular and refracted cones' view) */ \
     M(ivec4, maps)        /* x: a 3D lightmap is bound */                                          \
     M(ivec4, switches)    /* x: eq. 11 (else eq. 10), y: occlusion (0 eq. 16, 1 eq. 17), z: the morphology search, w: skipping */ \
     M(ivec4, paper)       /* x: abandon buried cubes, y: the Case-1 latch, z: the paper's mix case, w: sub-mesh levels below eq. 8 */ \
@@ -185,7 +186,7 @@ CG_C_BLOCK(cg_heightmap_block, CG_HEIGHTMAP_BLOCK, 48);
 CG_C_BLOCK(cg_hsat_info_block, CG_HSAT_INFO_BLOCK, 272);
 CG_C_BLOCK(cg_cone_set_block, CG_CONE_SET_BLOCK, 928);
 CG_C_BLOCK(cg_cone_gather_block, CG_CONE_GATHER_BLOCK, 48);
-CG_C_BLOCK(cg_hybrid_gather_block, CG_HYBRID_GATHER_BLOCK, 2928);
+CG_C_BLOCK(cg_hybrid_gather_block, CG_HYBRID_GATHER_BLOCK, 2944);
 CG_C_BLOCK(cg_sky_block, CG_SKY_BLOCK, 16);
 CG_C_BLOCK(cg_voxel_list_block, CG_VOXEL_LIST_BLOCK, 16);
 

@@ -42,6 +42,12 @@
 
 layout(binding = CG_UNIT_LIGHTMAP2D) uniform sampler2D u_lightmap;
 layout(binding = CG_UNIT_HSAT) uniform usampler2D u_hsat;
+#ifdef SPECULAR
+layout(binding = 1, rgba32f) writeonly uniform image2D u_reflection;
+#endif
+#ifdef REFRACTION
+layout(binding = 4, rgba32f) writeonly uniform image2D u_refraction;
+#endif
 
 // The cone set and march: cg_cone_set_block (common/cone_trace.glsl); the hybrid's own:
 CG_UNIFORM_BLOCK(CgHybridGather, cg_hybrid_gather_block, CG_BINDING_GATHER, CG_HYBRID_GATHER_BLOCK);
@@ -692,6 +698,56 @@ trace_horizon(vec3 p, vec3 origin, vec3 dir, float tan_half, float t_start, floa
 #endif
 #endif
 
+#if defined(CG_GATHER_MATERIAL) && (defined(SPECULAR) || defined(REFRACTION))
+#if defined(HAS_2D) && !defined(METHOD_PAPER)
+// The horizon's cell of a single cone (a material lobe's): every quadrature point on its axis, each
+// point's band of elevations the cone's half angle wide either side (cell_of for a set's cone).
+Cell
+cell_of_axis(vec3 dir, float tan_half)
+{
+    Cell c;
+    float half_width = atan(tan_half);
+    float cos_w = cos(half_width), sin_w = sin(half_width);
+    float sin_e = clamp(dir.y, -1.0, 1.0), cos_e = sqrt(max(1.0 - sin_e * sin_e, 0.0));
+    float lo = sin_e <= -cos_w ? -1.0 : sin_e * cos_w - cos_e * sin_w;
+    float hi = sin_e >= cos_w ? 1.0 : sin_e * cos_w + cos_e * sin_w;
+    for (int j = 0; j < QUAD_POINTS; j++) {
+        c.rate[j] = 1.0 / max(hi - lo, 1e-6);
+        c.offset[j] = -lo * c.rate[j];
+    }
+    c.lowest = lo;
+    return c;
+}
+#endif
+
+// A material lobe's cone (common/gather.glsl: the specular or refracted cone, as cone_gather's)
+// through this gather's march: the VCT march without a 2D lightmap, the paper's steps or the
+// horizon with one (the surface's own voxels left out as for the diffuse cones, `own_voxels`); the
+// sky through what it left open; rgb x the lobe's weight, a its coverage.
+vec4
+trace_lobe(CgGatherLobe lobe, float t_max, float xel, bool own_voxels)
+{
+    vec4 traced;
+#ifdef HAS_2D
+#ifdef METHOD_PAPER
+    traced = trace_paper(lobe.origin, lobe.direction, lobe.tan_half, xel, t_max);
+#else
+    vec3 p = lobe.origin - lobe.surface.xyz * lobe.surface.w;
+    traced = trace_horizon(p, lobe.origin, lobe.direction, lobe.tan_half, xel, t_max,
+                           own_voxels ? lobe.surface : vec4(lobe.surface.xyz, -1.0),
+                           cell_of_axis(lobe.direction, lobe.tan_half));
+#endif
+#else
+    CgVolume v = cg_volume();
+    CgMarch march = cg_cone_march();
+    CgCone c = CgCone(lobe.origin, lobe.direction, lobe.tan_half, v.voxel_size, t_max, march.step, march.lod_bias);
+    traced = cg_cone_trace_surface(cg_gather_volume, v, c, lobe.surface);
+#endif
+    traced = cg_sky_gather(traced, lobe.direction, lobe.tan_half);
+    return vec4(traced.rgb * lobe.weight, traced.a);
+}
+#endif
+
 void
 main()
 {
@@ -700,10 +756,21 @@ main()
         return;
     vec3 position, n;
     vec4 diffuse = vec4(0.0, 0.0, 0.0, 1.0);
+    vec4 reflection = vec4(0.0), refraction = vec4(0.0);
     if (cg_gather_surface(pixel, position, n)) {
         mat3 frame = cg_tangent_frame(n);
         CgMarch march = cg_cone_march();
-        diffuse = vec4(0.0);
+        // The material (common/gather.glsl): no diffuse cones where rho = 0, composite's factor.
+#ifdef CG_GATHER_MATERIAL
+        CgGatherMaterial mat = cg_gather_material(pixel);
+        bool diffuse_lobe = any(greaterThan(mat.rho, vec3(0.0)));
+        vec3 view = normalize(position - cg_hybrid_gather_block.camera.xyz);
+#else
+        bool diffuse_lobe = true;
+#endif
+        float lobe_xel = 0.0, lobe_reach = 0.0;
+        bool lobe_own = true;
+        diffuse = vec4(0.0, 0.0, 0.0, diffuse_lobe ? 0.0 : 1.0);
 #ifdef HAS_2D
         CgVolume v = hybrid_volume();
         CgHeightmap m = cg_heightmap();
@@ -720,8 +787,10 @@ main()
         // VI.B's self-influence: the cones start off the surface by the coarser of the two xels.
         float xel = has_3d() ? max(v.voxel_size, cg_heightmap_xel(m)) : cg_heightmap_xel(m);
         vec3 origin = position + n * (march.start_offset * xel);
+        lobe_xel = xel;
+        lobe_reach = t_max;
         // What each cone left open, past the volume and the terrain, sees the sky (common/sky.glsl).
-        for (int k = 0; k < cg_cone_count(); k++) {
+        for (int k = 0; k < cg_cone_count() && diffuse_lobe; k++) {
             vec3 dir = cg_cone_direction(frame, k);
             cg_cone_accumulate(diffuse, k, cg_sky_gather(trace_paper(origin, dir, cg_cone_tan_half(k), xel, t_max), dir,
                                                          cg_cone_tan_half(k)));
@@ -733,7 +802,10 @@ main()
         vec3 origin = position + n * (march.start_offset * voxel);
         bool own_voxels = !(cg_hybrid_gather_block.levels.y != 0 && on_height_field(m, position, n));
         vec4 surface = own_voxels ? vec4(n, march.start_offset * voxel) : vec4(n, -1.0);
-        for (int k = 0; k < cg_cone_count(); k++) {
+        lobe_xel = voxel;
+        lobe_reach = t_max;
+        lobe_own = own_voxels;
+        for (int k = 0; k < cg_cone_count() && diffuse_lobe; k++) {
             vec3 dir = cg_cone_direction(frame, k);
             cg_cone_accumulate(diffuse, k, cg_sky_gather(trace_horizon(position, origin, dir, cg_cone_tan_half(k), voxel,
                                                                        t_max, surface, cell_of(k, frame)),
@@ -743,9 +815,32 @@ main()
 #else
         // No 2D lightmap: the VCT gather, the very function cone_gather calls.
         CgVolume v = cg_volume();
-        diffuse = cg_cone_gather_diffuse(cg_gather_volume, v, cg_cone_origin(v, position, n, march.start_offset), frame,
-                                         cg_cone_reach(v, march.max_distance), march.start_offset * v.voxel_size);
+        lobe_xel = v.voxel_size;
+        lobe_reach = cg_cone_reach(v, march.max_distance);
+        if (diffuse_lobe)
+            diffuse = cg_cone_gather_diffuse(cg_gather_volume, v, cg_cone_origin(v, position, n, march.start_offset),
+                                             frame, lobe_reach, march.start_offset * v.voxel_size);
+#endif
+#ifdef CG_GATHER_MATERIAL
+        diffuse.rgb *= cg_gather_diffuse_share(mat, cg_gather_brdf(max(dot(n, -view), 0.0), mat.roughness));
+        float offset = march.start_offset * lobe_xel;
+#ifdef SPECULAR
+        CgGatherLobe mirror = cg_gather_reflection_lobe(mat, position, n, view, offset);
+        if (any(greaterThan(mirror.weight, vec3(0.0))))
+            reflection = trace_lobe(mirror, lobe_reach, lobe_xel, lobe_own);
+#endif
+#ifdef REFRACTION
+        CgGatherLobe through = cg_gather_refraction_lobe(mat, position, n, view, offset);
+        if (any(greaterThan(through.weight, vec3(0.0))))
+            refraction = trace_lobe(through, lobe_reach, lobe_xel, lobe_own);
+#endif
 #endif
     }
     imageStore(cg_gather_radiance, pixel, diffuse);
+#ifdef SPECULAR
+    imageStore(u_reflection, pixel, reflection);
+#endif
+#ifdef REFRACTION
+    imageStore(u_refraction, pixel, refraction);
+#endif
 }

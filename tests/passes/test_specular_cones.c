@@ -56,9 +56,9 @@ read_2d(const vf_runner *r, const char *source)
 /* Runs `graph` on s (no lights: direct is 0) and compares each covered pixel's hdr - emissive with
  * L x (diffuse + glossy directional albedo of the material at its n.v). */
 static furnace_result
-furnace(cg_context *ctx, hf_scene *s, const char *graph, const char *const *overrides, double radiance)
+furnace(cg_context *ctx, hf_scene *s, int material, const char *graph, const char *const *overrides, double radiance)
 {
-    const cg_material *m = &s->materials[2];
+    const cg_material *m = &s->materials[material];
     cg_bsdf b;
     cg_bsdf_from_material(m, m->base_color, m->metallic, m->roughness, m->transmission, &b);
     vf_runner r;
@@ -131,7 +131,7 @@ test_furnace_ggx(void **state)
             hf_scene s;
             plate_scene(&s, (float)radiance);
             set_material(&s.materials[2], materials[i].base, materials[i].metallic, materials[i].roughness);
-            furnace_result f = furnace(ctx, &s, graphs[g], g == 0 ? no_bounce : NULL, radiance);
+            furnace_result f = furnace(ctx, &s, 2, graphs[g], g == 0 ? no_bounce : NULL, radiance);
             fprintf(stderr, "# furnace, %s (base %.2f, metallic %.1f, roughness %.2f), %s: mean ratio %.4f, "
                     "worst pixel %.2f%% (%d pixels)\n", materials[i].name, materials[i].base, materials[i].metallic,
                     materials[i].roughness, graphs[g], f.mean_ratio, 100.0 * f.worst, f.pixels);
@@ -141,6 +141,47 @@ test_furnace_ggx(void **state)
                          graphs[g], f.mean_ratio, 100.0 * f.worst);
             hf_free(&s);
         }
+}
+
+static double
+flat(double x, double z, const void *user)
+{
+    (void)x, (void)z, (void)user;
+    return 0.0;
+}
+
+/* The same furnace through hybrid.json on a height field (material 1, the terrain): the specular
+ * cone through the horizon march (common/gather.glsl's cones, hybrid_gather's trace). */
+static void
+test_furnace_hybrid(void **state)
+{
+    cg_context *ctx = cg_test_gl_context(state);
+    const double radiance = 2.0;
+    static const struct { const char *name; float base, metallic, roughness; } materials[] = {
+        {"glossy metal", 0.7f, 1.0f, 0.3f},
+        {"smooth dielectric", 0.5f, 0.0f, 0.1f},
+    };
+    static const char *const no_bounce[] = {"light.bounces=0", NULL};
+    for (size_t i = 0; i < sizeof materials / sizeof materials[0]; i++) {
+        hf_scene s;
+        hf_init(&s);
+        hf_grid(&s, 8, -10.0, -10.0, 20.0, flat, NULL);
+        const double eye[3] = {0, 6, 6}, forward[3] = {0, -1, -0.85}, up[3] = {0, 1, 0};
+        hf_camera_looking(&s, eye, forward, up, 0.6f);
+        hf_finish(&s);
+        cg_sky sky = {.type = CG_SKY_UNIFORM, .radiance = {(float)radiance, (float)radiance, (float)radiance}};
+        cg_error err = {0};
+        assert_cg_ok(cg_scene_set_sky(&s.scene, &sky, &err), &err);
+        set_material(&s.materials[1], materials[i].base, materials[i].metallic, materials[i].roughness);
+        furnace_result f = furnace(ctx, &s, 1, "hybrid.json", no_bounce, radiance);
+        fprintf(stderr, "# furnace on a height field, %s, hybrid.json: mean ratio %.4f, worst pixel %.2f%% (%d pixels)\n",
+                materials[i].name, f.mean_ratio, 100.0 * f.worst, f.pixels);
+        assert_true(f.pixels > SIZE * SIZE / 2);
+        if (fabs(f.mean_ratio - 1.0) > 0.01 || f.worst > 0.02)
+            fail_msg("furnace on a height field, %s through hybrid.json: mean ratio %.4f, worst pixel %.2f%% off",
+                     materials[i].name, f.mean_ratio, 100.0 * f.worst);
+        hf_free(&s);
+    }
 }
 
 /* A mirror (metal, base colour 1, roughness 0) under a uniform sky returns the sky's radiance, at
@@ -287,6 +328,7 @@ main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_furnace_ggx),
+        cmocka_unit_test(test_furnace_hybrid),
         cmocka_unit_test(test_mirror),
         cmocka_unit_test(test_glass_slab),
         cmocka_unit_test(test_lambertian_unchanged),
