@@ -86,6 +86,8 @@ typedef struct bench_config {
     bool no_default_light;                  /* --no-default-light, or "default_light": false */
     int frames, warmup;
     int ref_spp, ref_bounces, ref_seed;
+    int ref_glossy_bounces, ref_transmission_bounces; /* the reference's other bounce limits (pt_settings) */
+    bool ref_caustics;
     int pt_spp[BENCH_MAX_SPP];
     int pt_count;
     bench_setting settings[BENCH_MAX_SETTINGS];

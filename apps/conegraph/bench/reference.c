@@ -92,9 +92,11 @@ cache_entry(const bench_config *c, const bench_scene *bs, const char *part, char
     const cg_view *view = &bs->session.frame.view;
     uint64_t view_hash = fnv1a_bytes(0xcbf29ce484222325ull, view->inv_view_proj, sizeof view->inv_view_proj);
     snprintf(key, key_size,
-             "conegraph-reference-v3|pt %d|%s|scene %016llx|view %016llx|%dx%d|spp %d|bounces %d|seed %d|%s",
+             "conegraph-reference-v3|pt %d|%s|scene %016llx|view %016llx|%dx%d|spp %d|bounces %d %d %d|caustics %d|"
+             "seed %d|%s",
              PT_RENDER_VERSION, bs->source, (unsigned long long)scene_hash(&bs->session.scene),
-             (unsigned long long)view_hash, c->width, c->height, c->ref_spp, c->ref_bounces, c->ref_seed, part);
+             (unsigned long long)view_hash, c->width, c->height, c->ref_spp, c->ref_bounces, c->ref_glossy_bounces,
+             c->ref_transmission_bounces, (int)c->ref_caustics, c->ref_seed, part);
     snprintf(path, path_size, "%s/ref-%016llx.exr", c->cache_dir, (unsigned long long)bench_hash_text(key));
 }
 
@@ -146,6 +148,9 @@ render_reference(const bench_config *c, bench_scene *bs, cg_error *err)
     pt_settings s = pt_settings_default();
     s.spp = c->ref_spp;
     s.bounces = c->ref_bounces;
+    s.glossy_bounces = c->ref_glossy_bounces;
+    s.transmission_bounces = c->ref_transmission_bounces;
+    s.caustics = c->ref_caustics;
     s.seed = (uint32_t)c->ref_seed;
     s.progress = true;
     double t0 = app_now_ms(), cpu0 = app_cpu_ms();
@@ -250,6 +255,9 @@ bench_path_tracer(const bench_config *c, bench_scene *bs, int scene_index, bench
         pt_settings s = pt_settings_default();
         s.spp = c->pt_spp[k];
         s.bounces = c->ref_bounces;
+        s.glossy_bounces = c->ref_glossy_bounces;
+        s.transmission_bounces = c->ref_transmission_bounces;
+        s.caustics = c->ref_caustics;
         s.seed = (uint32_t)c->ref_seed + 1000003u;
         double t0 = app_now_ms(), cpu0 = app_cpu_ms();
         uint64_t rays = 0;

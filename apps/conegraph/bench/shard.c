@@ -69,9 +69,11 @@ bench_fingerprint(const bench_config *c, char out[17])
     size_t len = 0;
     char sky[128];
     cg_sky_format(&c->sky, sky, sizeof sky);
-    add(text, sizeof text, &len, "size %dx%d|camera %s|sky %s %s|default light %d|frames %d|warmup %d|ref %d %d %d|pt",
+    add(text, sizeof text, &len,
+        "size %dx%d|camera %s|sky %s %s|default light %d|frames %d|warmup %d|ref %d %d %d|ref bounces %d %d %d|pt",
         c->width, c->height, c->camera, c->sky_given ? "given" : "not given", sky, !c->no_default_light, c->frames,
-        c->warmup, c->ref_spp, c->ref_bounces, c->ref_seed);
+        c->warmup, c->ref_spp, c->ref_bounces, c->ref_seed, c->ref_glossy_bounces, c->ref_transmission_bounces,
+        (int)c->ref_caustics);
     for (int i = 0; i < c->pt_count; i++)
         add(text, sizeof text, &len, " %d", c->pt_spp[i]);
     for (int i = 0; i < c->scene_count; i++)

@@ -260,11 +260,20 @@ load_sweep_object(const char *path, const json_t *root, bench_config *c)
         c->no_default_light = !json_is_true(default_light);
     json_t *ref = json_object_get(root, "reference");
     if (ref && !json_is_object(ref))
-        return sweep_error(path, "\"reference\" must be an object { spp, bounces, seed }");
+        return sweep_error(path, "\"reference\" must be an object { spp, bounces, glossy_bounces, "
+                                 "transmission_bounces, caustics, seed }");
+    json_t *caustics = ref ? json_object_get(ref, "caustics") : NULL;
+    if (caustics && !json_is_boolean(caustics))
+        return sweep_error(path, "\"reference\": \"caustics\" must be true or false");
+    if (caustics)
+        c->ref_caustics = json_is_true(caustics);
     if ((code = json_int_field(path, root, "", "frames", 1, 10000, &c->frames)) ||
         (code = json_int_field(path, root, "", "warmup", 0, 10000, &c->warmup)) ||
         (code = json_int_field(path, ref, "\"reference\": ", "spp", 1, 65536, &c->ref_spp)) ||
         (code = json_int_field(path, ref, "\"reference\": ", "bounces", 0, 16, &c->ref_bounces)) ||
+        (code = json_int_field(path, ref, "\"reference\": ", "glossy_bounces", 0, 16, &c->ref_glossy_bounces)) ||
+        (code = json_int_field(path, ref, "\"reference\": ", "transmission_bounces", 0, 16,
+                               &c->ref_transmission_bounces)) ||
         (code = json_int_field(path, ref, "\"reference\": ", "seed", 0, 2147483647L, &c->ref_seed)) ||
         (code = json_array_field(path, root, "path_tracer_spp", BENCH_MAX_SPP, "counts", &spp)))
         return code;
@@ -325,6 +334,9 @@ bench_parse_args(int argc, char **argv, bench_config *c)
     c->warmup = 2;
     c->ref_spp = 1024;
     c->ref_bounces = 1;
+    c->ref_glossy_bounces = 1;      /* the path_trace pass's defaults */
+    c->ref_transmission_bounces = 4;
+    c->ref_caustics = false;
     c->ref_seed = 1;
     c->pt_spp[0] = 1, c->pt_spp[1] = 4, c->pt_spp[2] = 16, c->pt_spp[3] = 64;
     c->pt_count = 4;
@@ -338,7 +350,9 @@ bench_parse_args(int argc, char **argv, bench_config *c)
                 return code;
         }
     const int_flag int_flags[] = { { "--frames", 1, 10000, &c->frames }, { "--warmup", 0, 10000, &c->warmup },
-                                   { "--ref-spp", 1, 65536, &c->ref_spp }, { "--ref-bounces", 0, 16, &c->ref_bounces } };
+                                   { "--ref-spp", 1, 65536, &c->ref_spp }, { "--ref-bounces", 0, 16, &c->ref_bounces },
+                                   { "--ref-glossy-bounces", 0, 16, &c->ref_glossy_bounces },
+                                   { "--ref-transmission-bounces", 0, 16, &c->ref_transmission_bounces } };
     bool scenes_from_flags = false;
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i];
@@ -348,6 +362,10 @@ bench_parse_args(int argc, char **argv, bench_config *c)
         }
         if (!strcmp(a, "--no-default-light")) {
             c->no_default_light = true;
+            continue;
+        }
+        if (!strcmp(a, "--ref-caustics")) {
+            c->ref_caustics = true;
             continue;
         }
         if (!strcmp(a, "--merge")) {
@@ -404,7 +422,7 @@ bench_parse_args(int argc, char **argv, bench_config *c)
             if (!cg_sky_parse(v, &c->sky, &why))
                 return usage_error("--sky: %s", why.message);
             c->sky_given = true;
-        } else if ((option = find_int_flag(int_flags, 4, a))) {
+        } else if ((option = find_int_flag(int_flags, (int)(sizeof int_flags / sizeof *int_flags), a))) {
             long n;
             if (!app_parse_int(v, option->min, option->max, &n)) {
                 char fmt[128];

@@ -87,10 +87,11 @@ write_markdown_table(FILE *fp, const bench_config *c, const bench_rows *rows, co
 {
     const char *error = bench_error_name(c->error);
     fprintf(fp, "### %s, %dx%d\n\n", scenes[s].source, c->width, c->height);
-    fprintf(fp, "Reference: path_trace, %d spp, %d bounce(s), seed %d (BVH build %.0f ms). "
-                "Times: median of %d frames after %d warm-up, synchronous. "
+    fprintf(fp, "Reference: path_trace, %d spp, %d bounce(s) (glossy %d, transmission %d, caustics %s), seed %d "
+                "(BVH build %.0f ms). Times: median of %d frames after %d warm-up, synchronous. "
                 "P: on the Pareto front of %s against time (t) or GI memory (m).\n\n",
-            c->ref_spp, c->ref_bounces, c->ref_seed, scenes[s].bvh_ms, c->frames, c->warmup, error);
+            c->ref_spp, c->ref_bounces, c->ref_glossy_bounces, c->ref_transmission_bounces,
+            c->ref_caustics ? "on" : "off", c->ref_seed, scenes[s].bvh_ms, c->frames, c->warmup, error);
     write_reference_parts(fp, &scenes[s]);
     fprintf(fp, "| method | parameters | ms | GI MiB | relMSE | RMSE | SSIM | lum. ratio | indirect relMSE | "
                 "indirect lum. ratio | GI energy | GI nRMSE | direct energy | direct nRMSE | PT ms at equal %s | "
