@@ -34,6 +34,9 @@ SKY = (0.15, 0.18, 0.25)      # uniform sky radiance for glossy_room and glass, 
 FURNACE_SKY = (1.0, 1.0, 1.0)  # for spheres
 SUN_INTENSITY = 5.0            # W/m^2 (KHR_lights_punctual directional: intensity x color = E)
 SUN_DIRECTION = (-0.45, -0.75, -0.48)  # the direction the light travels
+ROOM_CAMERA = ((0.0, 1.4, 3.0), (0.0, 0.45, -0.8), 42.0)  # eye, target, vertical fov (degrees)
+RED_BLOCK = ((1.35, 0.35, -0.5), (0.7, 0.7, 0.7), 40.0)   # centre, size, yaw (degrees)
+RED_BASE, RED_ROUGHNESS = (0.8, 0.08, 0.06), 0.1
 
 
 def normalize(v):
@@ -265,9 +268,8 @@ def glossy_room(path):
            metal("gold", (1.0, 0.78, 0.34), 0.3))
     w.mesh("chrome_block", box((0.0, 0.5, -1.0), (0.7, 1.0, 0.7), -25.0),
            metal("chrome", (0.95, 0.95, 0.95), 0.05))
-    w.mesh("red_block", box((1.35, 0.35, -0.5), (0.7, 0.7, 0.7), 40.0),
-           dielectric("red_dielectric", (0.8, 0.08, 0.06), 0.1))
-    w.camera((0.0, 1.4, 3.0), (0.0, 0.45, -0.8), 42.0)
+    w.mesh("red_block", box(*RED_BLOCK), dielectric("red_dielectric", RED_BASE, RED_ROUGHNESS))
+    w.camera(*ROOM_CAMERA)
     w.sun(SUN_DIRECTION, SUN_INTENSITY)
     w.write(path)
 
@@ -304,7 +306,7 @@ def spheres_scene(path):
                (metal("white_metal_r03", (1.0, 1.0, 1.0), 0.3), (0.0, 0.55)),
                (metal("gold_r03", (1.0, 0.78, 0.34), 0.3), (1.2, 0.55)),
                (metal("chrome_r005", (0.95, 0.95, 0.95), 0.05), (2.4, 0.55)),
-               (dielectric("red_dielectric_r01", (0.8, 0.08, 0.06), 0.1), (-1.2, -0.65)),
+               (dielectric("red_dielectric_r01", RED_BASE, RED_ROUGHNESS), (-1.2, -0.65)),
                (dielectric("white_dielectric_r05", (1.0, 1.0, 1.0), 0.5), (0.0, -0.65)),
                (glass("glass_solid", 1.0), (1.2, -0.65))]
     for m, (x, y) in spheres:
