@@ -63,7 +63,7 @@ render_dumps(const char *graph, const char *motion, const char *options, const c
         snprintf(dump + used, sizeof dump - used, " --dump vox.%s='%s'", volumes[v], geometry[v]);
     }
     char args[5000];
-    snprintf(args, sizeof args, "render '" SCENE "%s' --graph %s " SIZE " %s %s -o '%s'", motion, graph, options,
+    snprintf(args, sizeof args, "render '" SCENE "%s' --graph %s " SIZE " --verbose %s %s -o '%s'", motion, graph, options,
              dump, image);
     int code = cg_test_run_conegraph(args, true, out, sizeof out);
     if (code != 0)

@@ -20,7 +20,7 @@ LAYERS = ["base", "image", "metrics", "scene", "trace", "gl", "fg"]
 HEADER_MODULE = {
     "error.h": "base", "log.h": "base", "fs.h": "base",
     "image.h": "image", "metrics.h": "metrics",
-    "scene.h": "scene", "camera.h": "scene", "pt_render.h": "trace",
+    "scene.h": "scene", "camera.h": "scene", "pt_render.h": "trace", "bsdf.h": "trace",
     "gl.h": "gl", "shader.h": "gl", "gpu_scene.h": "gl",
     "fg.h": "fg", "graphfile.h": "fg",
 }
