@@ -30,8 +30,10 @@ VALIDATOR = "gltf-validator@2.0.0-dev.3.10"
 # A pointer prefix None matches anywhere. Keep in step with docs/scenes.md.
 NOT_READ = "not read by conegraph (docs/scenes.md, 'What the glTF checks leave out')"
 ACCEPTED = [
-    ("MESH_PRIMITIVE_NO_TANGENT_SPACE", None, "normal textures and tangents are " + NOT_READ),
-    ("MESH_PRIMITIVE_GENERATED_TANGENT_SPACE", None, "normal textures and tangents are " + NOT_READ),
+    ("MESH_PRIMITIVE_NO_TANGENT_SPACE", None,
+     "a normal-mapped primitive without normals: conegraph generates normals, then tangents (docs/scenes.md)"),
+    ("MESH_PRIMITIVE_GENERATED_TANGENT_SPACE", None,
+     "tangents generated where a file has none (docs/scenes.md, Materials: Lengyel's method, not MikkTSpace)"),
     (None, "/skins", "skins are " + NOT_READ),
     ("NODE_SKIN_WITH_NON_SKINNED_MESH", None, "skins are " + NOT_READ),
     ("NODE_SKIN_NO_SCENE", None, "skins are " + NOT_READ),
