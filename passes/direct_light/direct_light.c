@@ -9,7 +9,7 @@
  * lobe (F0 = F90 = 0: the built-in scenes), the Lambertian albedo E cos/pi, the arithmetic as before.
  * Light from behind the surface (n.l < 0) is not used: through a solid it would have crossed its far
  * face first, a caustic, which the renderer's caustics-free light transport leaves out (the glass
- * shadows fully, DESIGN.md); a thin sheet's transmission lobe lit from behind is left out too, as
+ * shadows fully, docs/reference.md); a thin sheet's transmission lobe lit from behind is left out too, as
  * the path tracer's light sampling leaves it out (a shadow ray only towards the viewer's side), and
  * so is a BLEND layer's hole (ior 1), which passes light straight on to pixels that look at the
  * light itself. The diffuse lobe is reflection only (glTF has no diffuse transmission without
