@@ -2,7 +2,8 @@
  * along the shorter arc), a hierarchy (the parent turns, the child moves) with an instance, a
  * light and a camera following it, what cg_scene_evaluate reports and stamps, the bounds over
  * the whole animation, an animated glTF written here that loads, evaluates and survives
- * export (.gltf and .glb), and the animated built-in variants. */
+ * export (.gltf and .glb), the animated built-in variants, and a skinned strip (glTF skins
+ * posed at two times, stamped, bounded). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -536,6 +537,79 @@ openworld_motion(void **state)
     assert_cg_status(cg_scene_load("builtin:openworld?motion=sun&period=0", &bad, &err), &err, CG_ERR_SCENE_PARAM);
 }
 
+/* ------------------------------------------------------------------ skins
+ *
+ * tests/data/gltf/skin/bend.gltf (its README gives the figures): a strip whose top row turns a
+ * quarter turn about +z over [0, 1] s with the joint "upper", its middle row half way. */
+
+static void
+assert_vertex(const cg_mesh *m, int v, double x, double y, double z)
+{
+    const float *p = m->positions + 3 * v;
+    if (!(fabs(p[0] - x) < 1e-5 && fabs(p[1] - y) < 1e-5 && fabs(p[2] - z) < 1e-5))
+        fail_msg("vertex %d at (%g, %g, %g), expected (%g, %g, %g)", v, p[0], p[1], p[2], x, y, z);
+}
+
+static void
+skin_bends_the_strip(void **state)
+{
+    (void)state;
+    char path[4200];
+    const char *data = getenv("CONEGRAPH_TEST_DATA");
+    assert_non_null(data);
+    snprintf(path, sizeof path, "%s/gltf/skin/bend.gltf", data);
+    cg_scene s;
+    cg_error err = { 0 };
+    assert_cg_ok(cg_scene_load(path, &s, &err), &err);
+    assert_int_equal(s.skin_count, 1);
+    assert_int_equal(s.skinned_count, 1);
+    assert_int_equal(s.skins[0].joint_count, 2);
+    const cg_skinned_mesh *sk = &s.skinned[0];
+    const cg_instance *inst = &s.instances[sk->instance];
+    const cg_mesh *m = &s.meshes[sk->mesh];
+    assert_int_equal(inst->mesh, sk->mesh);
+    assert_true(inst->moving);
+    /* The skin places the vertices; the node's translation by 5 is ignored (glTF 3.7.3.3). */
+    for (int i = 0; i < 16; i++)
+        assert_float_equal(inst->world[i], (i % 5 == 0 ? 1.0 : 0.0), 0);
+    /* At t = 0 the joints are where their inverse bind matrices undo: the bind pose. */
+    assert_vertex(m, 4, 0, 2, 0);
+    assert_vertex(m, 3, 1, 1, 0);
+    assert_int_equal(m->revision, 0);
+    assert_int_equal(inst->revision, 0);
+
+    cg_scene_changes ch;
+    cg_scene_evaluate(&s, 1, &ch);
+    assert_int_equal(ch.meshes_deformed, 1);
+    assert_int_equal(ch.instances_moved, 1);
+    assert_true(m->revision == s.revision && inst->revision == s.revision && s.instances_revision == s.revision);
+    assert_vertex(m, 0, 0, 0, 0);          /* the bottom row follows "lower", which stays */
+    assert_vertex(m, 2, 0.25, 0.75, 0);    /* half of each joint */
+    assert_vertex(m, 3, 0.75, 1.25, 0);
+    assert_vertex(m, 4, -0.5, 0.5, 0);     /* a quarter turn about (0.5, 1, 0) */
+    assert_vertex(m, 5, -0.5, 1.5, 0);
+    for (int v = 0; v < 6; v++) /* a turn about z leaves the normals of the z = 0 plane */
+        assert_float_equal(m->normals[3 * v + 2], 1, 1e-6);
+    assert_float_equal(m->bounds_min[0], -0.5, 1e-5);
+    assert_float_equal(m->bounds_max[1], 1.5, 1e-5);
+
+    /* Halfway: the top row turned by 45 degrees; nothing changes after the last key. */
+    cg_scene_evaluate(&s, 0.5, &ch);
+    assert_int_equal(ch.meshes_deformed, 1);
+    assert_vertex(m, 4, 0.5 - 0.5 * S45 - S45, 1 - 0.5 * S45 + S45, 0);
+    cg_scene_evaluate(&s, 1, &ch);
+    uint64_t at_one = s.revision;
+    cg_scene_evaluate(&s, 7, &ch);
+    assert_int_equal(ch.meshes_deformed, 0);
+    assert_int_equal(ch.instances_moved, 0);
+    assert_true(s.revision == at_one);
+
+    /* The bounds hold every pose: the bind pose's top (y = 2) and the bent one's left (x = -0.5). */
+    assert_true(s.bounds_max[1] >= 2 - 1e-5 && s.bounds_min[0] <= -0.5 + 1e-5);
+    assert_true(inst->motion_max[1] >= 2 - 1e-5 && inst->motion_min[0] <= -0.5 + 1e-5);
+    cg_scene_free(&s);
+}
+
 int
 main(void)
 {
@@ -547,6 +621,7 @@ main(void)
         cmocka_unit_test(bounds_cover_the_animation),
         cmocka_unit_test(animated_gltf_round_trip),
         cmocka_unit_test(openworld_motion),
+        cmocka_unit_test(skin_bends_the_strip),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

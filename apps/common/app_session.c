@@ -278,6 +278,10 @@ app_session_set_time(app_session *s, double t, cg_scene_changes *changes, cg_err
         *changes = local;
     if (local.lights && s->uploaded && !cg_gpu_scene_update_lights(&s->gpu, err))
         return failed(err, "frame");
+    /* A skin posed its meshes on the CPU (core/scene/animation.c says why): their vertices go
+     * to the GPU again, under a new upload generation that the caching passes see. */
+    if (local.meshes_deformed && s->uploaded && !cg_gpu_scene_update_meshes(&s->gpu, NULL, err))
+        return failed(err, "frame");
     /* Through the spec: --from, --look-at and --fov hold for a moving camera too. */
     if (local.cameras && s->camera >= 0)
         cg_view_from_spec(&s->scene, &s->view_spec, s->frame.width, s->frame.height, &s->frame.view);

@@ -133,7 +133,8 @@ bool app_session_mark_output(app_session *s, const char *source, bool *added, cg
 
 /* Poses the scene at time t seconds (cg_scene_evaluate) and brings the frame up to date: the GPU
  * scene's lights when a light changed (cg_gpu_scene_update_lights; meshes stay where they are,
- * the passes read each instance's world matrix at every draw), and the view when the session's
+ * the passes read each instance's world matrix at every draw, except the vertices of skinned
+ * meshes a skin posed: cg_gpu_scene_update_meshes), and the view when the session's
  * camera (not a view framed from the bounds) moved, made from view_spec (so moved, aimed and
  * zoomed as asked). *changes (may be NULL) says what changed.
  * Works before start_gl too (the GPU scene is then brought up to date when it is uploaded). */

@@ -240,12 +240,13 @@ white_lambertian(void)
     return m;
 }
 
+/* Uploads run on the thread whose GL context is current; an atomic keeps the counter unique
+ * should two threads with two contexts upload at once. */
+static atomic_uint_fast64_t uploads;
+
 bool
 cg_gpu_scene_upload(const cg_scene *scene, cg_gpu_scene *out, cg_error *err)
 {
-    /* Uploads run on the thread whose GL context is current; an atomic keeps the counter
-     * unique should two threads with two contexts upload at once. */
-    static atomic_uint_fast64_t uploads;
     memset(out, 0, sizeof *out);
     out->scene = scene;
     out->generation = (uint64_t)atomic_fetch_add(&uploads, 1) + 1;
@@ -258,6 +259,8 @@ cg_gpu_scene_upload(const cg_scene *scene, cg_gpu_scene *out, cg_error *err)
         if (!upload_mesh(&scene->meshes[i], &out->meshes[i], &out->bytes, err)) {
             cg_gpu_scene_destroy(out);
             return false;
+        } else {
+            out->meshes[i].revision = scene->meshes[i].revision;
         }
 
     int material_count = scene->material_count > 0 ? scene->material_count : 1;
@@ -302,6 +305,35 @@ cg_gpu_scene_upload(const cg_scene *scene, cg_gpu_scene *out, cg_error *err)
     }
     cg_log_debug("gpu scene '%s': %d meshes, %d textures, %d lights, %zu bytes", scene->name,
                  scene->mesh_count, scene->texture_count, scene->light_count, out->bytes);
+    return true;
+}
+
+bool
+cg_gpu_scene_update_meshes(cg_gpu_scene *gpu, int *updated, cg_error *err)
+{
+    const cg_scene *scene = gpu->scene;
+    int n = 0;
+    for (int i = 0; i < scene->mesh_count; i++) {
+        cg_gpu_mesh *m = &gpu->meshes[i];
+        if (m->revision == scene->meshes[i].revision)
+            continue;
+        /* Immutable storage (upload_mesh): new buffers, the old ones deleted once these exist.
+         * Same sizes, so gpu->bytes stands. */
+        cg_gpu_mesh fresh = { 0 };
+        size_t bytes = 0;
+        if (!upload_mesh(&scene->meshes[i], &fresh, &bytes, err))
+            return false;
+        glDeleteVertexArrays(1, &m->vao);
+        glDeleteBuffers(1, &m->vertex_buffer);
+        glDeleteBuffers(1, &m->index_buffer);
+        *m = fresh;
+        m->revision = scene->meshes[i].revision;
+        n++;
+    }
+    if (n > 0)
+        gpu->generation = (uint64_t)atomic_fetch_add(&uploads, 1) + 1;
+    if (updated)
+        *updated = n;
     return true;
 }
 

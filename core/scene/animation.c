@@ -9,7 +9,15 @@
  * out-tangent of key k and m_k+1 = (t_k+1 - t_k) x the in-tangent of key k + 1. Rotations
  * are normalised after interpolation, as the specification asks. Before its first key a
  * channel holds its first value and after its last key its last value. Arithmetic is in
- * double precision; node world matrices stay in double down the hierarchy. */
+ * double precision; node world matrices stay in double down the hierarchy.
+ *
+ * Skins (glTF 2.0, 3.7.3) are applied here, on the CPU, when the scene is posed: a skinned
+ * mesh's vertices become sum_i w_i x world(joint_i) x inverse_bind(joint_i) x bind position,
+ * in world space. Why on the CPU and not in a vertex shader: every pass that reads geometry
+ * (the rasterizing passes, voxelize's compute voxelizer that reads the vertex buffers itself,
+ * the path tracer's BVH, the classification and the bounds) then sees one posed mesh, with no
+ * skinning code in each of them; a pose costs one pass over the vertices when the joints move,
+ * small beside a frame for the skinned meshes glTF files carry (thousands of vertices). */
 #include "cg/scene.h"
 
 #include <math.h>
@@ -86,6 +94,112 @@ cg_scene_attach(cg_scene *scene, cg_attachment_kind kind, int index, int node, c
     if (kind == CG_ATTACH_INSTANCE && index >= 0 && index < scene->instance_count)
         scene->instances[index].moving = true;
     return scene->attachment_count++;
+}
+
+/* ------------------------------------------------------------------ skins */
+
+int
+cg_scene_add_skin(cg_scene *scene, const char *name, int joint_count, int *joints, float *inverse_bind,
+                  cg_error *err)
+{
+    if (!grow((void **)&scene->skins, scene->skin_count, sizeof *scene->skins, err, "skin")) {
+        free(joints);
+        free(inverse_bind);
+        return -1;
+    }
+    cg_skin *s = &scene->skins[scene->skin_count];
+    memset(s, 0, sizeof *s);
+    cg_copy_name(s->name, name);
+    s->joint_count = joint_count;
+    s->joints = joints;
+    s->inverse_bind = inverse_bind;
+    return scene->skin_count++;
+}
+
+static void
+skinned_mesh_free(cg_skinned_mesh *sk)
+{
+    free(sk->joints);
+    free(sk->weights);
+    free(sk->bind_positions);
+    free(sk->bind_normals);
+    free(sk->bind_tangents);
+    free(sk->joint_bounds);
+    free(sk->posed_with);
+    memset(sk, 0, sizeof *sk);
+}
+
+void
+cg_scene_free_skins(cg_scene *scene)
+{
+    for (int i = 0; i < scene->skin_count; i++) {
+        free(scene->skins[i].joints);
+        free(scene->skins[i].inverse_bind);
+    }
+    for (int i = 0; i < scene->skinned_count; i++)
+        skinned_mesh_free(&scene->skinned[i]);
+    free(scene->skins);
+    free(scene->skinned);
+    scene->skins = NULL;
+    scene->skinned = NULL;
+    scene->skin_count = scene->skinned_count = 0;
+}
+
+static float *
+copy_floats(const float *src, size_t n)
+{
+    float *dst = malloc(sizeof *dst * (n ? n : 1));
+    if (dst && src)
+        memcpy(dst, src, sizeof *dst * n);
+    return dst;
+}
+
+int
+cg_scene_add_skinned_mesh(cg_scene *scene, int mesh, int instance, int skin, int influences, uint16_t *joints,
+                          float *weights, cg_error *err)
+{
+    cg_skinned_mesh sk = { .mesh = mesh, .instance = instance, .skin = skin, .influences = influences,
+                           .joints = joints, .weights = weights };
+    const cg_mesh *m = &scene->meshes[mesh];
+    int joint_count = scene->skins[skin].joint_count;
+    size_t nv = m->vertex_count;
+    sk.bind_positions = copy_floats(m->positions, nv * 3);
+    sk.bind_normals = copy_floats(m->normals, nv * 3);
+    sk.bind_tangents = m->tangents ? copy_floats(m->tangents, nv * 4) : NULL;
+    sk.joint_bounds = malloc(sizeof *sk.joint_bounds * 6 * (size_t)joint_count);
+    sk.posed_with = malloc(sizeof *sk.posed_with * 16 * (size_t)joint_count);
+    if (!sk.bind_positions || !sk.bind_normals || (m->tangents && !sk.bind_tangents) || !sk.joint_bounds ||
+        !sk.posed_with) {
+        skinned_mesh_free(&sk);
+        cg_fail(err, CG_ERR_OUT_OF_MEMORY, "out of memory for skinned mesh '%s'", m->name);
+        return -1;
+    }
+    if (!grow((void **)&scene->skinned, scene->skinned_count, sizeof sk, err, "skinned mesh")) {
+        skinned_mesh_free(&sk);
+        return -1;
+    }
+    for (int j = 0; j < joint_count; j++) {
+        for (int k = 0; k < 3; k++)
+            sk.joint_bounds[6 * j + k] = INFINITY, sk.joint_bounds[6 * j + 3 + k] = -INFINITY;
+        for (int k = 0; k < 16; k++)
+            sk.posed_with[16 * j + k] = NAN;
+    }
+    for (size_t v = 0; v < nv; v++)
+        for (int i = 0; i < influences; i++) {
+            size_t at = v * (size_t)influences + (size_t)i;
+            if (!(weights[at] > 0))
+                continue;
+            float *b = sk.joint_bounds + 6 * (size_t)joints[at];
+            for (int k = 0; k < 3; k++) {
+                b[k] = fminf(b[k], sk.bind_positions[3 * v + k]);
+                b[3 + k] = fmaxf(b[3 + k], sk.bind_positions[3 * v + k]);
+            }
+        }
+    cg_instance *inst = &scene->instances[instance];
+    for (int i = 0; i < 16; i++)
+        inst->world[i] = i % 5 == 0 ? 1.0f : 0.0f;
+    scene->skinned[scene->skinned_count] = sk;
+    return scene->skinned_count++;
 }
 
 /* ------------------------------------------------------------------ channels */
@@ -289,9 +403,109 @@ light_pose(const cg_node *n, float position[3], float direction[3])
     }
 }
 
-/* Poses everything; with `changes`, stamps what changed with revision `stamp`. */
+/* Joint j's skinning matrix, world(joint) x inverse_bind(joint) (glTF 2.0, 3.7.3.3). */
 static void
-pose(cg_scene *scene, double t, uint64_t stamp, cg_scene_changes *changes)
+skinning_matrix(const cg_scene *scene, const cg_skin *skin, int j, double out[16])
+{
+    double ibm[16];
+    for (int k = 0; k < 16; k++)
+        ibm[k] = skin->inverse_bind[16 * j + k];
+    mat_mul(scene->nodes[skin->joints[j]].world, ibm, out);
+}
+
+static void
+cross3(const double a[3], const double b[3], double out[3])
+{
+    out[0] = a[1] * b[2] - a[2] * b[1];
+    out[1] = a[2] * b[0] - a[0] * b[2];
+    out[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+/* The mesh's vertices posed by the skinning matrices in sk->posed_with: each vertex by the
+ * weighted sum of its joints' matrices (linear blend skinning, what glTF 2.0 3.7.3.3 defines);
+ * normals by that sum's inverse transpose (its cofactor matrix, times the sign of its
+ * determinant), tangents by the sum itself, both normalised. */
+static void
+deform(cg_scene *scene, const cg_skinned_mesh *sk)
+{
+    cg_mesh *mesh = &scene->meshes[sk->mesh];
+    int n = sk->influences;
+    for (size_t v = 0; v < mesh->vertex_count; v++) {
+        double b[16] = { 0 };
+        for (int i = 0; i < n; i++) {
+            double w = sk->weights[v * (size_t)n + (size_t)i];
+            if (w == 0)
+                continue;
+            const double *m = sk->posed_with + 16 * (size_t)sk->joints[v * (size_t)n + (size_t)i];
+            for (int k = 0; k < 16; k++)
+                b[k] += w * m[k];
+        }
+        const float *p = sk->bind_positions + 3 * v, *nb = sk->bind_normals + 3 * v;
+        for (int r = 0; r < 3; r++)
+            mesh->positions[3 * v + r] = (float)(b[r] * p[0] + b[4 + r] * p[1] + b[8 + r] * p[2] + b[12 + r]);
+        double c0[3] = { b[0], b[1], b[2] }, c1[3] = { b[4], b[5], b[6] }, c2[3] = { b[8], b[9], b[10] };
+        double x12[3], x20[3], x01[3];
+        cross3(c1, c2, x12);
+        cross3(c2, c0, x20);
+        cross3(c0, c1, x01);
+        double det = c0[0] * x12[0] + c0[1] * x12[1] + c0[2] * x12[2];
+        double sign = det < 0 ? -1.0 : 1.0, nn[3], len = 0;
+        for (int r = 0; r < 3; r++) {
+            nn[r] = sign * (nb[0] * x12[r] + nb[1] * x20[r] + nb[2] * x01[r]);
+            len += nn[r] * nn[r];
+        }
+        len = sqrt(len);
+        for (int r = 0; r < 3; r++)
+            mesh->normals[3 * v + r] = len > 0 ? (float)(nn[r] / len) : nb[r];
+        if (mesh->tangents && sk->bind_tangents) {
+            const float *tb = sk->bind_tangents + 4 * v;
+            double t[3], tl = 0;
+            for (int r = 0; r < 3; r++) {
+                t[r] = b[r] * tb[0] + b[4 + r] * tb[1] + b[8 + r] * tb[2];
+                tl += t[r] * t[r];
+            }
+            tl = sqrt(tl);
+            for (int r = 0; r < 3; r++)
+                mesh->tangents[4 * v + r] = tl > 0 ? (float)(t[r] / tl) : tb[r];
+            mesh->tangents[4 * v + 3] = tb[3];
+        }
+    }
+    cg_mesh_compute_bounds(mesh);
+}
+
+/* Poses the skinned meshes whose skinning matrices changed; with `changes`, stamps them. */
+static void
+pose_skins(cg_scene *scene, uint64_t stamp, cg_scene_changes *changes)
+{
+    for (int i = 0; i < scene->skinned_count; i++) {
+        cg_skinned_mesh *sk = &scene->skinned[i];
+        const cg_skin *skin = &scene->skins[sk->skin];
+        bool moved = false;
+        for (int j = 0; j < skin->joint_count; j++) {
+            double m[16];
+            skinning_matrix(scene, skin, j, m);
+            /* memcmp, not ==: the NaN of a mesh never posed differs from everything. */
+            if (memcmp(m, sk->posed_with + 16 * j, sizeof m)) {
+                memcpy(sk->posed_with + 16 * j, m, sizeof m);
+                moved = true;
+            }
+        }
+        if (!moved)
+            continue;
+        deform(scene, sk);
+        if (changes) {
+            scene->meshes[sk->mesh].revision = stamp;
+            scene->instances[sk->instance].revision = stamp;
+            changes->instances_moved++;
+            changes->meshes_deformed++;
+        }
+    }
+}
+
+/* Poses everything; with `changes`, stamps what changed with revision `stamp`. Skinned meshes
+ * are posed only with `skin` (the bounds' sampling bounds them by their joints instead). */
+static void
+pose(cg_scene *scene, double t, uint64_t stamp, cg_scene_changes *changes, bool skin)
 {
     for (int a = 0; a < scene->animation_count; a++)
         for (int c = 0; c < scene->animations[a].channel_count; c++) {
@@ -349,13 +563,15 @@ pose(cg_scene *scene, double t, uint64_t stamp, cg_scene_changes *changes)
             }
         }
     }
+    if (skin)
+        pose_skins(scene, stamp, changes);
     scene->time = t;
 }
 
 void
 cg_scene_pose(cg_scene *scene, double t)
 {
-    pose(scene, t, 0, NULL);
+    pose(scene, t, 0, NULL, true);
 }
 
 void
@@ -363,7 +579,7 @@ cg_scene_evaluate(cg_scene *scene, double t, cg_scene_changes *changes)
 {
     cg_scene_changes local = { 0 };
     uint64_t stamp = scene->revision + 1;
-    pose(scene, t, stamp, &local);
+    pose(scene, t, stamp, &local, true);
     if (local.instances_moved || local.lights || local.cameras) {
         scene->revision = stamp;
         if (local.instances_moved)
@@ -461,6 +677,30 @@ box_add(const float world[16], const cg_mesh *mesh, double lo[3], double hi[3])
     }
 }
 
+/* A box holding a skinned mesh as posed now, without posing its vertices: each posed vertex is
+ * a weighted mean (weights >= 0, summing to 1) of its joints' images of it, so it lies in the
+ * box of the joints' images of their own boxes of the vertices they weigh. */
+static void
+skinned_box_add(const cg_scene *scene, const cg_skinned_mesh *sk, double lo[3], double hi[3])
+{
+    const cg_skin *skin = &scene->skins[sk->skin];
+    for (int j = 0; j < skin->joint_count; j++) {
+        const float *jb = sk->joint_bounds + 6 * j;
+        if (!(jb[0] <= jb[3]))
+            continue;
+        double m[16];
+        skinning_matrix(scene, skin, j, m);
+        for (int c = 0; c < 8; c++) {
+            double p[3] = { jb[(c & 1) ? 3 : 0], jb[(c & 2) ? 4 : 1], jb[(c & 4) ? 5 : 2] };
+            for (int r = 0; r < 3; r++) {
+                double w = m[r] * p[0] + m[4 + r] * p[1] + m[8 + r] * p[2] + m[12 + r];
+                lo[r] = fmin(lo[r], w);
+                hi[r] = fmax(hi[r], w);
+            }
+        }
+    }
+}
+
 bool
 cg_scene_motion_bounds(cg_scene *scene, double lo[3], double hi[3])
 {
@@ -477,16 +717,28 @@ cg_scene_motion_bounds(cg_scene *scene, double lo[3], double hi[3])
     for (int i = 0; i < n; i++)
         for (int k = 0; k < 3; k++)
             box[6 * i + k] = INFINITY, box[6 * i + 3 + k] = -INFINITY;
+    bool *skinned = calloc((size_t)(n > 0 ? n : 1), sizeof *skinned);
+    if (!skinned) {
+        free(box);
+        free(times);
+        return false;
+    }
+    for (int k = 0; k < scene->skinned_count; k++)
+        skinned[scene->skinned[k].instance] = true;
     double now = scene->time;
     for (int s = 0; s < count; s++) {
-        pose(scene, times[s], 0, NULL);
+        pose(scene, times[s], 0, NULL, false);
         for (int i = 0; i < n; i++) {
             const cg_instance *inst = &scene->instances[i];
-            if (inst->moving && scene->meshes[inst->mesh].vertex_count > 0)
+            if (inst->moving && !skinned[i] && scene->meshes[inst->mesh].vertex_count > 0)
                 box_add(inst->world, &scene->meshes[inst->mesh], box + 6 * i, box + 6 * i + 3);
         }
+        for (int k = 0; k < scene->skinned_count; k++)
+            skinned_box_add(scene, &scene->skinned[k], box + 6 * scene->skinned[k].instance,
+                            box + 6 * scene->skinned[k].instance + 3);
     }
-    pose(scene, now, 0, NULL);
+    free(skinned);
+    pose(scene, now, 0, NULL, false);
     bool any = false;
     for (int i = 0; i < n; i++) {
         cg_instance *inst = &scene->instances[i];

@@ -78,6 +78,19 @@ struct loader {
         std::vector<int> nodes;
     };
     std::vector<pending_animation> animations;
+    // Skins (mark_joints, visit_nodes, finish_skins): per glTF node, whether it is a joint (kept
+    // as a cg node, like an animated one) and whether the animation moves it; per cg mesh, its
+    // glTF mesh and primitive and who uses it (0 nobody, 1 instances as it is, 2 a skin, which
+    // owns it: any other user gets a copy); the skinned instances waiting for their skin.
+    std::vector<bool> joint, moves;
+    std::vector<int> gltf_mesh_of, prim_of;
+    std::vector<char> mesh_use;
+    struct skin_use {
+        int skin, node, mesh, instance;
+        float world[16]; // the node's, kept should the skin be unusable
+    };
+    std::vector<skin_use> skin_uses;
+    std::vector<int> skin_map; // glTF skin -> cg skin, -1 not yet made
     ~loader()
     {
         for (auto &a : animations)
@@ -746,8 +759,76 @@ add_primitive(loader &L, int mesh_index, int prim_index, std::vector<int> *out)
                         s.c_str());
     }
     L.explicit_kind.push_back(kind);
+    L.gltf_mesh_of.push_back(mesh_index);
+    L.prim_of.push_back(prim_index);
     out->push_back(index);
     return true;
+}
+
+// A copy of cg mesh m with arrays of its own (for a skin, which deforms them in place).
+bool
+clone_mesh(loader &L, int m, int *out)
+{
+    cg_mesh c = L.scene->meshes[m];
+    size_t nv = c.vertex_count;
+    auto dup = [](const void *src, size_t bytes) -> void * {
+        if (!src)
+            return nullptr;
+        void *d = std::malloc(bytes ? bytes : 1);
+        if (d)
+            std::memcpy(d, src, bytes);
+        return d;
+    };
+    const cg_mesh &o = L.scene->meshes[m];
+    c.positions = (float *)dup(o.positions, nv * 3 * sizeof(float));
+    c.normals = (float *)dup(o.normals, nv * 3 * sizeof(float));
+    c.texcoords = (float *)dup(o.texcoords, nv * 2 * sizeof(float));
+    c.tangents = (float *)dup(o.tangents, nv * 4 * sizeof(float));
+    c.indices = (uint32_t *)dup(o.indices, (size_t)c.index_count * sizeof(uint32_t));
+    int index = -1;
+    if ((o.positions && !c.positions) || (o.normals && !c.normals) || (o.texcoords && !c.texcoords) ||
+        (o.tangents && !c.tangents) || (o.indices && !c.indices))
+        fail(L, CG_ERR_OUT_OF_MEMORY, std::string("out of memory copying mesh '") + o.name + "'");
+    else
+        index = cg_scene_add_mesh(L.scene, &c, L.err);
+    if (index < 0) {
+        std::free(c.positions), std::free(c.normals), std::free(c.texcoords), std::free(c.tangents);
+        std::free(c.indices);
+        return false;
+    }
+    L.explicit_kind.push_back(L.explicit_kind[(size_t)m]);
+    L.gltf_mesh_of.push_back(L.gltf_mesh_of[(size_t)m]);
+    L.prim_of.push_back(L.prim_of[(size_t)m]);
+    *out = index;
+    return true;
+}
+
+// The cg mesh an instance of primitive mesh m draws: m itself, unless a skin owns it or a skin
+// asks for it once it is used (a copy then).
+bool
+use_mesh(loader &L, int m, bool skinned, int *out)
+{
+    L.mesh_use.resize((size_t)L.scene->mesh_count, 0);
+    char &use = L.mesh_use[(size_t)m];
+    if (use == 0 || (use == 1 && !skinned)) {
+        use = skinned ? 2 : 1;
+        *out = m;
+        return true;
+    }
+    if (!clone_mesh(L, m, out))
+        return false;
+    L.mesh_use.resize((size_t)L.scene->mesh_count, 0);
+    L.mesh_use[(size_t)*out] = skinned ? 2 : 1;
+    return true;
+}
+
+// Whether the primitive of cg mesh m has joints and weights (JOINTS_0 and WEIGHTS_0).
+bool
+has_skin_attributes(const loader &L, int m)
+{
+    const auto &attrs =
+        L.model.meshes[(size_t)L.gltf_mesh_of[(size_t)m]].primitives[(size_t)L.prim_of[(size_t)m]].attributes;
+    return attrs.count("JOINTS_0") && attrs.count("WEIGHTS_0");
 }
 
 bool
@@ -1142,6 +1223,178 @@ finish_animations(loader &L)
     return true;
 }
 
+// ------------------------------------------------------------------ skins
+
+// glTF 2.0, 3.7.3: a skin's joints are nodes whose world matrices pose the skinned mesh, so
+// they are kept as cg nodes (with their ancestors), as animated nodes are.
+bool
+mark_joints(loader &L)
+{
+    const auto &M = L.model;
+    L.joint.assign(M.nodes.size(), false);
+    L.moves.assign(M.nodes.size(), false);
+    L.skin_map.assign(M.skins.size(), -1);
+    for (const auto &skin : M.skins)
+        for (int j : skin.joints)
+            if (j >= 0 && (size_t)j < M.nodes.size())
+                L.joint[(size_t)j] = true;
+    for (size_t n = 0; n < M.nodes.size(); n++)
+        if (L.joint[n])
+            for (int p = L.parent[n]; p >= 0 && !L.animated_below[(size_t)p]; p = L.parent[(size_t)p])
+                L.animated_below[(size_t)p] = true;
+    return true;
+}
+
+// The cg skin of glTF skin s (made on first use): its joints' cg nodes and inverse bind
+// matrices (MAT4 of FLOAT, one per joint; the identity where the file gives none). -1 with
+// *why set when a joint is not in the default scene (the mesh then keeps its bind pose).
+bool
+skin_of(loader &L, int s, int *out, std::string *why)
+{
+    *out = L.skin_map[(size_t)s];
+    if (*out >= 0)
+        return true;
+    const tinygltf::Skin &skin = L.model.skins[(size_t)s];
+    std::string what = "skins[" + std::to_string(s) + "]";
+    size_t n = skin.joints.size();
+    if (n == 0 || n > 65536)
+        return fail(L, CG_ERR_GLTF_SCHEMA, what + ": " + std::to_string(n) + " joints (1 to 65536)");
+    std::vector<int> joints(n);
+    for (size_t j = 0; j < n; j++) {
+        int node = skin.joints[j];
+        joints[j] = node >= 0 && (size_t)node < L.node_map.size() ? L.node_map[(size_t)node] : -1;
+        if (joints[j] < 0) {
+            *why = what + ": joint " + std::to_string(j) + " (" + node_label(L, node) + ") is not in the default scene";
+            return true;
+        }
+    }
+    std::vector<float> ibm(16 * n, 0.0f);
+    for (size_t j = 0; j < n; j++)
+        for (int k = 0; k < 4; k++)
+            ibm[16 * j + 5 * (size_t)k] = 1.0f;
+    if (skin.inverseBindMatrices >= 0) {
+        accessor_view v;
+        std::string label = what + ".inverseBindMatrices";
+        if (!view_accessor(L, skin.inverseBindMatrices, label, { TINYGLTF_TYPE_MAT4 }, { TINYGLTF_COMPONENT_TYPE_FLOAT },
+                           &v) ||
+            !check_accessor_data(L, label, skin.inverseBindMatrices, "matrix", v))
+            return false;
+        if (v.count < n)
+            return fail(L, CG_ERR_GLTF_ACCESSOR, label + ": " + std::to_string(v.count) + " matrices for " +
+                                                     std::to_string(n) + " joints");
+        for (size_t j = 0; j < n; j++)
+            for (int k = 0; k < 16; k++)
+                ibm[16 * j + (size_t)k] = (float)v.component(j, k);
+    }
+    int *jp = (int *)std::malloc(sizeof(int) * n);
+    float *ip = (float *)std::malloc(sizeof(float) * 16 * n);
+    if (!jp || !ip) {
+        std::free(jp), std::free(ip);
+        return fail(L, CG_ERR_OUT_OF_MEMORY, what + ": out of memory");
+    }
+    std::memcpy(jp, joints.data(), sizeof(int) * n);
+    std::memcpy(ip, ibm.data(), sizeof(float) * 16 * n);
+    std::string name = skin.name.empty() ? "skin" + std::to_string(s) : skin.name;
+    *out = cg_scene_add_skin(L.scene, name.c_str(), (int)n, jp, ip, L.err);
+    L.skin_map[(size_t)s] = *out;
+    return *out >= 0;
+}
+
+// Each skinned instance's joints and weights, from every JOINTS_n / WEIGHTS_n pair of its
+// primitive (glTF 2.0, 3.7.3.2: four joints per pair), weights normalised to sum 1.
+bool
+finish_skins(loader &L)
+{
+    bool warned_weightless = false;
+    for (const auto &use : L.skin_uses) {
+        int skin;
+        std::string why;
+        if (!skin_of(L, use.skin, &skin, &why))
+            return false;
+        cg_instance *inst = &L.scene->instances[use.instance];
+        if (skin < 0) {
+            cg_log_warn("%s: %s: %s is drawn in its bind pose, placed by its node", L.path.c_str(), why.c_str(),
+                        mesh_label(L, L.gltf_mesh_of[(size_t)use.mesh]).c_str());
+            std::memcpy(inst->world, use.world, sizeof use.world);
+            continue;
+        }
+        const tinygltf::Primitive &prim =
+            L.model.meshes[(size_t)L.gltf_mesh_of[(size_t)use.mesh]].primitives[(size_t)L.prim_of[(size_t)use.mesh]];
+        std::string what = mesh_label(L, L.gltf_mesh_of[(size_t)use.mesh]) + " primitive " +
+                           std::to_string(L.prim_of[(size_t)use.mesh]);
+        int sets = 0;
+        while (prim.attributes.count("JOINTS_" + std::to_string(sets)) &&
+               prim.attributes.count("WEIGHTS_" + std::to_string(sets)))
+            sets++;
+        size_t nv = L.scene->meshes[use.mesh].vertex_count, per = 4 * (size_t)sets;
+        int joint_count = L.scene->skins[skin].joint_count;
+        uint16_t *joints = (uint16_t *)std::malloc(sizeof(uint16_t) * nv * per);
+        float *weights = (float *)std::malloc(sizeof(float) * nv * per);
+        if (!joints || !weights) {
+            std::free(joints), std::free(weights);
+            return fail(L, CG_ERR_OUT_OF_MEMORY, what + ": out of memory for its joints and weights");
+        }
+        for (int k = 0; k < sets; k++) {
+            std::string jn = "JOINTS_" + std::to_string(k), wn = "WEIGHTS_" + std::to_string(k);
+            int ja = prim.attributes.at(jn), wa = prim.attributes.at(wn);
+            accessor_view jv, wv;
+            bool ok = view_accessor(L, ja, what + " " + jn, { TINYGLTF_TYPE_VEC4 },
+                                    { TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT },
+                                    &jv) &&
+                      view_accessor(L, wa, what + " " + wn, { TINYGLTF_TYPE_VEC4 },
+                                    { TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
+                                      TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT },
+                                    &wv) &&
+                      check_accessor_data(L, what + " " + wn, wa, "vertex", wv);
+            if (ok && (jv.count != nv || wv.count != nv))
+                ok = fail(L, CG_ERR_GLTF_ACCESSOR, what + ": attribute counts differ (POSITION has " +
+                                                       std::to_string(nv) + ", " + jn + " " + std::to_string(jv.count) +
+                                                       ", " + wn + " " + std::to_string(wv.count) + ")");
+            for (size_t v = 0; ok && v < nv; v++)
+                for (int c = 0; ok && c < 4; c++) {
+                    double j = jv.component(v, c), w = wv.component(v, c);
+                    if (j >= joint_count && w != 0)
+                        ok = fail(L, CG_ERR_GLTF_INDEX_RANGE, what + " " + jn + ": vertex " + std::to_string(v) +
+                                                                  " names joint " + std::to_string((long)j) +
+                                                                  " (the skin has " + std::to_string(joint_count) + ")");
+                    else if (w < 0)
+                        ok = fail(L, CG_ERR_GLTF_ACCESSOR, what + " " + wn + ": vertex " + std::to_string(v) +
+                                                               " has a negative weight");
+                    joints[v * per + 4 * (size_t)k + (size_t)c] = (uint16_t)(j < joint_count ? j : 0);
+                    weights[v * per + 4 * (size_t)k + (size_t)c] = (float)w;
+                }
+            if (!ok) {
+                std::free(joints), std::free(weights);
+                return false;
+            }
+        }
+        // glTF asks for weights summing to 1; exporters round, so they are normalised. A vertex
+        // weighing no joint follows the first joint it names.
+        for (size_t v = 0; v < nv; v++) {
+            double sum = 0;
+            for (size_t i = 0; i < per; i++)
+                sum += weights[v * per + i];
+            if (sum > 0) {
+                for (size_t i = 0; i < per; i++)
+                    weights[v * per + i] = (float)(weights[v * per + i] / sum);
+            } else {
+                if (!warned_weightless)
+                    cg_log_warn("%s: %s: vertex %zu has no joint weight; it follows joint %u", L.path.c_str(),
+                                what.c_str(), v, (unsigned)joints[v * per]);
+                warned_weightless = true;
+                weights[v * per] = 1.0f;
+            }
+        }
+        // The skinned mesh moves when any of its joints does.
+        for (int j : L.model.skins[(size_t)use.skin].joints)
+            if (L.moves[(size_t)j])
+                inst->moving = true;
+        if (cg_scene_add_skinned_mesh(L.scene, use.mesh, use.instance, skin, (int)per, joints, weights, L.err) < 0)
+            return false;
+    }
+    return true;
+}
+
 // The default scene's nodes, depth first. A node is flattened (its meshes, lights and camera
 // placed by its world matrix) unless animation needs it: an animated node, a node under one
 // (dynamic: what hangs on it moves) and the ancestors of animated nodes are kept as cg_nodes
@@ -1171,8 +1424,10 @@ visit_nodes(loader &L, const std::vector<int> &roots)
         mat_mul(cur.parent, local, world);
         bool animated = L.animated[(size_t)cur.node];
         bool dynamic = cur.dynamic || animated;
+        L.moves[(size_t)cur.node] = dynamic;
         int here = cur.cg_parent;
-        if ((dynamic || L.animated_below[(size_t)cur.node]) && (animated || !is_identity(local))) {
+        if (L.joint[(size_t)cur.node] ||
+            ((dynamic || L.animated_below[(size_t)cur.node]) && (animated || !is_identity(local)))) {
             cg_node c = cg_node_default(n.name.empty() ? ("node" + std::to_string(cur.node)).c_str() : n.name.c_str());
             c.parent = cur.cg_parent;
             if (n.matrix.size() == 16) {
@@ -1203,10 +1458,21 @@ visit_nodes(loader &L, const std::vector<int> &roots)
                 return false;
             float wf[16];
             to_float(world, wf);
+            bool skinned_node = n.skin >= 0 && (size_t)n.skin < L.model.skins.size();
             for (int m : *prims) {
-                int instance = cg_scene_add_instance(L.scene, m, wf, L.err);
-                if (instance < 0 || (dynamic && cg_scene_attach(L.scene, CG_ATTACH_INSTANCE, instance, here, L.err) < 0))
+                bool skinned = skinned_node && has_skin_attributes(L, m);
+                int use;
+                if (!use_mesh(L, m, skinned, &use))
                     return false;
+                int instance = cg_scene_add_instance(L.scene, use, wf, L.err);
+                if (instance < 0)
+                    return false;
+                if (skinned) { // placed by its joints (finish_skins), not by this node
+                    L.skin_uses.push_back({ n.skin, cur.node, use, instance, {} });
+                    std::memcpy(L.skin_uses.back().world, wf, sizeof wf);
+                } else if (dynamic && cg_scene_attach(L.scene, CG_ATTACH_INSTANCE, instance, here, L.err) < 0) {
+                    return false;
+                }
             }
         }
         int light, camera;
@@ -1964,8 +2230,8 @@ load(loader &L)
     L.mesh_done.assign(L.model.meshes.size(), false);
     std::vector<int> roots;
     ok = check_extensions(L) && check_model(L) && convert_textures(L) && convert_materials(L) &&
-              check_node_graph(L) && read_animations(L) && scene_roots(L, &roots) && visit_nodes(L, roots) &&
-              finish_animations(L);
+              check_node_graph(L) && read_animations(L) && mark_joints(L) && scene_roots(L, &roots) &&
+              visit_nodes(L, roots) && finish_skins(L) && finish_animations(L);
     if (ok)
         report_left_out(L);
     return ok;

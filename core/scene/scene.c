@@ -430,6 +430,8 @@ cg_scene_load(const char *source, cg_scene *out, cg_error *err)
         out->revision = out->instances_revision = out->lights_revision = out->cameras_revision = 0;
         for (int i = 0; i < out->instance_count; i++)
             out->instances[i].revision = 0;
+        for (int i = 0; i < out->mesh_count; i++)
+            out->meshes[i].revision = 0;
         cg_scene_compute_bounds(out);
         /* Classified as posed at time 0; a moving instance makes its mesh complex (classify.c). */
         ok = cg_scene_classify(out, err);
@@ -470,6 +472,7 @@ cg_scene_free(cg_scene *scene)
     free(scene->animations);
     free(scene->nodes);
     free(scene->attachments);
+    cg_scene_free_skins(scene);
     memset(scene, 0, sizeof *scene);
 }
 
@@ -707,10 +710,46 @@ validate_animation(const cg_scene *scene, cg_error *err)
     return true;
 }
 
+/* Skins' joints on nodes that exist, skinned meshes on their own instance, joint indices in
+ * range, weights finite and >= 0. */
+static bool
+validate_skins(const cg_scene *scene, cg_error *err)
+{
+    const char *src = scene->name;
+    for (int i = 0; i < scene->skin_count; i++) {
+        const cg_skin *s = &scene->skins[i];
+        if (s->joint_count < 1 || !s->joints || !s->inverse_bind)
+            return cg_fail(err, CG_ERR_GLTF_SCHEMA, "%s: skin %d '%s' has no joints", src, i, s->name);
+        for (int j = 0; j < s->joint_count; j++)
+            if (s->joints[j] < 0 || s->joints[j] >= scene->node_count)
+                return cg_fail(err, CG_ERR_GLTF_INDEX_RANGE, "%s: skin %d '%s': joint %d is node %d, out of range",
+                               src, i, s->name, j, s->joints[j]);
+        if (!all_finite(s->inverse_bind, 16 * (size_t)s->joint_count))
+            return cg_fail(err, CG_ERR_GLTF_NONFINITE, "%s: skin %d '%s': an inverse bind matrix is NaN or infinite",
+                           src, i, s->name);
+    }
+    for (int i = 0; i < scene->skinned_count; i++) {
+        const cg_skinned_mesh *k = &scene->skinned[i];
+        if (k->skin < 0 || k->skin >= scene->skin_count || k->mesh < 0 || k->mesh >= scene->mesh_count ||
+            k->instance < 0 || k->instance >= scene->instance_count || scene->instances[k->instance].mesh != k->mesh ||
+            k->influences < 1 || !k->joints || !k->weights)
+            return cg_fail(err, CG_ERR_GLTF_INDEX_RANGE, "%s: skinned mesh %d: skin %d, mesh %d or instance %d out "
+                           "of range", src, i, k->skin, k->mesh, k->instance);
+        size_t n = (size_t)scene->meshes[k->mesh].vertex_count * (size_t)k->influences;
+        for (size_t v = 0; v < n; v++)
+            if (k->joints[v] >= scene->skins[k->skin].joint_count || !isfinite(k->weights[v]) || k->weights[v] < 0)
+                return cg_fail(err, CG_ERR_GLTF_ACCESSOR, "%s: skinned mesh '%s': vertex %zu weighs joint %u by %g "
+                               "(joints below %d, weights finite and >= 0)", src, scene->meshes[k->mesh].name,
+                               v / (size_t)k->influences, (unsigned)k->joints[v], k->weights[v],
+                               scene->skins[k->skin].joint_count);
+    }
+    return true;
+}
+
 bool
 cg_scene_validate(const cg_scene *scene, cg_error *err)
 {
-    if (!validate_animation(scene, err))
+    if (!validate_animation(scene, err) || !validate_skins(scene, err))
         return false;
     if (scene->material_count < 1)
         return cg_fail(err, CG_ERR_GLTF_PARSE, "%s: scene has no default material", scene->name);

@@ -10,13 +10,15 @@
  *           cg_gltf_load, cg_gltf_check_json, cg_copy_name, cg_node_default,
  *           cg_node_local, cg_scene_add_node, cg_scene_attach, cg_anim_channel_alloc,
  *           cg_anim_channel_components, cg_anim_channel_stride, cg_scene_add_animation,
- *           cg_scene_pose, cg_scene_motion_bounds.
+ *           cg_scene_pose, cg_scene_motion_bounds, cg_scene_add_skin, cg_scene_add_skinned_mesh,
+ *           cg_scene_free_skins.
  */
 #ifndef CG_SCENE_INTERNAL_H
 #define CG_SCENE_INTERNAL_H
 
 #include <stdbool.h>
 #include <stddef.h>
+#include <stdint.h>
 
 #include "cg/error.h"
 #include "cg/scene.h"
@@ -62,6 +64,20 @@ void cg_scene_pose(cg_scene *scene, double t);
 /* The world boxes of the moving instances over the whole animation (each instance's
  * motion_min/max) and their union, added to lo/hi; false when no instance moves. */
 bool cg_scene_motion_bounds(cg_scene *scene, double lo[3], double hi[3]);
+
+/* Appends a skin; the scene takes `joints` (joint_count node indices) and `inverse_bind`
+ * (joint_count x 16 floats), freed here on failure too. Returns its index or -1. */
+int cg_scene_add_skin(cg_scene *scene, const char *name, int joint_count, int *joints, float *inverse_bind,
+                      cg_error *err);
+/* Binds mesh `mesh`, drawn by instance `instance` alone, to skin `skin`: the scene takes
+ * `joints` and `weights` (vertex_count x influences each; joints below the skin's joint
+ * count, weights >= 0 summing to 1), freed here on failure too; the mesh's vertex arrays as
+ * they are now become its bind pose, and the instance's world matrix the identity (the skin
+ * places the vertices in world space). Returns its index in scene->skinned or -1. */
+int cg_scene_add_skinned_mesh(cg_scene *scene, int mesh, int instance, int skin, int influences, uint16_t *joints,
+                              float *weights, cg_error *err);
+/* Frees the skins and skinned meshes (cg_scene_free). */
+void cg_scene_free_skins(cg_scene *scene);
 
 /* A white Lambertian material: base colour 1, metallic 0, roughness 1, and specular 0
  * (KHR_materials_specular), which leaves glTF's BRDF its Lambertian diffuse lobe alone; the

@@ -2,7 +2,8 @@
  *
  * Declares: cg_gpu_scene, cg_gpu_scene_upload, cg_gpu_scene_destroy, cg_gpu_scene_draw,
  *           cg_gpu_scene_draw_ranges, cg_gpu_scene_bind_instance, cg_mesh_filter, CG_BINDING_MATERIALS, CG_BINDING_LIGHTS,
- *           cg_gpu_scene_bind_lights, cg_gpu_scene_update_lights, CG_GPU_VERTEX_FLOATS,
+ *           cg_gpu_scene_bind_lights, cg_gpu_scene_update_lights, cg_gpu_scene_update_meshes,
+ *           CG_GPU_VERTEX_FLOATS,
  *           CG_SCENE_UNIT_*, CG_GPU_MATERIAL_DOUBLE_SIDED.
  *
  * Shader interface (shaders/common/scene.glsl): vertex attributes 0 = position,
@@ -64,6 +65,7 @@ typedef struct cg_gpu_mesh {
     GLuint index_buffer;
     GLsizei index_count;
     cg_mesh_kind kind;
+    uint64_t revision;      /* the cg_mesh revision its vertices were uploaded at */
 } cg_gpu_mesh;
 
 typedef struct cg_gpu_scene {
@@ -81,6 +83,11 @@ typedef struct cg_gpu_scene {
 } cg_gpu_scene;
 
 bool cg_gpu_scene_upload(const cg_scene *scene, cg_gpu_scene *out, cg_error *err);
+/* Uploads again the vertices of every mesh whose cg_mesh.revision is not the one uploaded (a
+ * skin posed it: cg_scene_changes.meshes_deformed) and, when there was one, gives the upload a
+ * new `generation`, so that a pass keeping what it drew (voxelize, heightmap_raster) rebuilds
+ * it whole, its sorted chunks of a large mesh included. *updated (may be NULL): how many. */
+bool cg_gpu_scene_update_meshes(cg_gpu_scene *gpu, int *updated, cg_error *err);
 void cg_gpu_scene_destroy(cg_gpu_scene *gpu);
 
 /* Draws every instance whose mesh passes `filter` with the bound program: sets the

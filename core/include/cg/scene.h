@@ -4,7 +4,7 @@
  *           cg_light, cg_camera_type, cg_camera, cg_sky_type, cg_sky, cg_kind_source,
  *           cg_classify_rule, cg_classify_points, cg_classify_options, cg_mesh_class, cg_node,
  *           cg_attachment_kind, cg_attachment, cg_anim_path, cg_anim_interpolation, cg_anim_channel,
- *           cg_animation, cg_scene, cg_scene_load, cg_scene_free, cg_classify_defaults,
+ *           cg_animation, cg_skin, cg_skinned_mesh, cg_scene, cg_scene_load, cg_scene_free, cg_classify_defaults,
  *           cg_mesh_classify, cg_scene_export_gltf, cg_scene_compute_bounds,
  *           cg_scene_triangle_count, cg_scene_builtin_names, cg_scene_validate, cg_scene_set_sky,
  *           cg_sky_parse, cg_sky_model, cg_sky_model_init, cg_sky_model_radiance, cg_sky_format,
@@ -121,6 +121,8 @@ typedef struct cg_mesh {
     int material;           /* index into cg_scene.materials; a default white material always exists at 0 */
     cg_mesh_kind kind;
     float bounds_min[3], bounds_max[3]; /* local space */
+    uint64_t revision;      /* cg_scene.revision when its vertices last changed (a skin posed them,
+                             * cg_skinned_mesh); 0: never. GPU copies compare it (cg/gpu_scene.h) */
 } cg_mesh;
 
 /* A mesh placed in the world. glTF's node hierarchy is flattened into these, except where
@@ -296,6 +298,36 @@ typedef struct cg_anim_channel {
                              * CUBICSPLINE 3 x N: in-tangent, value, out-tangent */
 } cg_anim_channel;
 
+/* A glTF skin (glTF 2.0, 3.7.3): the nodes that deform the meshes bound to it. */
+typedef struct cg_skin {
+    char name[CG_NAME_MAX];
+    int joint_count;
+    int *joints;            /* joint_count indices into cg_scene.nodes */
+    float *inverse_bind;    /* joint_count column-major 4x4 inverse bind matrices (identity when
+                             * the file gives none) */
+} cg_skin;
+
+/* A mesh a skin deforms (docs/dynamic.md, "Skins"). glTF 2.0, 3.7.3.3: a vertex's world position
+ * is sum_i w_i x world(joint_i) x inverse_bind(joint_i) x its bind position, and the transform of
+ * the node holding the mesh is ignored. The mesh is its own (one instance draws it, with the
+ * identity world matrix); cg_scene_evaluate writes the posed world-space vertices into it on the
+ * CPU, bumps its `revision` and its instance's, and counts it in cg_scene_changes. */
+typedef struct cg_skinned_mesh {
+    int mesh;               /* into cg_scene.meshes: its vertex arrays hold the posed vertices */
+    int instance;           /* the one instance drawing it */
+    int skin;               /* into cg_scene.skins */
+    int influences;         /* joints per vertex: 4 per JOINTS_n / WEIGHTS_n pair */
+    uint16_t *joints;       /* vertex_count x influences, indices into the skin's joints */
+    float *weights;         /* vertex_count x influences, >= 0, summing to 1 */
+    float *bind_positions;  /* vertex_count x 3: the mesh as the file gives it */
+    float *bind_normals;    /* vertex_count x 3 */
+    float *bind_tangents;   /* vertex_count x 4, or NULL when the mesh has none */
+    float *joint_bounds;    /* joint_count x 6 (min xyz, max xyz): the box of the bind positions
+                             * each joint weighs (min > max: none), for bounds over the animation */
+    double *posed_with;     /* joint_count x 16: the skinning matrices of the last pose (NaN:
+                             * not posed yet) */
+} cg_skinned_mesh;
+
 /* A glTF animation. All of a scene's animations play together, from time 0. */
 typedef struct cg_animation {
     char name[CG_NAME_MAX];
@@ -322,6 +354,8 @@ typedef struct cg_scene {
     cg_node *nodes;              int node_count;
     cg_attachment *attachments;  int attachment_count;
     cg_animation *animations;    int animation_count;
+    cg_skin *skins;              int skin_count;
+    cg_skinned_mesh *skinned;    int skinned_count;
     double time;            /* seconds: the time the scene is posed at (0 after loading) */
     /* Change stamps for caches: `revision` counts the changes to instance worlds, lights and
      * cameras (cg_scene_evaluate, cg_scene_lights_changed); instances_revision,
@@ -426,7 +460,10 @@ void cg_sky_model_radiance(const cg_sky_model *model, const float dir[3], float 
 
 /* What one cg_scene_evaluate changed. */
 typedef struct cg_scene_changes {
-    int instances_moved;    /* instances whose world matrix changed (their `revision` says which) */
+    int instances_moved;    /* instances whose world matrix or (skinned) vertices changed (their
+                             * `revision` says which) */
+    int meshes_deformed;    /* skinned meshes whose vertices changed (their `revision` says which;
+                             * a GPU copy needs cg_gpu_scene_update_meshes) */
     bool lights;            /* some light's position or direction changed */
     bool cameras;           /* some camera's world matrix changed */
 } cg_scene_changes;
@@ -435,7 +472,8 @@ typedef struct cg_scene_changes {
  * first key its first value, after its last key its last value: no looping), recomputes the
  * kept nodes' world matrices and, from them, the world matrices of the instances, the
  * positions and directions of the lights and the world matrices of the cameras that follow
- * them. Bumps the change stamps of what changed and reports it in *changes (may be NULL).
+ * them, and the vertices of the skinned meshes whose joints moved. Bumps the change stamps of
+ * what changed and reports it in *changes (may be NULL).
  * A scene without animation never changes. */
 void cg_scene_evaluate(cg_scene *scene, double t, cg_scene_changes *changes);
 /* Whether any channel animates the scene. */
