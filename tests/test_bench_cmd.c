@@ -9,6 +9,7 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include "cg/image.h"
 #include "test_support.h"
@@ -173,6 +174,59 @@ bad_input_exits_with_2(void **state)
     assert_int_equal(run(args, out, sizeof out), 2);
     assert_int_equal(run("bench --help", out, sizeof out), 0);
     assert_non_null(strstr(out, "usage: conegraph bench"));
+}
+
+static bool exists(const char *path);
+
+/* --out and --cache are checked before any work: a part of the path that is a file, or (not as
+ * root, who may write anywhere) a directory that cannot take new files, exits 2 at once naming
+ * the flag and the path as written; nothing renders and no directory is made. A missing
+ * directory is not refused: bench makes it with its parents. */
+static void
+output_dirs_refused_before_work(void **state)
+{
+    (void)state;
+    static char out[1 << 16];
+    char args[8192], path[4200];
+    const char *dir = cg_test_tmpdir();
+    const char *file = cg_test_write_file("not-a-dir", "x", 0);
+    const char *sweep = "--scene builtin:cornell --graph direct.json --size 16x16 --ref-spp 1 --pt-spp 1 "
+                        "--frames 1 --warmup 0";
+    struct { const char *flags, *named; } cases[] = {
+        { "--out '%s'", "is not a directory" },
+        { "--out '%s/sub/deeper'", "is not a directory" },
+        { "--cache '%s/cache' --out '%s/ok'", "is not a directory" },
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        char flags[4096], expected[4200];
+        snprintf(flags, sizeof flags, cases[i].flags, file, dir);
+        snprintf(args, sizeof args, "bench %s %s", sweep, flags);
+        int code = run(args, out, sizeof out);
+        /* The flag and its path as the user wrote them. */
+        snprintf(expected, sizeof expected, i == 2 ? "--cache %s/cache: " : i == 1 ? "--out %s/sub/deeper: " : "--out %s: ",
+                 file);
+        if (code != 2 || !strstr(out, expected) || !strstr(out, cases[i].named))
+            fail_msg("bench %s exited %d, expected 2 naming '%s' and '%s':\n%s", flags, code, expected,
+                     cases[i].named, out);
+        assert_null(strstr(out, "rendering the reference"));
+        assert_null(strstr(out, "checked in"));
+    }
+    snprintf(path, sizeof path, "%s/ok", dir);
+    assert_false(exists(path));
+    if (geteuid() != 0) {
+        snprintf(path, sizeof path, "%s/read-only", dir);
+        assert_int_equal(mkdir(path, 0555), 0);
+        snprintf(args, sizeof args, "bench %s --out '%s/b'", sweep, path);
+        assert_int_equal(run(args, out, sizeof out), 2);
+        assert_non_null(strstr(out, "is not writable"));
+    }
+    /* A directory that does not exist yet is made, parents and all. */
+    snprintf(args, sizeof args, "bench %s --out '%s/new/nested'", sweep, dir);
+    int code = run(args, out, sizeof out);
+    if (code != 0)
+        fail_msg("bench exited with %d:\n%s", code, out);
+    snprintf(path, sizeof path, "%s/new/nested/bench.csv", dir);
+    assert_true(exists(path));
 }
 
 static int csv_fields(const char *line, char fields[][512], int max);
@@ -493,6 +547,7 @@ main(void)
         cmocka_unit_test(sweep_file),
         cmocka_unit_test(sweep_lights_each_scene_once),
         cmocka_unit_test(bad_input_exits_with_2),
+        cmocka_unit_test(output_dirs_refused_before_work),
         cmocka_unit_test(one_bad_setting_renders_and_writes_nothing),
         cmocka_unit_test(shards_merge_into_the_unsharded_table),
         cmocka_unit_test(gi_and_direct_columns),

@@ -953,6 +953,11 @@ test_bad_input(void **state)
         "builtin:cornell --look-at 0,0,x",
         "builtin:cornell --fov 180",
         "builtin:cornell --sky purple",
+        /* Output paths, checked before the window (core's cg_output_path_check). */
+        "builtin:cornell --screenshot /nonexistent-dir/shot.png",
+        "builtin:cornell --image-screenshot /nonexistent-dir/shot.png",
+        "builtin:cornell --screenshot /proc/version/shot.png",
+        "builtin:cornell --screenshot /",
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++)
         if (run_demo(cases[i]) != 2)

@@ -11,6 +11,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+
+#include "cg/fs.h"
 
 #include "app_common.h"
 #include "bench/bench.h"
@@ -85,7 +88,9 @@ cmd_bench_usage(FILE *out)
         "  --error relmse|gi-nrmse  the error of the plots, the Pareto fronts (P) and the\n"
         "                        equal-error speed-up: the full image's relMSE (default) or the GI\n"
         "                        part's nRMSE; the tables carry both either way\n"
-        "  --out DIR             output directory (default bench-out)\n"
+        "  --out DIR             output directory (default bench-out), made with its parents;\n"
+        "                        checked before any work: a part of it that is a file or a\n"
+        "                        directory that cannot take new files exits 2 at once\n"
         "  --cache DIR           reference cache (default OUT/cache); entries are keyed by the\n"
         "                        scene's contents, view, size, spp, bounce limits, caustics, seed\n"
         "                        and tracer version\n"
@@ -282,6 +287,55 @@ merge(const bench_config *c)
     return code;
 }
 
+/* Whether the directory `dir` (--out, --cache) can be made where it is asked and take files,
+ * checked before any work. The directory is made with its missing parents (mkdir -p), so the
+ * question goes to the deepest part of the path that exists: through core's output path check
+ * of the first missing part under it (that part's directory exists, is a directory and can take
+ * new entries), or of a file inside `dir` itself where it exists. Fails with CG_ERR_OUTPUT_PATH
+ * naming the flag and the path as written. */
+static bool
+output_dir_check(const char *flag, const char *dir, cg_error *err)
+{
+    char path[4096], probe[4200];
+    size_t len = strlen(dir);
+    while (len > 1 && dir[len - 1] == '/')
+        len--;
+    if (len == 0 || len >= sizeof path)
+        return cg_fail(err, CG_ERR_OUTPUT_PATH, "%s '%s': %s", flag, dir, len ? "path too long" : "an empty path");
+    snprintf(path, sizeof path, "%.*s", (int)len, dir);
+    struct stat st;
+    if (stat(path, &st) == 0) {
+        if (!S_ISDIR(st.st_mode))
+            return cg_fail(err, CG_ERR_OUTPUT_PATH, "%s %s: is not a directory", flag, dir);
+        snprintf(probe, sizeof probe, "%s/bench.json", path);
+    } else {
+        /* Up to the deepest existing part; probe is the first missing part below it. */
+        snprintf(probe, sizeof probe, "%s", path);
+        for (;;) {
+            char *slash = strrchr(path, '/');
+            if (!slash)
+                break;
+            if (slash == path) {
+                path[1] = '\0';
+                break;
+            }
+            *slash = '\0';
+            if (stat(path, &st) == 0)
+                break;
+            snprintf(probe, sizeof probe, "%s", path);
+        }
+    }
+    cg_error why = { 0 };
+    if (cg_output_path_check(probe, NULL, &why))
+        return true;
+    /* core's message begins with the probed path: give the user's path instead. */
+    const char *reason = why.message;
+    size_t n = strlen(probe);
+    if (!strncmp(reason, probe, n) && !strncmp(reason + n, ": ", 2))
+        reason += n + 2;
+    return cg_fail(err, CG_ERR_OUTPUT_PATH, "%s %s: %s", flag, dir, reason);
+}
+
 int
 cmd_bench(int argc, char **argv)
 {
@@ -290,5 +344,10 @@ cmd_bench(int argc, char **argv)
     int code = bench_parse_args(argc, argv, &config);
     if (code)
         return code;
+    /* Where it writes, before the scenes are read and anything renders (exit 2). */
+    cg_error err = { 0 };
+    if (!output_dir_check("--out", config.out_dir, &err) ||
+        (!config.merge_count && !output_dir_check("--cache", config.cache_dir, &err)))
+        return app_fail(TOOL, NULL, &err);
     return config.merge_count ? merge(&config) : bench(&config);
 }

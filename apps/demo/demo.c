@@ -17,6 +17,7 @@
 #include "cg/camera.h"
 #include "cg/error.h"
 #include "cg/fg.h"
+#include "cg/fs.h"
 #include "cg/gl.h"
 #include "cg/gpu_scene.h"
 #include "cg/image.h"
@@ -70,7 +71,8 @@ usage(FILE *out)
         "                          written there too\n"
         "  --image-screenshot FILE.png  where Shift+F12 writes the image without the UI\n"
         "                          (default conegraph-demo-image-N.png); with --frames, the\n"
-        "                          last frame's is written there too\n"
+        "                          last frame's is written there too. Both are checked before\n"
+        "                          the window opens: a missing or unwritable directory exits 2\n"
         "  --timing sync|queries|none  per-pass timing: glFinish + CPU clock, GL_TIMESTAMP\n"
         "                          queries read a frame late, or none (default: sync on a\n"
         "                          software renderer such as llvmpipe, queries on a GPU)\n"
@@ -170,6 +172,10 @@ own_option(void *user, const char *a, const char *v)
     if (!strcmp(a, "--screenshot") || !strcmp(a, "--image-screenshot")) {
         if (!app_has_extension(v, ".png"))
             return usage_error("--screenshot and --image-screenshot write .png files only, not '%s'", v);
+        /* Where it will write, before the window opens and the graph runs (exit 2). */
+        cg_error err = { 0 };
+        if (!cg_output_path_check(v, ".png", &err))
+            return app_fail(TOOL, a, &err);
         if (!strcmp(a, "--screenshot"))
             o->screenshot = v;
         else
