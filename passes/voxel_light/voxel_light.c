@@ -22,13 +22,27 @@
  * G adds one more to both. Where no voxelized mesh emits and no sky shines, G(V_0) = 0 and the
  * first gather is skipped (V_1 = D): N - 1 gathers, N otherwise; each gather is followed by the mip chain
  * (mip.comp) of the new light.
+ *
+ * Relighting what can have changed (cache = true, the default; docs/results/voxel-light-cost.md):
+ * the three light volumes are persistent, and a frame relights them only when something the light
+ * reads changed since the last relight: the geometry (an instance as sdk/instances.h compares it, the
+ * GPU scene's upload, voxelize's region block, read back: region, levels and scales; the input
+ * textures), the lights (by value) and the shadow map's matrix block (read back), the sky, or the
+ * pass's parameters. A static frame dispatches nothing and keeps the volumes. Where the only gather is
+ * the first (bounces = 1 with a sky or emitters: G(V_0), V_0 = Le, reads no punctual light), it is kept
+ * too (gathered_front and gathered_back are then persistent) while only the lights or the shadow map
+ * changed: a turning sun under a uniform sky costs one inject and its mips. cache = false relights
+ * every frame. The pass reports what it did through fg_pass_report_rebuilt, with the compute
+ * dispatches it made, so that a test can see a static frame do nothing.
  */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "sdk/blocks.h"
 #include "sdk/cone.h"
+#include "sdk/instances.h"
 #include "sdk/pass.h"
 #include "sdk/sampler.h"
 #include "sdk/shadow.h"
@@ -52,6 +66,11 @@ static const fg_param_desc voxel_light_params[] = {
     { .name = "bounce_cones", .type = FG_PARAM_INT, .default_value = 16, .min = 1, .max = 26,
       .allowed = FG_PARAM_VALUES(CGP_CONE_SET_SIZES),
       .doc = "diffuse cones of the gathers at the voxels: 1, 6, 9, 16 or 26" },
+    { .name = "cache", .type = FG_PARAM_BOOL, .default_value = 1,
+      .doc = "keep the light volumes across frames and relight them only when the geometry, the lights, "
+             "the shadow map's matrix, the sky or the parameters changed (a static frame dispatches "
+             "nothing); the first gather, which reads no punctual light, is kept too while only the "
+             "lights changed (bounces = 1). false: relight every frame" },
 };
 
 static const char *const geometry_names[4] = {"albedo", "coverage", "normal", "emission"};
@@ -66,7 +85,23 @@ typedef struct voxel_light_state {
     cgp_cone_set set;
     cgp_no_shadow no_shadow;
     cgp_sky sky;            /* the scene's sky, which the gathers at the voxels see (common/sky.glsl) */
-    bool gathers;           /* the transient bounce resources exist */
+    bool gathers;           /* the bounce resources exist */
+    bool cache;             /* the light volumes (and gathered_*, when kept) are persistent */
+    /* What the last relight read (cache = true), to tell whether a frame must relight. */
+    bool lit;               /* the volumes hold the light of `key` */
+    bool first_gather_kept; /* gathered_* hold G(V_0) of `key` (the only gather of that relight) */
+    cgp_instance_record instances;
+    struct light_key {
+        GLuint textures[6];         /* the geometry volumes, the shadow map, the shadow matrix buffer */
+        cg_volume_block region;     /* voxelize's region block as it was read back */
+        unsigned char shadow[256];  /* the shadow_map's matrix block as read back (its first bytes) */
+        int bounces, bounce_cones;
+        cg_sky sky;
+    } key;
+    cg_light *lights;       /* the scene's lights at the last relight */
+    int light_count;
+    uint64_t relights;      /* frames that relit since prepare */
+    int dispatches;         /* compute dispatches of this frame's execute */
 } voxel_light_state;
 
 /* Entries of the list of occupied voxels: a quarter of the volume, far beyond what surfaces
@@ -135,12 +170,17 @@ voxel_light_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
         .kind = FG_TEXTURE_3D, .format = GL_RGBA16F,
         .width = g->width, .height = g->height, .depth = g->depth,
         .levels = cgp_volume_levels(g->width, g->height, g->depth), .gi = true,
+        /* Kept across frames: a frame that changes nothing keeps them; persistent storage is
+         * never pooled, so nothing else writes it between frames. */
+        .persistent = fg_param_bool(pass, "cache"),
     };
     for (int i = 0; i < 3; i++)
         fg_declare_output(decl, light_names[i], &light, FG_ACCESS_IMAGE_STORE);
     if (gathers(pass) > 0) {
         fg_resource_desc gathered = light;
         gathered.levels = 1;
+        /* G(V_0) is kept while only the lights change where it is the only gather. */
+        gathered.persistent = light.persistent && gathers(pass) == 1 && fg_param_int(pass, "bounces") == 1;
         fg_declare_output(decl, "gathered_front", &gathered, FG_ACCESS_IMAGE_STORE);
         fg_declare_output(decl, "gathered_back", &gathered, FG_ACCESS_IMAGE_STORE);
         fg_resource_desc list = cgp_buffer_desc(sizeof(cg_voxel_list_block) + sizeof(GLuint) * list_capacity(g));
@@ -150,10 +190,20 @@ voxel_light_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
     return true;
 }
 
+static void
+voxel_light_cleanup(void *state)
+{
+    voxel_light_state *s = state;
+    cgp_instance_record_free(&s->instances);
+    free(s->lights);
+}
+
 static bool
 voxel_light_prepare(fg_pass *pass, voxel_light_state *s, cg_error *err)
 {
+    cgp_state_on_destroy(s, voxel_light_cleanup);
     s->gathers = fg_resource(pass, "voxels") != NULL;
+    s->cache = fg_param_bool(pass, "cache");
     cgp_no_shadow_create(s, &s->no_shadow);
     cgp_sky_prepare(s, &s->sky);
     s->sampler = cgp_sampler_volume(s);
@@ -169,7 +219,7 @@ voxel_light_prepare(fg_pass *pass, voxel_light_state *s, cg_error *err)
 
 /* Level 0 of the three volumes. */
 static void
-inject(const fg_pass *pass, const voxel_light_state *s, bool direct, bool gathered, bool build_list)
+inject(const fg_pass *pass, voxel_light_state *s, bool direct, bool gathered, bool build_list)
 {
     glUseProgram(s->inject);
     glUniform1i(4, direct);
@@ -180,13 +230,14 @@ inject(const fg_pass *pass, const voxel_light_state *s, bool direct, bool gather
     for (int i = 0; i < 3; i++)
         glBindImageTexture((GLuint)i, fg_texture(pass, light_names[i]), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glDispatchCompute((GLuint)(volume->width + 3) / 4, (GLuint)(volume->height + 3) / 4, (GLuint)(volume->depth + 3) / 4);
+    s->dispatches++;
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT |
                     GL_COMMAND_BARRIER_BIT);
 }
 
 /* Levels 1.. of the three volumes from level 0. */
 static void
-mip(const fg_pass *pass, const voxel_light_state *s)
+mip(const fg_pass *pass, voxel_light_state *s)
 {
     glUseProgram(s->mip);
     const fg_resource_desc *volume = fg_resource(pass, "radiance");
@@ -199,6 +250,7 @@ mip(const fg_pass *pass, const voxel_light_state *s)
         /* cgp_volume_levels: every side halves exactly. */
         glDispatchCompute((GLuint)((volume->width >> level) + 3) / 4, (GLuint)((volume->height >> level) + 3) / 4,
                           (GLuint)((volume->depth >> level) + 3) / 4);
+        s->dispatches++;
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     }
     for (int i = 0; i < 6; i++)
@@ -207,7 +259,7 @@ mip(const fg_pass *pass, const voxel_light_state *s)
 
 /* Each listed voxel's gathered light on both sides, through the current volumes. */
 static void
-gather(const fg_pass *pass, const voxel_light_state *s)
+gather(const fg_pass *pass, voxel_light_state *s)
 {
     glUseProgram(s->gather);
     glUniform1ui(3, list_capacity(fg_resource(pass, "radiance")));
@@ -224,6 +276,7 @@ gather(const fg_pass *pass, const voxel_light_state *s)
     glBindImageTexture(1, fg_texture(pass, "gathered_back"), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, fg_buffer(pass, "voxels"));
     glDispatchComputeIndirect(0);
+    s->dispatches++;
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     glBindSampler(CG_UNIT_VOLUME, 0);
@@ -245,15 +298,117 @@ bind_inject_inputs(const fg_pass *pass, const voxel_light_state *s)
     glBindTextureUnit(5, s->gathers ? fg_texture(pass, "gathered_back") : 0);
 }
 
+/* What a relight would read this frame beside the scene's instances and lights (cache = true). */
+static void
+read_key(const fg_pass *pass, struct light_key *key)
+{
+    memset(key, 0, sizeof *key);
+    for (int i = 0; i < 4; i++)
+        key->textures[i] = fg_texture(pass, geometry_names[i]);
+    key->textures[4] = fg_texture(pass, "shadow");
+    key->textures[5] = fg_buffer(pass, "shadow_matrix");
+    /* voxelize writes its region block every frame: read back, it says whether the region, the
+     * levels or the radiance scale moved (48 bytes; the pass's work is done by then anyway). */
+    glGetNamedBufferSubData(fg_buffer(pass, "region"), 0, sizeof key->region, &key->region);
+    const fg_resource_desc *matrix = fg_resource(pass, "shadow_matrix");
+    if (matrix && key->textures[5]) {
+        size_t bytes = matrix->buffer_bytes < sizeof key->shadow ? matrix->buffer_bytes : sizeof key->shadow;
+        glGetNamedBufferSubData(key->textures[5], 0, (GLsizeiptr)bytes, key->shadow);
+    }
+    key->bounces = fg_param_int(pass, "bounces");
+    key->bounce_cones = fg_param_int(pass, "bounce_cones");
+    key->sky = fg_pass_frame(pass)->scene->sky;
+}
+
+/* Why this frame must relight (NULL: nothing the light reads changed since the last relight).
+ * *lights_only: what changed is the lights or the shadow map alone, which G(V_0) does not read
+ * (unless a Preetham sky follows the sun). */
+static const char *
+what_changed(const fg_pass *pass, const voxel_light_state *s, const struct light_key *key, bool *lights_only)
+{
+    const fg_frame *frame = fg_pass_frame(pass);
+    const cg_scene *scene = frame->scene;
+    *lights_only = false;
+    if (!s->lit)
+        return "first frame";
+    const char *why = cgp_instances_changed(&s->instances, frame, CG_MESHES_ALL, "an instance changed");
+    if (why)
+        return why;
+    if (memcmp(key->textures, s->key.textures, 4 * sizeof key->textures[0]) ||
+        memcmp(&key->region, &s->key.region, sizeof key->region))
+        return "geometry volumes or region changed";
+    if (key->bounces != s->key.bounces || key->bounce_cones != s->key.bounce_cones)
+        return "parameters changed";
+    if (!cg_sky_equal(&key->sky, &s->key.sky) || key->sky.type != s->key.sky.type)
+        return "sky changed";
+    bool lights = scene->light_count != s->light_count ||
+                  (s->light_count > 0 && memcmp(scene->lights, s->lights, sizeof *s->lights * (size_t)s->light_count));
+    bool shadow = memcmp(&key->textures[4], &s->key.textures[4], 2 * sizeof key->textures[0]) ||
+                  memcmp(key->shadow, s->key.shadow, sizeof key->shadow);
+    if (!lights && !shadow)
+        return NULL;
+    *lights_only = !(lights && key->sky.type == CG_SKY_PREETHAM);
+    return lights ? "lights changed" : "shadow map changed";
+}
+
+/* Keeps what this relight read, for the next frame's what_changed. */
+static bool
+remember(const fg_pass *pass, voxel_light_state *s, const struct light_key *key, bool first_gather_kept, cg_error *err)
+{
+    const fg_frame *frame = fg_pass_frame(pass);
+    const cg_scene *scene = frame->scene;
+    s->lit = false;
+    if (scene->light_count != s->light_count) {
+        free(s->lights);
+        s->lights = NULL;
+        s->light_count = 0;
+        if (scene->light_count > 0) {
+            s->lights = malloc(sizeof *s->lights * (size_t)scene->light_count);
+            if (!s->lights)
+                return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "pass '%s': out of memory keeping %d lights",
+                               fg_pass_name(pass), scene->light_count);
+        }
+        s->light_count = scene->light_count;
+    }
+    if (s->light_count > 0)
+        memcpy(s->lights, scene->lights, sizeof *s->lights * (size_t)s->light_count);
+    if (!cgp_instances_remember(&s->instances, frame, CG_MESHES_ALL, err))
+        return false;
+    s->key = *key;
+    s->lit = true;
+    s->first_gather_kept = first_gather_kept;
+    return true;
+}
+
 static bool
 voxel_light_execute(fg_pass *pass, voxel_light_state *s, cg_error *err)
 {
     const fg_frame *frame = fg_pass_frame(pass);
     int bounces = fg_param_int(pass, "bounces");
+    s->dispatches = 0;
     glBindBufferBase(GL_UNIFORM_BUFFER, CG_BINDING_VOLUME, fg_buffer(pass, "region"));
+    struct light_key key;
+    bool lights_only = false;
+    const char *why = "cache=false";
+    if (s->cache) {
+        read_key(pass, &key);
+        why = what_changed(pass, s, &key, &lights_only);
+        if (!why) {
+            fg_pass_report_rebuilt(pass, "volumes kept (0 dispatches; %llu relight%s since prepare)",
+                                   (unsigned long long)s->relights, s->relights == 1 ? "" : "s");
+            return true;
+        }
+    }
     cg_gpu_scene_bind_lights(frame->gpu_scene);
     cgp_bind_shadow(pass, &s->no_shadow, 6);
-    if (s->gathers) {
+    /* V_0 = Le, or V_1 = D where nothing emits (the header); then a gather per bounce left. */
+    int count = s->gathers ? gathers(pass) : 0;
+    bool skip_first = bounces > 0 && count < bounces;
+    /* G(V_0) kept where it is the only gather and its outputs persist (declare). */
+    const fg_resource_desc *gathered = fg_resource(pass, "gathered_front");
+    bool keeps_first = s->cache && count == 1 && bounces == 1 && gathered && gathered->persistent;
+    bool reuse_first = keeps_first && lights_only && s->first_gather_kept;
+    if (s->gathers && !reuse_first) {
         const cg_voxel_list_block header = {.dispatch = {0, 1, 1, 0}};
         glNamedBufferSubData(fg_buffer(pass, "voxels"), 0, sizeof header, &header);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_VOXEL_LIST, fg_buffer(pass, "voxels"));
@@ -261,31 +416,47 @@ voxel_light_execute(fg_pass *pass, voxel_light_state *s, cg_error *err)
         cgp_cone_block_fill_march(&s->set, BOUNCE_STEP, BOUNCE_START_OFFSET, 0.0, BOUNCE_LOD_BIAS, &cones);
         cgp_uniform_upload(s->cone_block, CG_BINDING_CONES, &cones, sizeof cones);
     }
-    /* V_0 = Le, or V_1 = D where nothing emits (the header); then a gather per bounce left. */
-    int count = s->gathers ? gathers(pass) : 0;
-    bool skip_first = bounces > 0 && count < bounces;
-    bind_inject_inputs(pass, s);
-    inject(pass, s, skip_first, false, s->gathers);
-    mip(pass, s);
-    /* What a cone of a gather at the voxels leaves open sees the sky, as the screen's gather. */
-    if (count > 0) {
-        if (!cgp_sky_update(s, &s->sky, frame->scene, err))
-            return false;
-        cgp_sky_bind(&s->sky);
-    }
-    for (int b = 0; b < count; b++) {
-        gather(pass, s);
+    unsigned listed = 0;
+    if (reuse_first) {
+        /* V_1 = Le + D + G(V_0), G(V_0) as the last relight gathered it. */
         bind_inject_inputs(pass, s);
         inject(pass, s, true, true, false);
         mip(pass, s);
+    } else {
+        bind_inject_inputs(pass, s);
+        inject(pass, s, skip_first, false, s->gathers);
+        mip(pass, s);
+        /* What a cone of a gather at the voxels leaves open sees the sky, as the screen's gather. */
+        if (count > 0) {
+            if (!cgp_sky_update(s, &s->sky, frame->scene, err))
+                return false;
+            cgp_sky_bind(&s->sky);
+            cg_voxel_list_block header;
+            glGetNamedBufferSubData(fg_buffer(pass, "voxels"), 0, sizeof header, &header);
+            listed = header.dispatch[3];
+        }
+        for (int b = 0; b < count; b++) {
+            gather(pass, s);
+            bind_inject_inputs(pass, s);
+            inject(pass, s, true, true, false);
+            mip(pass, s);
+        }
+        if (count > 0)
+            cgp_sky_unbind();
     }
-    if (count > 0)
-        cgp_sky_unbind();
     for (GLuint unit = 0; unit < 7; unit++)
         glBindTextureUnit(unit, 0);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_VOXEL_LIST, 0);
     glUseProgram(0);
-    return true;
+    s->relights++;
+    if (reuse_first)
+        fg_pass_report_rebuilt(pass, "volumes relit (%s; first gather kept): %d dispatches", why, s->dispatches);
+    else if (count > 0)
+        fg_pass_report_rebuilt(pass, "volumes relit (%s): %d dispatches, %d gather%s of %u voxels", why, s->dispatches,
+                               count, count == 1 ? "" : "s", listed);
+    else
+        fg_pass_report_rebuilt(pass, "volumes relit (%s): %d dispatches", why, s->dispatches);
+    return !s->cache || remember(pass, s, &key, keeps_first, err);
 }
 
 CGP_PASS(voxel_light, CGP_PARAMS(voxel_light_params),
