@@ -231,6 +231,10 @@ cgp_gather_declare_volume(fg_pass *pass, fg_declare *decl, const fg_resource_des
         return cg_fail(err, CG_ERR_GRAPH_MISSING_INPUT,
                        "pass '%s': input 'volume' needs input 'region' (a voxelize or voxel_light pass's output "
                        "'region')", fg_pass_name(pass));
+    if (fg_declare_input(decl, "glossy", FG_TEXTURE_3D, FG_ACCESS_SAMPLED, false) && !surface)
+        return cg_fail(err, CG_ERR_GRAPH_MISSING_INPUT,
+                       "pass '%s': input 'glossy' (a voxel_light pass's output with glossy = true) needs that pass's "
+                       "'radiance', 'sides' and 'normals' as 'volume', 'sides' and 'normals'", fg_pass_name(pass));
     if (*region && (*region)->buffer_bytes < sizeof(cg_volume_block))
         return cg_fail(err, CG_ERR_GRAPH_INCOMPATIBLE,
                        "pass '%s': input 'region' holds %zu bytes; a voxelize 'region' holds %zu",
@@ -342,8 +346,9 @@ cgp_gather_prepare(void *state, const fg_pass *pass, cgp_gather *g, const char *
     g->model = cgp_gather_volume_model(pass);
     g->material = fg_resource(pass, "specular") && fg_resource(pass, "material");
     char all[1024];
-    snprintf(all, sizeof all, "%s%s%s", defines ? defines : "", cgp_gather_volume_define(g->model),
-             g->material ? "#define CG_GATHER_MATERIAL\n" : "");
+    snprintf(all, sizeof all, "%s%s%s%s", defines ? defines : "", cgp_gather_volume_define(g->model),
+             g->material ? "#define CG_GATHER_MATERIAL\n" : "",
+             fg_resource(pass, "glossy") ? "#define CG_GATHER_GLOSSY\n" : "");
     if (!cgp_cone_set_of_pass(pass, &g->set, err) || !cgp_compute_program(state, shader, all, &g->program, err))
         return false;
     g->volume_sampler = cgp_sampler_volume(state);
@@ -375,6 +380,11 @@ cgp_gather_begin(const fg_pass *pass, cgp_gather *g, const void *block, size_t g
     if (volume && g->model == CGP_VOLUME_SURFACE) {
         glBindTextureUnit(CG_UNIT_OCCUPANCY, volume);
         glBindSampler(CG_UNIT_OCCUPANCY, g->one_level_sampler);
+        /* The lobes' volume: its occupancy is `volume`'s (one geometry, voxel_light's glossy). */
+        if (fg_resource(pass, "glossy")) {
+            glBindTextureUnit(CG_UNIT_GLOSSY, fg_texture(pass, "glossy"));
+            glBindSampler(CG_UNIT_GLOSSY, g->volume_sampler);
+        }
     }
     glBindTextureUnit(CG_UNIT_POSITION, fg_texture(pass, "position"));
     glBindTextureUnit(CG_UNIT_NORMAL, fg_texture(pass, "normal"));
@@ -395,6 +405,8 @@ cgp_gather_end(const fg_pass *pass)
     glBindSampler(CG_UNIT_VOLUME, 0);
     glBindSampler(CG_UNIT_OCCUPANCY, 0);
     glBindTextureUnit(CG_UNIT_OCCUPANCY, 0);
+    glBindSampler(CG_UNIT_GLOSSY, 0);
+    glBindTextureUnit(CG_UNIT_GLOSSY, 0);
     cgp_gather_bind_volume(pass, cgp_gather_volume_model(pass), 0, true);
     cgp_sky_unbind();
     glUseProgram(0);

@@ -92,7 +92,10 @@ typedef enum cgp_volume_model {
  * *volume and *region are the inputs' descriptors, NULL when absent. Fails
  * (CG_ERR_GRAPH_MISSING_INPUT) when some of a model's inputs are connected and not the others, or
  * both models' are, and when `volume` comes without `region`; CG_ERR_GRAPH_INCOMPATIBLE when
- * `region` is smaller than a CG_VOLUME_BLOCK. */
+ * `region` is smaller than a CG_VOLUME_BLOCK. The optional input `glossy` (the surface model only: a
+ * voxel_light pass's output of that name, its light one diffuse bounce further) is what the material
+ * lobes' cones read (CG_GATHER_GLOSSY, CG_GATHER_LOBE_VOLUME in common/gather.glsl, bound by
+ * cgp_gather_begin at CG_UNIT_GLOSSY); without it they read `volume`. */
 bool cgp_gather_declare_volume(fg_pass *pass, fg_declare *decl, const fg_resource_desc **volume,
                                const fg_resource_desc **region, cg_error *err);
 /* The model of a compiled pass's inputs, and the shader define it needs ("" for the radiance model). */

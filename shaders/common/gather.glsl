@@ -2,7 +2,7 @@
 // (cgp_gather_begin, passes/sdk/cone.c): the mipped 3D lightmap, the G-buffer's position and
 // normal, the output image `radiance`, and the pixel and surface point of an invocation.
 //
-// Provides: cg_gather_volume, cg_gather_radiance, cg_gather_pixel(), cg_gather_surface(); with
+// Provides: cg_gather_volume, CG_GATHER_LOBE_VOLUME, cg_gather_radiance, cg_gather_pixel(), cg_gather_surface(); with
 //           CG_GATHER_MATERIAL (the G-buffer's material inputs, cgp_gather_declare_material) also
 //           CgGatherMaterial, cg_gather_material(), cg_gather_brdf(), cg_gather_specular_tan_half(),
 //           cg_gather_diffuse_share(), cg_gather_specular_weight(), cg_gather_transmission_share(),
@@ -15,6 +15,16 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 
 layout(binding = CG_UNIT_VOLUME) uniform sampler3D cg_gather_volume;
+// The volume a material lobe's cone reads, CG_GATHER_LOBE_VOLUME: with CG_GATHER_GLOSSY voxel_light's
+// `glossy`, its light one diffuse bounce further than `volume` (glossy and transmissive scattering on a
+// path from the camera do not count against its diffuse bounces, as path_trace and Cycles count them:
+// the surface a mirror shows keeps its diffuse bounce; docs/vct.md); else the diffuse cones' volume.
+#ifdef CG_GATHER_GLOSSY
+layout(binding = CG_UNIT_GLOSSY) uniform sampler3D cg_gather_glossy;
+#define CG_GATHER_LOBE_VOLUME cg_gather_glossy
+#else
+#define CG_GATHER_LOBE_VOLUME cg_gather_volume
+#endif
 layout(binding = CG_UNIT_POSITION) uniform sampler2D cg_gather_position;
 layout(binding = CG_UNIT_NORMAL) uniform sampler2D cg_gather_normal;
 

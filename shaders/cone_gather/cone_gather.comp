@@ -44,7 +44,7 @@ vec4
 trace_lobe(CgVolume v, CgMarch march, float t_max, CgGatherLobe lobe)
 {
     CgCone c = CgCone(lobe.origin, lobe.direction, lobe.tan_half, v.voxel_size, t_max, march.step, march.lod_bias);
-    vec4 traced = cg_sky_gather(cg_cone_trace_surface(cg_gather_volume, v, c, lobe.surface), c.direction, c.tan_half);
+    vec4 traced = cg_sky_gather(cg_cone_trace_surface(CG_GATHER_LOBE_VOLUME, v, c, lobe.surface), c.direction, c.tan_half);
     return vec4(traced.rgb * lobe.weight, traced.a);
 }
 

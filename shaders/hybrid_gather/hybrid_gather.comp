@@ -741,7 +741,7 @@ trace_lobe(CgGatherLobe lobe, float t_max, float xel, bool own_voxels)
     CgVolume v = cg_volume();
     CgMarch march = cg_cone_march();
     CgCone c = CgCone(lobe.origin, lobe.direction, lobe.tan_half, v.voxel_size, t_max, march.step, march.lod_bias);
-    traced = cg_cone_trace_surface(cg_gather_volume, v, c, lobe.surface);
+    traced = cg_cone_trace_surface(CG_GATHER_LOBE_VOLUME, v, c, lobe.surface);
 #endif
     traced = cg_sky_gather(traced, lobe.direction, lobe.tan_half);
     return vec4(traced.rgb * lobe.weight, traced.a);
