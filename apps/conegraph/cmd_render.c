@@ -14,6 +14,7 @@
 #include "cg/gl.h"
 #include "cg/image.h"
 #include "cg/log.h"
+#include "cg/progress.h"
 #include "commands.h"
 
 typedef struct dump_request {
@@ -53,7 +54,9 @@ cmd_render_usage(FILE *out)
         APP_CAMERA_USAGE
         APP_LIGHT_USAGE
         "  --frames N              frames to run (default 1); the image is the last frame's\n"
-        "                          unless -o holds a %%d; a line per frame goes to stderr\n"
+        "                          unless -o holds a %%d. Progress with the time left goes to\n"
+        "                          stderr when the frames take over 2 s ($CONEGRAPH_PROGRESS_DELAY\n"
+        "                          seconds); --verbose: a line per frame instead\n"
         "  --time T                seconds into the scene's animation of the first frame\n"
         "                          (default 0; 0..1e9)\n"
         "  --fps F                 frames per second of animation time (default 30; above 0,\n"
@@ -73,12 +76,15 @@ cmd_render_usage(FILE *out)
         "                          llvmpipe), GL_TIMESTAMP queries read a frame late, or none\n"
         "  --verbose               also print the compiled graph's passes, barriers and\n"
         "                          resources of the last frame on stdout\n"
-        "  --quiet                 print errors only\n"
+        "  --quiet                 print errors only (no progress either)\n"
         "\n"
         "The graph directory is $CONEGRAPH_GRAPH_DIR if set, else the source tree's graphs/\n"
         "(a build run from its build tree), else the installed %s.\n"
         "After the run one line on stderr says what was written, the image size, the graph,\n"
         "the median frame time and the GI memory (--verbose: the tables too, on stdout).\n"
+        "Work that takes over 2 s (loading and classifying the scene, the frames, the path\n"
+        "tracer) reports its progress and the time left on stderr: on a terminal one line\n"
+        "updated in place, into a file or pipe a line per 10%% (never a carriage return).\n"
         "Bad input (scene, graph, parameters, sizes, memory budget, an output path whose\n"
         "directory is missing or not writable or whose extension is wrong) exits with 2\n"
         "before anything is rendered or written; a failure while rendering exits with 1.\n",
@@ -219,10 +225,12 @@ typedef struct render_progress {
     char *costs;
     size_t costs_size;
     FILE *costs_fp;         /* open_memstream over costs; NULL without --pass-costs */
+    cg_progress frames;     /* the frames done, with the time left (cg/progress.h) */
 } render_progress;
 
-/* The frame's image of a sequence (-o f-%04d.png), the frame line on stderr (with what each
- * pass that said so rebuilt), and the frame's rows of --pass-costs. */
+/* The frame's image of a sequence (-o f-%04d.png), the progress of the frames (with --verbose a
+ * line per frame on stderr, with what each pass that said so rebuilt), and the frame's rows of
+ * --pass-costs. */
 static bool
 on_frame(void *user, int frame, int frames, double ms, cg_error *err)
 {
@@ -236,7 +244,8 @@ on_frame(void *user, int frame, int frames, double ms, cg_error *err)
                                      CG_EXR_FLOAT, err))
             return false;
     }
-    if (frames > 1 && !o->common.quiet) {
+    cg_progress_update(&p->frames, frame + 1);
+    if (frames > 1 && o->common.verbose && !o->common.quiet) {
         fprintf(stderr, "render: frame %d/%d %.1f ms", frame + 1, frames, ms);
         for (int i = 0; i < fg_graph_pass_count(graph); i++) {
             const fg_pass *pass = fg_graph_pass_at(graph, i);
@@ -326,8 +335,19 @@ render(const render_options *o)
                          .user = &progress, .animate = true, .time = o->time, .fps = o->fps };
     bool ok = app_session_open(&s, &desc, &err) && app_session_load_graph(&s, &graph, &err) &&
               app_session_check(&s, &err) && cg_image_io_check(&err) && app_session_start_gl(&s, &context, &err) &&
-              app_session_compile(&s, &err) && app_session_run(&s, &run, &stats, &err) &&
-              (o->sequence || app_session_write_image(&s, s.image_source, png, o->output, CG_EXR_FLOAT, &err));
+              app_session_compile(&s, &err);
+    /* Progress over the frames (--verbose has its own line per frame; one frame has nothing to
+     * count: the scene load and the path tracer report their own); a frame that takes over the
+     * delay by itself is reported as it ends, with the time the others will take. */
+    char what[64];
+    snprintf(what, sizeof what, "rendering %d frame%s", c->frames, c->frames == 1 ? "" : "s");
+    cg_progress_begin(&progress.frames, &(cg_progress_desc){ .what = what, .total = c->frames, .unit = "frames" });
+    if ((c->verbose && c->frames > 1) || c->frames == 1)
+        progress.frames.enabled = false;
+    ok = ok && app_session_run(&s, &run, &stats, &err) &&
+         (o->sequence || app_session_write_image(&s, s.image_source, png, o->output, CG_EXR_FLOAT, &err));
+    if (ok)
+        cg_progress_end(&progress.frames);
     for (int i = 0; ok && i < o->dump_count; i++)
         ok = app_session_write_image(&s, o->dumps[i].source, false, o->dumps[i].path, CG_EXR_FLOAT, &err);
     if (ok && o->report)

@@ -606,8 +606,13 @@ cg_mesh_classify(const cg_scene *scene, int mesh_index, const cg_classify_option
 }
 
 bool
-cg_scene_classify(cg_scene *scene, cg_error *err)
+cg_scene_classify(cg_scene *scene, cg_progress *progress, cg_error *err)
 {
+    /* Progress by triangles: a mesh's classification costs about its triangles. */
+    double triangles = 0, done = 0;
+    for (int m = 0; m < scene->mesh_count; m++)
+        if (m >= scene->mesh_class_count || scene->mesh_class[m].source == CG_KIND_CLASSIFIED)
+            triangles += scene->meshes[m].index_count / 3.0;
     for (int m = 0; m < scene->mesh_count; m++) {
         if (m >= scene->mesh_class_count && !cg_scene_set_kind_source(scene, m, CG_KIND_CLASSIFIED, err))
             return false;
@@ -622,6 +627,9 @@ cg_scene_classify(cg_scene *scene, cg_error *err)
             return false;
         c->source = source;
         scene->meshes[m].kind = c->kind;
+        done += scene->meshes[m].index_count / 3.0;
+        if (progress && triangles > 0)
+            cg_progress_update(progress, CG_LOAD_BUILT + (CG_LOAD_TOTAL - CG_LOAD_BUILT) * done / triangles);
     }
     return true;
 }

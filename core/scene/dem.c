@@ -371,7 +371,7 @@ cg_dem_load(const char *path, const char *query, cg_scene *out, cg_error *err)
     if (ok && p.meshes[0]) {
         cg_scene add;
         int first = out->instance_count;
-        ok = cg_gltf_load(p.meshes, &add, err);
+        ok = cg_gltf_load(p.meshes, &add, NULL, err);
         if (ok) {
             ok = merge_scene(out, &add, err);
             cg_scene_free(&add);

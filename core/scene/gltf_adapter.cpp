@@ -43,6 +43,8 @@ const char *const supported_extensions[] = { "KHR_lights_punctual",        "KHR_
 
 struct loader {
     std::string path;       // as given, for messages
+    cg_progress *progress = nullptr; // cg_scene_load's, or NULL
+    size_t meshes_built = 0;         // glTF meshes converted so far, for the progress
     tinygltf::Model model;
     cg_scene *scene;
     cg_error *err;
@@ -840,6 +842,9 @@ mesh_primitives(loader &L, int mesh_index, const std::vector<int> **out)
         for (size_t p = 0; p < mesh.primitives.size(); p++)
             if (!add_primitive(L, mesh_index, (int)p, &L.mesh_map[(size_t)mesh_index]))
                 return false;
+        if (L.progress)
+            cg_progress_update(L.progress, CG_LOAD_PARSED + (CG_LOAD_BUILT - CG_LOAD_PARSED) *
+                                                                (double)++L.meshes_built / L.model.meshes.size());
     }
     *out = &L.mesh_map[(size_t)mesh_index];
     return true;
@@ -2226,6 +2231,8 @@ load(loader &L)
         cg_log_warn("%s: %s", L.path.c_str(), one_line(twarn).c_str());
     if (!ok)
         return fail(L, classify_tinygltf_error(terr), one_line(terr.empty() ? "tinygltf failed without a message" : terr));
+    if (L.progress)
+        cg_progress_update(L.progress, CG_LOAD_PARSED);
     L.mesh_map.assign(L.model.meshes.size(), {});
     L.mesh_done.assign(L.model.meshes.size(), false);
     std::vector<int> roots;
@@ -2779,7 +2786,7 @@ cg_scene_export_gltf(const cg_scene *scene, const char *path, cg_error *err)
 }
 
 extern "C" bool
-cg_gltf_load(const char *path, cg_scene *out, cg_error *err)
+cg_gltf_load(const char *path, cg_scene *out, cg_progress *progress, cg_error *err)
 {
     std::memset(out, 0, sizeof *out);
     std::snprintf(out->name, sizeof out->name, "%s", path);
@@ -2791,6 +2798,7 @@ cg_gltf_load(const char *path, cg_scene *out, cg_error *err)
     try {
         loader L;
         L.path = path;
+        L.progress = progress;
         L.scene = out;
         L.err = err;
         ok = load(L);

@@ -21,6 +21,7 @@
 #include <stdint.h>
 
 #include "cg/error.h"
+#include "cg/progress.h"
 #include "cg/scene.h"
 
 #ifdef __cplusplus
@@ -112,8 +113,16 @@ bool cg_mesh_generate_tangents(cg_mesh *mesh, cg_error *err);
  * ones CG_KIND_CLASSIFIED). */
 bool cg_scene_set_kind_source(cg_scene *scene, int mesh, cg_kind_source source, cg_error *err);
 /* Classifies (cg_mesh_classify, with scene->classify) every mesh whose kind source is
- * CG_KIND_CLASSIFIED and sets its kind; the others keep theirs. Called by cg_scene_load. */
-bool cg_scene_classify(cg_scene *scene, cg_error *err);
+ * CG_KIND_CLASSIFIED and sets its kind; the others keep theirs. Called by cg_scene_load, which
+ * passes its progress (may be NULL: taken from CG_LOAD_BUILT to CG_LOAD_TOTAL by triangles). */
+bool cg_scene_classify(cg_scene *scene, cg_progress *progress, cg_error *err);
+
+/* Where a scene load stands in the progress cg_scene_load reports (units of CG_LOAD_TOTAL):
+ * the file read and parsed, the meshes built, then classified. The shares are those of a
+ * 2-million-triangle glTF without mesh kinds (docs/scenes.md, "Loading time"). */
+#define CG_LOAD_PARSED 30.0
+#define CG_LOAD_BUILT 55.0
+#define CG_LOAD_TOTAL 100.0
 
 /* A height-field scene from a DEM image, "dem:PATH?key=value&..." (dem.c, docs/scenes.md); query
  * may be NULL. */
@@ -123,8 +132,9 @@ bool cg_dem_load(const char *path, const char *query, cg_scene *out, cg_error *e
 bool cg_builtin_scene_load(const char *name, const char *query, cg_scene *out, cg_error *err);
 
 /* Loads a .gltf or .glb file (the adapter decides by magic). A mesh with a "conegraph_kind"
- * extra gets that kind (source CG_KIND_EXTRAS); cg_scene_load classifies the others. */
-bool cg_gltf_load(const char *path, cg_scene *out, cg_error *err);
+ * extra gets that kind (source CG_KIND_EXTRAS); cg_scene_load classifies the others.
+ * `progress` (may be NULL) is taken to CG_LOAD_PARSED and on to CG_LOAD_BUILT. */
+bool cg_gltf_load(const char *path, cg_scene *out, cg_progress *progress, cg_error *err);
 
 /* Checks the JSON of a glTF file (a .gltf, or a .glb's JSON chunk) as the Khronos
  * glTF-Validator would, before tinygltf reads it (gltf_check.c): JSON types, required

@@ -2,6 +2,7 @@
 #include "cg/pt_render.h"
 
 #include "cg/bsdf.h"
+#include "cg/progress.h"
 
 #include "pt_sky.h"
 
@@ -1308,6 +1309,7 @@ typedef struct pt_job {
     atomic_int next_tile;
     atomic_int tiles_done;
     atomic_uint_fast64_t rays;
+    cg_progress *progress;    /* NULL: none; updated by the main thread alone */
 } pt_job;
 
 static void
@@ -1366,27 +1368,6 @@ render_tile(pt_job *job, pt_worker_ctx *wc, int tile)
     }
 }
 
-static void
-progress_print(int done, int total, int *last_shown)
-{
-    int percent = (int)((int64_t)done * 100 / total);
-    /* On a terminal the bar redraws in place at every percent; into a log file it is
-     * written every 10% so that logs stay short. */
-    int step = isatty(STDERR_FILENO) ? 1 : 10;
-    if (percent / step == *last_shown / step && percent != 100)
-        return;
-    if (percent == *last_shown)
-        return;
-    *last_shown = percent;
-    char bar[41];
-    int filled = percent * 40 / 100;
-    for (int i = 0; i < 40; i++)
-        bar[i] = i < filled ? '#' : '.';
-    bar[40] = '\0';
-    fprintf(stderr, "\rpath_trace [%s] %3d%%", bar, percent);
-    fflush(stderr);
-}
-
 typedef struct pt_thread_arg {
     pt_job *job;
     bool main_thread;
@@ -1400,15 +1381,14 @@ worker(void *arg)
     pt_worker_ctx wc = { .pts = job->pts, .rays = 0 };
     rtcInitIntersectContext(&wc.rc.ictx);
     wc.rc.pts = job->pts;
-    int last_shown = -1;
     for (;;) {
         int tile = atomic_fetch_add(&job->next_tile, 1);
         if (tile >= job->tile_count)
             break;
         render_tile(job, &wc, tile);
         int done = atomic_fetch_add(&job->tiles_done, 1) + 1;
-        if (ta->main_thread && job->settings->progress)
-            progress_print(done, job->tile_count, &last_shown);
+        if (ta->main_thread && job->progress)
+            cg_progress_update(job->progress, done);
     }
     atomic_fetch_add(&job->rays, wc.rays);
     return NULL;
@@ -1472,15 +1452,21 @@ pt_render_parts(const pt_scene *pts, const cg_view *view, const pt_settings *set
             break; /* fewer threads only slows the render down; the image is the same */
         started = t;
     }
+    /* Progress by tiles (cg/progress.h: on a terminal one updating line, into a file a line
+     * per 10% and no carriage return; nothing for a render under its delay). */
+    cg_progress progress;
+    if (settings->progress) {
+        char what[96];
+        snprintf(what, sizeof what, "path tracing %dx%d at %d spp", view->width, view->height, settings->spp);
+        cg_progress_begin(&progress, &(cg_progress_desc){ .what = what, .total = job.tile_count });
+        job.progress = &progress;
+    }
     args[0] = (pt_thread_arg){ &job, true };
     worker(&args[0]);
     for (int t = 1; t <= started; t++)
         pthread_join(ids[t], NULL);
-    if (settings->progress) {
-        int last_shown = -1;
-        progress_print(job.tile_count, job.tile_count, &last_shown);
-        fputc('\n', stderr);
-    }
+    if (job.progress)
+        cg_progress_end(job.progress);
     if (rays_traced)
         *rays_traced = atomic_load(&job.rays);
     return true;

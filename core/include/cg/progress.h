@@ -28,6 +28,10 @@
 #include <stdbool.h>
 #include <stdio.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 #define CG_PROGRESS_DELAY_S 2.0
 
 /* Zero-initialised fields take the defaults. */
@@ -66,5 +70,9 @@ void cg_progress_update(cg_progress *p, double done);
  * into a file, a last "100%" line when an earlier line was written. Silent when nothing was
  * shown. */
 void cg_progress_end(cg_progress *p);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

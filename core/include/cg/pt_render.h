@@ -80,7 +80,7 @@ typedef struct pt_settings {
     int threads;        /* render threads; 0 = one per online core */
     bool jitter;        /* false: every sample through the pixel centre, exactly the raster
                          * camera's rays; true: uniform over the pixel (box-filtered edges) */
-    bool progress;      /* progress bar on stderr */
+    bool progress;      /* progress with the time left on stderr (cg/progress.h) */
     int glossy_bounces; /* glossy reflections as Cycles counts them, >= 0 */
     int transmission_bounces; /* refractions and thin-sheet crossings, >= 0 */
     bool caustics;      /* false: glossy and transmission lobes only before the first diffuse
@@ -88,7 +88,7 @@ typedef struct pt_settings {
 } pt_settings;
 
 /* spp 64, bounces 1, glossy_bounces 1, transmission_bounces 4, caustics false, seed 1, all
- * cores, pixel centres, no progress bar. */
+ * cores, pixel centres, no progress lines. */
 pt_settings pt_settings_default(void);
 
 typedef struct pt_scene pt_scene;
