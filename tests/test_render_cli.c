@@ -193,7 +193,7 @@ rel_mse(const char *test, const char *reference)
 /* Frame k of --frames N --fps F --time T is posed at T + k/F: the last of 4 frames from 0.5 s
  * at 10 fps is the frame at 0.8 s. Every pass rebuilds what it needs from the frame's scene, so
  * the two agree to the bit today; the bound guards the caching a later change may add. The
- * frames say so on stderr, and the motion (buildings turning once in 2 s: 54 degrees between
+ * frames say so on stderr (--verbose), and the motion (buildings turning once in 2 s: 54 degrees between
  * the first frame and the last) changes the image ten times more than the bound allows. */
 #define MOVING "'builtin:openworld?triangles=5000&motion=all&period=2'"
 
@@ -204,7 +204,8 @@ test_frames_end_at_the_last_time(void **state)
     const char *last = tmp("frames.exr"), *at = tmp("at.exr"), *first = tmp("first.exr");
     static char out[1 << 16];
     char args[8192];
-    snprintf(args, sizeof args, "render " MOVING " --size 64x36 --frames 4 --fps 10 --time 0.5 -o '%s'", last);
+    snprintf(args, sizeof args, "render " MOVING " --size 64x36 --frames 4 --fps 10 --time 0.5 --verbose -o '%s'",
+             last);
     assert_int_equal(cg_test_run_conegraph(args, true, out, sizeof out), 0);
     for (int k = 1; k <= 4; k++) {
         char line[64];
@@ -394,6 +395,115 @@ test_graph_lookup_and_unknown_pass(void **state)
         fail_msg("the unknown pass's message does not list the passes: %s", out);
 }
 
+/* ------------------------------------------------------------------ skins and progress */
+
+/* A glTF file of the test data (CONEGRAPH_TEST_DATA/gltf/NAME). */
+static const char *
+data_file(const char *name)
+{
+    static char path[4200];
+    const char *data = getenv("CONEGRAPH_TEST_DATA");
+    assert_non_null(data);
+    snprintf(path, sizeof path, "%s/gltf/%s", data, name);
+    return path;
+}
+
+/* A skinned mesh is posed by its joints (tests/data/gltf/skin/bend.gltf: the strip's top turns a
+ * quarter turn over 1 s): the images at 0 and 1 s differ, and the last of three frames of
+ * vct.json from 0 to 1 s (its voxels kept from frame to frame where nothing changed) is the
+ * image of a fresh render at 1 s: the bent mesh reached the GPU and the voxel cache. Debian's
+ * assimp-testmodels simple_skin.gltf, where installed, differs at 0 and 1.5 s too. */
+static void
+test_skins_pose_at_two_times(void **state)
+{
+    (void)state;
+    const char *bend = data_file("skin/bend.gltf");
+    const char *at0 = tmp("bend0.exr"), *at1 = tmp("bend1.exr"), *frames = tmp("bend_frames.exr");
+    char args[8192];
+    snprintf(args, sizeof args, "'%s' --graph direct.json --size 48x48 --time 0 -o '%s'", bend, at0);
+    assert_int_equal(run(args), 0);
+    snprintf(args, sizeof args, "'%s' --graph direct.json --size 48x48 --time 1 -o '%s'", bend, at1);
+    assert_int_equal(run(args), 0);
+    double bent = rel_mse(at0, at1);
+    if (!(bent > 1e-2))
+        fail_msg("bend.gltf at 0 s and at 1 s hardly differ (relMSE %g): the skin is not applied", bent);
+
+    snprintf(args, sizeof args, "'%s' --graph vct.json --set vox.resolution=64 --size 48x48 --time 1 -o '%s'", bend, at1);
+    assert_int_equal(run(args), 0);
+    snprintf(args, sizeof args, "'%s' --graph vct.json --set vox.resolution=64 --size 48x48 --frames 3 --fps 2 --time 0 "
+             "-o '%s'", bend, frames);
+    assert_int_equal(run(args), 0);
+    double cached = rel_mse(frames, at1);
+    if (!(cached < 1e-4))
+        fail_msg("frame 3 of 3 (t = 1 s) against a fresh render at 1 s: relMSE %g", cached);
+
+    const char *simple = "/usr/share/assimp/models/glTF2/simple_skin/simple_skin.gltf";
+    if (!exists(simple)) {
+        printf("# %s is not installed (Debian assimp-testmodels): only bend.gltf checked\n", simple);
+        return;
+    }
+    /* Its plane faces +z: looked at from the front (unskinned, the two images are equal). */
+    snprintf(args, sizeof args, "'%s' --graph direct.json --size 48x48 --from 0.5,1,4 --look-at 0.5,1,0 --time 0 -o '%s'",
+             simple, at0);
+    assert_int_equal(run(args), 0);
+    snprintf(args, sizeof args, "'%s' --graph direct.json --size 48x48 --from 0.5,1,4 --look-at 0.5,1,0 --time 1.5 -o '%s'",
+             simple, at1);
+    assert_int_equal(run(args), 0);
+    bent = rel_mse(at0, at1);
+    if (!(bent > 1e-3))
+        fail_msg("simple_skin.gltf at 0 s and 1.5 s hardly differ (relMSE %g)", bent);
+}
+
+/* What a render writes on stderr into a file (`extra` options appended), with progress shown
+ * from the start ($CONEGRAPH_PROGRESS_DELAY=0 stands for work long enough) and the log at info,
+ * as a user's shell has it (the tests run with CONEGRAPH_LOG=warn). */
+static const char *
+stderr_of(const char *args)
+{
+    const char *exe = getenv("CONEGRAPH_EXE");
+    const char *err_path = tmp("stderr.txt");
+    static char text[1 << 16];
+    char cmd[8192];
+    snprintf(cmd, sizeof cmd, "CONEGRAPH_LOG=info CONEGRAPH_PROGRESS_DELAY=0 '%s' render %s 2>'%s' >/dev/null", exe,
+             args, err_path);
+    int status = system(cmd);
+    if (status == -1 || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
+        fail_msg("could not run: %s", cmd);
+    FILE *f = fopen(err_path, "rb");
+    assert_non_null(f);
+    size_t n = fread(text, 1, sizeof text - 1, f);
+    text[n] = '\0';
+    fclose(f);
+    return text;
+}
+
+/* Progress with the time left on the long steps (here all of them: no delay): the scene load, the
+ * path tracer, the frames; into a file a line per 10% or per frame and never a carriage return;
+ * nothing at all with --quiet. */
+static void
+test_progress_into_a_file(void **state)
+{
+    (void)state;
+    char args[8192];
+    snprintf(args, sizeof args, "builtin:cornell --graph reference.json --size 32x32 --set trace.spp=4 --frames 2 -o '%s'",
+             tmp("pt.png"));
+    const char *err = stderr_of(args);
+    if (strchr(err, '\r'))
+        fail_msg("a carriage return in stderr sent to a file: %s", err);
+    const char *want[] = { "conegraph: loading builtin:cornell: 100%", "conegraph: path tracing 32x32 at 4 spp: 100%",
+                           "left\n",
+                           "conegraph: rendering 2 frames: 50% (1/2 frames)",
+                           "conegraph: rendering 2 frames: 100% (2/2 frames)" };
+    for (size_t i = 0; i < sizeof want / sizeof want[0]; i++)
+        if (!strstr(err, want[i]))
+            fail_msg("no '%s' in stderr: %s", want[i], err);
+    char quiet[8300];
+    snprintf(quiet, sizeof quiet, "%s --quiet", args);
+    err = stderr_of(quiet);
+    if (err[0])
+        fail_msg("--quiet wrote: %s", err);
+}
+
 int
 main(void)
 {
@@ -408,6 +518,8 @@ main(void)
         cmocka_unit_test(test_frames_end_at_the_last_time),
         cmocka_unit_test(test_exported_animation_renders),
         cmocka_unit_test(test_images_load_their_library_on_use),
+        cmocka_unit_test(test_skins_pose_at_two_times),
+        cmocka_unit_test(test_progress_into_a_file),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -120,8 +120,8 @@ bool cg_scene_classify(cg_scene *scene, cg_progress *progress, cg_error *err);
 /* Where a scene load stands in the progress cg_scene_load reports (units of CG_LOAD_TOTAL):
  * the file read and parsed, the meshes built, then classified. The shares are those of a
  * 2-million-triangle glTF without mesh kinds (docs/scenes.md, "Loading time"). */
-#define CG_LOAD_PARSED 30.0
-#define CG_LOAD_BUILT 55.0
+#define CG_LOAD_PARSED 33.0
+#define CG_LOAD_BUILT 60.0
 #define CG_LOAD_TOTAL 100.0
 
 /* A height-field scene from a DEM image, "dem:PATH?key=value&..." (dem.c, docs/scenes.md); query
