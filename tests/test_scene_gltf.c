@@ -940,6 +940,58 @@ notice_lists_what_is_left_out(void **state)
     free(text);
 }
 
+/* What loading `path` writes on stderr (captured through a file, as above); the scene is loaded
+ * into *s. */
+static char *
+load_capturing_stderr(const char *path, cg_scene *s)
+{
+    char capture_path[4200];
+    snprintf(capture_path, sizeof capture_path, "%s/load_stderr.txt", cg_test_tmpdir());
+    fflush(stderr);
+    int saved = dup(2);
+    assert_true(saved >= 0);
+    FILE *capture = fopen(capture_path, "w+");
+    assert_non_null(capture);
+    assert_true(dup2(fileno(capture), 2) >= 0);
+    cg_error err = { 0 };
+    bool ok = cg_scene_load(path, s, &err);
+    fflush(stderr);
+    dup2(saved, 2);
+    close(saved);
+    fclose(capture);
+    assert_cg_ok(ok, &err);
+    char *text;
+    assert_cg_ok(cg_read_file(capture_path, &text, NULL, &err), &err);
+    return text;
+}
+
+/* Morph targets are left out with one notice naming the mesh and the channels on its weights
+ * (tests/data/gltf/morph/tent.gltf); the mesh keeps its base shape. A skinned file
+ * (skin/bend.gltf) loads without any notice: skins are read. */
+static void
+morph_targets_named_skins_read(void **state)
+{
+    (void)state;
+    cg_scene s;
+    char *text = load_capturing_stderr(data_file("morph/tent.gltf"), &s);
+    printf("# %s", text);
+    if (!strstr(text, "morph targets are not read (mesh 'tent'; 1 animation channel on morph target weights): "
+                      "meshes keep their base shape, the channels are ignored"))
+        fail_msg("the morph-target notice: %s", text);
+    assert_int_equal(s.mesh_count, 1);
+    assert_float_equal(s.meshes[0].positions[8], 0, 0); /* the third vertex not lifted */
+    assert_false(cg_scene_is_animated(&s));
+    free(text);
+    cg_scene_free(&s);
+
+    text = load_capturing_stderr(data_file("skin/bend.gltf"), &s);
+    if (text[0])
+        fail_msg("bend.gltf loaded with a notice: %s", text);
+    assert_int_equal(s.skinned_count, 1);
+    free(text);
+    cg_scene_free(&s);
+}
+
 static void
 assert_same_material(const cg_material *x, const cg_material *y, double uv_tol)
 {
@@ -1058,6 +1110,7 @@ main(void)
         cmocka_unit_test(missing_file),
         cmocka_unit_test(materials_as_gltf_defines_them),
         cmocka_unit_test(notice_lists_what_is_left_out),
+        cmocka_unit_test(morph_targets_named_skins_read),
         cmocka_unit_test(materials_round_trip),
         cmocka_unit_test(builtin_materials_round_trip),
     };

@@ -93,6 +93,7 @@ struct loader {
     };
     std::vector<skin_use> skin_uses;
     std::vector<int> skin_map; // glTF skin -> cg skin, -1 not yet made
+    int weight_channels = 0;   // animation channels on morph target weights (not read)
     ~loader()
     {
         for (auto &a : animations)
@@ -1147,7 +1148,6 @@ read_animations(loader &L)
     L.animated.assign(M.nodes.size(), false);
     L.animated_below.assign(M.nodes.size(), false);
     L.node_map.assign(M.nodes.size(), -1);
-    bool warned = false;
     for (size_t a = 0; a < M.animations.size(); a++) {
         L.animations.emplace_back();
         auto &pending = L.animations.back();
@@ -1156,12 +1156,8 @@ read_animations(loader &L)
             const tinygltf::AnimationChannel &ch = M.animations[a].channels[c];
             if (ch.target_node < 0)
                 continue;
-            if (ch.target_path == "weights") {
-                if (!warned)
-                    cg_log_warn("%s: animations[%zu].channels[%zu] animates morph target weights, which conegraph "
-                                "does not read (meshes keep their base shape); such channels are ignored",
-                                L.path.c_str(), a, c);
-                warned = true;
+            if (ch.target_path == "weights") { // named in report_morph_targets
+                L.weight_channels++;
                 continue;
             }
             cg_anim_channel channel;
@@ -1754,6 +1750,37 @@ convert_materials(loader &L)
     return true;
 }
 
+// One notice for the morph targets conegraph does not read: the drawn meshes that have them
+// (the first few named) and the animation channels on their weights, both left out.
+void
+report_morph_targets(loader &L)
+{
+    std::string meshes;
+    int count = 0;
+    for (size_t m = 0; m < L.model.meshes.size(); m++) {
+        if (!L.mesh_done[m])
+            continue; // no node of the default scene draws it
+        bool targets = false;
+        for (const auto &p : L.model.meshes[m].primitives)
+            targets = targets || !p.targets.empty();
+        if (!targets)
+            continue;
+        if (count < 4)
+            meshes += (meshes.empty() ? "" : ", ") + mesh_label(L, (int)m);
+        count++;
+    }
+    if (count > 4)
+        meshes += " and " + std::to_string(count - 4) + " more";
+    if (count == 0 && L.weight_channels == 0)
+        return;
+    std::string channels = L.weight_channels == 0 ? std::string()
+                           : std::to_string(L.weight_channels) + " animation channel" +
+                                 (L.weight_channels > 1 ? "s" : "") + " on morph target weights";
+    cg_log_warn("%s: morph targets are not read (%s%s%s): meshes keep their base shape%s", L.path.c_str(),
+                meshes.c_str(), !meshes.empty() && !channels.empty() ? "; " : "", channels.c_str(),
+                channels.empty() ? "" : ", the channels are ignored");
+}
+
 // The one notice of what the file's materials ask for and conegraph does not render.
 void
 report_left_out(loader &L)
@@ -2239,8 +2266,10 @@ load(loader &L)
     ok = check_extensions(L) && check_model(L) && convert_textures(L) && convert_materials(L) &&
               check_node_graph(L) && read_animations(L) && mark_joints(L) && scene_roots(L, &roots) &&
               visit_nodes(L, roots) && finish_skins(L) && finish_animations(L);
-    if (ok)
+    if (ok) {
         report_left_out(L);
+        report_morph_targets(L);
+    }
     return ok;
 }
 
