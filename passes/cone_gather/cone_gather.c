@@ -17,6 +17,9 @@
  *   (fp32, as direct_light's: radiance of any brightness, no clipping at 65504.)
  *   visibility  R16F (param shadow_cone): transmittance of a cone towards one light.
  *   reads       R32F (param count_reads): volume reads (textureLod calls) of the pixel's diffuse cones.
+ * With downsample = 2 or 4 the diffuse cones are traced at one pixel of each block and `radiance`
+ * is upsampled from them by the G-buffer's position and normal (sdk/upsample.h); the other outputs
+ * stay per pixel.
  */
 #include <math.h>
 #include <stdio.h>
@@ -26,6 +29,7 @@
 #include "sdk/pass.h"
 #include "sdk/sampler.h"
 #include "sdk/cone.h"
+#include "sdk/upsample.h"
 #include "cg/fg.h"
 #include "cg/gpu_scene.h"
 #include "cg/shader.h"
@@ -67,11 +71,13 @@ static const fg_param_desc cone_gather_params[] = {
       .doc = "shadow cone: full apex angle in degrees; a directional light with an angular diameter takes that instead" },
     { .name = "count_reads", .type = FG_PARAM_BOOL,
       .doc = "also output 'reads': the volume reads of each pixel's diffuse cones (a cost measure that does "
-             "not depend on the machine's load)" },
+             "not depend on the machine's load); with downsample, a block's at its representative pixel" },
+    CGP_DOWNSAMPLE_PARAM,
 };
 
 typedef struct cone_gather_state {
     cgp_gather gather;      /* its block: CG_CONE_GATHER_BLOCK */
+    cgp_gather_blocks blocks; /* downsample > 1: the diffuse cones of one pixel a block */
     bool specular, refraction, shadow_cone, count_reads;
 } cone_gather_state;
 
@@ -121,12 +127,14 @@ cone_gather_prepare(fg_pass *pass, cone_gather_state *s, cg_error *err)
     s->refraction = fg_param_bool(pass, "refraction");
     s->shadow_cone = fg_param_bool(pass, "shadow_cone");
     s->count_reads = fg_param_bool(pass, "count_reads");
-    char defines[160];
-    snprintf(defines, sizeof defines, "%s%s%s%s", s->specular ? "#define SPECULAR\n" : "",
+    char downsample[64], defines[224];
+    snprintf(defines, sizeof defines, "%s%s%s%s%s", s->specular ? "#define SPECULAR\n" : "",
              s->refraction ? "#define REFRACTION\n" : "", s->shadow_cone ? "#define SHADOW_CONE\n" : "",
-             s->count_reads ? "#define CG_CONE_COUNT_READS\n" : "");
+             s->count_reads ? "#define CG_CONE_COUNT_READS\n" : "",
+             cgp_gather_blocks_define(pass, downsample, sizeof downsample));
     return cgp_gather_prepare(s, pass, &s->gather, "cone_gather/cone_gather.comp", defines,
-                              sizeof(cg_cone_gather_block), err);
+                              sizeof(cg_cone_gather_block), err) &&
+           cgp_gather_blocks_prepare(s, pass, &s->gather, &s->blocks, "cone_gather/cone_gather.comp", defines, err);
 }
 
 static double
@@ -166,7 +174,9 @@ cone_gather_execute(fg_pass *pass, cone_gather_state *s, cg_error *err)
         glBindImageTexture(2, fg_texture(pass, "visibility"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
     if (s->count_reads)
         glBindImageTexture(3, fg_texture(pass, "reads"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+    cgp_gather_blocks_trace(pass, &s->gather, &s->blocks);
     cgp_gather_end(pass);
+    cgp_gather_blocks_end(&s->blocks);
     return true;
 }
 

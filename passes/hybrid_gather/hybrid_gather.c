@@ -20,6 +20,8 @@
  * albedo), a = ambient visibility. The same convention as cone_gather, the material's diffuse
  * share included; with `specular` and `refraction` (and the material) also cone_gather's
  * `reflection` and `refraction`, the same cones (common/gather.glsl) through this gather's march.
+ * With downsample = 2 or 4, cone_gather's decoupled resolution (sdk/upsample.h): the diffuse cones
+ * at one pixel a block, `radiance` upsampled by the G-buffer's position and normal.
  */
 #include <math.h>
 #include <stdio.h>
@@ -30,6 +32,7 @@
 #include "sdk/pass.h"
 #include "sdk/sampler.h"
 #include "sdk/cone.h"
+#include "sdk/upsample.h"
 #include "sdk/scene.h"
 #include "cg/fg.h"
 #include "cg/gpu_scene.h"
@@ -125,10 +128,12 @@ static const fg_param_desc hybrid_gather_params[] = {
              "cone_gather's (common/gather.glsl), through this gather's march" },
     { .name = "refraction", .type = FG_PARAM_BOOL,
       .doc = "also trace a refracted cone where the material transmits (output 'refraction'), as cone_gather's" },
+    CGP_DOWNSAMPLE_PARAM,
 };
 
 typedef struct hybrid_gather_state {
     cgp_gather gather;      /* its block: CG_HYBRID_GATHER_BLOCK */
+    cgp_gather_blocks blocks; /* downsample > 1: the diffuse cones of one pixel a block */
     GLuint map_sampler, table_sampler;
     GLuint empty_block;     /* bound where a map is absent, so no block is left unbound */
     bool has_2d, has_3d, specular, refraction;
@@ -245,11 +250,13 @@ hybrid_gather_prepare(fg_pass *pass, hybrid_gather_state *s, cg_error *err)
     const char *maps = !s->has_2d ? ""
                        : fg_param_enum(pass, "method") == METHOD_PAPER ? "#define HAS_2D\n#define METHOD_PAPER\n"
                                                                        : "#define HAS_2D\n";
-    char defines[160];
-    snprintf(defines, sizeof defines, "%s%s%s", maps, s->specular ? "#define SPECULAR\n" : "",
-             s->refraction ? "#define REFRACTION\n" : "");
+    char downsample[64], defines[224];
+    snprintf(defines, sizeof defines, "%s%s%s%s", maps, s->specular ? "#define SPECULAR\n" : "",
+             s->refraction ? "#define REFRACTION\n" : "", cgp_gather_blocks_define(pass, downsample, sizeof downsample));
     return cgp_gather_prepare(s, pass, &s->gather, "hybrid_gather/hybrid_gather.comp", defines,
-                              sizeof(cg_hybrid_gather_block), err);
+                              sizeof(cg_hybrid_gather_block), err) &&
+           cgp_gather_blocks_prepare(s, pass, &s->gather, &s->blocks, "hybrid_gather/hybrid_gather.comp", defines,
+                                     err);
 }
 
 static bool
@@ -296,7 +303,9 @@ hybrid_gather_execute(fg_pass *pass, hybrid_gather_state *s, cg_error *err)
         glBindImageTexture(1, fg_texture(pass, "reflection"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     if (s->refraction)
         glBindImageTexture(4, fg_texture(pass, "refraction"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    cgp_gather_blocks_trace(pass, &s->gather, &s->blocks);
     cgp_gather_end(pass);
+    cgp_gather_blocks_end(&s->blocks);
     glBindSampler(CG_UNIT_LIGHTMAP2D, 0);
     glBindSampler(CG_UNIT_HSAT, 0);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_HSAT, 0);

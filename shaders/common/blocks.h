@@ -65,6 +65,7 @@
 #define CG_UNIT_ATTENUATION 19          /* rgb sigma (1/m) */
 #define CG_UNIT_BRDF_TABLE 20           /* the GGX directional-albedo table (cgp_brdf_table_fill) */
 #define CG_UNIT_GLOSSY 22               /* voxel_light's glossy: its light one diffuse bounce further */
+#define CG_UNIT_GATHER_BLOCKS 21        /* a gather's diffuse light of one pixel per block (sdk/upsample.h) */
 
 /* The most cones a diffuse set holds (sdk/cone.h: CGP_CONE_MAX): the largest set, 26, rounded up to
  * a multiple of 4, as cell_width packs four cones per vec4. */

@@ -17,10 +17,16 @@
 // tau = 0.
 // Shadow (3.2.3, with SHADOW_CONE): one narrow cone towards a light; its
 // transmittance 1 - a is a soft visibility.
+// Decoupled resolution (CG_GATHER_DOWNSAMPLE, common/upsample.glsl): the diffuse cones at one pixel
+// of each block (the CG_GATHER_LOWRES entry point), every pixel's diffuse light upsampled from them
+// or, where no block's surface agrees with the pixel's, traced; the other cones at every pixel.
 #version 450 core
 #include "common/cone_trace.glsl"
 #include "common/gather.glsl"
 #include "common/lights.glsl"
+#ifdef CG_GATHER_DOWNSAMPLE
+#include "common/upsample.glsl"
+#endif
 
 #ifdef SPECULAR
 layout(binding = 1, rgba32f) writeonly uniform image2D u_reflection;
@@ -48,6 +54,39 @@ trace_lobe(CgVolume v, CgMarch march, float t_max, CgGatherLobe lobe)
     return vec4(traced.rgb * lobe.weight, traced.a);
 }
 
+// The diffuse cones of the surface point `position` with unit normal `n` (before the material's
+// diffuse share): rgb the incident radiance integral E_i / pi, a the ambient visibility.
+vec4
+trace_diffuse(vec3 position, vec3 n)
+{
+    CgVolume v = cg_volume();
+    CgMarch march = cg_cone_march();
+    float t_max = cg_cone_reach(v, march.max_distance);
+    vec3 origin = cg_cone_origin(v, position, n, march.start_offset);
+    float offset = march.start_offset * v.voxel_size;
+    return cg_cone_gather_diffuse(cg_gather_volume, v, origin, cg_tangent_frame(n), t_max, offset);
+}
+
+#ifdef CG_GATHER_LOWRES
+// One block: the diffuse cones of its representative pixel, for every surface (a block's light
+// serves the pixels around it, whatever its own material), into the image of blocks.
+void
+main()
+{
+    ivec2 block;
+    if (!cg_gather_pixel(block))
+        return;
+    ivec2 pixel = cg_upsample_representative(block);
+    vec3 position, n;
+    vec4 diffuse = vec4(0.0, 0.0, 0.0, 1.0);
+    if (cg_gather_surface(pixel, position, n))
+        diffuse = trace_diffuse(position, n);
+    imageStore(cg_gather_radiance, block, diffuse);
+#ifdef CG_CONE_COUNT_READS
+    imageStore(u_reads, pixel, vec4(cg_cone_reads));
+#endif
+}
+#else
 void
 main()
 {
@@ -68,7 +107,6 @@ main()
         vec3 origin = cg_cone_origin(v, position, n, march.start_offset);
         float offset = march.start_offset * v.voxel_size;
         vec3 view = normalize(position - cg_cone_gather_block.camera.xyz);
-        mat3 frame = cg_tangent_frame(n);
         // The surface every cone leaves: no sample may read its voxels (cg_cone_trace_surface).
         vec4 surface = vec4(n, offset);
 #ifdef CG_GATHER_MATERIAL
@@ -77,8 +115,12 @@ main()
 #else
         bool diffuse_lobe = true;
 #endif
+#ifdef CG_GATHER_DOWNSAMPLE
+        if (diffuse_lobe && !cg_upsample_diffuse(pixel, position, n, cg_cone_gather_block.camera.xyz, diffuse))
+#else
         if (diffuse_lobe)
-            diffuse = cg_cone_gather_diffuse(cg_gather_volume, v, origin, frame, t_max, surface.w);
+#endif
+            diffuse = trace_diffuse(position, n);
 #ifdef CG_CONE_COUNT_READS
         diffuse_reads = cg_cone_reads;    // the diffuse cones' alone
 #endif
@@ -120,6 +162,11 @@ main()
     imageStore(u_visibility, pixel, vec4(visibility));
 #endif
 #ifdef CG_CONE_COUNT_READS
+#ifdef CG_GATHER_DOWNSAMPLE
+    // A representative's reads are its block's, written by the blocks' dispatch.
+    if (!cg_upsample_is_representative(pixel))
+#endif
     imageStore(u_reads, pixel, vec4(diffuse_reads));
 #endif
 }
+#endif

@@ -31,6 +31,10 @@
 //   skipped hierarchically with the min-max pyramid (HSAT mode pyramid), as maximum mipmaps do;
 //   a point on the height field itself has no voxels of its own, so its 3D steps need no cap
 //   near the surface (cg_cone_step's `surface` left out) and take the full steps.
+//
+// Decoupled resolution (CG_GATHER_DOWNSAMPLE, common/upsample.glsl), as cone_gather's: the diffuse
+// cones at one pixel of each block (the CG_GATHER_LOWRES entry point), every pixel's diffuse light
+// upsampled from them or traced where no block agrees; the material cones at every pixel.
 #version 450 core
 #include "common/cone_trace.glsl"
 #include "common/gather.glsl"
@@ -38,6 +42,9 @@
 #include "common/heightmap.glsl"
 #include "common/hsat.glsl"
 #include "common/fitting_cube.glsl"
+#endif
+#ifdef CG_GATHER_DOWNSAMPLE
+#include "common/upsample.glsl"
 #endif
 
 layout(binding = CG_UNIT_LIGHTMAP2D) uniform sampler2D u_lightmap;
@@ -748,6 +755,100 @@ trace_lobe(CgGatherLobe lobe, float t_max, float xel, bool own_voxels)
 }
 #endif
 
+// The volume and terrain bounds' reach, the cones' voxel (the 3D lightmap's, or the terrain's xel
+// without one) and whether the cones must keep off the surface's own voxels: what the diffuse and
+// the material cones of a surface point share.
+struct Reach {
+    float t_max;
+    float xel;
+    bool own_voxels;
+};
+
+Reach
+gather_reach(vec3 position, vec3 n)
+{
+    CgMarch march = cg_cone_march();
+#ifdef HAS_2D
+    CgVolume v = hybrid_volume();
+    CgHeightmap m = cg_heightmap();
+    vec3 lo, hi;
+    map_box(m, lo, hi);
+    if (has_3d()) {
+        vec3 b_lo, b_hi;
+        box_3d(v, b_lo, b_hi);
+        lo = min(lo, b_lo);
+        hi = max(hi, b_hi);
+    }
+    float t_max = march.max_distance > 0.0 ? march.max_distance : length(hi - lo);
+#ifdef METHOD_PAPER
+    // VI.B's self-influence: the cones start off the surface by the coarser of the two xels.
+    float xel = has_3d() ? max(v.voxel_size, cg_heightmap_xel(m)) : cg_heightmap_xel(m);
+    return Reach(t_max, xel, true);
+#else
+    // The 3D march starts as cone_gather's (start_offset voxels off the surface); the horizon
+    // is seen from the surface point itself.
+    float voxel = has_3d() ? v.voxel_size : cg_heightmap_xel(m);
+    bool own_voxels = !(cg_hybrid_gather_block.levels.y != 0 && on_height_field(m, position, n));
+    return Reach(t_max, voxel, own_voxels);
+#endif
+#else
+    CgVolume v = cg_volume();
+    return Reach(cg_cone_reach(v, march.max_distance), v.voxel_size, true);
+#endif
+}
+
+// The diffuse cones of the surface point `position` with unit normal `n` (before the material's
+// diffuse share): rgb the incident radiance integral E_i / pi, a the ambient visibility.
+vec4
+trace_diffuse(vec3 position, vec3 n, Reach r)
+{
+    mat3 frame = cg_tangent_frame(n);
+    CgMarch march = cg_cone_march();
+    vec4 diffuse = vec4(0.0);
+#ifdef HAS_2D
+    vec3 origin = position + n * (march.start_offset * r.xel);
+#ifdef METHOD_PAPER
+    // What each cone left open, past the volume and the terrain, sees the sky (common/sky.glsl).
+    for (int k = 0; k < cg_cone_count(); k++) {
+        vec3 dir = cg_cone_direction(frame, k);
+        cg_cone_accumulate(diffuse, k, cg_sky_gather(trace_paper(origin, dir, cg_cone_tan_half(k), r.xel, r.t_max), dir,
+                                                     cg_cone_tan_half(k)));
+    }
+#else
+    vec4 surface = r.own_voxels ? vec4(n, march.start_offset * r.xel) : vec4(n, -1.0);
+    for (int k = 0; k < cg_cone_count(); k++) {
+        vec3 dir = cg_cone_direction(frame, k);
+        cg_cone_accumulate(diffuse, k, cg_sky_gather(trace_horizon(position, origin, dir, cg_cone_tan_half(k), r.xel,
+                                                                   r.t_max, surface, cell_of(k, frame)),
+                                                     dir, cg_cone_tan_half(k)));
+    }
+#endif
+#else
+    // No 2D lightmap: the VCT gather, the very function cone_gather calls.
+    CgVolume v = cg_volume();
+    diffuse = cg_cone_gather_diffuse(cg_gather_volume, v, cg_cone_origin(v, position, n, march.start_offset),
+                                     frame, r.t_max, march.start_offset * v.voxel_size);
+#endif
+    return diffuse;
+}
+
+#ifdef CG_GATHER_LOWRES
+// One block: the diffuse cones of its representative pixel, for every surface (a block's light
+// serves the pixels around it, whatever its own material), into the image of blocks.
+void
+main()
+{
+    ivec2 block;
+    if (!cg_gather_pixel(block))
+        return;
+    ivec2 pixel = cg_upsample_representative(block);
+    vec3 position, n;
+    vec4 diffuse = vec4(0.0, 0.0, 0.0, 1.0);
+    if (cg_gather_surface(pixel, position, n))
+        diffuse = trace_diffuse(position, n, gather_reach(position, n));
+    imageStore(cg_gather_radiance, block, diffuse);
+}
+#else
 void
 main()
 {
@@ -758,8 +859,6 @@ main()
     vec4 diffuse = vec4(0.0, 0.0, 0.0, 1.0);
     vec4 reflection = vec4(0.0), refraction = vec4(0.0);
     if (cg_gather_surface(pixel, position, n)) {
-        mat3 frame = cg_tangent_frame(n);
-        CgMarch march = cg_cone_march();
         // The material (common/gather.glsl): no diffuse cones where rho = 0, composite's factor.
 #ifdef CG_GATHER_MATERIAL
         CgGatherMaterial mat = cg_gather_material(pixel);
@@ -768,71 +867,25 @@ main()
 #else
         bool diffuse_lobe = true;
 #endif
-        float lobe_xel = 0.0, lobe_reach = 0.0;
-        bool lobe_own = true;
-        diffuse = vec4(0.0, 0.0, 0.0, diffuse_lobe ? 0.0 : 1.0);
-#ifdef HAS_2D
-        CgVolume v = hybrid_volume();
-        CgHeightmap m = cg_heightmap();
-        vec3 lo, hi;
-        map_box(m, lo, hi);
-        if (has_3d()) {
-            vec3 b_lo, b_hi;
-            box_3d(v, b_lo, b_hi);
-            lo = min(lo, b_lo);
-            hi = max(hi, b_hi);
-        }
-        float t_max = march.max_distance > 0.0 ? march.max_distance : length(hi - lo);
-#ifdef METHOD_PAPER
-        // VI.B's self-influence: the cones start off the surface by the coarser of the two xels.
-        float xel = has_3d() ? max(v.voxel_size, cg_heightmap_xel(m)) : cg_heightmap_xel(m);
-        vec3 origin = position + n * (march.start_offset * xel);
-        lobe_xel = xel;
-        lobe_reach = t_max;
-        // What each cone left open, past the volume and the terrain, sees the sky (common/sky.glsl).
-        for (int k = 0; k < cg_cone_count() && diffuse_lobe; k++) {
-            vec3 dir = cg_cone_direction(frame, k);
-            cg_cone_accumulate(diffuse, k, cg_sky_gather(trace_paper(origin, dir, cg_cone_tan_half(k), xel, t_max), dir,
-                                                         cg_cone_tan_half(k)));
-        }
+        Reach reach = gather_reach(position, n);
+#ifdef CG_GATHER_DOWNSAMPLE
+        if (diffuse_lobe && !cg_upsample_diffuse(pixel, position, n, cg_hybrid_gather_block.camera.xyz, diffuse))
 #else
-        // The 3D march starts as cone_gather's (start_offset voxels off the surface); the horizon
-        // is seen from the surface point itself.
-        float voxel = has_3d() ? v.voxel_size : cg_heightmap_xel(m);
-        vec3 origin = position + n * (march.start_offset * voxel);
-        bool own_voxels = !(cg_hybrid_gather_block.levels.y != 0 && on_height_field(m, position, n));
-        vec4 surface = own_voxels ? vec4(n, march.start_offset * voxel) : vec4(n, -1.0);
-        lobe_xel = voxel;
-        lobe_reach = t_max;
-        lobe_own = own_voxels;
-        for (int k = 0; k < cg_cone_count() && diffuse_lobe; k++) {
-            vec3 dir = cg_cone_direction(frame, k);
-            cg_cone_accumulate(diffuse, k, cg_sky_gather(trace_horizon(position, origin, dir, cg_cone_tan_half(k), voxel,
-                                                                       t_max, surface, cell_of(k, frame)),
-                                                         dir, cg_cone_tan_half(k)));
-        }
-#endif
-#else
-        // No 2D lightmap: the VCT gather, the very function cone_gather calls.
-        CgVolume v = cg_volume();
-        lobe_xel = v.voxel_size;
-        lobe_reach = cg_cone_reach(v, march.max_distance);
         if (diffuse_lobe)
-            diffuse = cg_cone_gather_diffuse(cg_gather_volume, v, cg_cone_origin(v, position, n, march.start_offset),
-                                             frame, lobe_reach, march.start_offset * v.voxel_size);
 #endif
+            diffuse = trace_diffuse(position, n, reach);
 #ifdef CG_GATHER_MATERIAL
         diffuse.rgb *= cg_gather_diffuse_share(mat, cg_gather_brdf(max(dot(n, -view), 0.0), mat.roughness));
-        float offset = march.start_offset * lobe_xel;
+        float offset = cg_cone_march().start_offset * reach.xel;
 #ifdef SPECULAR
         CgGatherLobe mirror = cg_gather_reflection_lobe(mat, position, n, view, offset);
         if (any(greaterThan(mirror.weight, vec3(0.0))))
-            reflection = trace_lobe(mirror, lobe_reach, lobe_xel, lobe_own);
+            reflection = trace_lobe(mirror, reach.t_max, reach.xel, reach.own_voxels);
 #endif
 #ifdef REFRACTION
         CgGatherLobe through = cg_gather_refraction_lobe(mat, position, n, view, offset);
         if (any(greaterThan(through.weight, vec3(0.0))))
-            refraction = trace_lobe(through, lobe_reach, lobe_xel, lobe_own);
+            refraction = trace_lobe(through, reach.t_max, reach.xel, reach.own_voxels);
 #endif
 #endif
     }
@@ -844,3 +897,4 @@ main()
     imageStore(u_refraction, pixel, refraction);
 #endif
 }
+#endif

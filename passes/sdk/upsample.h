@@ -1,0 +1,61 @@
+/* sdk/upsample.h (pass SDK): decoupled GI resolution of a cone gather: its diffuse cones traced at
+ * one pixel of each D x D block, the full resolution rebuilt by joint bilateral upsampling with
+ * the G-buffer's position and normal (shaders/common/upsample.glsl says how, and why no light
+ * crosses a depth or normal edge).
+ *
+ * Declares: CGP_DOWNSAMPLE_PARAM, cgp_gather_blocks, cgp_gather_blocks_define,
+ *           cgp_gather_blocks_prepare, cgp_gather_blocks_trace, cgp_gather_blocks_end.
+ *
+ * Shared by cone_gather and hybrid_gather (and a plugin gather that wants the same). A gather's
+ * shader that takes part includes common/upsample.glsl and has two entry points by define:
+ *   CG_GATHER_LOWRES  one invocation per block (cg_gather_pixel over the image of blocks, bound as
+ *                     `radiance` at image unit 0): the diffuse cones of the block's representative
+ *                     pixel (cg_upsample_representative), before the material's diffuse share;
+ *   otherwise         every pixel as before, its diffuse light from cg_upsample_diffuse, its own
+ *                     cones where that fails; the specular and refracted cones at every pixel.
+ * With downsample = 1 neither is compiled in and the shader is the gather it always was.
+ */
+#ifndef CGP_UPSAMPLE_H
+#define CGP_UPSAMPLE_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "cg/error.h"
+#include "cg/fg.h"
+#include "sdk/cone.h"
+
+/* The parameter, one entry of a gather's table. */
+#define CGP_DOWNSAMPLE_PARAM                                                                          \
+    { .name = "downsample", .type = FG_PARAM_INT, .default_value = 1, .min = 1, .max = 4,             \
+      .allowed = FG_PARAM_VALUES(1, 2, 4),                                                            \
+      .doc = "diffuse cones traced at one pixel of each downsample x downsample block, the full "    \
+             "resolution rebuilt by joint bilateral upsampling with the G-buffer's position and "    \
+             "normal (a pixel no block agrees with traces its own); 1: every pixel; the specular "   \
+             "and refracted cones always at every pixel (docs/results/gi-resolution.md)" }
+
+typedef struct cgp_gather_blocks {
+    int downsample;         /* the parameter; 1: nothing here is made or used */
+    GLuint program;         /* the gather's shader with CG_GATHER_LOWRES */
+    GLuint texture;         /* RGBA32F, one texel a block: what the program writes */
+    int width, height;      /* blocks across and down: the image's size / downsample, rounded up */
+} cgp_gather_blocks;
+
+/* The define the gather's full-resolution program needs ("#define CG_GATHER_DOWNSAMPLE D\n"),
+ * written to `out` (at most `size` bytes); "" for downsample 1. */
+const char *cgp_gather_blocks_define(const fg_pass *pass, char *out, size_t size);
+/* In prepare(), after cgp_gather_prepare: for downsample > 1, the program of `shader` with `defines`
+ * (the full-resolution program's, its CG_GATHER_DOWNSAMPLE included), the model's and the
+ * material's defines as cgp_gather_prepare adds them, and CG_GATHER_LOWRES; the image of blocks
+ * for the pass's output `radiance`. Owned by `state`. */
+bool cgp_gather_blocks_prepare(void *state, const fg_pass *pass, const cgp_gather *g, cgp_gather_blocks *b,
+                               const char *shader, const char *defines, cg_error *err);
+/* In execute(), after cgp_gather_begin and the pass's own bindings, before cgp_gather_end: runs
+ * the block program over the blocks (everything cgp_gather_begin bound is its too), then binds
+ * the blocks at CG_UNIT_GATHER_BLOCKS and the full-resolution program and `radiance` again.
+ * Nothing for downsample 1. */
+void cgp_gather_blocks_trace(const fg_pass *pass, const cgp_gather *g, const cgp_gather_blocks *b);
+/* After cgp_gather_end: unbinds the blocks. */
+void cgp_gather_blocks_end(const cgp_gather_blocks *b);
+
+#endif

@@ -1,0 +1,105 @@
+// common/upsample.glsl: decoupled GI resolution of a cone gather (passes/sdk/upsample.h).
+//
+// With CG_GATHER_DOWNSAMPLE = D (2 or 4) a gather traces its diffuse cones at one pixel of each
+// D x D block of the image, the block's representative, in a first dispatch (the shader compiled
+// with CG_GATHER_LOWRES, one invocation a block, writing an image of blocks), and its
+// full-resolution dispatch rebuilds every pixel's diffuse light from the four nearest blocks by
+// joint bilateral upsampling (Kopf et al. 2007, "Joint Bilateral Upsampling", eq. 2: the low
+// resolution solution's samples weighted by a spatial filter on the low resolution grid times a
+// range filter on the full-resolution guide image). Here the spatial filter is the bilinear
+// weight of the four blocks around the pixel, and the guide is the G-buffer's full-resolution
+// surface: a block's weight is multiplied by how well its representative's surface agrees with
+// the pixel's, its normal (cos^32 of the angle between them) and its distance from the pixel's
+// tangent plane (1 at 0, falling linearly to 0 at a fraction of the pixel's distance from the
+// camera, so that the tolerance follows the spacing of the blocks on the screen). A coplanar
+// neighbour agrees at any angle of view; a surface in front of or behind the pixel does not.
+//
+// Indirect diffuse light changes slowly along a surface and abruptly only where the surface does,
+// so this keeps the light of one surface from reaching another across a depth or normal edge.
+// Where no block agrees well enough (a thin object between blocks, a silhouette whose block
+// centres fell on the background), the pixel traces its own cones: the answer there is the
+// full-resolution gather's, never a neighbour's light.
+//
+// Provides: cg_upsample_representative(), cg_upsample_is_representative(), cg_upsample_diffuse().
+#ifndef CG_COMMON_UPSAMPLE_GLSL
+#define CG_COMMON_UPSAMPLE_GLSL
+
+#include "common/gather.glsl"
+
+#ifndef CG_GATHER_DOWNSAMPLE
+#error "common/upsample.glsl needs CG_GATHER_DOWNSAMPLE (passes/sdk/upsample.h defines it)"
+#endif
+
+// The blocks' diffuse light: rgb the incident radiance integral E_i/pi before the material's
+// diffuse share, a the ambient visibility, one texel a block (cgp_gather_blocks_trace).
+layout(binding = CG_UNIT_GATHER_BLOCKS) uniform sampler2D cg_upsample_blocks;
+
+// The range filter's widths (docs/results/gi-resolution.md measures them): the normal's power, the
+// plane distance at which a block's agreement falls to 0, per block of spacing and metre of
+// distance from the camera, and the least agreement for which a block counts at all (below it
+// its weight is 0, so that a near block of another surface cannot outweigh a far one of the
+// pixel's own).
+#define CG_UPSAMPLE_NORMAL_POWER 32.0
+#define CG_UPSAMPLE_PLANE_PER_BLOCK 0.004
+#define CG_UPSAMPLE_MIN_AGREEMENT 0.25
+
+// The pixel that block `b` traces: its centre (for an even D the lower right of the four central
+// pixels), clamped to the image for a last block that the image cuts.
+ivec2
+cg_upsample_representative(ivec2 b)
+{
+    ivec2 size = textureSize(cg_gather_position, 0);
+    return min(b * CG_GATHER_DOWNSAMPLE + CG_GATHER_DOWNSAMPLE / 2, size - 1);
+}
+
+// Whether `pixel` is the pixel its block traces (the block holding it: pixel / D).
+bool
+cg_upsample_is_representative(ivec2 pixel)
+{
+    return cg_upsample_representative(pixel / CG_GATHER_DOWNSAMPLE) == pixel;
+}
+
+// The diffuse light of `pixel` (a surface point `position` with unit normal `n`, seen from
+// `camera`) from the blocks around it; false where no block's surface agrees with the pixel's
+// well enough, and the pixel must trace its own cones. A representative takes its own block's
+// light exactly.
+bool
+cg_upsample_diffuse(ivec2 pixel, vec3 position, vec3 n, vec3 camera, out vec4 diffuse)
+{
+    if (cg_upsample_is_representative(pixel)) {
+        diffuse = texelFetch(cg_upsample_blocks, pixel / CG_GATHER_DOWNSAMPLE, 0);
+        return true;
+    }
+    // The four blocks around the pixel, by their representatives' positions on the screen.
+    vec2 f = (vec2(pixel) - float(CG_GATHER_DOWNSAMPLE / 2)) / float(CG_GATHER_DOWNSAMPLE);
+    ivec2 b0 = ivec2(floor(f));
+    diffuse = vec4(0.0);
+    vec2 t = f - vec2(b0);
+    ivec2 blocks = textureSize(cg_upsample_blocks, 0);
+    float tolerance = CG_UPSAMPLE_PLANE_PER_BLOCK * float(CG_GATHER_DOWNSAMPLE) * distance(position, camera);
+    vec4 sum = vec4(0.0);
+    float weight = 0.0;
+    for (int j = 0; j < 2; j++)
+        for (int i = 0; i < 2; i++) {
+            ivec2 b = b0 + ivec2(i, j);
+            if (any(lessThan(b, ivec2(0))) || any(greaterThanEqual(b, blocks)))
+                continue;
+            vec3 q, m;
+            if (!cg_gather_surface(cg_upsample_representative(b), q, m))
+                continue;
+            float plane = abs(dot(n, q - position));
+            float agreement = pow(max(dot(n, m), 0.0), CG_UPSAMPLE_NORMAL_POWER) *
+                              max(1.0 - plane / tolerance, 0.0);
+            if (agreement < CG_UPSAMPLE_MIN_AGREEMENT)
+                continue;   // another surface: none of its light, however near its block
+            float w = (i == 0 ? 1.0 - t.x : t.x) * (j == 0 ? 1.0 - t.y : t.y) * agreement;
+            sum += w * texelFetch(cg_upsample_blocks, b, 0);
+            weight += w;
+        }
+    if (!(weight > 0.0))
+        return false;
+    diffuse = sum / weight;
+    return true;
+}
+
+#endif
