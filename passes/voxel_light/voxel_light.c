@@ -8,8 +8,9 @@
  *             the voxel's coverage sum (shaders/voxel_light/inject.comp)
  *   sides     (w beta, w delta, 0, alpha_y): the other side's luminance fraction, the plane offset
  *   normals   (w N, alpha_z): the mean normal of the lit side
- *   and, where a bounce is gathered (the header's recursion), the transient gathered_front, gathered_back
- *   (level 0: each side's gathered light) and voxels (the list of occupied voxels).
+ *   voxels    the list of occupied voxels (list.comp), which the inject and the gathers run over
+ *   and, where a bounce is gathered (the header's recursion), gathered_front, gathered_back (level 0:
+ *   each side's gathered light).
  *
  * The light is evaluated per voxel, at its surface point, from its geometry: a pass after
  * voxelize, so that the geometry can stay while the light changes. Bounces are counted as
@@ -32,7 +33,9 @@
  * the first (bounces = 1 with a sky or emitters: G(V_0), V_0 = Le, reads no punctual light), it is kept
  * too (gathered_front and gathered_back are then persistent) while only the lights or the shadow map
  * changed: a turning sun under a uniform sky costs one inject and its mips. cache = false relights
- * every frame. The pass reports what it did through fg_pass_report_rebuilt, with the compute
+ * every frame. A relight's cost follows the occupied voxels, not the volume: they are listed (one read
+ * per voxel of the volume, again only where the geometry may have changed), level 0 is cleared and the
+ * inject runs over the list (over the whole volume only when the list overflows). The pass reports what it did through fg_pass_report_rebuilt, with the compute
  * dispatches it made, so that a test can see a static frame do nothing.
  */
 #include <math.h>
@@ -78,7 +81,7 @@ static const GLenum geometry_formats[4] = {GL_RGBA8, GL_RGBA8, GL_RGBA8_SNORM, G
 static const char *const light_names[3] = {"radiance", "sides", "normals"};
 
 typedef struct voxel_light_state {
-    GLuint inject, mip, gather;
+    GLuint inject, inject_listed, list, mip, gather;
     GLuint sampler;         /* the volumes, for the gathers at the voxels */
     GLuint one_level;       /* the radiance again at CG_UNIT_OCCUPANCY (cgp_sampler_volume_one_level) */
     GLuint cone_block;
@@ -90,6 +93,8 @@ typedef struct voxel_light_state {
     /* What the last relight read (cache = true), to tell whether a frame must relight. */
     bool lit;               /* the volumes hold the light of `key` */
     bool first_gather_kept; /* gathered_* hold G(V_0) of `key` (the only gather of that relight) */
+    bool list_kept;         /* `voxels` lists the occupied voxels of `key`'s geometry */
+    GLuint listed;          /* occupied voxels found by the last listing (list_voxels) */
     cgp_instance_record instances;
     struct light_key {
         GLuint textures[6];         /* the geometry volumes, the shadow map, the shadow matrix buffer */
@@ -183,10 +188,11 @@ voxel_light_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
         gathered.persistent = light.persistent && gathers(pass) == 1 && fg_param_int(pass, "bounces") == 1;
         fg_declare_output(decl, "gathered_front", &gathered, FG_ACCESS_IMAGE_STORE);
         fg_declare_output(decl, "gathered_back", &gathered, FG_ACCESS_IMAGE_STORE);
-        fg_resource_desc list = cgp_buffer_desc(sizeof(cg_voxel_list_block) + sizeof(GLuint) * list_capacity(g));
-        list.gi = true;
-        fg_declare_output(decl, "voxels", &list, FG_ACCESS_STORAGE | FG_ACCESS_TRANSFER);
     }
+    fg_resource_desc list = cgp_buffer_desc(sizeof(cg_voxel_list_block) + sizeof(GLuint) * list_capacity(g));
+    list.gi = true;
+    list.persistent = light.persistent;     /* kept while the geometry is */
+    fg_declare_output(decl, "voxels", &list, FG_ACCESS_STORAGE | FG_ACCESS_TRANSFER);
     return true;
 }
 
@@ -202,7 +208,7 @@ static bool
 voxel_light_prepare(fg_pass *pass, voxel_light_state *s, cg_error *err)
 {
     cgp_state_on_destroy(s, voxel_light_cleanup);
-    s->gathers = fg_resource(pass, "voxels") != NULL;
+    s->gathers = fg_resource(pass, "gathered_front") != NULL;
     s->cache = fg_param_bool(pass, "cache");
     cgp_no_shadow_create(s, &s->no_shadow);
     cgp_sky_prepare(s, &s->sky);
@@ -212,12 +218,59 @@ voxel_light_prepare(fg_pass *pass, voxel_light_state *s, cg_error *err)
     if (!cgp_cone_set_of_param(pass, "bounce_cones", &s->set, err))
         return false;
     return cgp_compute_program(s, "voxel_light/inject.comp", NULL, &s->inject, err) &&
+           cgp_compute_program(s, "voxel_light/inject.comp", "#define VOXEL_LIGHT_LISTED\n", &s->inject_listed, err) &&
+           cgp_compute_program(s, "voxel_light/list.comp", NULL, &s->list, err) &&
            cgp_compute_program(s, "voxel_light/mip.comp", NULL, &s->mip, err) &&
            (!s->gathers ||
             cgp_compute_program(s, "voxel_light/gather.comp", "#define CG_CONE_SURFACE\n", &s->gather, err));
 }
 
-/* Level 0 of the three volumes. */
+/* Lists the occupied voxels (list.comp) into `voxels`; returns how many there are (the list holds
+ * at most list_capacity of them). */
+static GLuint
+list_voxels(const fg_pass *pass, voxel_light_state *s)
+{
+    const fg_resource_desc *volume = fg_resource(pass, "radiance");
+    GLuint voxels = fg_buffer(pass, "voxels");
+    const cg_voxel_list_block empty = {.dispatch = {0, 1, 1, 0}};
+    glNamedBufferSubData(voxels, 0, sizeof empty, &empty);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_VOXEL_LIST, voxels);
+    glUseProgram(s->list);
+    glUniform1ui(3, list_capacity(volume));
+    glBindTextureUnit(0, fg_texture(pass, "albedo"));
+    glDispatchCompute((GLuint)(volume->width + 3) / 4, (GLuint)(volume->height + 3) / 4, (GLuint)(volume->depth + 3) / 4);
+    s->dispatches++;
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+    cg_voxel_list_block header;
+    glGetNamedBufferSubData(voxels, 0, sizeof header, &header);
+    return header.dispatch[3];
+}
+
+/* Level 0 of the three volumes over the listed voxels alone (inject.comp with VOXEL_LIGHT_LISTED), the
+ * level cleared first when `clear` (the occupied voxels may differ from those it was written for). */
+static void
+inject_listed(const fg_pass *pass, voxel_light_state *s, bool direct, bool gathered, bool clear)
+{
+    glUseProgram(s->inject_listed);
+    glUniform1i(4, direct);
+    glUniform1i(1, gathered);
+    glUniform1ui(3, list_capacity(fg_resource(pass, "radiance")));
+    for (int i = 0; i < 3; i++) {
+        GLuint tex = fg_texture(pass, light_names[i]);
+        if (clear)
+            glClearTexImage(tex, 0, GL_RGBA, GL_FLOAT, NULL);
+        glBindImageTexture((GLuint)i, tex, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    }
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_VOXEL_LIST, fg_buffer(pass, "voxels"));
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, fg_buffer(pass, "voxels"));
+    glDispatchComputeIndirect(0);
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+    s->dispatches++;
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT |
+                    GL_COMMAND_BARRIER_BIT);
+}
+
+/* Level 0 of the three volumes, over the whole volume. */
 static void
 inject(const fg_pass *pass, voxel_light_state *s, bool direct, bool gathered, bool build_list)
 {
@@ -233,6 +286,19 @@ inject(const fg_pass *pass, voxel_light_state *s, bool direct, bool gathered, bo
     s->dispatches++;
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT |
                     GL_COMMAND_BARRIER_BIT);
+}
+
+/* Level 0 of the three volumes: over the list where it holds every occupied voxel, else over the
+ * whole volume. *clear: level 0 must be cleared before a listed inject (false after it). */
+static void
+inject_level0(const fg_pass *pass, voxel_light_state *s, bool direct, bool gathered, bool *clear)
+{
+    if (s->listed <= list_capacity(fg_resource(pass, "radiance"))) {
+        inject_listed(pass, s, direct, gathered, *clear);
+        *clear = false;
+    } else {
+        inject(pass, s, direct, gathered, false);
+    }
 }
 
 /* Levels 1.. of the three volumes from level 0. */
@@ -377,6 +443,7 @@ remember(const fg_pass *pass, voxel_light_state *s, const struct light_key *key,
     s->key = *key;
     s->lit = true;
     s->first_gather_kept = first_gather_kept;
+    s->list_kept = true;
     return true;
 }
 
@@ -408,37 +475,37 @@ voxel_light_execute(fg_pass *pass, voxel_light_state *s, cg_error *err)
     const fg_resource_desc *gathered = fg_resource(pass, "gathered_front");
     bool keeps_first = s->cache && count == 1 && bounces == 1 && gathered && gathered->persistent;
     bool reuse_first = keeps_first && lights_only && s->first_gather_kept;
+    /* The occupied voxels, listed again unless only the lights changed since they were. Level 0 is
+     * cleared before the first listed inject of every relight all the same: what it held outside the
+     * list is then never a question. */
+    if (!(s->cache && lights_only && s->list_kept))
+        s->listed = list_voxels(pass, s);
+    bool clear = true;
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_VOXEL_LIST, fg_buffer(pass, "voxels"));
     if (s->gathers && !reuse_first) {
-        const cg_voxel_list_block header = {.dispatch = {0, 1, 1, 0}};
-        glNamedBufferSubData(fg_buffer(pass, "voxels"), 0, sizeof header, &header);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_VOXEL_LIST, fg_buffer(pass, "voxels"));
         cg_cone_set_block cones;
         cgp_cone_block_fill_march(&s->set, BOUNCE_STEP, BOUNCE_START_OFFSET, 0.0, BOUNCE_LOD_BIAS, &cones);
         cgp_uniform_upload(s->cone_block, CG_BINDING_CONES, &cones, sizeof cones);
     }
-    unsigned listed = 0;
     if (reuse_first) {
         /* V_1 = Le + D + G(V_0), G(V_0) as the last relight gathered it. */
         bind_inject_inputs(pass, s);
-        inject(pass, s, true, true, false);
+        inject_level0(pass, s, true, true, &clear);
         mip(pass, s);
     } else {
         bind_inject_inputs(pass, s);
-        inject(pass, s, skip_first, false, s->gathers);
+        inject_level0(pass, s, skip_first, false, &clear);
         mip(pass, s);
         /* What a cone of a gather at the voxels leaves open sees the sky, as the screen's gather. */
         if (count > 0) {
             if (!cgp_sky_update(s, &s->sky, frame->scene, err))
                 return false;
             cgp_sky_bind(&s->sky);
-            cg_voxel_list_block header;
-            glGetNamedBufferSubData(fg_buffer(pass, "voxels"), 0, sizeof header, &header);
-            listed = header.dispatch[3];
         }
         for (int b = 0; b < count; b++) {
             gather(pass, s);
             bind_inject_inputs(pass, s);
-            inject(pass, s, true, true, false);
+            inject_level0(pass, s, true, true, &clear);
             mip(pass, s);
         }
         if (count > 0)
@@ -453,7 +520,7 @@ voxel_light_execute(fg_pass *pass, voxel_light_state *s, cg_error *err)
         fg_pass_report_rebuilt(pass, "volumes relit (%s; first gather kept): %d dispatches", why, s->dispatches);
     else if (count > 0)
         fg_pass_report_rebuilt(pass, "volumes relit (%s): %d dispatches, %d gather%s of %u voxels", why, s->dispatches,
-                               count, count == 1 ? "" : "s", listed);
+                               count, count == 1 ? "" : "s", s->listed);
     else
         fg_pass_report_rebuilt(pass, "volumes relit (%s): %d dispatches", why, s->dispatches);
     return !s->cache || remember(pass, s, &key, keeps_first, err);

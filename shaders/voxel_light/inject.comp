@@ -18,8 +18,17 @@
 // the lit side being the brighter (Rec. 709 Y), N_lit the normal turned towards it, D the constant of
 // its plane N_lit . (x - m) = D voxel (m the volume's centre, in level-0 voxels), beta = Y(L_other) / Y(L_lit): the other side as a fraction of the lit side's
 // luminance (its colour the lit side's; exact for one light or symmetric emitters).
-// u_build_list: also lists the occupied voxels for the bounce gathers (voxel_light_list).
+// VOXEL_LIGHT_LISTED: one invocation per voxel of voxel_light_list (list.comp), the level cleared
+// to 0 before, so that the cost follows the occupied voxels: on llvmpipe an invocation of an empty
+// voxel runs the whole body, the lights' shadow taps included, whatever branch it takes
+// (docs/results/voxel-light-cost.md). Otherwise one invocation per voxel of the volume, which
+// writes 0 where no surface is (the fallback when the list overflows) and, with u_build_list, lists
+// the occupied voxels for the bounce gathers (voxel_light_list).
+#ifdef VOXEL_LIGHT_LISTED
+layout(local_size_x = 64) in;
+#else
 layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
+#endif
 
 // cg_tangent_frame:
 #include "common/cone_trace.glsl"
@@ -69,6 +78,14 @@ void
 main()
 {
     CgVolume vol = cg_volume();
+#ifdef VOXEL_LIGHT_LISTED
+    // The listed voxels alone (list.comp), the level cleared before: no empty voxel, no list to build.
+    uint index = gl_GlobalInvocationID.x;
+    if (index >= min(voxel_light_list.dispatch.w, u_list_capacity))
+        return;
+    ivec3 v = voxel_light_unpack(voxel_light_list.voxels[index]);
+    vec4 albedo = texelFetch(u_albedo, v, 0);
+#else
     ivec3 v = ivec3(gl_GlobalInvocationID);
     if (any(greaterThanEqual(v, ivec3(vol.dims))))
         return;
@@ -86,6 +103,7 @@ main()
         if (i % 64u == 0u)
             atomicAdd(voxel_light_list.dispatch.x, 1u);
     }
+#endif
     vec3 alpha = texelFetch(u_coverage, v, 0).xyz;
     vec4 nd = texelFetch(u_normal, v, 0);
     vec3 n = nd.xyz;
