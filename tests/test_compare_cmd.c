@@ -110,8 +110,16 @@ offset_and_indirect_part(void **state)
     cg_image map = { 0 };
     cg_error err = { 0 };
     assert_cg_ok(cg_image_read(heatmap, &map, &err), &err);
-    assert_int_equal(map.width, W);
-    assert_int_equal(map.height, H);
+    /* The map on top, widened to 360 pixels in white, its colour scale beneath it: the scale's
+     * bar runs from black (0) at its left end to light yellow (--heatmap-max) at its right. */
+    assert_int_equal(map.width, 360);
+    assert_true(map.height > H + 30);
+    const float *bar_left = &map.rgba[4 * ((size_t)(H + 10) * map.width + 14)];
+    const float *bar_right = &map.rgba[4 * ((size_t)(H + 10) * map.width + 360 - 14)];
+    assert_true(bar_left[0] < 0.01f && bar_left[1] < 0.01f);
+    assert_true(bar_right[0] > 0.9f && bar_right[1] > 0.9f);
+    const float *pad = &map.rgba[4 * ((size_t)2 * map.width + W + 5)];
+    assert_true(pad[0] == 1.0f && pad[1] == 1.0f && pad[2] == 1.0f);
     cg_image_free(&map);
 }
 

@@ -73,7 +73,7 @@ rings_and_lines_are_drawn(void **state)
     cg_image img = { 0 };
     cg_error err = { 0 };
     assert_cg_ok(plot_render(&plot, &img, &err), &err);
-    assert_int_equal(img.width, 720);
+    assert_int_equal(img.width, 960);
     double cx, cy;
     /* Three rings, two line segments and the legend's ring: well over a few hundred pixels. */
     assert_true(centroid(&img, series[0].color, &cx, &cy) > 300);
@@ -141,6 +141,92 @@ markers_and_labels(void **state)
     assert_int_equal(label_pixels(both, &cx), n1 + n2);
 }
 
+/* The dark grey (label) pixels of a plot of `count` points at one spot, each labelled. */
+static int
+crowded_label_pixels(int count)
+{
+    static const float label_grey[3] = { 0.25f, 0.25f, 0.25f };
+    double x[16], y[16];
+    const char *labels[16];
+    static const char *const names[16] = { "first", "second", "third", "fourth", "fifth", "sixth", "seventh", "eighth",
+                                           "ninth", "tenth", "eleventh", "twelfth", "a", "b", "c", "d" };
+    for (int i = 0; i < count; i++) {
+        x[i] = 5.0;
+        y[i] = 5.0 + 0.01 * i;
+        labels[i] = names[i];
+    }
+    const double corners_x[] = { 0.0, 10.0 }, corners_y[] = { 0.0, 10.0 };
+    plot_series series[2] = { { .color = { 0, 0, 1 }, .x = x, .y = y, .count = count, .labels = labels },
+                              { .color = { 0, 1, 0 }, .x = corners_x, .y = corners_y, .count = 2 } };
+    plot_desc plot = { .series = series, .series_count = 2, .width = 400, .height = 300 };
+    cg_image img = { 0 };
+    cg_error err = { 0 };
+    assert_cg_ok(plot_render(&plot, &img, &err), &err);
+    double cx, cy;
+    int n = centroid(&img, label_grey, &cx, &cy);
+    cg_image_free(&img);
+    return n;
+}
+
+/* Twelve points on one spot: every one gets its label (moved farther out where the near places
+ * are taken), so the labels' pixels are about the sum of each label drawn alone. */
+static void
+every_point_is_labelled(void **state)
+{
+    (void)state;
+    int alone = 0;
+    for (int k = 0; k < 12; k++) {
+        /* Label k alone: the first k + 1 points, labels counted from a plot of only k + 1, less
+         * the plot of k. */
+        alone += crowded_label_pixels(k + 1) - (k ? crowded_label_pixels(k) : 0);
+    }
+    int together = crowded_label_pixels(12);
+    if (together < alone * 9 / 10)
+        fail_msg("twelve labels on one spot draw %d pixels, alone they would draw %d", together, alone);
+}
+
+/* Lower case is drawn as lower case: "axis" and "AXIS" as titles differ. */
+static void
+lower_case_has_its_own_glyphs(void **state)
+{
+    (void)state;
+    const double x[] = { 1.0 }, y[] = { 1.0 };
+    plot_series series[1] = { { .color = { 1, 0, 0 }, .x = x, .y = y, .count = 1 } };
+    cg_image a = { 0 }, b = { 0 };
+    cg_error err = { 0 };
+    plot_desc plot = { .title = "axis", .series = series, .series_count = 1, .width = 200, .height = 150 };
+    assert_cg_ok(plot_render(&plot, &a, &err), &err);
+    plot.title = "AXIS";
+    assert_cg_ok(plot_render(&plot, &b, &err), &err);
+    /* The title's band, the top 30 rows. */
+    assert_true(memcmp(a.rgba, b.rgba, sizeof(float) * 4 * 200 * 30) != 0);
+    cg_image_free(&a);
+    cg_image_free(&b);
+}
+
+/* A named series gets one legend entry (its marker once more); a series without a name none. */
+static void
+legend_beside_the_plot(void **state)
+{
+    (void)state;
+    const double x[] = { 1.0, 2.0 }, y[] = { 1.0, 2.0 };
+    double with_name = 0, without = 0, unnamed = 0, cy;
+    (void)with_name;
+    for (int k = 0; k < 3; k++) {
+        plot_series series[1] = { { .name = k == 0 ? "a method" : NULL, .color = { 1, 0, 0 }, .x = x, .y = y,
+                                    .count = 2 } };
+        plot_desc plot = { .series = series, .series_count = 1, .width = 400, .height = 300 };
+        cg_image img = { 0 };
+        cg_error err = { 0 };
+        assert_cg_ok(plot_render(&plot, &img, &err), &err);
+        double *cx = k == 0 ? &with_name : k == 1 ? &without : &unnamed;
+        int n = centroid(&img, series[0].color, cx, &cy);
+        assert_int_equal(n, k == 0 ? 3 * 49 : 2 * 49); /* two points, and the legend's marker */
+        cg_image_free(&img);
+    }
+    assert_true(fabs(without - unnamed) < 1e-9);
+}
+
 int
 main(void)
 {
@@ -148,6 +234,9 @@ main(void)
         cmocka_unit_test(markers_follow_the_data),
         cmocka_unit_test(rings_and_lines_are_drawn),
         cmocka_unit_test(markers_and_labels),
+        cmocka_unit_test(every_point_is_labelled),
+        cmocka_unit_test(lower_case_has_its_own_glyphs),
+        cmocka_unit_test(legend_beside_the_plot),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

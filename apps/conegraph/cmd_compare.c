@@ -6,7 +6,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bench/plot.h"
 #include "cg/error.h"
+#include "cg/fs.h"
 #include "cg/image.h"
 #include "cg/metrics.h"
 #include "commands.h"
@@ -55,7 +57,10 @@ cmd_compare_usage(FILE *out)
         "                       (non-finite figures as null)\n"
         "  --heatmap FILE.png   write the per-pixel relative error sqrt(mean (t-r)^2/(r^2+0.01))\n"
         "                       of the full images as an 'inferno' colour map, black = 0, yellow\n"
-        "                       >= --heatmap-max (default 1); magenta = non-finite\n"
+        "                       >= --heatmap-max (default 1); magenta = non-finite. Beneath the\n"
+        "                       map (widened to 360 pixels where narrower, in white) its colour\n"
+        "                       scale, numbered, and what it measures. The path is checked before\n"
+        "                       the images are read (a missing directory exits 2)\n"
         "\n"
         "All images must hold the same kind of values: linear (EXR, HDR, float TIFF: radiance)\n"
         "or display-encoded (PNG, JPEG: sRGB or another transfer function, decoded on reading),\n"
@@ -270,6 +275,14 @@ cmd_compare(int argc, char **argv)
         return 2;
     }
 
+    if (heatmap_path) {
+        cg_error path_err = { 0 };
+        if (!cg_output_path_check(heatmap_path, ".png", &path_err)) {
+            fprintf(stderr, "conegraph compare: --heatmap: %s\n", path_err.message);
+            return 2;
+        }
+    }
+
     int count = 0;
     inputs[count++] = (input_image){ .path = paths[0] };
     inputs[count++] = (input_image){ .path = paths[1] };
@@ -348,7 +361,7 @@ cmd_compare(int argc, char **argv)
                    " light is taken to be the reference's)\n");
     }
     if (heatmap_path) {
-        if (!cg_metrics_heatmap(&test->image, &ref->image, heatmap_max, &map, &err) ||
+        if (!plot_error_heatmap(&test->image, &ref->image, heatmap_max, &map, &err) ||
             !cg_image_write(heatmap_path, &map, CG_EXR_HALF, &err)) {
             code = fail_exit("heat map: ", &err);
             goto done;

@@ -2,6 +2,7 @@
  * and the Pareto fronts of error against time and against GI memory: see bench.h. */
 #include <math.h>
 #include <stddef.h>
+#include <string.h>
 
 #include "bench.h"
 
@@ -66,8 +67,10 @@ bench_pt_time_for_error(const bench_rows *rows, int scene, bench_error error, do
     return (needed > 1.0 ? needed : 1.0) * per_spp;
 }
 
-/* A setting is on the front when no other one is at least as good in both error and cost and
- * better in one; one without the error (a graph bench cannot split) is on none. */
+/* A setting is on its graph's front when no other setting of the same graph file is at least as
+ * good in both error and cost and better in one; one without the error (a graph bench cannot
+ * split) is on none. Each method has its own front: a line from direct.json's point to
+ * vct.json's would join two methods as if one could slide between them. */
 static void
 mark_pareto(bench_rows *rows, int scene, bench_error error)
 {
@@ -80,7 +83,7 @@ mark_pareto(bench_rows *rows, int scene, bench_error error)
         for (int j = 0; j < rows->count; j++) {
             const bench_row *q = &rows->rows[j];
             double qe = bench_error_value(q, error);
-            if (j == i || q->scene != scene || q->is_pt || !isfinite(qe))
+            if (j == i || q->scene != scene || q->is_pt || !isfinite(qe) || strcmp(q->graph, p->graph))
                 continue;
             if (q->ms <= p->ms && qe <= pe && (q->ms < p->ms || qe < pe))
                 dominated_t = true;

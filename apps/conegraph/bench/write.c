@@ -89,7 +89,7 @@ write_markdown_table(FILE *fp, const bench_config *c, const bench_rows *rows, co
     fprintf(fp, "### %s, %dx%d\n\n", scenes[s].source, c->width, c->height);
     fprintf(fp, "Reference: path_trace, %d spp, %d bounce(s) (glossy %d, transmission %d, caustics %s), seed %d "
                 "(BVH build %.0f ms). Times: median of %d frames after %d warm-up, synchronous. "
-                "P: on the Pareto front of %s against time (t) or GI memory (m).\n\n",
+                "P: on its graph's own Pareto front of %s against time (t) or GI memory (m).\n\n",
             c->ref_spp, c->ref_bounces, c->ref_glossy_bounces, c->ref_transmission_bounces,
             c->ref_caustics ? "on" : "off", c->ref_seed, scenes[s].bvh_ms, c->frames, c->warmup, error);
     write_reference_parts(fp, &scenes[s]);
@@ -145,25 +145,54 @@ bench_write_tables(const bench_config *c, const bench_rows *rows, const bench_sc
 }
 
 /* The legend of a setting: its graph, its fixed assignments and what it varies
- * ("vct.json by cones"); the points carry the varied values. */
+ * ("vct.json, cones varied"); the points carry the varied values. */
 static void
 setting_legend(const bench_setting *s, char *out, size_t size)
 {
     size_t len = (size_t)snprintf(out, size, "%s", s->graph);
     for (int i = 0; i < s->set_count && len < size; i++)
-        len += (size_t)snprintf(out + len, size - len, " %s", s->sets[i]);
+        len += (size_t)snprintf(out + len, size - len, "%s%s", i ? " " : ", ", s->sets[i]);
     for (int v = 0; v < s->vary_count && len < size; v++) {
         const char *dot = strrchr(s->vary[v].param, '.');
-        len += (size_t)snprintf(out + len, size - len, "%s%s", v ? "/" : " by ", dot ? dot + 1 : s->vary[v].param);
+        len += (size_t)snprintf(out + len, size - len, "%s%s", v ? " and " : ", ", dot ? dot + 1 : s->vary[v].param);
     }
+    if (s->vary_count && len < size)
+        snprintf(out + len, size - len, " varied");
 }
 
-/* Ten colours that stay apart (Tableau 10), sRGB. */
-static const float palette[10][3] = {
-    { 0.12f, 0.47f, 0.71f }, { 1.0f, 0.5f, 0.05f }, { 0.17f, 0.63f, 0.17f }, { 0.84f, 0.15f, 0.16f },
-    { 0.58f, 0.4f, 0.74f }, { 0.55f, 0.34f, 0.29f }, { 0.89f, 0.47f, 0.76f }, { 0.5f, 0.5f, 0.5f },
-    { 0.74f, 0.74f, 0.13f }, { 0.09f, 0.75f, 0.81f },
+/* Eight colours that stay apart (Tableau 10 without its red, which rings the Pareto fronts, and
+ * its grey, the path tracer's), sRGB. */
+static const float palette[8][3] = {
+    { 0.12f, 0.47f, 0.71f }, { 1.0f, 0.5f, 0.05f }, { 0.17f, 0.63f, 0.17f }, { 0.58f, 0.4f, 0.74f },
+    { 0.55f, 0.34f, 0.29f }, { 0.89f, 0.47f, 0.76f }, { 0.74f, 0.74f, 0.13f }, { 0.09f, 0.75f, 0.81f },
 };
+
+/* The markers of the methods (graph files, in the order the sweep first names them); the
+ * path tracer's is PLOT_CROSS, which no graph gets. */
+static const plot_marker method_markers[] = { PLOT_SQUARE, PLOT_CIRCLE, PLOT_TRIANGLE, PLOT_DIAMOND, PLOT_PLUS };
+
+/* Whether setting k is the first of its graph file in the sweep. */
+static bool
+first_of_method(const bench_config *c, int k)
+{
+    for (int j = 0; j < k; j++)
+        if (!strcmp(c->settings[j].graph, c->settings[k].graph))
+            return false;
+    return true;
+}
+
+/* Which method (graph file) setting k is, counted in the order the sweep first names them. */
+static int
+method_of(const bench_config *c, int k)
+{
+    int m = 0;
+    for (int j = 0; j < c->setting_count; j++) {
+        if (!strcmp(c->settings[j].graph, c->settings[k].graph))
+            return m;
+        m += first_of_method(c, j);
+    }
+    return m;
+}
 
 /* The error a plot shows: relMSE, or the GI part's nrmse (not squared: the table's figure). */
 static double
@@ -172,9 +201,11 @@ plot_error(const bench_row *r, bench_error error)
     return error == BENCH_ERROR_GI_NRMSE ? (r->split ? r->gi.nrmse : NAN) : r->full.rel_mse;
 }
 
-/* Per scene: the error --error chooses against time (one series per setting, a marker per
- * combination of its varied values and a label naming them; the path tracer's curve; the Pareto
- * front) and against GI memory. */
+/* Per scene: the error --error chooses against time and against GI memory. A series per
+ * setting: its colour, its method's marker (a graph file's settings share it), a legend entry
+ * each, and every point labelled with its varied values (a setting without: its graph); the
+ * path tracer's curve with each point labelled by its samples per pixel (on the time plot);
+ * each method's own Pareto front, ringed in red and joined in x order. */
 bool
 bench_write_plots(const bench_config *c, const bench_rows *rows, const bench_scene *scenes, int s, cg_error *err)
 {
@@ -183,9 +214,10 @@ bench_write_plots(const bench_config *c, const bench_rows *rows, const bench_sce
     double *buf = malloc(sizeof(double) * points * 6);
     plot_marker *markers = malloc(sizeof *markers * points);
     const char **labels = malloc(sizeof *labels * points);
-    plot_series *series = calloc((size_t)BENCH_MAX_SETTINGS + 2, sizeof *series);
+    char (*spp_labels)[32] = malloc(sizeof *spp_labels * points);
+    plot_series *series = calloc((size_t)2 * BENCH_MAX_SETTINGS + 2, sizeof *series);
     char (*legends)[512] = calloc((size_t)BENCH_MAX_SETTINGS, sizeof *legends);
-    bool ok = buf && markers && labels && series && legends;
+    bool ok = buf && markers && labels && spp_labels && series && legends;
     if (!ok)
         cg_fail(err, CG_ERR_OUT_OF_MEMORY, "bench plots");
     for (int kind = 0; kind < 2 && ok; kind++) {
@@ -194,14 +226,15 @@ bench_write_plots(const bench_config *c, const bench_rows *rows, const bench_sce
         int used = 0, series_count = 0, pn = 0, fn = 0;
         for (int k = 0; k < c->setting_count; k++) {
             int start = used;
+            plot_marker shape = method_markers[method_of(c, k) % (int)(sizeof method_markers / sizeof method_markers[0])];
             for (int i = 0; i < n; i++) {
                 const bench_row *r = &rows->rows[i];
                 if (r->scene != s || r->is_pt || r->setting != k)
                     continue;
                 x[used] = time_axis ? r->ms : (double)r->gi_bytes / 1048576.0;
                 y[used] = plot_error(r, c->error);
-                markers[used] = (plot_marker)(r->combo % PLOT_MARKER_COUNT);
-                labels[used++] = r->label;
+                markers[used] = shape;
+                labels[used++] = r->label[0] ? r->label : r->graph;
             }
             if (used == start)
                 continue;
@@ -209,38 +242,60 @@ bench_write_plots(const bench_config *c, const bench_rows *rows, const bench_sce
             series[series_count++] = (plot_series){ .name = legends[k], .x = x + start, .y = y + start,
                                                     .count = used - start, .markers = markers + start,
                                                     .labels = labels + start };
-            memcpy(series[series_count - 1].color, palette[k % 10], sizeof palette[0]);
+            memcpy(series[series_count - 1].color, palette[k % 8], sizeof palette[0]);
         }
+        int pt_start = used;
         for (int i = 0; i < n; i++) {
             const bench_row *r = &rows->rows[i];
-            if (r->scene != s)
+            if (r->scene != s || !r->is_pt || !time_axis)
                 continue;
-            if (r->is_pt && time_axis) {
-                px[pn] = r->ms;
-                py[pn++] = plot_error(r, c->error);
-            }
-            if (!r->is_pt && (time_axis ? r->pareto_time : r->pareto_memory)) {
+            px[pn] = r->ms;
+            py[pn] = plot_error(r, c->error);
+            snprintf(spp_labels[pn], sizeof spp_labels[pn], "%d spp", r->spp);
+            labels[used] = spp_labels[pn++];
+            markers[used++] = PLOT_CROSS;
+        }
+        if (pn > 0)
+            series[series_count++] = (plot_series){ .name = "Path tracer (spp)",
+                                                    .color = { 0.45f, 0.45f, 0.45f }, .x = px, .y = py, .count = pn,
+                                                    .line = true, .markers = markers + pt_start,
+                                                    .labels = labels + pt_start };
+        /* Each method's front apart: a line joins only the settings of one graph file. */
+        bool front_named = false;
+        for (int k = 0; k < c->setting_count; k++) {
+            if (!first_of_method(c, k))
+                continue;
+            int start = fn;
+            for (int i = 0; i < n; i++) {
+                const bench_row *r = &rows->rows[i];
+                if (r->scene != s || r->is_pt || strcmp(r->graph, c->settings[k].graph) ||
+                    !(time_axis ? r->pareto_time : r->pareto_memory))
+                    continue;
                 fx[fn] = time_axis ? r->ms : (double)r->gi_bytes / 1048576.0;
                 fy[fn++] = plot_error(r, c->error);
             }
+            if (fn == start)
+                continue;
+            series[series_count++] = (plot_series){ .name = front_named ? NULL : "Pareto front of each graph",
+                                                    .color = { 0.85f, 0.1f, 0.1f }, .x = fx + start, .y = fy + start,
+                                                    .count = fn - start, .line = true, .ring = true };
+            front_named = true;
         }
-        if (pn > 0)
-            series[series_count++] = (plot_series){ .name = "path tracer (spp sweep)", .color = { 0.45f, 0.45f, 0.45f },
-                                                    .x = px, .y = py, .count = pn, .line = true };
-        series[series_count++] = (plot_series){ .name = "Pareto front", .color = { 0.85f, 0.1f, 0.1f }, .x = fx,
-                                                .y = fy, .count = fn, .line = true, .ring = true };
-        char title[512], path[4096], scene_slug[BENCH_TEXT];
-        snprintf(title, sizeof title, "%s %dx%d: %s vs %s", scenes[s].source, c->width, c->height,
-                 bench_error_name(c->error), time_axis ? "time" : "GI memory");
+        char title[512], xlabel[128], ylabel[128], path[4096], scene_slug[BENCH_TEXT];
+        snprintf(title, sizeof title, "%s at %dx%d: %s against %s", scenes[s].source, c->width, c->height,
+                 bench_error_name(c->error), time_axis ? "time per frame" : "GI memory");
+        snprintf(xlabel, sizeof xlabel, "%s", time_axis ? "Time per frame (ms, median)" : "GI memory (MiB)");
+        snprintf(ylabel, sizeof ylabel, "%s (lower is better)",
+                 c->error == BENCH_ERROR_GI_NRMSE ? "GI nRMSE" : "Full-image relMSE");
         bench_slug(scenes[s].source, scene_slug, sizeof scene_slug);
         snprintf(path, sizeof path, "%s/%s-%s.png", c->out_dir, scene_slug, time_axis ? "time" : "memory");
-        plot_desc plot = { .title = title, .xlabel = time_axis ? "time per frame (ms)" : "GI memory (MiB)",
-                           .ylabel = bench_error_name(c->error), .logx = time_axis, .logy = true, .series = series,
-                           .series_count = series_count };
+        plot_desc plot = { .title = title, .xlabel = xlabel, .ylabel = ylabel, .logx = time_axis, .logy = true,
+                           .series = series, .series_count = series_count };
         ok = plot_write_png(&plot, path, err);
     }
     free(legends);
     free(series);
+    free(spp_labels);
     free(labels);
     free(markers);
     free(buf);
@@ -268,7 +323,7 @@ bench_write_run_images(const bench_config *c, const bench_scene *bs, const bench
     cg_image heat = { 0 };
     bool ok = cg_image_write(path, image, CG_EXR_HALF, err);
     snprintf(path, sizeof path, "%s/%s-%s-error.png", c->out_dir, scene_slug, params_slug);
-    ok = ok && cg_metrics_heatmap(image, &bs->ref, 1.0, &heat, err) && cg_image_write(path, &heat, CG_EXR_HALF, err);
+    ok = ok && plot_error_heatmap(image, &bs->ref, 1.0, &heat, err) && cg_image_write(path, &heat, CG_EXR_HALF, err);
     cg_image_free(&heat);
     return ok;
 }
