@@ -61,9 +61,27 @@ sweep_runs_and_caches_the_reference(void **state)
     }
     assert_non_null(strstr(out, "shadow.resolution=512"));
     assert_null(strstr(out, "from the cache"));
-    /* Again: the reference and its direct part come from the cache. */
+    /* Again: the reference and its direct part come from the cache. The progress shown from
+     * the start (CONEGRAPH_PROGRESS_DELAY=0, at the info log level) goes into the captured output as lines, one per
+     * step (the reference with the path tracer, then each run), each with the time left but
+     * the last, and never a carriage return. */
+    char log_level[32] = "";
+    if (getenv("CONEGRAPH_LOG"))
+        snprintf(log_level, sizeof log_level, "%s", getenv("CONEGRAPH_LOG"));
+    setenv("CONEGRAPH_PROGRESS_DELAY", "0", 1);
+    setenv("CONEGRAPH_LOG", "info", 1); /* the suite runs with warn: progress is info */
     code = run(args, out, sizeof out);
+    unsetenv("CONEGRAPH_PROGRESS_DELAY");
+    if (log_level[0])
+        setenv("CONEGRAPH_LOG", log_level, 1);
+    else
+        unsetenv("CONEGRAPH_LOG");
     assert_int_equal(code, 0);
+    assert_null(strchr(out, '\r'));
+    assert_non_null(strstr(out, "conegraph: bench: 33% (1/3 steps)"));
+    assert_non_null(strstr(out, "conegraph: bench: 66% (2/3 steps)"));
+    assert_non_null(strstr(out, "s left\n"));
+    assert_non_null(strstr(out, "conegraph: bench: 100% (3/3 steps)"));
     assert_non_null(strstr(out, "reference (4 spp, 1 bounces) and its parts from the cache"));
     assert_null(strstr(out, "rendering the reference"));
     /* A sky is part of the scene: it is not the cached reference (the cache keys hash it). */
@@ -380,7 +398,7 @@ gi_and_direct_columns(void **state)
     if (code != 0)
         fail_msg("bench exited with %d:\n%s", code, out);
     assert_non_null(strstr(out, "PT ms at equal GI nRMSE"));
-    assert_non_null(strstr(out, "P: on the Pareto front of GI nRMSE against time"));
+    assert_non_null(strstr(out, "P: on its graph's own Pareto front of GI nRMSE against time"));
     assert_non_null(strstr(out, "and its parts from the cache"));
     snprintf(path, sizeof path, "%s/by-gi/bench.csv", dir);
     fp = fopen(path, "r");

@@ -14,6 +14,7 @@
 #include <sys/stat.h>
 
 #include "cg/fs.h"
+#include "cg/progress.h"
 
 #include "app_common.h"
 #include "bench/bench.h"
@@ -32,8 +33,10 @@ cmd_bench_usage(FILE *out)
         "Measures every setting of a sweep against the path-traced reference and writes\n"
         "OUT/bench.csv, OUT/bench.md, OUT/bench.json (every row at full precision) and, per\n"
         "scene, OUT/SCENE-time.png and OUT/SCENE-memory.png (the --error against time per frame\n"
-        "and against GI memory: a colour per setting, a marker per combination of its varied\n"
-        "values, each point labelled with them, the Pareto front ringed in red).\n"
+        "and against GI memory: a colour and a legend entry per setting, a marker per method\n"
+        "(graph file), every point labelled with its varied values, the path tracer's with its\n"
+        "samples per pixel; each graph's own Pareto front ringed in red and joined). With\n"
+        "--images, each error heat map has its colour scale beneath it.\n"
         "\n"
         "Every setting is first compiled (without GL) on every scene: one bad scene, graph,\n"
         "parameter or value exits 2 before anything renders and before OUT is made.\n"
@@ -118,25 +121,47 @@ cmd_bench_usage(FILE *out)
         "                    \"vary\": { \"vox.resolution\": [64, 128] } } ] }\n"
         "\n"
         "Exit codes: 0 done, 1 failed while running, 2 bad usage, sweep file, scene, graph or\n"
-        "shard files. Progress, with an estimate of the time left (the mean of the runs so far\n"
-        "times the runs to go, references left out), goes to stderr; the Markdown table also to\n"
-        "stdout.\n");
+        "shard files. Each run's figures go to stderr, and so does the progress once the sweep\n"
+        "has taken 2 s: its steps are the runs and, per scene, the reference with the path\n"
+        "tracer's timings; the time left is the time so far over the steps done times those\n"
+        "left. On a terminal it is one line updated in place, into a file one line per step (or\n"
+        "per tenth of them) and never a carriage return; none with CONEGRAPH_LOG=warn. The\n"
+        "Markdown table goes to stdout as well.\n");
 }
 
-/* Runs measured so far and the time they took: the time left is their mean times the rest. */
+/* The sweep's progress (cg/progress.h): its units are every run and, per scene, its reference
+ * with the path tracer's timings, so that the time left counts the scenes still to be prepared
+ * (a reference renders for seconds, where runs take a fraction of one). The reporter's estimate
+ * is linear in units: the time so far over the units done, times those left. */
 typedef struct bench_progress {
-    int done, total;
-    double ms;
+    cg_progress reporter;
+    int units, runs_done, runs_total;
 } bench_progress;
 
-static void
-format_time_left(const bench_progress *p, char *out, size_t size)
+/* The units of work of this shard: its runs, and one per scene it measures anything of. */
+static int
+progress_units(const bench_config *c, int run_count)
 {
-    double left = p->done > 0 ? p->ms / p->done * (p->total - p->done) / 1e3 : 0.0;
-    if (left >= 60.0)
-        snprintf(out, size, "about %d min %02d s left", (int)(left / 60.0), (int)fmod(left, 60.0));
-    else
-        snprintf(out, size, "about %.0f s left", left);
+    int units = bench_shard_run_count(c, run_count);
+    for (int s = 0; s < c->scene_count; s++)
+        units += bench_scene_in_shard(c, run_count, s);
+    return units;
+}
+
+/* A line of its own (a run's figures) under a terminal's progress line: that line is wiped
+ * first and drawn again by the next update. */
+static void
+progress_note(const bench_progress *p)
+{
+    if (p->reporter.terminal && p->reporter.shown)
+        fputs("\r\033[K", p->reporter.out);
+}
+
+static void
+progress_step(bench_progress *p)
+{
+    p->units++;
+    cg_progress_update(&p->reporter, p->units);
 }
 
 /* What this shard measures of one scene: its reference, the path tracer's timings and its runs;
@@ -148,9 +173,11 @@ measure_scene(const bench_config *c, const bench_run *runs, int run_count, bench
     bench_scene *bs = &scenes[s];
     if (!bench_scene_in_shard(c, run_count, s))
         return true;
+    progress_note(progress); /* the reference's and the path tracer's lines below it */
     if (!bench_reference(c, bs, err) || (c->images && !bench_write_reference_image(c, bs, err)) ||
         (bench_in_shard(c, run_count, s, -1) && !bench_path_tracer(c, bs, s, rows, err)))
         return false;
+    progress_step(progress);
     cg_context_desc context = { .backend = c->backend, .width = c->width, .height = c->height, .debug = true };
     for (int i = 0; i < run_count; i++) {
         if (!bench_in_shard(c, run_count, s, i))
@@ -160,7 +187,6 @@ measure_scene(const bench_config *c, const bench_run *runs, int run_count, bench
                 return false;
             snprintf(renderer, renderer_size, "%s", cg_context_renderer(bs->session.ctx));
         }
-        double t0 = app_now_ms();
         if (!bench_measure_run(c, bs, s, &runs[i], rows, err)) {
             char what[2048];
             snprintf(what, sizeof what, "%s %s%s%s", bs->source, c->settings[runs[i].setting].graph,
@@ -168,15 +194,14 @@ measure_scene(const bench_config *c, const bench_run *runs, int run_count, bench
             app_error_prefix(err, what);
             return false;
         }
-        progress->ms += app_now_ms() - t0;
-        progress->done++;
-        char left[64];
-        format_time_left(progress, left, sizeof left);
+        progress->runs_done++;
         const bench_row *r = &rows->rows[rows->count - 1];
+        progress_note(progress);
         fprintf(stderr, "bench: [%d/%d] %s %s %s: %.1f ms, GI %.1f MiB, relMSE %.5f, lum ratio %.3f, "
-                "GI energy %.3f, nRMSE %.3f; %s\n", progress->done, progress->total, bs->source, r->graph, r->params,
-                r->ms, (double)r->gi_bytes / 1048576.0, r->full.rel_mse, r->full.mean_luminance_ratio, r->gi.energy,
-                r->gi.nrmse, left);
+                "GI energy %.3f, nRMSE %.3f\n", progress->runs_done, progress->runs_total, bs->source, r->graph,
+                r->params, r->ms, (double)r->gi_bytes / 1048576.0, r->full.rel_mse, r->full.mean_luminance_ratio,
+                r->gi.energy, r->gi.nrmse);
+        progress_step(progress);
     }
     app_session_stop_gl(&bs->session);
     if (c->shard_count > 1)
@@ -232,17 +257,24 @@ bench(const bench_config *c)
                     bench_shard_run_count(c, run_count), run_count * c->scene_count);
         code = app_make_dirs(c->out_dir, &err) ? 0 : app_fail(TOOL, c->out_dir, &err);
     }
-    bench_progress progress = { .total = bench_shard_run_count(c, run_count) };
+    bench_progress progress = { .runs_total = bench_shard_run_count(c, run_count) };
     char renderer[256] = "";
+    if (!code)
+        cg_progress_begin(&progress.reporter,
+                          &(cg_progress_desc){ .what = "bench", .total = progress_units(c, run_count), .unit = "steps" });
     for (int s = 0; !code && s < c->scene_count; s++)
-        if (!measure_scene(c, runs, run_count, scenes, s, &rows, &progress, renderer, sizeof renderer, &err))
+        if (!measure_scene(c, runs, run_count, scenes, s, &rows, &progress, renderer, sizeof renderer, &err)) {
+            progress_note(&progress);
             code = app_fail(TOOL, NULL, &err);
+        }
+    if (!code)
+        cg_progress_end(&progress.reporter);
     /* A shard's rows lack the others' (the path tracer's among them): its tables wait for --merge. */
     if (!code && ((c->shard_count == 1 && !bench_write_tables(c, &rows, scenes, c->scene_count, &err)) ||
                   !bench_write_json(c, &rows, scenes, renderer, &err)))
         code = app_fail(TOOL, c->out_dir, &err);
     if (!code)
-        fprintf(stderr, "bench: %d run(s) in %.1f s on %s; wrote %s/%s\n", progress.total,
+        fprintf(stderr, "bench: %d run(s) in %.1f s on %s; wrote %s/%s\n", progress.runs_total,
                 (app_now_ms() - t_start) / 1e3, renderer, c->out_dir,
                 c->shard_count == 1 ? "bench.csv, bench.md, bench.json and plots" : "bench.json");
     free_scenes(scenes, c->scene_count);
