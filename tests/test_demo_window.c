@@ -354,6 +354,50 @@ test_ui_shown(void **state)
         fail_msg("the UI covers %ld pixels of which %ld differ", covered, changed);
 }
 
+/* At the README's 640x360 the panels leave the image visible: the frame panel inside the
+ * window and only as tall as its contents (so its per-pass bars are in it, not scrolled away),
+ * the parameters and the viewer folded to their title bars, and more than half of the window
+ * the image alone. At 1280x720 every panel starts open. */
+static void
+test_ui_small_window(void **state)
+{
+    (void)state;
+    const char *shot = tmp("small.png"), *log = tmp("small.txt");
+    char args[8192];
+    snprintf(args, sizeof args, "builtin:cornell --graph direct.json --size 640x360 --frames 3 --screenshot '%s'", shot);
+    assert_int_equal(run("CONEGRAPH_DEMO_EXE", args, log), 0);
+    drawn_window w[MAX_WINDOWS];
+    int n = ui_windows(read_text(log), w);
+    const drawn_window *frame = find_window(w, n, "conegraph");
+    /* Inside the window (the margin of ui_windows aside), and shorter than the room it has. */
+    assert_true(frame->x0 >= -2 && frame->y0 >= -2 && frame->x1 <= 640 + 2 && frame->y1 <= 360 + 2);
+    if (frame->y1 - frame->y0 >= 360 - 16)
+        fail_msg("the frame panel takes the whole height (%d pixels): its contents do not fit", frame->y1 - frame->y0);
+    if (frame->x1 - frame->x0 > 640 / 2)
+        fail_msg("the frame panel is %d pixels wide of 640", frame->x1 - frame->x0);
+    const char *folded[] = { "parameters", "resource viewer" };
+    for (int i = 0; i < 2; i++) {
+        const drawn_window *f = find_window(w, n, folded[i]);
+        if (f->y1 - f->y0 > 30)
+            fail_msg("'%s' is %d pixels high at 640x360: not folded", folded[i], f->y1 - f->y0);
+    }
+    long clear = 0;
+    for (int y = 0; y < 360; y++)
+        for (int x = 0; x < 640; x++)
+            clear += !inside(w, n, x, y);
+    if (clear < 640L * 360 / 2)
+        fail_msg("only %ld of the 640x360 pixels are clear of the UI", clear);
+
+    snprintf(args, sizeof args, "builtin:cornell --graph direct.json --size 1280x720 --frames 2 --screenshot '%s'", shot);
+    assert_int_equal(run("CONEGRAPH_DEMO_EXE", args, log), 0);
+    n = ui_windows(read_text(log), w);
+    for (int i = 0; i < 2; i++) {
+        const drawn_window *f = find_window(w, n, folded[i]);
+        if (f->y1 - f->y0 < 200)
+            fail_msg("'%s' is %d pixels high at 1280x720: folded", folded[i], f->y1 - f->y0);
+    }
+}
+
 /* The viewer shows each kind of texture (2D float colour, depth, 3D float colour, 3D
  * unsigned integer) without a GL error, in its window: there the screenshot differs from
  * the viewer showing none. */
@@ -372,8 +416,6 @@ test_viewer(void **state)
         { "vct.json", "vox.accumulation" },
     };
     const char *none = NULL;
-    drawn_window windows[MAX_WINDOWS];
-    int n = 0;
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
         char name[64], args[8192], view[128] = "";
         snprintf(name, sizeof name, "view%zu.png", k);
@@ -389,13 +431,14 @@ test_viewer(void **state)
         const char *out = read_text(log);
         if (!cases[k].view) {
             none = shot;
-            n = ui_windows(out, windows);
             continue;
         }
         char said[160];
         snprintf(said, sizeof said, "view: %s\n", cases[k].view);
         assert_non_null(strstr(out, said));
-        const drawn_window *w = find_window(windows, n, "resource viewer");
+        /* Where the viewer is with --view (in a small window it starts folded without it). */
+        drawn_window viewing[MAX_WINDOWS];
+        const drawn_window *w = find_window(viewing, ui_windows(out, viewing), "resource viewer");
         cg_image a = { 0 }, b = { 0 };
         read_pair(shot, none, &a, &b);
         long area = 0, changed = 0;
@@ -686,6 +729,7 @@ main(int argc, char **argv)
         cmocka_unit_test(test_keys),
         cmocka_unit_test(test_plugin_levels_and_gl_error),
         cmocka_unit_test(test_ui_shown),
+        cmocka_unit_test(test_ui_small_window),
         cmocka_unit_test(test_viewer),
         cmocka_unit_test(test_animation),
         cmocka_unit_test(test_sun_key),

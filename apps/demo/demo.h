@@ -102,6 +102,7 @@ typedef struct demo {
     double ui_ms;               /* the last frame's UI: building, viewer and drawing */
     ui_drawn ui_windows[MAX_UI_WINDOWS]; /* where the last frame's UI windows were drawn */
     int ui_window_count;
+    int ui_layout_width, ui_layout_height; /* the window size the panels were laid out for (0: none yet) */
     demo_view view;
     char view_source[256];      /* the viewer's resource, "pass.output"; "" for none */
     bool view_fresh;            /* chosen since the last draw: its settings start from the defaults */

@@ -15,6 +15,11 @@
 /* The left column: the frame panel above this fraction of the height, the viewer below. */
 #define SPLIT 0.5f
 #define MAX_VIEWABLE 128
+/* Below this window size the panels are laid out small (demo_ui_layout). */
+#define ROOMY_WIDTH 1120.0f
+#define ROOMY_HEIGHT 560.0f
+/* A folded window's title bar (Dear ImGui's default font, 13 px, and its frame padding). */
+#define TITLE_BAR 20.0f
 
 static const double MIB = 1024.0 * 1024.0;
 
@@ -42,7 +47,8 @@ frame_times(demo *d)
              (double)mem.allocated_bytes / MIB, (double)mem.peak_bytes / MIB);
     ui_tooltip(why);
     ui_same_line();
-    ui_text_disabled("  UI %.1f ms of the frame", d->ui_ms);
+    ui_text_disabled("  UI %.1f ms", d->ui_ms);
+    ui_tooltip("What the UI itself took of the last frame: building, the viewer and drawing.");
 }
 
 /* Live passes in execution order with their times as bars of the frame time (and, greyed, what
@@ -167,21 +173,24 @@ shown_and_screenshots(demo *d)
     ui_text_disabled("F1 hides the UI");
 }
 
+/* The frame panel: what runs, the frame times, the per-pass bars (near the top, so that they
+ * show in a small panel), then the animation and the image shown, each a section that folds
+ * (folded at first in a small window). */
 static void
-frame_panel(demo *d, float height)
+frame_panel(demo *d, const ui_window_place *place, bool sections_open)
 {
-    if (ui_window_begin("conegraph", (ui_rect){ MARGIN, MARGIN, PANEL_WIDTH, height * SPLIT - 1.5f * MARGIN })) {
+    if (ui_window_begin("conegraph", place)) {
         ui_text("%s  %dx%d", d->s.scene.name, d->s.frame.width, d->s.frame.height);
         const char *slash = strrchr(d->s.graph_path, '/');
         ui_text_disabled("%s, timing %s", slash ? slash + 1 : d->s.graph_path,
                          d->timing == FG_TIMING_SYNC ? "sync" : d->timing == FG_TIMING_QUERIES ? "queries" : "none");
         frame_times(d);
         ui_separator();
-        animation(d);
-        ui_separator();
         passes(d);
-        ui_separator();
-        shown_and_screenshots(d);
+        if (ui_collapsing_header("Animation and sun###animation", sections_open))
+            animation(d);
+        if (ui_collapsing_header("Image shown, screenshots###shown", sections_open))
+            shown_and_screenshots(d);
     }
     ui_window_end();
 }
@@ -336,10 +345,9 @@ param_control(demo *d, int p, int i, fg_pass *pass, const fg_param_desc *desc)
 }
 
 static void
-params_panel(demo *d, float width, float height)
+params_panel(demo *d, const ui_window_place *place)
 {
-    ui_rect at = { width - PANEL_WIDTH - 40 - MARGIN, MARGIN, PANEL_WIDTH + 40, height - 2 * MARGIN };
-    if (ui_window_begin("parameters", at)) {
+    if (ui_window_begin("parameters", place)) {
         if (d->notice[0])
             ui_text_wrapped("%s", d->notice);
         ui_text_disabled("hover for the table's line; > marks the keys' selection");
@@ -507,11 +515,10 @@ view_resource(demo *d, cg_error *err)
 }
 
 static bool
-viewer_panel(demo *d, float height, cg_error *err)
+viewer_panel(demo *d, const ui_window_place *place, cg_error *err)
 {
-    ui_rect at = { MARGIN, height * SPLIT + 0.5f * MARGIN, PANEL_WIDTH, height * (1 - SPLIT) - 1.5f * MARGIN };
     bool ok = true;
-    if (ui_window_begin("resource viewer", at)) {
+    if (ui_window_begin("resource viewer", place)) {
         const char *items[MAX_VIEWABLE + 1];
         const char *names[MAX_VIEWABLE + 1];
         char labels[MAX_VIEWABLE + 1][320];
@@ -548,14 +555,49 @@ viewer_panel(demo *d, float height, cg_error *err)
 
 /* ------------------------------------------------------------ the frame */
 
+void
+demo_ui_layout(float width, float height, bool viewing, demo_ui_places *out)
+{
+    memset(out, 0, sizeof *out);
+    out->roomy = width >= ROOMY_WIDTH && height >= ROOMY_HEIGHT;
+    if (out->roomy) {
+        /* Frame panel above the viewer on the left, parameters on the right: the middle of
+         * the image stays clear. */
+        out->frame.rect = (ui_rect){ MARGIN, MARGIN, PANEL_WIDTH, height * SPLIT - 1.5f * MARGIN };
+        out->viewer.rect = (ui_rect){ MARGIN, height * SPLIT + 0.5f * MARGIN, PANEL_WIDTH,
+                                      height * (1 - SPLIT) - 1.5f * MARGIN };
+        out->params.rect = (ui_rect){ width - PANEL_WIDTH - 40 - MARGIN, MARGIN, PANEL_WIDTH + 40, height - 2 * MARGIN };
+        return;
+    }
+    /* Small (the README's 640x360): the frame panel on the left, at most 42% of the width and
+     * only as tall as its contents (its sections folded); the parameters and the viewer folded
+     * to their title bars at the top right (the viewer open when --view asked for it). Unfolded
+     * they take the right column's height. */
+    float panel = width * 0.42f;
+    panel = panel > PANEL_WIDTH ? PANEL_WIDTH : panel < 200.0f ? 200.0f : panel;
+    float right = width - panel - 40 * (width >= 2 * panel + 200) - MARGIN;
+    float side = width - right - MARGIN;
+    out->frame = (ui_window_place){ .rect = { MARGIN, MARGIN, panel, height - 2 * MARGIN }, .fit_height = true };
+    out->params = (ui_window_place){ .rect = { right, MARGIN, side, height - 2 * MARGIN }, .folded = true };
+    float below = MARGIN + TITLE_BAR + 4;
+    out->viewer = (ui_window_place){ .rect = { right, below, side, height - below - MARGIN }, .folded = !viewing };
+}
+
 bool
 demo_ui_frame(demo *d, cg_error *err)
 {
     ui_begin_frame(d->ui);
-    float width = (float)d->s.frame.width, height = (float)d->s.frame.height;
-    frame_panel(d, height);
-    params_panel(d, width, height);
-    bool ok = viewer_panel(d, height, err);
+    int width = d->s.frame.width, height = d->s.frame.height;
+    demo_ui_places places;
+    demo_ui_layout((float)width, (float)height, d->view_source[0] != '\0', &places);
+    /* Laid out again when the window changes size (the first frame places them anyway). */
+    bool relayout = d->ui_layout_width && (width != d->ui_layout_width || height != d->ui_layout_height);
+    d->ui_layout_width = width;
+    d->ui_layout_height = height;
+    places.frame.relayout = places.params.relayout = places.viewer.relayout = relayout;
+    frame_panel(d, &places.frame, places.roomy);
+    params_panel(d, &places.params);
+    bool ok = viewer_panel(d, &places.viewer, err);
     ui_end_frame(d->ui);
     d->ui_window_count = ui_drawn_windows(d->ui, d->ui_windows, MAX_UI_WINDOWS);
     return ok;

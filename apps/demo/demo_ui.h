@@ -12,7 +12,14 @@
  *   layer of it, through demo_view.h.
  * Every change goes through the demo's own paths (demo.h), as a key's would.
  *
- * Declares: demo_ui_frame.
+ * Layout (demo_ui_layout): from 1120x560 up, the frame panel above the viewer on the left and
+ * the parameters on the right; smaller (the README's 640x360), the frame panel alone on the
+ * left, at most 42% of the width and as tall as its contents, its animation and image
+ * sections folded, the parameters and the viewer folded to their title bars at the top right,
+ * so that most of the image shows. Every panel folds and unfolds with its title bar's arrow;
+ * the panels are laid out again when the window changes size.
+ *
+ * Declares: demo_ui_places, demo_ui_layout, demo_ui_frame.
  */
 #ifndef CONEGRAPH_DEMO_UI_H
 #define CONEGRAPH_DEMO_UI_H
@@ -21,6 +28,17 @@
 
 #include "cg/error.h"
 #include "demo.h"
+#include "ui.h"
+
+/* Where the three panels start. */
+typedef struct demo_ui_places {
+    bool roomy;                 /* the large layout; false: the small one */
+    ui_window_place frame, params, viewer;
+} demo_ui_places;
+
+/* The panels' places for a window of width x height; `viewing`: the viewer has a resource (it
+ * starts open). */
+void demo_ui_layout(float width, float height, bool viewing, demo_ui_places *out);
 
 /* Builds and draws this frame's UI into the window's back buffer, and records where its
  * windows are (d->ui_windows). Fails only when the viewer's shader does not build. */

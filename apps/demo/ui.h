@@ -5,7 +5,8 @@
  * Declares: ui_context, ui_rect, ui_create, ui_destroy, ui_begin_frame, ui_end_frame,
  *           ui_key_event, ui_char_event, ui_mouse_button_event, ui_scroll_event,
  *           ui_cursor_enter_event, ui_focus_event, ui_wants_keyboard,
- *           ui_wants_text, ui_drawn, ui_drawn_windows; windows ui_window_begin, ui_window_end; layout ui_same_line, ui_separator, ui_push_id, ui_pop_id,
+ *           ui_wants_text, ui_drawn, ui_drawn_windows; windows ui_window_place, ui_window_begin,
+ *           ui_window_end; layout ui_same_line, ui_separator, ui_push_id, ui_pop_id,
  *           ui_push_dim, ui_pop_dim, ui_set_next_item_width, ui_available_width,
  *           ui_available_height,
  *           ui_collapsing_header; output ui_text, ui_text_disabled, ui_text_wrapped, ui_bar,
@@ -75,10 +76,20 @@ bool ui_wants_text(const ui_context *ui);
  * windows inside their parents left out), at most `max`; returns how many there were. */
 int ui_drawn_windows(const ui_context *ui, ui_drawn *out, int max);
 
-/* A window placed and sized at `initial` the first time it appears (afterwards the user
- * moves, resizes and folds it; its contents scroll when they do not fit). Returns whether
+/* Where a window goes, and how. */
+typedef struct ui_window_place {
+    ui_rect rect;           /* its place and size; with fit_height, rect.h is the most it takes */
+    bool fit_height;        /* as tall as its contents on every frame (at most rect.h), so that a
+                             * small demo window keeps the image visible below it */
+    bool folded;            /* folded to its title bar */
+    bool relayout;          /* apply the place now (the demo's window was resized) */
+} ui_window_place;
+
+/* A window placed, sized and folded as `place` says the first time it appears and again
+ * whenever place->relayout is true; in between the user moves, resizes, folds and unfolds it
+ * (the arrow of its title bar), and its contents scroll when they do not fit. Returns whether
  * its contents are visible (false when folded); ui_window_end must follow either way. */
-bool ui_window_begin(const char *title, ui_rect initial);
+bool ui_window_begin(const char *title, const ui_window_place *place);
 void ui_window_end(void);
 
 void ui_same_line(void);

@@ -159,11 +159,22 @@ ui_drawn_windows(const ui_context *ui, ui_drawn *out, int max)
 }
 
 bool
-ui_window_begin(const char *title, ui_rect initial)
+ui_window_begin(const char *title, const ui_window_place *place)
 {
-    ImGui::SetNextWindowPos(ImVec2(initial.x, initial.y), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(initial.w, initial.h), ImGuiCond_FirstUseEver);
-    return ImGui::Begin(title);
+    const ui_rect &r = place->rect;
+    ImGuiCond when = place->relayout ? ImGuiCond_Always : ImGuiCond_FirstUseEver;
+    ImGui::SetNextWindowPos(ImVec2(r.x, r.y), when);
+    ImGui::SetNextWindowCollapsed(place->folded, when);
+    ImGuiWindowFlags flags = 0;
+    if (place->fit_height) {
+        // The width as given, the height what the contents take up to r.h (then it scrolls);
+        // a fixed width also keeps the bars' "all that is left" widths from feeding the fit.
+        ImGui::SetNextWindowSizeConstraints(ImVec2(r.w, 0), ImVec2(r.w, r.h));
+        flags |= ImGuiWindowFlags_AlwaysAutoResize;
+    } else {
+        ImGui::SetNextWindowSize(ImVec2(r.w, r.h), when);
+    }
+    return ImGui::Begin(title, nullptr, flags);
 }
 
 void
