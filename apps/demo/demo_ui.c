@@ -25,8 +25,9 @@ static const double MIB = 1024.0 * 1024.0;
 
 /* ------------------------------------------------------------ frame, passes, screenshots */
 
+/* `small`: the small layout's panel, where every line counts (demo_ui_layout). */
 static void
-frame_times(demo *d)
+frame_times(demo *d, bool small)
 {
     float history[FRAME_HISTORY], highest = 0;
     for (int i = 0; i < d->frame_ms_count; i++) {
@@ -35,7 +36,7 @@ frame_times(demo *d)
     }
     char overlay[96];
     snprintf(overlay, sizeof overlay, "frame %.1f ms (median of %d)", demo_frame_median_ms(d), d->frame_ms_count);
-    ui_plot("##frames", history, d->frame_ms_count, 0, highest * 1.1f, 40, overlay);
+    ui_plot("##frames", history, d->frame_ms_count, 0, highest * 1.1f, small ? 22 : 40, overlay);
     ui_tooltip("Each frame from the start of the graph's execution to the end of the buffer swap, "
                "the UI included; the last 64 frames.");
     fg_memory_report mem;
@@ -54,9 +55,10 @@ frame_times(demo *d)
 /* Live passes in execution order with their times as bars of the frame time (and, greyed, what
  * a pass said it rebuilt), then the culled ones, greyed, with the reason. */
 static void
-passes(demo *d)
+passes(demo *d, bool small)
 {
-    ui_text("passes, in execution order");
+    if (!small)
+        ui_text("passes, in execution order");
     const int *order;
     int live = fg_graph_order(d->graph, &order);
     double frame = demo_frame_median_ms(d), total = 0;
@@ -77,9 +79,17 @@ passes(demo *d)
             snprintf(label, sizeof label, "%s  (not measured yet)", fg_pass_name(pass));
         ui_bar(ms > 0 && whole > 0 ? (float)(ms / whole) : 0.0f, label);
         const fg_pass_type *type = fg_pass_type_of(pass);
-        ui_tooltip(type->doc ? type->doc : type->name);
-        /* What a caching pass redid this frame (fg_pass_report_rebuilt), under its bar. */
-        if (fg_pass_rebuilt(pass)[0]) {
+        const char *doc = type->doc ? type->doc : type->name;
+        /* What a caching pass redid this frame (fg_pass_report_rebuilt): under its bar, or in a
+         * small panel in its tooltip, so that every bar stays in view. */
+        if (small && fg_pass_rebuilt(pass)[0]) {
+            char tip[2048];
+            snprintf(tip, sizeof tip, "%s\n\nThis frame: %s", doc, fg_pass_rebuilt(pass));
+            ui_tooltip(tip);
+        } else {
+            ui_tooltip(doc);
+        }
+        if (!small && fg_pass_rebuilt(pass)[0]) {
             ui_push_dim(true);
             ui_text_wrapped("  %s", fg_pass_rebuilt(pass));
             ui_pop_dim();
@@ -180,13 +190,14 @@ static void
 frame_panel(demo *d, const ui_window_place *place, bool sections_open)
 {
     if (ui_window_begin("conegraph", place)) {
+        bool small = !sections_open;
         ui_text("%s  %dx%d", d->s.scene.name, d->s.frame.width, d->s.frame.height);
         const char *slash = strrchr(d->s.graph_path, '/');
         ui_text_disabled("%s, timing %s", slash ? slash + 1 : d->s.graph_path,
                          d->timing == FG_TIMING_SYNC ? "sync" : d->timing == FG_TIMING_QUERIES ? "queries" : "none");
-        frame_times(d);
+        frame_times(d, small);
         ui_separator();
-        passes(d);
+        passes(d, small);
         if (ui_collapsing_header("Animation and sun###animation", sections_open))
             animation(d);
         if (ui_collapsing_header("Image shown, screenshots###shown", sections_open))

@@ -15,8 +15,9 @@
  * Layout (demo_ui_layout): from 1120x560 up, the frame panel above the viewer on the left and
  * the parameters on the right; smaller (the README's 640x360), the frame panel alone on the
  * left, at most 42% of the width and as tall as its contents, its animation and image
- * sections folded, the parameters and the viewer folded to their title bars at the top right,
- * so that most of the image shows. Every panel folds and unfolds with its title bar's arrow;
+ * sections folded (the frame graph lower, what a pass rebuilt in its bar's tooltip), the
+ * parameters and the viewer folded to their title bars at the top right, so that most of the
+ * image shows and every per-pass bar is in view. Every panel folds and unfolds with its title bar's arrow;
  * the panels are laid out again when the window changes size.
  *
  * Declares: demo_ui_places, demo_ui_layout, demo_ui_frame.
