@@ -129,6 +129,8 @@ skinned_mesh_free(cg_skinned_mesh *sk)
     memset(sk, 0, sizeof *sk);
 }
 
+static void morphed_mesh_free(cg_morphed_mesh *mm);
+
 void
 cg_scene_free_skins(cg_scene *scene)
 {
@@ -138,11 +140,15 @@ cg_scene_free_skins(cg_scene *scene)
     }
     for (int i = 0; i < scene->skinned_count; i++)
         skinned_mesh_free(&scene->skinned[i]);
+    for (int i = 0; i < scene->morphed_count; i++)
+        morphed_mesh_free(&scene->morphed[i]);
     free(scene->skins);
     free(scene->skinned);
+    free(scene->morphed);
     scene->skins = NULL;
     scene->skinned = NULL;
-    scene->skin_count = scene->skinned_count = 0;
+    scene->morphed = NULL;
+    scene->skin_count = scene->skinned_count = scene->morphed_count = 0;
 }
 
 static float *
@@ -202,12 +208,67 @@ cg_scene_add_skinned_mesh(cg_scene *scene, int mesh, int instance, int skin, int
     return scene->skinned_count++;
 }
 
+/* ------------------------------------------------------------------ morph targets */
+
+static void
+morphed_mesh_free(cg_morphed_mesh *mm)
+{
+    free(mm->weights);
+    free(mm->applied);
+    free(mm->base_positions);
+    free(mm->base_normals);
+    free(mm->base_tangents);
+    free(mm->position_deltas);
+    free(mm->normal_deltas);
+    free(mm->tangent_deltas);
+    free(mm->delta_bounds);
+    memset(mm, 0, sizeof *mm);
+}
+
+int
+cg_scene_add_morphed_mesh(cg_scene *scene, const cg_morphed_mesh *morph, cg_error *err)
+{
+    cg_morphed_mesh mm = *morph;
+    const cg_mesh *m = &scene->meshes[mm.mesh];
+    size_t nv = m->vertex_count, n = (size_t)mm.target_count;
+    mm.applied = malloc(sizeof *mm.applied * n);
+    mm.base_positions = copy_floats(m->positions, nv * 3);
+    mm.base_normals = copy_floats(m->normals, nv * 3);
+    mm.base_tangents = m->tangents ? copy_floats(m->tangents, nv * 4) : NULL;
+    mm.delta_bounds = malloc(sizeof *mm.delta_bounds * 6 * n);
+    if (!mm.applied || !mm.base_positions || !mm.base_normals || (m->tangents && !mm.base_tangents) ||
+        !mm.delta_bounds) {
+        morphed_mesh_free(&mm);
+        cg_fail(err, CG_ERR_OUT_OF_MEMORY, "out of memory for the morph targets of mesh '%s'", m->name);
+        return -1;
+    }
+    for (size_t t = 0; t < n; t++) {
+        mm.applied[t] = NAN;
+        for (int k = 0; k < 3; k++) {
+            float lo = 0, hi = 0; /* a target's box holds 0: the base itself */
+            for (size_t v = 0; mm.position_deltas && v < nv; v++) {
+                float d = mm.position_deltas[(t * nv + v) * 3 + (size_t)k];
+                lo = fminf(lo, d);
+                hi = fmaxf(hi, d);
+            }
+            mm.delta_bounds[6 * t + (size_t)k] = lo;
+            mm.delta_bounds[6 * t + 3 + (size_t)k] = hi;
+        }
+    }
+    if (!grow((void **)&scene->morphed, scene->morphed_count, sizeof mm, err, "morphed mesh")) {
+        morphed_mesh_free(&mm);
+        return -1;
+    }
+    scene->morphed[scene->morphed_count] = mm;
+    return scene->morphed_count++;
+}
+
 /* ------------------------------------------------------------------ channels */
 
 int
 cg_anim_channel_components(const cg_anim_channel *channel)
 {
-    return channel->path == CG_ANIM_ROTATION ? 4 : 3;
+    return channel->path == CG_ANIM_ROTATION ? 4 : channel->path == CG_ANIM_WEIGHTS ? channel->weight_count : 3;
 }
 
 int
@@ -284,14 +345,15 @@ slerp(const float *a, const float *b, double u, double out[4])
 }
 
 void
-cg_anim_channel_sample(const cg_anim_channel *channel, double t, double out[4])
+cg_anim_channel_sample(const cg_anim_channel *channel, double t, double *out)
 {
     int n = cg_anim_channel_components(channel), stride = cg_anim_channel_stride(channel);
     bool cubic = channel->interpolation == CG_INTERP_CUBICSPLINE;
     int value = cubic ? n : 0; /* where a key's value starts: after the in-tangent */
     int keys = channel->key_count;
     const float *times = channel->times, *v = channel->values;
-    out[3] = 0;
+    if (n == 3)
+        out[3] = 0;
     int k;
     if (keys <= 1 || !(t > times[0])) {
         k = 0;
@@ -502,8 +564,71 @@ pose_skins(cg_scene *scene, uint64_t stamp, cg_scene_changes *changes)
     }
 }
 
-/* Poses everything; with `changes`, stamps what changed with revision `stamp`. Skinned meshes
- * are posed only with `skin` (the bounds' sampling bounds them by their joints instead). */
+/* The base plus the weighted targets (glTF 2.0, 3.7.2.2); normals and tangents normalised. */
+static void
+morph(cg_scene *scene, const cg_morphed_mesh *mm)
+{
+    cg_mesh *mesh = &scene->meshes[mm->mesh];
+    size_t nv = mesh->vertex_count;
+    for (size_t v = 0; v < nv; v++) {
+        double p[3], n[3], tg[3];
+        for (int k = 0; k < 3; k++) {
+            p[k] = mm->base_positions[3 * v + (size_t)k];
+            n[k] = mm->base_normals[3 * v + (size_t)k];
+            tg[k] = mm->base_tangents ? mm->base_tangents[4 * v + (size_t)k] : 0;
+        }
+        for (int t = 0; t < mm->target_count; t++) {
+            double w = mm->weights[t];
+            if (w == 0)
+                continue;
+            size_t at = ((size_t)t * nv + v) * 3;
+            for (int k = 0; k < 3; k++) {
+                if (mm->position_deltas)
+                    p[k] += w * mm->position_deltas[at + (size_t)k];
+                if (mm->normal_deltas)
+                    n[k] += w * mm->normal_deltas[at + (size_t)k];
+                if (mm->tangent_deltas)
+                    tg[k] += w * mm->tangent_deltas[at + (size_t)k];
+            }
+        }
+        double nl = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        double tl = sqrt(tg[0] * tg[0] + tg[1] * tg[1] + tg[2] * tg[2]);
+        for (int k = 0; k < 3; k++) {
+            mesh->positions[3 * v + (size_t)k] = (float)p[k];
+            mesh->normals[3 * v + (size_t)k] = nl > 0 ? (float)(n[k] / nl) : mm->base_normals[3 * v + (size_t)k];
+            if (mesh->tangents && mm->base_tangents)
+                mesh->tangents[4 * v + (size_t)k] = tl > 0 ? (float)(tg[k] / tl) : mm->base_tangents[4 * v + (size_t)k];
+        }
+    }
+    cg_mesh_compute_bounds(mesh);
+}
+
+/* Morphs the meshes whose weights changed since they were last morphed; with `changes`, stamps
+ * them. */
+static void
+pose_morphs(cg_scene *scene, uint64_t stamp, cg_scene_changes *changes)
+{
+    for (int i = 0; i < scene->morphed_count; i++) {
+        cg_morphed_mesh *mm = &scene->morphed[i];
+        /* memcmp, not ==: the NaN of a mesh never morphed differs from everything. */
+        if (!memcmp(mm->weights, mm->applied, sizeof *mm->weights * (size_t)mm->target_count))
+            continue;
+        memcpy(mm->applied, mm->weights, sizeof *mm->weights * (size_t)mm->target_count);
+        morph(scene, mm);
+        if (changes) {
+            cg_instance *inst = &scene->instances[mm->instance];
+            scene->meshes[mm->mesh].revision = stamp;
+            if (inst->revision != stamp) /* not counted yet (its node may have moved too) */
+                changes->instances_moved++;
+            inst->revision = stamp;
+            changes->meshes_deformed++;
+        }
+    }
+}
+
+/* Poses everything; with `changes`, stamps what changed with revision `stamp`. Skinned and
+ * morphed meshes are posed only with `skin` (the bounds' sampling bounds them by their joints
+ * and their targets' boxes instead). */
 static void
 pose(cg_scene *scene, double t, uint64_t stamp, cg_scene_changes *changes, bool skin)
 {
@@ -511,8 +636,16 @@ pose(cg_scene *scene, double t, uint64_t stamp, cg_scene_changes *changes, bool 
         for (int c = 0; c < scene->animations[a].channel_count; c++) {
             const cg_anim_channel *ch = &scene->animations[a].channels[c];
             cg_node *n = &scene->nodes[ch->node];
-            double v[4];
+            double v[CG_MAX_MORPH_TARGETS > 4 ? CG_MAX_MORPH_TARGETS : 4];
             cg_anim_channel_sample(ch, t, v);
+            if (ch->path == CG_ANIM_WEIGHTS) {
+                for (int k = 0; k < scene->morphed_count; k++) {
+                    cg_morphed_mesh *mm = &scene->morphed[k];
+                    for (int w = 0; mm->node == ch->node && w < mm->target_count && w < ch->weight_count; w++)
+                        mm->weights[w] = (float)v[w];
+                }
+                continue;
+            }
             float *dst = ch->path == CG_ANIM_TRANSLATION ? n->translation
                          : ch->path == CG_ANIM_ROTATION  ? n->rotation
                                                          : n->scale;
@@ -563,8 +696,10 @@ pose(cg_scene *scene, double t, uint64_t stamp, cg_scene_changes *changes, bool 
             }
         }
     }
-    if (skin)
+    if (skin) {
+        pose_morphs(scene, stamp, changes);
         pose_skins(scene, stamp, changes);
+    }
     scene->time = t;
 }
 
@@ -701,6 +836,29 @@ skinned_box_add(const cg_scene *scene, const cg_skinned_mesh *sk, double lo[3], 
     }
 }
 
+/* A box holding a morphed mesh at the weights of the current pose, without morphing it: the
+ * base's box plus, per target, its displacements' box scaled by the weight. */
+static void
+morphed_box_add(const cg_scene *scene, const cg_morphed_mesh *mm, double lo[3], double hi[3])
+{
+    float blo[3], bhi[3];
+    for (int k = 0; k < 3; k++)
+        blo[k] = INFINITY, bhi[k] = -INFINITY;
+    for (size_t v = 0; v < scene->meshes[mm->mesh].vertex_count; v++)
+        for (int k = 0; k < 3; k++) {
+            blo[k] = fminf(blo[k], mm->base_positions[3 * v + (size_t)k]);
+            bhi[k] = fmaxf(bhi[k], mm->base_positions[3 * v + (size_t)k]);
+        }
+    for (int t = 0; t < mm->target_count; t++)
+        for (int k = 0; k < 3; k++) {
+            float a = mm->weights[t] * mm->delta_bounds[6 * t + k], b = mm->weights[t] * mm->delta_bounds[6 * t + 3 + k];
+            blo[k] += fminf(a, b);
+            bhi[k] += fmaxf(a, b);
+        }
+    cg_mesh box = { .bounds_min = { blo[0], blo[1], blo[2] }, .bounds_max = { bhi[0], bhi[1], bhi[2] } };
+    box_add(scene->instances[mm->instance].world, &box, lo, hi);
+}
+
 bool
 cg_scene_motion_bounds(cg_scene *scene, double lo[3], double hi[3])
 {
@@ -725,6 +883,8 @@ cg_scene_motion_bounds(cg_scene *scene, double lo[3], double hi[3])
     }
     for (int k = 0; k < scene->skinned_count; k++)
         skinned[scene->skinned[k].instance] = true;
+    for (int k = 0; k < scene->morphed_count; k++)
+        skinned[scene->morphed[k].instance] = true;
     double now = scene->time;
     for (int s = 0; s < count; s++) {
         pose(scene, times[s], 0, NULL, false);
@@ -736,6 +896,9 @@ cg_scene_motion_bounds(cg_scene *scene, double lo[3], double hi[3])
         for (int k = 0; k < scene->skinned_count; k++)
             skinned_box_add(scene, &scene->skinned[k], box + 6 * scene->skinned[k].instance,
                             box + 6 * scene->skinned[k].instance + 3);
+        for (int k = 0; k < scene->morphed_count; k++)
+            morphed_box_add(scene, &scene->morphed[k], box + 6 * scene->morphed[k].instance,
+                            box + 6 * scene->morphed[k].instance + 3);
     }
     free(skinned);
     pose(scene, now, 0, NULL, false);

@@ -93,7 +93,15 @@ struct loader {
     };
     std::vector<skin_use> skin_uses;
     std::vector<int> skin_map; // glTF skin -> cg skin, -1 not yet made
-    int weight_channels = 0;   // animation channels on morph target weights (not read)
+    int weight_channels = 0;   // animation channels on morph target weights not read
+    // Morph targets (visit_nodes, finish_morphs): the instances waiting for their targets, the
+    // glTF nodes whose weights a channel animates, the meshes whose targets are not read.
+    struct morph_use {
+        int node, mesh, instance;
+    };
+    std::vector<morph_use> morph_uses;
+    std::vector<bool> weights_animated;
+    std::vector<std::string> morph_left_out;
     ~loader()
     {
         for (auto &a : animations)
@@ -1066,6 +1074,19 @@ add_camera(loader &L, int node, const double world[16], int *added)
 // increasing, min and max equal to the data, no NaN, unit rotations), whether or not its node
 // is in the default scene; channels without a node are ignored, as glTF says, and those on
 // weights too: conegraph does not read morph targets, so meshes keep their base shape.
+// The morph targets of the mesh on glTF node `node` (glTF 2.0, 3.7.2.2: every primitive of a
+// mesh has the same number), 0 without.
+int
+morph_target_count(const loader &L, int node)
+{
+    if (node < 0 || (size_t)node >= L.model.nodes.size())
+        return 0;
+    int mesh = L.model.nodes[(size_t)node].mesh;
+    if (mesh < 0 || (size_t)mesh >= L.model.meshes.size() || L.model.meshes[(size_t)mesh].primitives.empty())
+        return 0;
+    return (int)L.model.meshes[(size_t)mesh].primitives[0].targets.size();
+}
+
 bool
 read_channel(loader &L, size_t ai, size_t ci, cg_anim_channel *out)
 {
@@ -1074,9 +1095,13 @@ read_channel(loader &L, size_t ai, size_t ci, cg_anim_channel *out)
     const tinygltf::AnimationSampler &sm = A.samplers[(size_t)ch.sampler];
     std::string what = "animations[" + std::to_string(ai) + "].samplers[" + std::to_string(ch.sampler) + "]";
     *out = cg_anim_channel{};
-    out->path = ch.target_path == "rotation" ? CG_ANIM_ROTATION
-                : ch.target_path == "scale"  ? CG_ANIM_SCALE
-                                             : CG_ANIM_TRANSLATION;
+    out->path = ch.target_path == "rotation"  ? CG_ANIM_ROTATION
+                : ch.target_path == "scale"   ? CG_ANIM_SCALE
+                : ch.target_path == "weights" ? CG_ANIM_WEIGHTS
+                                              : CG_ANIM_TRANSLATION;
+    bool weights = out->path == CG_ANIM_WEIGHTS;
+    if (weights)
+        out->weight_count = morph_target_count(L, ch.target_node);
     out->interpolation = sm.interpolation == "STEP"          ? CG_INTERP_STEP
                          : sm.interpolation == "CUBICSPLINE" ? CG_INTERP_CUBICSPLINE
                                                              : CG_INTERP_LINEAR;
@@ -1099,7 +1124,14 @@ read_channel(loader &L, size_t ai, size_t ci, cg_anim_channel *out)
     }
     if (cubic && in.count < 2)
         return fail(L, CG_ERR_GLTF_ACCESSOR, what + ": CUBICSPLINE needs 2 keys at least");
-    if (rotation) {
+    if (weights) {
+        if (!view_accessor(L, sm.output, what + ".output", { TINYGLTF_TYPE_SCALAR },
+                           { TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE,
+                             TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_SHORT,
+                             TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT },
+                           &o))
+            return false;
+    } else if (rotation) {
         if (!view_accessor(L, sm.output, what + ".output", { TINYGLTF_TYPE_VEC4 },
                            { TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE,
                              TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_SHORT,
@@ -1112,7 +1144,7 @@ read_channel(loader &L, size_t ai, size_t ci, cg_anim_channel *out)
     }
     if (!check_accessor_data(L, what + ".output", sm.output, "element", o))
         return false;
-    size_t per_key = cubic ? 3 : 1;
+    size_t per_key = (cubic ? 3 : 1) * (weights ? (size_t)out->weight_count : 1);
     if (o.count != in.count * per_key)
         return fail(L, CG_ERR_GLTF_ACCESSOR,
                     what + ".output: " + std::to_string(o.count) + " elements for " + std::to_string(in.count) +
@@ -1132,7 +1164,7 @@ read_channel(loader &L, size_t ai, size_t ci, cg_anim_channel *out)
         }
     if (!cg_anim_channel_alloc(out, (int)in.count, L.err))
         return false;
-    int n = cg_anim_channel_components(out);
+    int n = weights ? 1 : cg_anim_channel_components(out); // weights: one scalar element each
     for (size_t k = 0; k < in.count; k++)
         out->times[k] = (float)in.component(k, 0);
     for (size_t e = 0; e < o.count; e++)
@@ -1147,6 +1179,7 @@ read_animations(loader &L)
     const auto &M = L.model;
     L.animated.assign(M.nodes.size(), false);
     L.animated_below.assign(M.nodes.size(), false);
+    L.weights_animated.assign(M.nodes.size(), false);
     L.node_map.assign(M.nodes.size(), -1);
     for (size_t a = 0; a < M.animations.size(); a++) {
         L.animations.emplace_back();
@@ -1156,9 +1189,13 @@ read_animations(loader &L)
             const tinygltf::AnimationChannel &ch = M.animations[a].channels[c];
             if (ch.target_node < 0)
                 continue;
-            if (ch.target_path == "weights") { // named in report_morph_targets
-                L.weight_channels++;
-                continue;
+            if (ch.target_path == "weights") {
+                int n = morph_target_count(L, ch.target_node);
+                if (n < 1 || n > CG_MAX_MORPH_TARGETS || L.model.nodes[(size_t)ch.target_node].skin >= 0) {
+                    L.weight_channels++; // named in report_morph_targets
+                    continue;
+                }
+                L.weights_animated[(size_t)ch.target_node] = true;
             }
             cg_anim_channel channel;
             if (!read_channel(L, a, c, &channel))
@@ -1396,6 +1433,71 @@ finish_skins(loader &L)
     return true;
 }
 
+// ------------------------------------------------------------------ morph targets
+
+// Each morphed instance's targets (glTF 2.0, 3.7.2.2: POSITION, NORMAL and TANGENT
+// displacements, VEC3 of FLOAT or normalized integers) and default weights (the node's, else the
+// mesh's, else 0). Its cg node, when a channel animates its weights, is the node's.
+bool
+finish_morphs(loader &L)
+{
+    static const char *const attributes[3] = { "POSITION", "NORMAL", "TANGENT" };
+    for (const auto &use : L.morph_uses) {
+        int gmesh = L.gltf_mesh_of[(size_t)use.mesh];
+        const tinygltf::Mesh &mesh = L.model.meshes[(size_t)gmesh];
+        const tinygltf::Primitive &prim = mesh.primitives[(size_t)L.prim_of[(size_t)use.mesh]];
+        std::string what = mesh_label(L, gmesh) + " primitive " + std::to_string(L.prim_of[(size_t)use.mesh]);
+        size_t nv = L.scene->meshes[use.mesh].vertex_count, n = prim.targets.size();
+        cg_morphed_mesh mm = {};
+        mm.mesh = use.mesh;
+        mm.instance = use.instance;
+        mm.target_count = (int)n;
+        mm.node = L.weights_animated[(size_t)use.node] ? L.node_map[(size_t)use.node] : -1;
+        float **deltas[3] = { &mm.position_deltas, &mm.normal_deltas, &mm.tangent_deltas };
+        bool ok = true;
+        mm.weights = (float *)std::calloc(n, sizeof(float));
+        ok = mm.weights != nullptr;
+        for (size_t t = 0; ok && t < n; t++)
+            for (int a = 0; ok && a < 3; a++) {
+                auto it = prim.targets[t].find(attributes[a]);
+                if (it == prim.targets[t].end())
+                    continue;
+                std::string label = what + " targets[" + std::to_string(t) + "]." + attributes[a];
+                accessor_view v;
+                ok = view_accessor(L, it->second, label, { TINYGLTF_TYPE_VEC3 },
+                                   { TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_BYTE,
+                                     TINYGLTF_COMPONENT_TYPE_SHORT },
+                                   &v) &&
+                     check_accessor_data(L, label, it->second, "vertex", v);
+                if (ok && v.count != nv)
+                    ok = fail(L, CG_ERR_GLTF_ACCESSOR, label + ": " + std::to_string(v.count) + " elements for " +
+                                                           std::to_string(nv) + " vertices");
+                if (ok && !*deltas[a]) {
+                    *deltas[a] = (float *)std::calloc(n * nv * 3, sizeof(float));
+                    if (!*deltas[a])
+                        ok = fail(L, CG_ERR_OUT_OF_MEMORY, what + ": out of memory for its morph targets");
+                }
+                for (size_t e = 0; ok && e < nv; e++)
+                    for (int k = 0; k < 3; k++)
+                        (*deltas[a])[(t * nv + e) * 3 + (size_t)k] = (float)v.component(e, k);
+            }
+        const tinygltf::Node &node = L.model.nodes[(size_t)use.node];
+        const std::vector<double> &defaults = node.weights.size() == n ? node.weights : mesh.weights;
+        for (size_t t = 0; ok && t < n && defaults.size() == n; t++)
+            mm.weights[t] = (float)defaults[t];
+        if (ok && mm.node >= 0)
+            L.scene->instances[use.instance].moving = true;
+        if (!ok || cg_scene_add_morphed_mesh(L.scene, &mm, L.err) < 0) {
+            if (!ok) {
+                std::free(mm.weights), std::free(mm.position_deltas), std::free(mm.normal_deltas);
+                std::free(mm.tangent_deltas);
+            }
+            return false;
+        }
+    }
+    return true;
+}
+
 // The default scene's nodes, depth first. A node is flattened (its meshes, lights and camera
 // placed by its world matrix) unless animation needs it: an animated node, a node under one
 // (dynamic: what hangs on it moves) and the ancestors of animated nodes are kept as cg_nodes
@@ -1462,8 +1564,12 @@ visit_nodes(loader &L, const std::vector<int> &roots)
             bool skinned_node = n.skin >= 0 && (size_t)n.skin < L.model.skins.size();
             for (int m : *prims) {
                 bool skinned = skinned_node && has_skin_attributes(L, m);
+                size_t targets = L.model.meshes[(size_t)n.mesh].primitives[(size_t)L.prim_of[(size_t)m]].targets.size();
+                bool morphed = targets > 0 && targets <= CG_MAX_MORPH_TARGETS && !skinned;
+                if (targets > 0 && !morphed)
+                    L.morph_left_out.push_back(mesh_label(L, n.mesh) + (skinned ? " (skinned)" : " (too many targets)"));
                 int use;
-                if (!use_mesh(L, m, skinned, &use))
+                if (!use_mesh(L, m, skinned || morphed, &use))
                     return false;
                 int instance = cg_scene_add_instance(L.scene, use, wf, L.err);
                 if (instance < 0)
@@ -1471,9 +1577,12 @@ visit_nodes(loader &L, const std::vector<int> &roots)
                 if (skinned) { // placed by its joints (finish_skins), not by this node
                     L.skin_uses.push_back({ n.skin, cur.node, use, instance, {} });
                     std::memcpy(L.skin_uses.back().world, wf, sizeof wf);
-                } else if (dynamic && cg_scene_attach(L.scene, CG_ATTACH_INSTANCE, instance, here, L.err) < 0) {
-                    return false;
+                    continue;
                 }
+                if (dynamic && cg_scene_attach(L.scene, CG_ATTACH_INSTANCE, instance, here, L.err) < 0)
+                    return false;
+                if (morphed)
+                    L.morph_uses.push_back({ cur.node, use, instance });
             }
         }
         int light, camera;
@@ -1750,33 +1859,22 @@ convert_materials(loader &L)
     return true;
 }
 
-// One notice for the morph targets conegraph does not read: the drawn meshes that have them
-// (the first few named) and the animation channels on their weights, both left out.
+// One notice for the morph targets conegraph does not read: those of skinned meshes, of meshes
+// with more than CG_MAX_MORPH_TARGETS, and the animation channels on their weights.
 void
 report_morph_targets(loader &L)
 {
-    std::string meshes;
-    int count = 0;
-    for (size_t m = 0; m < L.model.meshes.size(); m++) {
-        if (!L.mesh_done[m])
-            continue; // no node of the default scene draws it
-        bool targets = false;
-        for (const auto &p : L.model.meshes[m].primitives)
-            targets = targets || !p.targets.empty();
-        if (!targets)
-            continue;
-        if (count < 4)
-            meshes += (meshes.empty() ? "" : ", ") + mesh_label(L, (int)m);
-        count++;
-    }
-    if (count > 4)
-        meshes += " and " + std::to_string(count - 4) + " more";
-    if (count == 0 && L.weight_channels == 0)
+    if (L.morph_left_out.empty() && L.weight_channels == 0)
         return;
+    std::string meshes;
+    for (size_t i = 0; i < L.morph_left_out.size() && i < 4; i++)
+        meshes += (meshes.empty() ? "" : ", ") + L.morph_left_out[i];
+    if (L.morph_left_out.size() > 4)
+        meshes += " and " + std::to_string(L.morph_left_out.size() - 4) + " more";
     std::string channels = L.weight_channels == 0 ? std::string()
                            : std::to_string(L.weight_channels) + " animation channel" +
-                                 (L.weight_channels > 1 ? "s" : "") + " on morph target weights";
-    cg_log_warn("%s: morph targets are not read (%s%s%s): meshes keep their base shape%s", L.path.c_str(),
+                                 (L.weight_channels > 1 ? "s" : "") + " on their weights";
+    cg_log_warn("%s: morph targets not read (%s%s%s): those meshes keep their base shape%s", L.path.c_str(),
                 meshes.c_str(), !meshes.empty() && !channels.empty() ? "; " : "", channels.c_str(),
                 channels.empty() ? "" : ", the channels are ignored");
 }
@@ -2265,7 +2363,7 @@ load(loader &L)
     std::vector<int> roots;
     ok = check_extensions(L) && check_model(L) && convert_textures(L) && convert_materials(L) &&
               check_node_graph(L) && read_animations(L) && mark_joints(L) && scene_roots(L, &roots) &&
-              visit_nodes(L, roots) && finish_skins(L) && finish_animations(L);
+              visit_nodes(L, roots) && finish_skins(L) && finish_morphs(L) && finish_animations(L);
     if (ok) {
         report_left_out(L);
         report_morph_targets(L);
@@ -2679,6 +2777,8 @@ export_animations(const cg_scene *S, tinygltf::Model &M, int node_base)
         out.name = anim.name;
         for (int c = 0; c < anim.channel_count; c++) {
             const cg_anim_channel &ch = anim.channels[c];
+            if (ch.path == CG_ANIM_WEIGHTS) // the morphed mesh is written as posed
+                continue;
             size_t keys = (size_t)ch.key_count, per_key = ch.interpolation == CG_INTERP_CUBICSPLINE ? 3 : 1;
             tinygltf::AnimationSampler sampler;
             sampler.input = add_accessor(M, ch.times, keys, TINYGLTF_TYPE_SCALAR, TINYGLTF_COMPONENT_TYPE_FLOAT, 0,

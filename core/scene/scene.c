@@ -693,11 +693,14 @@ validate_animation(const cg_scene *scene, cg_error *err)
         const cg_animation *anim = &scene->animations[a];
         for (int c = 0; c < anim->channel_count; c++) {
             const cg_anim_channel *ch = &anim->channels[c];
-            if (ch->node < 0 || ch->node >= scene->node_count || (unsigned)ch->path > CG_ANIM_SCALE ||
+            if (ch->path == CG_ANIM_WEIGHTS && (ch->weight_count < 1 || ch->weight_count > CG_MAX_MORPH_TARGETS))
+                return cg_fail(err, CG_ERR_GLTF_ACCESSOR, "%s: animation %d '%s' channel %d: %d weights per key "
+                               "(1 to %d)", src, a, anim->name, c, ch->weight_count, CG_MAX_MORPH_TARGETS);
+            if (ch->node < 0 || ch->node >= scene->node_count || (unsigned)ch->path > CG_ANIM_WEIGHTS ||
                 (unsigned)ch->interpolation > CG_INTERP_CUBICSPLINE)
                 return cg_fail(err, CG_ERR_GLTF_INDEX_RANGE, "%s: animation %d '%s' channel %d: node %d out of range",
                                src, a, anim->name, c, ch->node);
-            if (scene->nodes[ch->node].has_matrix)
+            if (scene->nodes[ch->node].has_matrix && ch->path != CG_ANIM_WEIGHTS)
                 return cg_fail(err, CG_ERR_GLTF_SCHEMA,
                                "%s: animation %d '%s' channel %d animates node '%s', which has a matrix", src, a,
                                anim->name, c, scene->nodes[ch->node].name);
@@ -750,6 +753,19 @@ validate_skins(const cg_scene *scene, cg_error *err)
                                "(joints below %d, weights finite and >= 0)", src, scene->meshes[k->mesh].name,
                                v / (size_t)k->influences, (unsigned)k->joints[v], k->weights[v],
                                scene->skins[k->skin].joint_count);
+    }
+    for (int i = 0; i < scene->morphed_count; i++) {
+        const cg_morphed_mesh *m = &scene->morphed[i];
+        if (m->mesh < 0 || m->mesh >= scene->mesh_count || m->instance < 0 || m->instance >= scene->instance_count ||
+            scene->instances[m->instance].mesh != m->mesh || m->node < -1 || m->node >= scene->node_count ||
+            m->target_count < 1 || m->target_count > CG_MAX_MORPH_TARGETS || !m->weights)
+            return cg_fail(err, CG_ERR_GLTF_INDEX_RANGE, "%s: morphed mesh %d: mesh %d, instance %d, node %d or "
+                           "%d targets out of range", src, i, m->mesh, m->instance, m->node, m->target_count);
+        size_t n = (size_t)scene->meshes[m->mesh].vertex_count * 3 * (size_t)m->target_count;
+        if (!all_finite(m->weights, (size_t)m->target_count) || (m->position_deltas && !all_finite(m->position_deltas, n)) ||
+            (m->normal_deltas && !all_finite(m->normal_deltas, n)) || (m->tangent_deltas && !all_finite(m->tangent_deltas, n)))
+            return cg_fail(err, CG_ERR_GLTF_NONFINITE, "%s: morphed mesh '%s': a weight or displacement is NaN or "
+                           "infinite", src, scene->meshes[m->mesh].name);
     }
     return true;
 }

@@ -11,7 +11,7 @@
  *           cg_node_local, cg_scene_add_node, cg_scene_attach, cg_anim_channel_alloc,
  *           cg_anim_channel_components, cg_anim_channel_stride, cg_scene_add_animation,
  *           cg_scene_pose, cg_scene_motion_bounds, cg_scene_add_skin, cg_scene_add_skinned_mesh,
- *           cg_scene_free_skins.
+ *           cg_scene_add_morphed_mesh, cg_scene_free_skins.
  */
 #ifndef CG_SCENE_INTERNAL_H
 #define CG_SCENE_INTERNAL_H
@@ -77,7 +77,11 @@ int cg_scene_add_skin(cg_scene *scene, const char *name, int joint_count, int *j
  * places the vertices in world space). Returns its index in scene->skinned or -1. */
 int cg_scene_add_skinned_mesh(cg_scene *scene, int mesh, int instance, int skin, int influences, uint16_t *joints,
                               float *weights, cg_error *err);
-/* Frees the skins and skinned meshes (cg_scene_free). */
+/* Binds mesh `morph->mesh`, drawn by instance `morph->instance` alone, to its morph targets: the
+ * scene takes morph's weights and deltas (freed here on failure too); the mesh's vertex arrays
+ * as they are now become its base. Returns its index in scene->morphed or -1. */
+int cg_scene_add_morphed_mesh(cg_scene *scene, const cg_morphed_mesh *morph, cg_error *err);
+/* Frees the skins and skinned meshes, and the morphed meshes (cg_scene_free). */
 void cg_scene_free_skins(cg_scene *scene);
 
 /* A white Lambertian material: base colour 1, metallic 0, roughness 1, and specular 0

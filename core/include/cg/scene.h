@@ -4,7 +4,8 @@
  *           cg_light, cg_camera_type, cg_camera, cg_sky_type, cg_sky, cg_kind_source,
  *           cg_classify_rule, cg_classify_points, cg_classify_options, cg_mesh_class, cg_node,
  *           cg_attachment_kind, cg_attachment, cg_anim_path, cg_anim_interpolation, cg_anim_channel,
- *           cg_animation, cg_skin, cg_skinned_mesh, cg_scene, cg_scene_load, cg_scene_free, cg_classify_defaults,
+ *           cg_animation, cg_skin, cg_skinned_mesh, cg_morphed_mesh, CG_MAX_MORPH_TARGETS,
+ *           cg_scene, cg_scene_load, cg_scene_free, cg_classify_defaults,
  *           cg_mesh_classify, cg_scene_export_gltf, cg_scene_compute_bounds,
  *           cg_scene_triangle_count, cg_scene_builtin_names, cg_scene_validate, cg_scene_set_sky,
  *           cg_sky_parse, cg_sky_model, cg_sky_model_init, cg_sky_model_radiance, cg_sky_format,
@@ -278,8 +279,13 @@ typedef struct cg_attachment {
 typedef enum cg_anim_path {
     CG_ANIM_TRANSLATION,
     CG_ANIM_ROTATION,
-    CG_ANIM_SCALE
+    CG_ANIM_SCALE,
+    CG_ANIM_WEIGHTS         /* the morph target weights of the meshes on the node (cg_morphed_mesh) */
 } cg_anim_path;
+
+/* The most morph targets a mesh may have for conegraph to read them (a file with more keeps the
+ * base shape, with a notice). */
+#define CG_MAX_MORPH_TARGETS 32
 
 typedef enum cg_anim_interpolation {
     CG_INTERP_LINEAR,       /* lerp; slerp for rotations (glTF 2.0, Appendix C) */
@@ -293,9 +299,11 @@ typedef struct cg_anim_channel {
     cg_anim_path path;
     cg_anim_interpolation interpolation;
     int key_count;          /* >= 1; >= 2 for CUBICSPLINE */
+    int weight_count;       /* CG_ANIM_WEIGHTS: weights per key, 1..CG_MAX_MORPH_TARGETS */
     float *times;           /* key_count times in seconds, >= 0, strictly increasing */
-    float *values;          /* per key N floats (N = 4 for rotations, x y z w; else 3), or for
-                             * CUBICSPLINE 3 x N: in-tangent, value, out-tangent */
+    float *values;          /* per key N floats (N = 4 for rotations, x y z w; weight_count for
+                             * weights; else 3), or for CUBICSPLINE 3 x N: in-tangent, value,
+                             * out-tangent */
 } cg_anim_channel;
 
 /* A glTF skin (glTF 2.0, 3.7.3): the nodes that deform the meshes bound to it. */
@@ -328,6 +336,29 @@ typedef struct cg_skinned_mesh {
                              * not posed yet) */
 } cg_skinned_mesh;
 
+/* A mesh with morph targets (glTF 2.0, 3.7.2.2): its vertices are the base plus the weighted sum
+ * of the targets' displacements (positions, normals and tangents, each where the file gives
+ * them; normals and tangents normalised after). The mesh is its own (one instance draws it);
+ * cg_scene_evaluate writes the morphed vertices into it when the weights changed (animated by
+ * CG_ANIM_WEIGHTS channels on `node`), bumps its `revision` and its instance's, and counts it in
+ * cg_scene_changes, as for a skin. A skinned mesh's targets are not read. */
+typedef struct cg_morphed_mesh {
+    int mesh;               /* into cg_scene.meshes: its vertex arrays hold the morphed vertices */
+    int instance;           /* the one instance drawing it */
+    int node;               /* the cg node whose weight channels drive it, or -1 (static weights) */
+    int target_count;       /* 1..CG_MAX_MORPH_TARGETS */
+    float *weights;         /* target_count: the weights at the scene's time (the file's default
+                             * weights: the node's, else the mesh's, else 0) */
+    float *applied;         /* target_count: the weights the vertices were last morphed with (NaN:
+                             * not yet) */
+    float *base_positions, *base_normals, *base_tangents; /* vertex_count x 3, 3, 4 (tangents NULL
+                                                             * when the mesh has none) */
+    float *position_deltas; /* target_count x vertex_count x 3, or NULL: no target moves positions */
+    float *normal_deltas;   /* the same for normals, or NULL */
+    float *tangent_deltas;  /* the same for tangents (xyz), or NULL */
+    float *delta_bounds;    /* target_count x 6: each target's position displacements' box */
+} cg_morphed_mesh;
+
 /* A glTF animation. All of a scene's animations play together, from time 0. */
 typedef struct cg_animation {
     char name[CG_NAME_MAX];
@@ -356,6 +387,7 @@ typedef struct cg_scene {
     cg_animation *animations;    int animation_count;
     cg_skin *skins;              int skin_count;
     cg_skinned_mesh *skinned;    int skinned_count;
+    cg_morphed_mesh *morphed;    int morphed_count;
     double time;            /* seconds: the time the scene is posed at (0 after loading) */
     /* Change stamps for caches: `revision` counts the changes to instance worlds, lights and
      * cameras (cg_scene_evaluate, cg_scene_lights_changed); instances_revision,
@@ -426,6 +458,12 @@ bool cg_sky_is_black(const cg_sky *sky);
 bool cg_scene_is_lit(const cg_scene *scene);
 /* Whether an instanced mesh's material emits. */
 bool cg_scene_emits(const cg_scene *scene);
+/* Whether a material has a lobe besides the Lambertian one, which the gathers trace a cone for: a
+ * specular reflection (metallic or specular above 0) or a transmission (transmission above 0, or
+ * alphaMode BLEND, whose uncovered part is a straight-through sheet). cg_material_default has none. */
+bool cg_material_has_lobes(const cg_material *m);
+/* Whether an instanced mesh's material has such a lobe. */
+bool cg_scene_has_lobes(const cg_scene *scene);
 /* The emitters' light spread over the scene: sum of emitted radiance x area over the area of
  * every instanced surface, W/(m^2 sr): the mean radiance of a white surface if all of it arrived
  * (core/scene/lighting.c says why). */
@@ -462,8 +500,8 @@ void cg_sky_model_radiance(const cg_sky_model *model, const float dir[3], float 
 typedef struct cg_scene_changes {
     int instances_moved;    /* instances whose world matrix or (skinned) vertices changed (their
                              * `revision` says which) */
-    int meshes_deformed;    /* skinned meshes whose vertices changed (their `revision` says which;
-                             * a GPU copy needs cg_gpu_scene_update_meshes) */
+    int meshes_deformed;    /* skinned or morphed meshes whose vertices changed (their `revision`
+                             * says which; a GPU copy needs cg_gpu_scene_update_meshes) */
     bool lights;            /* some light's position or direction changed */
     bool cameras;           /* some camera's world matrix changed */
 } cg_scene_changes;
@@ -482,8 +520,9 @@ bool cg_scene_is_animated(const cg_scene *scene);
 void cg_scene_animation_range(const cg_scene *scene, double *start, double *end);
 /* Bumps the lights' change stamp: for an app that moved or changed a light by hand. */
 void cg_scene_lights_changed(cg_scene *scene);
-/* The channel's value at time t (3 components, or 4 for a rotation: a unit quaternion). */
-void cg_anim_channel_sample(const cg_anim_channel *channel, double t, double out[4]);
+/* The channel's value at time t: 3 components, 4 for a rotation (a unit quaternion), or
+ * weight_count for weights (out has room for 4, or for weight_count). */
+void cg_anim_channel_sample(const cg_anim_channel *channel, double t, double *out);
 
 /* NULL-terminated list of built-in scene names, and a one-line description of each. */
 const char *const *cg_scene_builtin_names(void);
