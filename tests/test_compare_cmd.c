@@ -235,6 +235,17 @@ bad_input_exits_with_2(void **state)
     assert_int_equal(run(args, out, sizeof out), 2);
     snprintf(args, sizeof args, "compare '%s' '%s' --ref-direct", a, a);
     assert_int_equal(run(args, out, sizeof out), 2);
+    /* The heat map's path is checked before the images are read: a missing directory, a
+     * directory named as the file, another extension. */
+    const char *heat[] = { "/nonexistent-dir/h.png", "/tmp", "h.exr" };
+    const char *said[] = { "--heatmap: /nonexistent-dir/h.png: directory '/nonexistent-dir' does not exist",
+                           "--heatmap: /tmp: expected a file name ending in .png", "h.exr" };
+    for (int i = 0; i < 3; i++) {
+        snprintf(args, sizeof args, "compare '%s' '%s/missing.exr' --heatmap '%s'", a, cg_test_tmpdir(), heat[i]);
+        assert_int_equal(cg_test_run_conegraph(args, true, out, sizeof out), 2);
+        if (!strstr(out, said[i]) || strstr(out, "missing.exr"))
+            fail_msg("--heatmap %s: expected '%s' before the images are read: %s", heat[i], said[i], out);
+    }
     assert_int_equal(run("compare --help", out, sizeof out), 0);
     assert_non_null(strstr(out, "usage: conegraph compare"));
 }

@@ -227,6 +227,32 @@ legend_beside_the_plot(void **state)
     assert_true(fabs(without - unnamed) < 1e-9);
 }
 
+/* The error heat map with its colour scale: the map on top (black where the images agree),
+ * widened to 360 pixels in white, the bar beneath from black (0) to light yellow (the max). */
+static void
+heatmap_has_its_colour_scale(void **state)
+{
+    (void)state;
+    cg_image test = { 0 }, ref = { 0 }, out = { 0 };
+    cg_error err = { 0 };
+    assert_cg_ok(cg_image_alloc(&test, 32, 24, &err), &err);
+    assert_cg_ok(cg_image_alloc(&ref, 32, 24, &err), &err);
+    for (int i = 0; i < 32 * 24 * 4; i++)
+        test.rgba[i] = ref.rgba[i] = 0.5f;
+    assert_cg_ok(plot_error_heatmap(&test, &ref, 1.0, &out, &err), &err);
+    assert_int_equal(out.width, 360);
+    assert_true(out.height > 24 + 30);
+    const float *agree = &out.rgba[4 * (5 * 360 + 5)], *pad = &out.rgba[4 * (5 * 360 + 100)];
+    assert_true(agree[0] < 0.01f && agree[1] < 0.01f);
+    assert_true(pad[0] == 1.0f && pad[1] == 1.0f && pad[2] == 1.0f);
+    const float *left = &out.rgba[4 * ((24 + 10) * 360 + 13)], *right = &out.rgba[4 * ((24 + 10) * 360 + 346)];
+    assert_true(left[0] < 0.01f);
+    assert_true(right[0] > 0.9f && right[1] > 0.9f);
+    cg_image_free(&test);
+    cg_image_free(&ref);
+    cg_image_free(&out);
+}
+
 int
 main(void)
 {
@@ -237,6 +263,7 @@ main(void)
         cmocka_unit_test(every_point_is_labelled),
         cmocka_unit_test(lower_case_has_its_own_glyphs),
         cmocka_unit_test(legend_beside_the_plot),
+        cmocka_unit_test(heatmap_has_its_colour_scale),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
