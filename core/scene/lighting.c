@@ -123,6 +123,26 @@ cg_scene_emits(const cg_scene *scene)
     return emits(scene);
 }
 
+bool
+cg_material_has_lobes(const cg_material *m)
+{
+    return m->metallic > 0.0f || m->specular > 0.0f || m->transmission > 0.0f || m->alpha_mode == CG_ALPHA_BLEND;
+}
+
+bool
+cg_scene_has_lobes(const cg_scene *scene)
+{
+    for (int i = 0; i < scene->instance_count; i++) {
+        int mesh = scene->instances[i].mesh;
+        if (mesh < 0 || mesh >= scene->mesh_count)
+            continue;
+        int material = scene->meshes[mesh].material;
+        if (material >= 0 && material < scene->material_count && cg_material_has_lobes(&scene->materials[material]))
+            return true;
+    }
+    return false;
+}
+
 void
 cg_default_sun(cg_light *out)
 {

@@ -8,6 +8,9 @@
  *             the voxel's coverage sum (shaders/voxel_light/inject.comp)
  *   sides     (w beta, w delta, 0, alpha_y): the other side's luminance fraction, the plane offset
  *   normals   (w N, alpha_z): the mean normal of the lit side
+ *   glossy    (with glossy = true) the radiance one diffuse bounce further, V_(N+1) of the recursion
+ *             below, on the lit side that `normals` holds (its sides and normals are radiance's): what
+ *             the gathers' specular and refracted cones read (sdk/cone.h, input 'glossy')
  *   voxels    the list of occupied voxels (list.comp), which the inject and the gathers run over
  *   and, where a bounce is gathered (the header's recursion), gathered_front, gathered_back (level 0:
  *   each side's gathered light).
@@ -74,6 +77,11 @@ static const fg_param_desc voxel_light_params[] = {
              "the shadow map's matrix, the sky or the parameters changed (a static frame dispatches "
              "nothing); the first gather, which reads no punctual light, is kept too while only the "
              "lights changed (bounces = 1). false: relight every frame" },
+    { .name = "glossy", .type = FG_PARAM_BOOL, .default_value = 0,
+      .doc = "also output 'glossy': the light one diffuse bounce further (V_(N+1)), which the gathers' "
+             "specular and refracted cones read (input 'glossy'): on a path from the camera, glossy and "
+             "transmissive scattering do not count against the diffuse bounces (path_trace, Cycles), so the "
+             "surface a mirror shows keeps its bounce. One more gather at the voxels" },
 };
 
 static const char *const geometry_names[4] = {"albedo", "coverage", "normal", "emission"};
@@ -101,6 +109,7 @@ typedef struct voxel_light_state {
         cg_volume_block region;     /* voxelize's region block as it was read back */
         unsigned char shadow[256];  /* the shadow_map's matrix block as read back (its first bytes) */
         int bounces, bounce_cones;
+        bool glossy, lobes;     /* the parameter; whether a material has a lobe (glossy is lit then) */
         cg_sky sky;
     } key;
     cg_light *lights;       /* the scene's lights at the last relight */
@@ -181,11 +190,15 @@ voxel_light_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
     };
     for (int i = 0; i < 3; i++)
         fg_declare_output(decl, light_names[i], &light, FG_ACCESS_IMAGE_STORE);
-    if (gathers(pass) > 0) {
+    bool glossy = fg_param_bool(pass, "glossy");
+    if (glossy)
+        fg_declare_output(decl, "glossy", &light, FG_ACCESS_IMAGE_STORE);
+    if (gathers(pass) > 0 || glossy) {
         fg_resource_desc gathered = light;
         gathered.levels = 1;
-        /* G(V_0) is kept while only the lights change where it is the only gather. */
-        gathered.persistent = light.persistent && gathers(pass) == 1 && fg_param_int(pass, "bounces") == 1;
+        /* G(V_0) is kept while only the lights change where it is the only gather (glossy's gather
+         * overwrites it). */
+        gathered.persistent = light.persistent && gathers(pass) == 1 && fg_param_int(pass, "bounces") == 1 && !glossy;
         fg_declare_output(decl, "gathered_front", &gathered, FG_ACCESS_IMAGE_STORE);
         fg_declare_output(decl, "gathered_back", &gathered, FG_ACCESS_IMAGE_STORE);
     }
@@ -252,6 +265,7 @@ static void
 inject_listed(const fg_pass *pass, voxel_light_state *s, bool direct, bool gathered, bool clear)
 {
     glUseProgram(s->inject_listed);
+    glUniform1i(5, false);
     glUniform1i(4, direct);
     glUniform1i(1, gathered);
     glUniform1ui(3, list_capacity(fg_resource(pass, "radiance")));
@@ -275,6 +289,7 @@ static void
 inject(const fg_pass *pass, voxel_light_state *s, bool direct, bool gathered, bool build_list)
 {
     glUseProgram(s->inject);
+    glUniform1i(5, false);
     glUniform1i(4, direct);
     glUniform1i(1, gathered);
     glUniform1i(2, build_list);
@@ -301,15 +316,54 @@ inject_level0(const fg_pass *pass, voxel_light_state *s, bool direct, bool gathe
     }
 }
 
-/* Levels 1.. of the three volumes from level 0. */
+/* Level 0 of `glossy`: inject's light with the gathered light of the last gather, on the side that
+ * `normals` holds (u_radiance_only: sides and normals, shared with `radiance`, are bound and not
+ * written); over the list where it holds every occupied voxel (the level cleared first), as
+ * inject_level0. */
 static void
-mip(const fg_pass *pass, voxel_light_state *s)
+inject_glossy(const fg_pass *pass, voxel_light_state *s)
+{
+    const fg_resource_desc *volume = fg_resource(pass, "radiance");
+    bool listed = s->listed <= list_capacity(volume);
+    GLuint glossy = fg_texture(pass, "glossy");
+    glUseProgram(listed ? s->inject_listed : s->inject);
+    glUniform1i(5, true);
+    glUniform1i(4, true);
+    glUniform1i(1, true);
+    glUniform1ui(3, list_capacity(volume));
+    if (!listed)
+        glUniform1i(2, false);
+    else
+        glClearTexImage(glossy, 0, GL_RGBA, GL_FLOAT, NULL);
+    glBindTextureUnit(7, fg_texture(pass, "normals"));
+    glBindImageTexture(0, glossy, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    for (int i = 1; i < 3; i++)
+        glBindImageTexture((GLuint)i, fg_texture(pass, light_names[i]), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    if (listed) {
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_VOXEL_LIST, fg_buffer(pass, "voxels"));
+        glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, fg_buffer(pass, "voxels"));
+        glDispatchComputeIndirect(0);
+        glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+    } else {
+        glDispatchCompute((GLuint)(volume->width + 3) / 4, (GLuint)(volume->height + 3) / 4,
+                          (GLuint)(volume->depth + 3) / 4);
+    }
+    s->dispatches++;
+    glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    glUniform1i(5, false);  /* the program's next inject writes all three volumes */
+    glBindTextureUnit(7, 0);
+}
+
+/* Levels 1.. of the three volumes from level 0, the first being `first` ("radiance" or "glossy": the
+ * sides and normals, the same geometry, are written again as they were). */
+static void
+mip_of(const fg_pass *pass, voxel_light_state *s, const char *first)
 {
     glUseProgram(s->mip);
     const fg_resource_desc *volume = fg_resource(pass, "radiance");
     for (int level = 1; level < volume->levels; level++) {
         for (int i = 0; i < 3; i++) {
-            GLuint tex = fg_texture(pass, light_names[i]);
+            GLuint tex = fg_texture(pass, i == 0 ? first : light_names[i]);
             glBindImageTexture((GLuint)i, tex, level - 1, GL_TRUE, 0, GL_READ_ONLY, GL_RGBA16F);
             glBindImageTexture(3 + (GLuint)i, tex, level, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
         }
@@ -321,6 +375,12 @@ mip(const fg_pass *pass, voxel_light_state *s)
     }
     for (int i = 0; i < 6; i++)
         glBindImageTexture((GLuint)i, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA16F);
+}
+
+static void
+mip(const fg_pass *pass, voxel_light_state *s)
+{
+    mip_of(pass, s, "radiance");
 }
 
 /* Each listed voxel's gathered light on both sides, through the current volumes. */
@@ -364,6 +424,14 @@ bind_inject_inputs(const fg_pass *pass, const voxel_light_state *s)
     glBindTextureUnit(5, s->gathers ? fg_texture(pass, "gathered_back") : 0);
 }
 
+/* Whether the frame's scene has a material with a specular or transmission lobe (cg_scene_has_lobes):
+ * the gathers' lobe cones, which read `glossy`, are traced there only. */
+static bool
+key_lobes(const fg_frame *frame)
+{
+    return frame && frame->scene && cg_scene_has_lobes(frame->scene);
+}
+
 /* What a relight would read this frame beside the scene's instances and lights (cache = true). */
 static void
 read_key(const fg_pass *pass, struct light_key *key)
@@ -383,6 +451,8 @@ read_key(const fg_pass *pass, struct light_key *key)
     }
     key->bounces = fg_param_int(pass, "bounces");
     key->bounce_cones = fg_param_int(pass, "bounce_cones");
+    key->glossy = fg_param_bool(pass, "glossy");
+    key->lobes = key_lobes(fg_pass_frame(pass));
     key->sky = fg_pass_frame(pass)->scene->sky;
 }
 
@@ -403,7 +473,8 @@ what_changed(const fg_pass *pass, const voxel_light_state *s, const struct light
     if (memcmp(key->textures, s->key.textures, 4 * sizeof key->textures[0]) ||
         memcmp(&key->region, &s->key.region, sizeof key->region))
         return "geometry volumes or region changed";
-    if (key->bounces != s->key.bounces || key->bounce_cones != s->key.bounce_cones)
+    if (key->bounces != s->key.bounces || key->bounce_cones != s->key.bounce_cones || key->glossy != s->key.glossy ||
+        key->lobes != s->key.lobes)
         return "parameters changed";
     if (!cg_sky_equal(&key->sky, &s->key.sky) || key->sky.type != s->key.sky.type)
         return "sky changed";
@@ -507,6 +578,20 @@ voxel_light_execute(fg_pass *pass, voxel_light_state *s, cg_error *err)
             bind_inject_inputs(pass, s);
             inject_level0(pass, s, true, true, &clear);
             mip(pass, s);
+        }
+        /* V_(N+1) = Le + D + G(V_N) into `glossy` (keeps_first is false: its gather is the last), only
+         * where a material has a lobe whose cone reads it (none in the built-in scenes: no cost there). */
+        if (fg_resource(pass, "glossy") && key_lobes(frame)) {
+            if (count == 0) {
+                if (!cgp_sky_update(s, &s->sky, frame->scene, err))
+                    return false;
+                cgp_sky_bind(&s->sky);
+            }
+            gather(pass, s);
+            bind_inject_inputs(pass, s);
+            inject_glossy(pass, s);
+            mip_of(pass, s, "glossy");
+            count++;
         }
         if (count > 0)
             cgp_sky_unbind();

@@ -53,6 +53,11 @@ layout(location = 2) uniform bool u_build_list;
 layout(location = 3) uniform uint u_list_capacity;
 // false: the emission alone (V_0 of passes/voxel_light's recursion), without the lights' direct light.
 layout(location = 4) uniform bool u_direct;
+// true: voxel_light's `glossy` (bound as u_radiance): the radiance alone, on the side that the normals
+// already written for the volume `radiance` chose (u_lit_normals), whose sides and normals it shares
+// (the other side's luminance fraction beta is radiance's).
+layout(location = 5) uniform bool u_radiance_only;
+layout(binding = 7) uniform sampler3D u_lit_normals;
 
 float
 luminance(vec3 c)
@@ -92,6 +97,8 @@ main()
     vec4 albedo = texelFetch(u_albedo, v, 0);
     if (albedo.a <= 0.0) {
         imageStore(u_radiance, v, vec4(0.0));
+        if (u_radiance_only)
+            return;
         imageStore(u_sides, v, vec4(0.0));
         imageStore(u_normals, v, vec4(0.0));
         return;
@@ -132,13 +139,16 @@ main()
         front += albedo.rgb * texelFetch(u_gathered_front, v, 0).rgb;
         back += albedo.rgb * texelFetch(u_gathered_back, v, 0).rgb;
     }
-    bool front_lit = luminance(front) >= luminance(back);
+    bool front_lit = u_radiance_only ? dot(texelFetch(u_lit_normals, v, 0).xyz, n) >= 0.0
+                                     : luminance(front) >= luminance(back);
     vec3 lit = front_lit ? front : back, other = front_lit ? back : front;
     float sign = front_lit ? 1.0 : -1.0;
     float y = luminance(lit);
     float beta = y > 0.0 ? clamp(luminance(other) / y, 0.0, 1.0) : 1.0;
     float w = alpha.x + alpha.y + alpha.z;
     imageStore(u_radiance, v, vec4(w * lit, w));
+    if (u_radiance_only)
+        return;
     // The plane N . (x - c) = delta voxel through the voxel's centre c, as N . (x - m) = D voxel.
     vec3 c = vol.origin + (vec3(v) + 0.5) * vol.voxel_size, m = vol.origin + 0.5 * cg_volume_extent(vol);
     float plane = sign * (dot(n, c - m) / vol.voxel_size + nd.w);

@@ -7,7 +7,9 @@
  *   - a glass slab (solid, thickness d, smooth) seen at normal incidence against the uniform sky:
  *     the refracted cone returns (1 - F0)^2 exp(-sigma d) L and the reflected one F0 L;
  *   - a Lambertian plate (the built-in scenes' material) gets no specular or refracted light;
- *   - the shadow cone of a sun with an angular diameter against the path tracer's soft shadow. */
+ *   - the shadow cone of a sun with an angular diameter against the path tracer's soft shadow;
+ *   - voxel_light's `glossy`, which the lobes' cones read, is the light of one bounce more: the
+ *     `radiance` of the same pass with bounces + 1. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -404,6 +406,85 @@ test_shadow_cone_sun_disc(void **state)
     hf_free(&s);
 }
 
+/* voxel_light's `glossy` (the light one diffuse bounce further, for the lobes' cones) against the
+ * `radiance` of a second voxel_light pass with one bounce more: the same recursion V_(N+1), so the same
+ * values at every occupied voxel of level 0 whose lit side the extra bounce leaves where it was (glossy
+ * keeps radiance's sides and normals; the others are counted, not compared: an emitter's two sides are
+ * equal at V_0, and the bounce picks one). The town of the voxelize tests under a sun, no sky, its roof
+ * a dielectric with a specular lobe: at bounces 1 (V_2) and at bounces 0 with an emitting wall (V_1). */
+static const char glossy_graph[] =
+    "{ \"version\": 1, \"passes\": {"
+    " \"shadow\": { \"type\": \"shadow_map\", \"params\": { \"resolution\": 512 } },"
+    " \"vox\": { \"type\": \"voxelize\", \"params\": { \"model\": \"surface\", \"resolution\": 32 } },"
+    " \"light\": { \"type\": \"voxel_light\", \"params\": { \"bounces\": %d, \"glossy\": true }, \"inputs\": {"
+    "   \"albedo\": \"vox.albedo\", \"coverage\": \"vox.coverage\", \"normal\": \"vox.normal\", \"emission\": \"vox.emission\","
+    "   \"region\": \"vox.region\", \"shadow\": \"shadow.depth\", \"shadow_matrix\": \"shadow.matrix\" } },"
+    " \"next\": { \"type\": \"voxel_light\", \"params\": { \"bounces\": %d }, \"inputs\": {"
+    "   \"albedo\": \"vox.albedo\", \"coverage\": \"vox.coverage\", \"normal\": \"vox.normal\", \"emission\": \"vox.emission\","
+    "   \"region\": \"vox.region\", \"shadow\": \"shadow.depth\", \"shadow_matrix\": \"shadow.matrix\" } } },"
+    " \"outputs\": [ \"light.glossy\", \"light.radiance\", \"light.normals\", \"next.radiance\", \"next.normals\" ] }";
+
+static void
+test_glossy_is_one_bounce_more(void **state)
+{
+    cg_context *ctx = cg_test_gl_context(state);
+    for (int bounces = 0; bounces <= 1; bounces++) {
+        hf_scene s;
+        hf_town(&s, 4, bounces == 0 ? 2.0f : 0.0f);
+        /* A specular lobe on the roof: voxel_light lights `glossy` only where a material has one. */
+        s.materials[3].specular = 1.0f;
+        const double down[3] = {0.4, -1, 0.3};
+        hf_sun(&s, down, 3.0f);
+        hf_finish(&s);
+        char json[2048];
+        snprintf(json, sizeof json, glossy_graph, bounces, bounces + 1);
+        vf_runner r;
+        vf_start(&r, &s.scene, SIZE, SIZE, json, NULL);
+        vf_frame(&r);
+        int n = 0, n2 = 0, n3 = 0;
+        float *glossy = vf_read_volume(&r, "light.glossy", 0, &n);
+        float *radiance = vf_read_volume(&r, "light.radiance", 0, &n3);
+        float *next = vf_read_volume(&r, "next.radiance", 0, &n2);
+        float *sides = vf_read_volume(&r, "light.normals", 0, &n3);
+        float *next_sides = vf_read_volume(&r, "next.normals", 0, &n3);
+        assert_int_equal(n, n2);
+        int occupied = 0, off = 0, brighter = 0, turned = 0;
+        double worst = 0.0;
+        for (size_t i = 0; i < (size_t)n * n * n; i++) {
+            const float *g = &glossy[4 * i], *x = &next[4 * i], *v = &radiance[4 * i];
+            if (x[3] <= 0.0f)
+                continue;
+            occupied++;
+            const float *a = &sides[4 * i], *b = &next_sides[4 * i];
+            if (a[0] * b[0] + a[1] * b[1] + a[2] * b[2] < 0.0f) {
+                turned++;
+                continue;
+            }
+            double y = 0.2126 * x[0] + 0.7152 * x[1] + 0.0722 * x[2];
+            double e = fabs(0.2126 * (g[0] - x[0]) + 0.7152 * (g[1] - x[1]) + 0.0722 * (g[2] - x[2])) / fmax(y, 1e-6);
+            worst = fmax(worst, e);
+            off += e > 2e-3;
+            brighter += 0.2126 * g[0] + 0.7152 * g[1] + 0.0722 * g[2] > 1.001 * (0.2126 * v[0] + 0.7152 * v[1] + 0.0722 * v[2]);
+        }
+        fprintf(stderr, "# voxel_light glossy at bounces %d against radiance at bounces %d: %d occupied voxels, %d off by "
+                "more than 0.2%% (worst %.4f), %d brighter than radiance, %d lit on the other side\n", bounces, bounces + 1,
+                occupied, off, worst, brighter, turned);
+        assert_true(occupied > 100 && turned < occupied / 4);
+        /* The bounce adds light somewhere: glossy is not radiance again. */
+        assert_true(brighter > occupied / 10);
+        if (off > occupied / 100)
+            fail_msg("glossy differs from the next bounce's radiance at %d of %d voxels", off, occupied);
+        free(glossy);
+        free(radiance);
+        free(next);
+        free(sides);
+        free(next_sides);
+        assert_no_gl_errors(ctx);
+        vf_stop(&r);
+        hf_free(&s);
+    }
+}
+
 int
 main(void)
 {
@@ -414,6 +495,7 @@ main(void)
         cmocka_unit_test(test_glass_slab),
         cmocka_unit_test(test_lambertian_unchanged),
         cmocka_unit_test(test_shadow_cone_sun_disc),
+        cmocka_unit_test(test_glossy_is_one_bounce_more),
     };
     return cmocka_run_group_tests(tests, cg_test_gl_setup, cg_test_gl_teardown);
 }
