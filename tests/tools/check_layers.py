@@ -18,7 +18,7 @@ import sys
 
 LAYERS = ["base", "image", "metrics", "scene", "trace", "gl", "fg"]
 HEADER_MODULE = {
-    "error.h": "base", "log.h": "base", "fs.h": "base",
+    "error.h": "base", "progress.h": "base", "log.h": "base", "fs.h": "base",
     "image.h": "image", "metrics.h": "metrics",
     "scene.h": "scene", "camera.h": "scene", "pt_render.h": "trace", "bsdf.h": "trace",
     "gl.h": "gl", "shader.h": "gl", "gpu_scene.h": "gl",
