@@ -19,9 +19,8 @@
 // its plane N_lit . (x - m) = D voxel (m the volume's centre, in level-0 voxels), beta = Y(L_other) / Y(L_lit): the other side as a fraction of the lit side's
 // luminance (its colour the lit side's; exact for one light or symmetric emitters).
 // VOXEL_LIGHT_LISTED: one invocation per voxel of voxel_light_list (list.comp), the level cleared
-// to 0 before, so that the cost follows the occupied voxels: on llvmpipe an invocation of an empty
-// voxel runs the whole body, the lights' shadow taps included, whatever branch it takes
-// (docs/results/voxel-light-cost.md). Otherwise one invocation per voxel of the volume, which
+// to 0 before, so that the cost follows the occupied voxels, not the volume (the open world's
+// first-frame voxel_light 1412 -> 235 ms at 160x90, 128^3, llvmpipe). Otherwise one invocation per voxel of the volume, which
 // writes 0 where no surface is (the fallback when the list overflows) and, with u_build_list, lists
 // the occupied voxels for the bounce gathers (voxel_light_list).
 #ifdef VOXEL_LIGHT_LISTED
