@@ -27,7 +27,7 @@
  * first gather is skipped (V_1 = D): N - 1 gathers, N otherwise; each gather is followed by the mip chain
  * (mip.comp) of the new light.
  *
- * Relighting what can have changed (cache = true, the default; docs/results/voxel-light-cost.md):
+ * Relighting what can have changed (cache = true, the default):
  * the three light volumes are persistent, and a frame relights them only when something the light
  * reads changed since the last relight: the geometry (an instance as sdk/instances.h compares it, the
  * GPU scene's upload, voxelize's region block, read back: region, levels and scales; the input
