@@ -81,6 +81,19 @@ fg_graph_reset_compile(fg_graph *graph)
     graph->compiled = false;
 }
 
+/* A graph ends as a recompile begins (GL state, then compile's products), and then its passes
+ * and itself are freed (graph.c): here, so that graph.c, which builds graphs, needs neither
+ * compile nor execute. */
+void
+fg_graph_destroy(fg_graph *graph)
+{
+    if (!graph)
+        return;
+    fg_graph_release_gl(graph);
+    fg_graph_reset_compile(graph);
+    fg_graph_free(graph);
+}
+
 /* ---------------------------------------------------------------- small helpers */
 
 static char *
@@ -582,8 +595,7 @@ cull(fg_graph *graph, cg_error *err)
         fg_graph_output *o = &graph->outputs[i];
         char at[512], pass_name[256];
         fg_loc_prefix(&o->loc, at, sizeof at);
-        const char *dot = strchr(o->source, '.');
-        snprintf(pass_name, sizeof pass_name, "%.*s", (int)(dot - o->source), o->source);
+        const char *output = fg_split_source(o->source, pass_name, sizeof pass_name);
         fg_pass *pass = fg_graph_find_pass(graph, pass_name);
         if (!pass) {
             free(live);
@@ -593,13 +605,13 @@ cull(fg_graph *graph, cg_error *err)
         }
         if (pass_is_absent(pass))
             continue;
-        if (find_output(pass, dot + 1) < 0) {
+        if (find_output(pass, output) < 0) {
             char outputs[512];
             list_outputs(pass, outputs, sizeof outputs);
             free(live);
             free(stack);
             return cg_fail(err, CG_ERR_GRAPH_DANGLING, "%soutput '%s': pass '%s' (type %s) has no output "
-                           "'%s' (outputs: %s)", at, o->source, pass_name, pass->type->name, dot + 1,
+                           "'%s' (outputs: %s)", at, o->source, pass_name, pass->type->name, output,
                            outputs);
         }
         any_output_present = true;
@@ -610,10 +622,8 @@ cull(fg_graph *graph, cg_error *err)
     }
     if (!any_output_present) {
         /* Every marked output is absent: name why, from the first one. */
-        const char *dot = strchr(graph->outputs[0].source, '.');
         char pass_name[256], at[512];
-        snprintf(pass_name, sizeof pass_name, "%.*s", (int)(dot - graph->outputs[0].source),
-                 graph->outputs[0].source);
+        fg_split_source(graph->outputs[0].source, pass_name, sizeof pass_name);
         fg_loc_prefix(&graph->outputs[0].loc, at, sizeof at);
         const fg_pass *pass = fg_graph_find_pass(graph, pass_name);
         free(live);
@@ -732,12 +742,10 @@ build_resources(fg_graph *graph, cg_error *err)
         }
     }
     for (int i = 0; i < graph->output_count; i++) {
-        const char *dot = strchr(graph->outputs[i].source, '.');
         char pass_name[256];
-        snprintf(pass_name, sizeof pass_name, "%.*s", (int)(dot - graph->outputs[i].source),
-                 graph->outputs[i].source);
+        const char *output = fg_split_source(graph->outputs[i].source, pass_name, sizeof pass_name);
         const fg_pass *pass = fg_graph_find_pass(graph, pass_name);
-        int o = find_output(pass, dot + 1);
+        int o = find_output(pass, output);
         if (o < 0 || pass->culled)
             continue;
         graph->outputs[i].resource = pass->outputs[o].resource;

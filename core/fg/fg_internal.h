@@ -1,9 +1,10 @@
 /* core/fg/fg_internal.h: the frame graph's private data, shared by the fg_*.c files.
  *
  * Declares: fg_format_info, fg_format_find, fg_format_name, fg_kind_name, fg_access_names,
- *           fg_barrier_bits_for, fg_loc_prefix, fg_strdup, fg_grow, fg_param_value,
+ *           fg_barrier_bits_for, fg_bytes_text, fg_loc_prefix, fg_strdup, fg_grow,
+ *           fg_split_source, fg_param_value,
  *           fg_connection, fg_input, fg_output, fg_res, fg_storage, struct fg_pass,
- *           struct fg_graph, struct fg_declare, struct fg_registry, fg_graph_release_gl,
+ *           struct fg_graph, struct fg_declare, struct fg_registry, fg_graph_free, fg_graph_release_gl,
  *           fg_graph_reset_compile, fg_is_identifier, fg_param_find, fg_param_choice_count,
  *           fg_param_choice, fg_param_table_check, fg_param_parse, fg_param_accepts,
  *           fg_param_expected, fg_loc_is_assignment, fg_param_lead, fg_param_active_in.
@@ -42,7 +43,7 @@ const char *fg_access_names(unsigned access, char *buf, size_t size);
 /* glMemoryBarrier bits needed between a write with `writer` access and a read with `reader` access. */
 GLbitfield fg_barrier_bits_for(unsigned writer, unsigned reader, fg_resource_kind kind);
 
-/* ---------------------------------------------------------------- helpers */
+/* ---------------------------------------------------------------- helpers (helpers.c) */
 
 /* "12.5 MiB", "3.0 KiB", "17 B". */
 const char *fg_bytes_text(size_t bytes, char *buf, size_t size);
@@ -53,6 +54,10 @@ const char *fg_loc_prefix(const fg_source_loc *loc, char *buf, size_t size);
 char *fg_strdup(const char *s);
 /* Grows *items to hold at least `need` elements of `size` bytes; false when out of memory. */
 bool fg_grow(void **items, int *cap, int need, size_t size);
+/* A "pass.output" reference: copies the pass's name, what stands before the first '.' (all of
+ * `source` without one), into `pass` (cut at `size`) and returns what follows the '.', or NULL
+ * when there is no '.'. */
+const char *fg_split_source(const char *source, char *pass, size_t size);
 
 /* ---------------------------------------------------------------- registry */
 
@@ -241,6 +246,9 @@ struct fg_declare {
 const fg_storage *fg_resource_storage(const fg_graph *graph, int resource, bool previous);
 /* Index of resource "pass.output", -1 when there is none. */
 int fg_graph_find_resource_index(const fg_graph *graph, const char *source);
+/* Frees the passes, their connections and values, and the graph itself: what graph.c built
+ * (fg_graph_destroy releases GL state and compile's products first). */
+void fg_graph_free(fg_graph *graph);
 /* Drops GL objects and pass states (GL must be current when anything was prepared). */
 void fg_graph_release_gl(fg_graph *graph);
 /* Forgets everything compile produced. */

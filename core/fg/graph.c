@@ -38,12 +38,8 @@ free_pass(fg_pass *pass)
 }
 
 void
-fg_graph_destroy(fg_graph *graph)
+fg_graph_free(fg_graph *graph)
 {
-    if (!graph)
-        return;
-    fg_graph_release_gl(graph);
-    fg_graph_reset_compile(graph);
     for (int i = 0; i < graph->pass_count; i++)
         free_pass(graph->passes[i]);
     free(graph->passes);
@@ -239,10 +235,9 @@ fg_graph_connect(fg_graph *graph, const char *pass_name, const char *input, cons
         previous = true;
         *suffix = '\0';
     }
-    char *dot = strchr(buf, '.');
-    if (dot)
-        *dot = '\0';
-    if (!*buf || (dot && (!dot[1] || strchr(dot + 1, '.'))))
+    char source_pass[sizeof buf];
+    const char *output = fg_split_source(buf, source_pass, sizeof source_pass);
+    if (!*source_pass || (output && (!*output || strchr(output, '.'))))
         return cg_fail(err, CG_ERR_GRAPH_SCHEMA,
                        "%spass '%s' input '%s': '%s': expected 'pass.output' or 'pass'", at, pass_name,
                        input, source);
@@ -252,12 +247,12 @@ fg_graph_connect(fg_graph *graph, const char *pass_name, const char *input, cons
     fg_connection *c = &pass->connections[pass->connection_count];
     memset(c, 0, sizeof *c);
     c->input = fg_strdup(input);
-    c->source_pass = fg_strdup(buf);
-    c->source_output = dot ? fg_strdup(dot + 1) : NULL;
+    c->source_pass = fg_strdup(source_pass);
+    c->source_output = output ? fg_strdup(output) : NULL;
     c->previous = previous;
     c->loc = keep_loc(graph, loc);
     c->source_index = -1;
-    if (!c->input || !c->source_pass || (dot && !c->source_output)) {
+    if (!c->input || !c->source_pass || (output && !c->source_output)) {
         free(c->input);
         free(c->source_pass);
         free(c->source_output);
@@ -273,8 +268,9 @@ fg_graph_mark_output(fg_graph *graph, const char *source, const fg_source_loc *l
 {
     char at[512];
     fg_loc_prefix(loc, at, sizeof at);
-    const char *dot = strchr(source, '.');
-    if (!dot || dot == source || !dot[1] || strchr(dot + 1, '.') || strchr(source, '@'))
+    char pass_name[256];
+    const char *output = fg_split_source(source, pass_name, sizeof pass_name);
+    if (!output || !*pass_name || !*output || strchr(output, '.') || strchr(source, '@'))
         return cg_fail(err, CG_ERR_GRAPH_SCHEMA, "%soutput '%s': expected 'pass.output'", at, source);
     for (int i = 0; i < graph->output_count; i++)
         if (!strcmp(graph->outputs[i].source, source))

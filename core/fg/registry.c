@@ -171,49 +171,6 @@ fg_mip_levels(int width, int height, int depth)
     return levels;
 }
 
-/* ---------------------------------------------------------------- helpers */
-
-const char *
-fg_loc_prefix(const fg_source_loc *loc, char *buf, size_t size)
-{
-    if (!loc || !loc->file) {
-        buf[0] = '\0';
-        return buf;
-    }
-    if (loc->line <= 0)
-        snprintf(buf, size, "%s: ", loc->file);
-    else
-        snprintf(buf, size, "%s:%d:%d: ", loc->file, loc->line, loc->column);
-    return buf;
-}
-
-char *
-fg_strdup(const char *s)
-{
-    size_t n = strlen(s) + 1;
-    char *copy = malloc(n);
-    if (copy)
-        memcpy(copy, s, n);
-    return copy;
-}
-
-bool
-fg_grow(void **items, int *cap, int need, size_t size)
-{
-    if (need <= *cap)
-        return true;
-    int new_cap = *cap ? *cap * 2 : 8;
-    while (new_cap < need)
-        new_cap *= 2;
-    void *bigger = realloc(*items, (size_t)new_cap * size);
-    if (!bigger)
-        return false;
-    memset((char *)bigger + (size_t)*cap * size, 0, (size_t)(new_cap - *cap) * size);
-    *items = bigger;
-    *cap = new_cap;
-    return true;
-}
-
 /* ---------------------------------------------------------------- registry */
 
 fg_registry *

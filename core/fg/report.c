@@ -82,18 +82,6 @@ describe_size(const fg_resource_desc *d, char *buf, size_t size)
     }
 }
 
-const char *
-fg_bytes_text(size_t bytes, char *buf, size_t size)
-{
-    if (bytes >= 1024 * 1024)
-        snprintf(buf, size, "%.2f MiB", bytes / 1048576.0);
-    else if (bytes >= 1024)
-        snprintf(buf, size, "%.1f KiB", bytes / 1024.0);
-    else
-        snprintf(buf, size, "%zu B", bytes);
-    return buf;
-}
-
 void
 fg_graph_print_report(const fg_graph *graph, FILE *out)
 {
@@ -289,10 +277,8 @@ fg_graph_write_dot(const fg_graph *graph, FILE *out)
         }
     }
     for (int i = 0; i < graph->output_count; i++) {
-        const char *dot = strchr(graph->outputs[i].source, '.');
         char pass_name[256];
-        snprintf(pass_name, sizeof pass_name, "%.*s", (int)(dot - graph->outputs[i].source),
-                 graph->outputs[i].source);
+        fg_split_source(graph->outputs[i].source, pass_name, sizeof pass_name);
         const fg_pass *pass = fg_graph_find_pass(graph, pass_name);
         fprintf(out, "  out%d [shape=ellipse, label=\"", i);
         dot_text(out, graph->outputs[i].source);
