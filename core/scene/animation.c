@@ -116,41 +116,6 @@ cg_scene_add_skin(cg_scene *scene, const char *name, int joint_count, int *joint
     return scene->skin_count++;
 }
 
-static void
-skinned_mesh_free(cg_skinned_mesh *sk)
-{
-    free(sk->joints);
-    free(sk->weights);
-    free(sk->bind_positions);
-    free(sk->bind_normals);
-    free(sk->bind_tangents);
-    free(sk->joint_bounds);
-    free(sk->posed_with);
-    memset(sk, 0, sizeof *sk);
-}
-
-static void morphed_mesh_free(cg_morphed_mesh *mm);
-
-void
-cg_scene_free_skins(cg_scene *scene)
-{
-    for (int i = 0; i < scene->skin_count; i++) {
-        free(scene->skins[i].joints);
-        free(scene->skins[i].inverse_bind);
-    }
-    for (int i = 0; i < scene->skinned_count; i++)
-        skinned_mesh_free(&scene->skinned[i]);
-    for (int i = 0; i < scene->morphed_count; i++)
-        morphed_mesh_free(&scene->morphed[i]);
-    free(scene->skins);
-    free(scene->skinned);
-    free(scene->morphed);
-    scene->skins = NULL;
-    scene->skinned = NULL;
-    scene->morphed = NULL;
-    scene->skin_count = scene->skinned_count = scene->morphed_count = 0;
-}
-
 static float *
 copy_floats(const float *src, size_t n)
 {
@@ -176,12 +141,12 @@ cg_scene_add_skinned_mesh(cg_scene *scene, int mesh, int instance, int skin, int
     sk.posed_with = malloc(sizeof *sk.posed_with * 16 * (size_t)joint_count);
     if (!sk.bind_positions || !sk.bind_normals || (m->tangents && !sk.bind_tangents) || !sk.joint_bounds ||
         !sk.posed_with) {
-        skinned_mesh_free(&sk);
+        cg_skinned_mesh_free(&sk);
         cg_fail(err, CG_ERR_OUT_OF_MEMORY, "out of memory for skinned mesh '%s'", m->name);
         return -1;
     }
     if (!grow((void **)&scene->skinned, scene->skinned_count, sizeof sk, err, "skinned mesh")) {
-        skinned_mesh_free(&sk);
+        cg_skinned_mesh_free(&sk);
         return -1;
     }
     for (int j = 0; j < joint_count; j++) {
@@ -210,21 +175,6 @@ cg_scene_add_skinned_mesh(cg_scene *scene, int mesh, int instance, int skin, int
 
 /* ------------------------------------------------------------------ morph targets */
 
-static void
-morphed_mesh_free(cg_morphed_mesh *mm)
-{
-    free(mm->weights);
-    free(mm->applied);
-    free(mm->base_positions);
-    free(mm->base_normals);
-    free(mm->base_tangents);
-    free(mm->position_deltas);
-    free(mm->normal_deltas);
-    free(mm->tangent_deltas);
-    free(mm->delta_bounds);
-    memset(mm, 0, sizeof *mm);
-}
-
 int
 cg_scene_add_morphed_mesh(cg_scene *scene, const cg_morphed_mesh *morph, cg_error *err)
 {
@@ -238,7 +188,7 @@ cg_scene_add_morphed_mesh(cg_scene *scene, const cg_morphed_mesh *morph, cg_erro
     mm.delta_bounds = malloc(sizeof *mm.delta_bounds * 6 * n);
     if (!mm.applied || !mm.base_positions || !mm.base_normals || (m->tangents && !mm.base_tangents) ||
         !mm.delta_bounds) {
-        morphed_mesh_free(&mm);
+        cg_morphed_mesh_free(&mm);
         cg_fail(err, CG_ERR_OUT_OF_MEMORY, "out of memory for the morph targets of mesh '%s'", m->name);
         return -1;
     }
@@ -256,7 +206,7 @@ cg_scene_add_morphed_mesh(cg_scene *scene, const cg_morphed_mesh *morph, cg_erro
         }
     }
     if (!grow((void **)&scene->morphed, scene->morphed_count, sizeof mm, err, "morphed mesh")) {
-        morphed_mesh_free(&mm);
+        cg_morphed_mesh_free(&mm);
         return -1;
     }
     scene->morphed[scene->morphed_count] = mm;

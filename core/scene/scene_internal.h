@@ -1,5 +1,8 @@
-/* core/scene/scene_internal.h: helpers shared by the scene loaders (scene.c, classify.c, dem.c,
- * builtin/ (one file per scene), gltf_adapter.cpp). Not a public header: passes and apps use cg/scene.h only.
+/* core/scene/scene_internal.h: what the scene's files share: the builders the loaders call
+ * (build.c, animation.c's nodes, animations, skins and morphs), and the loaders scene.c calls
+ * (dem.c, builtin/ (one file per scene), gltf_adapter.cpp) and classify.c. The loaders build
+ * through build.c and never call scene.c, so that no two files lean on each other (the layers
+ * test checks it). Not a public header: passes and apps use cg/scene.h only.
  *
  * Declares: cg_scene_add_material, cg_scene_add_mesh, cg_scene_add_instance,
  *           cg_scene_add_light, cg_scene_add_camera, cg_scene_add_texture,
@@ -11,7 +14,7 @@
  *           cg_node_local, cg_scene_add_node, cg_scene_attach, cg_anim_channel_alloc,
  *           cg_anim_channel_components, cg_anim_channel_stride, cg_scene_add_animation,
  *           cg_scene_pose, cg_scene_motion_bounds, cg_scene_add_skin, cg_scene_add_skinned_mesh,
- *           cg_scene_add_morphed_mesh, cg_scene_free_skins.
+ *           cg_scene_add_morphed_mesh, cg_skinned_mesh_free, cg_morphed_mesh_free.
  */
 #ifndef CG_SCENE_INTERNAL_H
 #define CG_SCENE_INTERNAL_H
@@ -81,8 +84,10 @@ int cg_scene_add_skinned_mesh(cg_scene *scene, int mesh, int instance, int skin,
  * scene takes morph's weights and deltas (freed here on failure too); the mesh's vertex arrays
  * as they are now become its base. Returns its index in scene->morphed or -1. */
 int cg_scene_add_morphed_mesh(cg_scene *scene, const cg_morphed_mesh *morph, cg_error *err);
-/* Frees the skins and skinned meshes, and the morphed meshes (cg_scene_free). */
-void cg_scene_free_skins(cg_scene *scene);
+/* Frees what a skinned or a morphed mesh holds (not the mesh it deforms) and zeroes it: the
+ * add_* above on failure, cg_scene_free for each one the scene holds. */
+void cg_skinned_mesh_free(cg_skinned_mesh *sk);
+void cg_morphed_mesh_free(cg_morphed_mesh *mm);
 
 /* A white Lambertian material: base colour 1, metallic 0, roughness 1, and specular 0
  * (KHR_materials_specular), which leaves glTF's BRDF its Lambertian diffuse lobe alone; the
