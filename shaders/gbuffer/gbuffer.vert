@@ -1,13 +1,11 @@
 // gbuffer: world-space attributes of the visible surface.
 #version 450 core
-#define CG_SCENE_VERTEX
-#include "common/scene.glsl"
+#include "common/world_vertex.glsl"
 
 layout(location = 8) uniform mat4 view_proj;
 
-layout(location = 0) out vec3 world_position;
-layout(location = 1) out vec3 world_normal;
-layout(location = 2) out vec2 texcoord;
+// Locations 0..2: world position, normal and texcoord (common/world_vertex.glsl).
+
 // xyz = the tangent in world space (a direction on the surface: the model's linear part), w = the
 // bitangent's sign; 0 where the mesh has no tangents.
 layout(location = 3) out vec4 world_tangent;
@@ -18,10 +16,7 @@ layout(location = 4) out float thickness_scale;
 void
 main()
 {
-    vec4 world = cg_model * vec4(cg_position, 1.0);
-    world_position = world.xyz;
-    world_normal = cg_normal_matrix * cg_normal;
-    texcoord = cg_texcoord;
+    vec4 world = cg_world_vertex();
     world_tangent = vec4(mat3(cg_model) * cg_tangent.xyz, cg_tangent.w);
     float n2 = dot(cg_normal, cg_normal);
     thickness_scale = n2 > 0.0 ? length(mat3(cg_model) * cg_normal) / sqrt(n2) : 1.0;

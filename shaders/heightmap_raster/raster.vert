@@ -2,23 +2,15 @@
 // (hybrid paper V.B): x maps to the map's columns, z to its rows, and depth is the height
 // from the top of the meshes' bounds, so the depth test keeps the highest surface.
 #version 450 core
-#define CG_SCENE_VERTEX
-#include "common/scene.glsl"
+#include "common/world_vertex.glsl"
 
 layout(location = 8) uniform vec4 u_map;     // x0, z0, 1 / Dx, 1 / Dz
 layout(location = 9) uniform vec2 u_depth;   // top y, 1 / depth range
 
-layout(location = 0) out vec3 vs_world;
-layout(location = 1) out vec3 vs_normal;
-layout(location = 2) out vec2 vs_texcoord;
-
 void
 main()
 {
-    vec4 world = cg_model * vec4(cg_position, 1.0);
-    vs_world = world.xyz;
-    vs_normal = cg_normal_matrix * cg_normal;
-    vs_texcoord = cg_texcoord;
+    vec4 world = cg_world_vertex();
     vec2 uv = (world.xz - u_map.xy) * u_map.zw;
     gl_Position = vec4(uv * 2.0 - 1.0, (u_depth.x - world.y) * u_depth.y * 2.0 - 1.0, 1.0);
 }

@@ -35,7 +35,7 @@ layout(location = 6) uniform ivec3 u_box_hi;
 uint
 slab(ivec3 v, int k)
 {
-    // 2 x 2 x 4 slabs of the volume's size (voxelize.frag's surface_slab)
+    // 2 x 2 x 4 slabs of the volume's size (surface_sums.glsl's surface_slab)
     return imageLoad(u_accum, v + ivec3(k & 1, (k >> 1) & 1, k >> 2) * u_dims).r;
 }
 

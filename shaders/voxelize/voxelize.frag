@@ -54,6 +54,9 @@ layout(location = 11) uniform ivec3 u_dims;
 
 layout(binding = 2) uniform sampler2D u_shadow_map;
 layout(r32ui, binding = 0) uniform coherent uimage3D u_accum;
+#ifdef SURFACE
+#include "voxelize/surface_sums.glsl"
+#endif
 
 // Inverse of the geometry shader's swizzle: back to volume coordinates.
 ivec3
@@ -61,16 +64,6 @@ unswizzle(ivec3 s, int axis)
 {
     return axis == 0 ? s.zxy : axis == 1 ? s.yzx : s;
 }
-
-#ifdef SURFACE
-// Where slab k of the surface model's 14 lies in the accumulation volume, 2 x 2 x 4 slabs of the
-// volume's size (so that 512^3 fits GL_MAX_3D_TEXTURE_SIZE 2048, which 14 along z would not).
-ivec3
-surface_slab(int k)
-{
-    return ivec3(k & 1, (k >> 1) & 1, k >> 2) * u_dims;
-}
-#endif
 
 vec3
 unswizzle_vector(vec3 s, int axis)
@@ -133,10 +126,7 @@ main()
     // slab of its geometric normal, whatever the shading normal says.
     vec3 plane = abs(unswizzle_vector(n, gs_axis));
     vec3 share = plane / (plane.x + plane.y + plane.z);
-    uvec3 q_albedo = uvec3(albedo * u_surface_fixed.x + 0.5);
-    uvec3 q_emission = uvec3(min(emission * u_surface_fixed.y + 0.5, vec3(4294967295.0)));
-    uvec3 q_normal = uvec3(ivec3(round(normal * u_surface_fixed.x)));
-    uvec3 q_share = uvec3(ceil(share * u_surface_fixed.x));
+    SurfaceSums sums = surface_sums(albedo, emission, normal, share);
 #else
     uvec3 value = uvec3(min(max(outgoing_radiance(), vec3(0.0)) * u_fixed_scale + 0.5,
                             vec3(4294967295.0)));
@@ -155,22 +145,7 @@ main()
 #ifdef SURFACE
         if (any(lessThan(v, u_box_lo)) || any(greaterThanEqual(v, u_box_hi)))
             continue;
-        vec3 centre = u_origin_voxel.xyz + (vec3(v) + 0.5) * u_origin_voxel.w;
-        uint q_offset = uint(int(round(dot(normal, gs_world - centre) / u_origin_voxel.w * u_surface_fixed.x)));
-        imageAtomicAdd(u_accum, v, 1u);
-        imageAtomicAdd(u_accum, v + surface_slab(1), q_albedo.r);
-        imageAtomicAdd(u_accum, v + surface_slab(2), q_albedo.g);
-        imageAtomicAdd(u_accum, v + surface_slab(3), q_albedo.b);
-        imageAtomicAdd(u_accum, v + surface_slab(4), q_emission.r);
-        imageAtomicAdd(u_accum, v + surface_slab(5), q_emission.g);
-        imageAtomicAdd(u_accum, v + surface_slab(6), q_emission.b);
-        imageAtomicAdd(u_accum, v + surface_slab(7), q_normal.x);
-        imageAtomicAdd(u_accum, v + surface_slab(8), q_normal.y);
-        imageAtomicAdd(u_accum, v + surface_slab(9), q_normal.z);
-        imageAtomicAdd(u_accum, v + surface_slab(10), q_offset);
-        imageAtomicMax(u_accum, v + surface_slab(11), q_share.x);
-        imageAtomicMax(u_accum, v + surface_slab(12), q_share.y);
-        imageAtomicMax(u_accum, v + surface_slab(13), q_share.z);
+        surface_add(v, sums, surface_offset(normal, gs_world, v));
 #else
         imageAtomicAdd(u_accum, v, value.r);
         imageAtomicAdd(u_accum, v + ivec3(0, 0, slab), value.g);

@@ -3,9 +3,10 @@
 // measured against the geometry-shader one (docs/dynamic.md): one invocation per triangle tests
 // every voxel of its box against it (Akenine-Moller 2001, "Fast 3D triangle-box overlap testing",
 // voxelize/tribox.glsl, with voxelize.frag's face tolerance: the same voxels) and adds the sums of
-// voxelize.frag's SURFACE, its attributes taken at the voxel centre's projection onto the
-// triangle (clamped to it) rather than at a pixel centre of the projected triangle, so its
-// volumes differ from the geometry shader's in the last bits of albedo, normal and offset.
+// voxelize.frag's SURFACE (voxelize/surface_sums.glsl), its attributes taken at the voxel
+// centre's projection onto the triangle (clamped to it) rather than at a pixel centre of the
+// projected triangle, so its volumes differ from the geometry shader's in the last bits of
+// albedo, normal and offset.
 layout(local_size_x = 64) in;
 #include "common/scene.glsl"
 #include "voxelize/tribox.glsl"
@@ -25,11 +26,7 @@ layout(location = 15) uniform ivec3 u_box_hi;
 
 #define FACE_TOLERANCE 1e-4
 
-ivec3
-surface_slab(int k)
-{
-    return ivec3(k & 1, (k >> 1) & 1, k >> 2) * u_dims;
-}
+#include "voxelize/surface_sums.glsl"
 
 void
 main()
@@ -56,7 +53,6 @@ main()
     ivec3 hi = min(ivec3(floor(max(p[0], max(p[1], p[2])) + FACE_TOLERANCE)), u_box_hi - 1);
     vec3 plane = abs(n);
     vec3 share = plane / (plane.x + plane.y + plane.z);
-    uvec3 q_share = uvec3(ceil(share * u_surface_fixed.x));
     const vec3 half_voxel = vec3(0.5 + FACE_TOLERANCE);
     for (int z = lo.z; z <= hi.z; z++)
         for (int y = lo.y; y <= hi.y; y++)
@@ -79,24 +75,6 @@ main()
                     continue;
                 vec3 albedo = clamp(cg_material_diffuse(cg_material_index, tex), 0.0, 1.0);
                 vec3 emission = max(cg_material_emissive(cg_material_index, tex), vec3(0.0));
-                uvec3 q_albedo = uvec3(albedo * u_surface_fixed.x + 0.5);
-                uvec3 q_emission = uvec3(min(emission * u_surface_fixed.y + 0.5, vec3(4294967295.0)));
-                uvec3 q_normal = uvec3(ivec3(round(normal * u_surface_fixed.x)));
-                vec3 centre = u_origin_voxel.xyz + c * u_origin_voxel.w;
-                uint q_offset = uint(int(round(dot(normal, world - centre) / u_origin_voxel.w * u_surface_fixed.x)));
-                imageAtomicAdd(u_accum, v, 1u);
-                imageAtomicAdd(u_accum, v + surface_slab(1), q_albedo.r);
-                imageAtomicAdd(u_accum, v + surface_slab(2), q_albedo.g);
-                imageAtomicAdd(u_accum, v + surface_slab(3), q_albedo.b);
-                imageAtomicAdd(u_accum, v + surface_slab(4), q_emission.r);
-                imageAtomicAdd(u_accum, v + surface_slab(5), q_emission.g);
-                imageAtomicAdd(u_accum, v + surface_slab(6), q_emission.b);
-                imageAtomicAdd(u_accum, v + surface_slab(7), q_normal.x);
-                imageAtomicAdd(u_accum, v + surface_slab(8), q_normal.y);
-                imageAtomicAdd(u_accum, v + surface_slab(9), q_normal.z);
-                imageAtomicAdd(u_accum, v + surface_slab(10), q_offset);
-                imageAtomicMax(u_accum, v + surface_slab(11), q_share.x);
-                imageAtomicMax(u_accum, v + surface_slab(12), q_share.y);
-                imageAtomicMax(u_accum, v + surface_slab(13), q_share.z);
+                surface_add(v, surface_sums(albedo, emission, normal, share), surface_offset(normal, world, v));
             }
 }
