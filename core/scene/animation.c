@@ -1,5 +1,5 @@
 /* core/scene/animation.c: the kept node hierarchy, glTF 2.0 animation samplers and posing a
- * scene at a time (cg/scene.h, docs/scenes.md "Animation").
+ * scene at a time (cg/scene.h, docs/gltf.md "Animation").
  *
  * Interpolation follows glTF 2.0, Appendix C ("Animation Sampler Interpolation Modes"):
  * STEP holds a key's value until the next key; LINEAR interpolates linearly, rotations by

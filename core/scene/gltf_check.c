@@ -5,7 +5,7 @@
  * as "no texture" or "no material", and refuses files that require an extension it cannot
  * decode with a message about accessors. So the JSON is walked here first, with jansson, the
  * way the Khronos glTF-Validator reads it (its rules, stricter in the few places listed in
- * docs/scenes.md): the type of every core field and of the fields of the extensions
+ * docs/gltf.md): the type of every core field and of the fields of the extensions
  * conegraph reads, required fields, ranges, enumerations, index references in range, the
  * asset version, and required extensions. Every message names the file and the JSON path
  * of the field, e.g. "scene.gltf: materials[0].pbrMetallicRoughness.metallicFactor: expected

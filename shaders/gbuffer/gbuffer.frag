@@ -58,7 +58,7 @@ main()
     vec2 metallic_roughness = cg_material_metallic_roughness(material, texcoord);
     CgBsdf b = cg_bsdf_from_material(material, base, metallic_roughness.x, metallic_roughness.y,
                                      cg_material_transmission(material, texcoord));
-    // alphaMode BLEND: a see-through layer of coverage alpha (docs/scenes.md): the material's lobes
+    // alphaMode BLEND: a see-through layer of coverage alpha (docs/gltf.md): the material's lobes
     // weigh alpha, and 1 - alpha goes straight through, a thin transmission of tint 1 and ior 1.
     // One ior per pixel: the material's where its own transmission outweighs the hole's.
     float coverage = alpha_mode == CG_ALPHA_BLEND ? clamp(base.a, 0.0, 1.0) : 1.0;

@@ -9,7 +9,7 @@ every file `conegraph export` writes here:
   - wherever the validator reports an error, `conegraph export FILE OUT` must exit 2 with a
     message naming the file, and write nothing (no OUT, no temporary file beside it);
   - where conegraph accepts a file the validator rejects, every error the validator reports
-    must be one that ACCEPTED below explains (each reason is documented in docs/scenes.md,
+    must be one that ACCEPTED below explains (each reason is documented in docs/gltf.md,
     "What the glTF checks leave out"); any other is a failure.
 
 The validator (npm package gltf-validator, pinned) is installed once under the build
@@ -27,13 +27,13 @@ import tempfile
 VALIDATOR = "gltf-validator@2.0.0-dev.3.10"
 
 # Validator errors on parts conegraph does not read: (code, JSON-pointer prefix or None, reason).
-# A pointer prefix None matches anywhere. Keep in step with docs/scenes.md.
-NOT_READ = "not read by conegraph (docs/scenes.md, 'What the glTF checks leave out')"
+# A pointer prefix None matches anywhere. Keep in step with docs/gltf.md.
+NOT_READ = "not read by conegraph (docs/gltf.md, 'What the glTF checks leave out')"
 ACCEPTED = [
     ("MESH_PRIMITIVE_NO_TANGENT_SPACE", None,
-     "a normal-mapped primitive without normals: conegraph generates normals, then tangents (docs/scenes.md)"),
+     "a normal-mapped primitive without normals: conegraph generates normals, then tangents (docs/gltf.md)"),
     ("MESH_PRIMITIVE_GENERATED_TANGENT_SPACE", None,
-     "tangents generated where a file has none (docs/scenes.md, Materials: Lengyel's method, not MikkTSpace)"),
+     "tangents generated where a file has none (docs/gltf.md, Materials: Lengyel's method, not MikkTSpace)"),
     (None, "/skins", "skins are " + NOT_READ),
     ("NODE_SKIN_WITH_NON_SKINNED_MESH", None, "skins are " + NOT_READ),
     ("NODE_SKIN_NO_SCENE", None, "skins are " + NOT_READ),

@@ -20,7 +20,7 @@
  *                bench_write_json, bench_merge: --shard K/N (a job array's share of the work),
  *                bench.json (every row at full precision) and --merge of shards' bench.json.
  *
- * The parts of an image (docs/reference.md, "The benchmark"): a graph's own direct image is what
+ * The parts of an image (docs/metrics.md, "The benchmark"): a graph's own direct image is what
  * its final composite outputs without its `indirect` input (`direct` + `emissive`), read back
  * from the same frame; its GI part is its image minus that. The reference's parts come from
  * the same trace (pt_render_parts): the truth of the direct image is the emitted and

@@ -56,7 +56,7 @@ typedef struct cg_texture {
 typedef enum cg_alpha_mode {
     CG_ALPHA_OPAQUE = 0,    /* alpha ignored */
     CG_ALPHA_MASK,          /* covered where alpha >= alpha_cutoff, else not there at all */
-    CG_ALPHA_BLEND          /* alpha is the coverage of a see-through surface (docs/scenes.md) */
+    CG_ALPHA_BLEND          /* alpha is the coverage of a see-through surface (docs/gltf.md) */
 } cg_alpha_mode;
 
 /* The textures a material can sample, indexing cg_material.uv. */
@@ -243,7 +243,7 @@ typedef struct cg_mesh_class {
 } cg_mesh_class;
 /* ------------------------------------------------------------------ animation
  *
- * glTF 2.0 animations of node translation, rotation and scale (docs/scenes.md, "Animation").
+ * glTF 2.0 animations of node translation, rotation and scale (docs/gltf.md, "Animation").
  * Only the nodes animation needs are kept: the animated ones, their descendants and their
  * ancestors; every other node is flattened into the world matrices as before. Instances,
  * lights and cameras on kept nodes follow them through cg_attachment. cg_scene_evaluate
