@@ -122,12 +122,7 @@ gbuffer_execute(fg_pass *pass, gbuffer_state *st, cg_error *err)
         return cg_fail(err, CG_ERR_GL, "pass '%s': G-buffer framebuffer incomplete (0x%x)",
                        fg_pass_name(pass), status);
 
-    glBindFramebuffer(GL_FRAMEBUFFER, st->fbo);
-    glViewport(0, 0, frame->width, frame->height);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDepthMask(GL_TRUE);
-    glDisable(GL_CULL_FACE);
+    cgp_depth_draw_begin(st->fbo, frame->width, frame->height);
     glDisable(GL_BLEND);
     static const float zero[4] = { 0.0f, 0.0f, 0.0f, 0.0f };
     const float far_depth = 1.0f;
@@ -143,8 +138,7 @@ gbuffer_execute(fg_pass *pass, gbuffer_state *st, cg_error *err)
     glUniform1i(9, 1);
     cg_gpu_scene_draw(frame->gpu_scene, CG_MESHES_HEIGHTFIELD);
     glUseProgram(0);
-    glDisable(GL_DEPTH_TEST);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    cgp_depth_draw_end();
     return background_sky(pass, st, err);
 }
 

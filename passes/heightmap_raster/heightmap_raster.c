@@ -223,12 +223,7 @@ raster(const fg_pass *pass, heightmap_raster_state *s, const heightmap_region *r
 
     GLint viewport[4];
     glGetIntegerv(GL_VIEWPORT, viewport);
-    glBindFramebuffer(GL_FRAMEBUFFER, s->fbo);
-    glViewport(0, 0, resolution, resolution);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDepthMask(GL_TRUE);
-    glDisable(GL_CULL_FACE);
+    cgp_depth_draw_begin(s->fbo, resolution, resolution);
     glDisable(GL_BLEND);
 
     glUseProgram(s->program);
@@ -241,9 +236,8 @@ raster(const fg_pass *pass, heightmap_raster_state *s, const heightmap_region *r
         cgp_bind_shadow(pass, &s->no_shadow, 2);
     }
     cg_gpu_scene_draw(frame->gpu_scene, CG_MESHES_HEIGHTFIELD);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    cgp_depth_draw_end();
     glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
-    glDisable(GL_DEPTH_TEST);
     glUseProgram(0);
 }
 

@@ -133,9 +133,7 @@ hsat_execute(fg_pass *pass, hsat_state *s, cg_error *err)
             glDispatchCompute(groups, groups, 1);
             glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
         }
-        glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RG32UI);
-        glBindImageTexture(1, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32UI);
-        glUseProgram(0);
+        cgp_compute_end(2, 0, NULL);
         return true;
     }
 
@@ -158,11 +156,7 @@ hsat_execute(fg_pass *pass, hsat_state *s, cg_error *err)
             glMemoryBarrier(after[i]);
         }
     }
-    glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_ONLY, s->lightmap_format);
-    glBindImageTexture(1, 0, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32UI);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_HSAT, 0);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_HSAT_ROWS, 0);
-    glUseProgram(0);
+    cgp_compute_end(2, 2, (const GLuint[]){ CG_BINDING_HSAT, CG_BINDING_HSAT_ROWS });
     return true;
 }
 

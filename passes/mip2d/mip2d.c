@@ -31,12 +31,7 @@ mip2d_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
         return cg_fail(err, CG_ERR_GRAPH_INCOMPATIBLE,
                        "pass '%s': input 'lightmap' must be square with a power-of-two side, got %dx%d",
                        fg_pass_name(pass), in->width, in->height);
-    if (in->levels < 2) {
-        fg_declare_nothing_to_do(decl, "the lightmap has a single mip level");
-        return true;
-    }
-    /* Same name as the input: the graph updates that resource in place. */
-    fg_declare_output(decl, "lightmap", in, FG_ACCESS_IMAGE_STORE);
+    cgp_declare_in_place_chain(decl, "lightmap", in, "the lightmap has a single mip level");
     return true;
 }
 
@@ -65,9 +60,7 @@ mip2d_execute(fg_pass *pass, mip2d_state *s, cg_error *err)
         /* The next level reads what this one wrote. */
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     }
-    glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_ONLY, s->format);
-    glBindImageTexture(1, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, s->format);
-    glUseProgram(0);
+    cgp_compute_end(2, 0, NULL);
     return true;
 }
 

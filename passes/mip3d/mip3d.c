@@ -44,13 +44,8 @@ mip3d_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
         return cg_fail(err, CG_ERR_GRAPH_INCOMPATIBLE,
                        "pass '%s': input 'volume' must be cubic, got %dx%dx%d",
                        fg_pass_name(pass), in->width, in->height, in->depth);
-    if (in->levels < 2) {
-        fg_declare_nothing_to_do(decl, "the volume has a single mip level");
-        return true;
-    }
-    /* Same name as the input: the graph updates that resource in place. */
-    fg_declare_output(decl, "volume", in, FG_ACCESS_IMAGE_STORE);
-    if (fg_param_bool(pass, "anisotropic")) {
+    cgp_declare_in_place_chain(decl, "volume", in, "the volume has a single mip level");
+    if (in->levels >= 2 && fg_param_bool(pass, "anisotropic")) {
         fg_resource_desc dir = *in;
         dir.width = dir.height = dir.depth = in->width / 2;
         dir.levels = in->levels - 1;
@@ -118,8 +113,7 @@ mip3d_execute(fg_pass *pass, mip3d_state *s, cg_error *err)
             }
         }
     }
-    glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_ONLY, s->format);
-    glBindImageTexture(1, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, s->format);
+    cgp_compute_end(2, 0, NULL);
     return true;
 }
 

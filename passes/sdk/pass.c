@@ -184,7 +184,44 @@ cgp_volume_levels(int width, int height, int depth)
 }
 
 void
+cgp_declare_in_place_chain(fg_declare *decl, const char *name, const fg_resource_desc *in, const char *single_level)
+{
+    if (in->levels < 2)
+        fg_declare_nothing_to_do(decl, single_level);
+    else
+        fg_declare_output(decl, name, in, FG_ACCESS_IMAGE_STORE);
+}
+
+void
 cgp_dispatch_2d(int width, int height)
 {
     glDispatchCompute((GLuint)(width + 7) / 8, (GLuint)(height + 7) / 8, 1);
+}
+
+void
+cgp_compute_end(int image_units, int storage_count, const GLuint *storage)
+{
+    for (int i = 0; i < image_units; i++)
+        glBindImageTexture((GLuint)i, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
+    for (int i = 0; i < storage_count; i++)
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, storage[i], 0);
+    glUseProgram(0);
+}
+
+void
+cgp_depth_draw_begin(GLuint fbo, int width, int height)
+{
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glViewport(0, 0, width, height);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_CULL_FACE);
+}
+
+void
+cgp_depth_draw_end(void)
+{
+    glDisable(GL_DEPTH_TEST);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }

@@ -5,7 +5,8 @@
  *           cgp_gl_kind, cgp_state_new, cgp_state_on_destroy, cgp_state_destroy, cgp_prepared, cgp_own,
  *           cgp_compute_program,
  *           cgp_graphics_program, cgp_framebuffer, cgp_buffer, cgp_image_2d, cgp_image_like, cgp_buffer_desc,
- *           cgp_dispatch_2d.
+ *           cgp_declare_in_place_chain, cgp_dispatch_2d, cgp_compute_end, cgp_depth_draw_begin,
+ *           cgp_depth_draw_end.
  *
  * A built-in pass is defined by
  *     CGP_PASS(cone_gather, CGP_PARAMS(cone_gather_params), "doc ...");
@@ -139,7 +140,26 @@ fg_resource_desc cgp_buffer_desc(size_t bytes);
  * below (a cube of 2^n: n + 1 levels, the full chain; a box such as 128 x 32 x 80: 5). */
 int cgp_volume_levels(int width, int height, int depth);
 
+/* The last step of the declare of a pass that filters its input `name` (`in`) down the input's own
+ * mip chain (mip2d, mip3d): with two levels or more, the output of the same name, which the graph
+ * makes an update of the input's resource in place; with one, nothing to do, `single_level`
+ * saying why. */
+void cgp_declare_in_place_chain(fg_declare *decl, const char *name, const fg_resource_desc *in,
+                                const char *single_level);
+
 /* glDispatchCompute over width x height invocations in groups of 8 x 8 (local_size 8 x 8). */
 void cgp_dispatch_2d(int width, int height);
+/* What a compute pass leaves behind it: image units 0 .. image_units - 1 and the `storage_count`
+ * shader storage binding points `storage` unbound, no program in use; so that no later pass finds
+ * this one's textures and buffers bound where it binds nothing of its own. */
+void cgp_compute_end(int image_units, int storage_count, const GLuint *storage);
+
+/* Binds the framebuffer `fbo` for a depth-tested draw over width x height: the viewport, the
+ * depth test LESS with depth writes, no face culling (a scene's faces are drawn from both
+ * sides; a pass that keeps back faces out says so in its shader). gbuffer, shadow_map and
+ * heightmap_raster draw the scene this way. */
+void cgp_depth_draw_begin(GLuint fbo, int width, int height);
+/* After such a draw: the depth test off, the default framebuffer bound. */
+void cgp_depth_draw_end(void);
 
 #endif

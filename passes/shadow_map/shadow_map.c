@@ -271,14 +271,9 @@ shadow_map_execute(fg_pass *pass, shadow_map_state *st, cg_error *err)
     glCopyNamedBufferSubData(st->staging, fg_buffer(pass, "matrix"), 0, 0, sizeof block);
 
     glNamedFramebufferTexture(st->fbo, GL_DEPTH_ATTACHMENT, fg_texture(pass, "depth"), 0);
-    glBindFramebuffer(GL_FRAMEBUFFER, st->fbo);
-    glViewport(0, 0, resolution, resolution);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDepthMask(GL_TRUE);
+    cgp_depth_draw_begin(st->fbo, resolution, resolution);
     /* Occluders in front of the near plane still cast shadows. */
     glEnable(GL_DEPTH_CLAMP);
-    glDisable(GL_CULL_FACE);
     const float far_depth = 1.0f;
     glClearNamedFramebufferfv(st->fbo, GL_DEPTH, 0, &far_depth);
     glUseProgram(masked ? st->masked_program : st->program);
@@ -288,8 +283,7 @@ shadow_map_execute(fg_pass *pass, shadow_map_state *st, cg_error *err)
     cg_gpu_scene_draw(frame->gpu_scene, CG_MESHES_ALL);
     glUseProgram(0);
     glDisable(GL_DEPTH_CLAMP);
-    glDisable(GL_DEPTH_TEST);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    cgp_depth_draw_end();
     return true;
 }
 

@@ -726,9 +726,7 @@ resolve_surface(fg_pass *pass, voxelize_state *s, const voxel_region *region, co
         glBindImageTexture(1 + (GLuint)i, fg_texture(pass, names[i]), 0, GL_TRUE, 0, GL_WRITE_ONLY, formats[i]);
     glDispatchCompute((GLuint)(box->hi[0] - box->lo[0] + 3) / 4, (GLuint)(box->hi[1] - box->lo[1] + 3) / 4,
                       (GLuint)(box->hi[2] - box->lo[2] + 3) / 4);
-    for (int i = 0; i < 5; i++)
-        glBindImageTexture((GLuint)i, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
-    glUseProgram(0);
+    cgp_compute_end(5, 0, NULL);
 }
 
 static bool
@@ -968,11 +966,7 @@ voxelize_execute(fg_pass *pass, voxelize_state *s, cg_error *err)
     glUniform1i(3, from_max ? 1 : 0);
     glBindImageTexture(1, radiance, 0, GL_TRUE, 0, GL_WRITE_ONLY, s->format);
     glDispatchCompute(groups, groups, groups);
-    glBindImageTexture(0, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_R32UI);
-    glBindImageTexture(1, 0, 0, GL_FALSE, 0, GL_WRITE_ONLY, s->format);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_RESOLVE_MAX, 0);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_RESOLVE_REGION, 0);
-    glUseProgram(0);
+    cgp_compute_end(2, 2, (const GLuint[]){ CG_BINDING_RESOLVE_MAX, CG_BINDING_RESOLVE_REGION });
     return true;
 }
 
