@@ -411,7 +411,7 @@ adjust(demo *d, int direction)
     commit_change(d, c, pass, desc);
 }
 
-void
+static void
 demo_select(demo *d, int pass, int param)
 {
     if (d->sel.pass == pass && d->sel.param == param)
@@ -421,7 +421,7 @@ demo_select(demo *d, int pass, int param)
     print_selection(d);
 }
 
-void
+static void
 demo_step_param(demo *d, int pass, int param, int direction)
 {
     d->sel.pass = pass;
@@ -430,7 +430,7 @@ demo_step_param(demo *d, int pass, int param, int direction)
 }
 
 /* A control's value: the same checks as a key's step (demo_param_set), the same undo. */
-void
+static void
 demo_set_param(demo *d, int pass, int param, const char *text)
 {
     d->sel.pass = pass;
@@ -463,7 +463,7 @@ keep(demo *d, const char *source)
     return true;
 }
 
-void
+static void
 demo_show(demo *d, int index)
 {
     if (index >= d->shown_count) {
@@ -484,7 +484,7 @@ demo_show(demo *d, int index)
     fflush(stdout);
 }
 
-void
+static void
 demo_view_resource(demo *d, const char *source)
 {
     if (!strcmp(source, d->view_source))
@@ -525,14 +525,14 @@ has_animation(const demo *d)
     return false;
 }
 
-void
+static void
 demo_toggle_play(demo *d)
 {
     if (has_animation(d) && demo_clock_toggle(&d->clock))
         say_time(d);
 }
 
-void
+static void
 demo_step_time(demo *d, int frames)
 {
     if (!has_animation(d))
@@ -541,7 +541,7 @@ demo_step_time(demo *d, int frames)
     say_time(d);
 }
 
-void
+static void
 demo_seek_time(demo *d, double t, bool announce)
 {
     if (!d->clock.animated)
@@ -551,7 +551,7 @@ demo_seek_time(demo *d, double t, bool announce)
         say_time(d);
 }
 
-void
+static void
 demo_sun_key(demo *d, bool reset)
 {
     demo_sun *sun = &d->sun;
@@ -567,6 +567,19 @@ demo_sun_key(demo *d, bool reset)
     }
     fflush(stdout);
 }
+
+/* What the UI panels may ask (demo.h): the keys' own paths. */
+static const demo_actions actions = {
+    .select = demo_select,
+    .set_param = demo_set_param,
+    .step_param = demo_step_param,
+    .show = demo_show,
+    .view_resource = demo_view_resource,
+    .toggle_play = demo_toggle_play,
+    .step_time = demo_step_time,
+    .seek_time = demo_seek_time,
+    .sun_key = demo_sun_key,
+};
 
 /* A key pressed (repeat: held down, auto-repeated), from the window or from --keys. */
 static void
@@ -871,8 +884,8 @@ write_screenshot(demo *d, const char *path, cg_error *err)
     return ok;
 }
 
-double
-demo_frame_median_ms(const demo *d)
+static double
+frame_median_ms(const demo *d)
 {
     if (!d->frame_ms_count)
         return 0;
@@ -891,7 +904,7 @@ report_status(demo *d, bool force)
     d->last_status = now;
     fg_memory_report mem;
     fg_graph_memory_report(d->graph, &mem);
-    double frame = demo_frame_median_ms(d);
+    double frame = d->frame_median_ms;
     char passes[1536] = "";
     size_t len = 0;
     const int *order;
@@ -1046,6 +1059,7 @@ run(demo *d)
         else
             d->frame_ms_count++;
         d->frame_ms[d->frame_ms_count - 1] = ms;
+        d->frame_median_ms = frame_median_ms(d);
         if (d->all_frame_ms)
             d->all_frame_ms[frames_run] = ms;
         frames_run++;
@@ -1210,6 +1224,7 @@ main(int argc, char **argv)
         fprintf(stderr, "conegraph-demo: out of memory\n");
         return 1;
     }
+    d->actions = &actions;
     int code = parse_args(argc, argv, &d->o);
     if (!code)
         code = demo_main(d);

@@ -1,9 +1,9 @@
 /* apps/demo/demo.h: the demo's state, shared by its main loop (demo.c) and its UI panels
- * (demo_ui.c), and what the panels ask of the main loop: the same actions the keys take.
+ * (demo_ui.c), and what the panels may ask of the main loop (demo_actions): the same actions the
+ * keys take. The panels read the state and change it only through d->actions, so that the main
+ * loop calls the UI and the UI never calls the main loop by name.
  *
- * Declares: scripted_key, demo_options, pending_change, demo, demo_select, demo_set_param,
- *           demo_step_param, demo_show, demo_view_resource, demo_toggle_play, demo_step_time,
- *           demo_seek_time, demo_sun_key, demo_frame_median_ms.
+ * Declares: scripted_key, demo_options, pending_change, demo_actions, demo.
  */
 #ifndef CONEGRAPH_DEMO_H
 #define CONEGRAPH_DEMO_H
@@ -44,6 +44,33 @@ typedef struct demo_options {
     int key_count;
 } demo_options;
 
+struct demo;
+
+/* What the UI panels may ask of the main loop, the one way they change what it owns; demo.c
+ * fills it with the functions its keys use. */
+typedef struct demo_actions {
+    /* Selects a parameter (pass in file order, its index in the pass's table) for the keys. */
+    void (*select)(struct demo *d, int pass, int param);
+    /* Sets it from text as --set would, after checking its dependencies; the graph compiles
+     * before the next frame, and a value that fails there is undone. The parameter is selected. */
+    void (*set_param)(struct demo *d, int pass, int param, const char *text);
+    /* One step up or down, as Right and Left do; the parameter is selected. */
+    void (*step_param)(struct demo *d, int pass, int param, int direction);
+    /* Shows the ldr output (0) or another of the keys' resources in the window, as keys 1..9. */
+    void (*show)(struct demo *d, int index);
+    /* Shows `source` in the viewer (marked as an output so that it is kept: a compile follows
+     * when it was not one); "" shows none. */
+    void (*view_resource)(struct demo *d, const char *source);
+    /* Space: plays or pauses the animation (says so on stdout). */
+    void (*toggle_play)(struct demo *d);
+    /* [ and ]: pauses and moves the time by `frames` scrub steps (demo_clock_step). */
+    void (*step_time)(struct demo *d, int frames);
+    /* The UI's slider: pauses at t; `announce`: say the time on stdout (when the slider is let go). */
+    void (*seek_time)(struct demo *d, double t, bool announce);
+    /* L starts or stops turning the sun; Shift+L (reset) undoes the turn. */
+    void (*sun_key)(struct demo *d, bool reset);
+} demo_actions;
+
 /* A parameter changed by a key or a control since the last compile, with its old text for
  * undoing it. */
 typedef struct pending_change {
@@ -54,6 +81,7 @@ typedef struct pending_change {
 
 typedef struct demo {
     demo_options o;
+    const demo_actions *actions; /* what the UI may ask (demo.c's) */
     /* Scene, registry, graph, context, GPU scene and the frame (view, size) it renders. */
     app_session s;
     fg_graph *graph;            /* s.graph: loaded once, compiled again after every change */
@@ -90,6 +118,7 @@ typedef struct demo {
 
     double frame_ms[FRAME_HISTORY];
     int frame_ms_count;
+    double frame_median_ms;     /* of frame_ms; 0 before the first frame */
     double *all_frame_ms;       /* --frames N: every frame, for the median */
     double last_status;
     char status[2048];          /* frame time, per-pass times, GI memory, size, shown resource */
@@ -113,28 +142,5 @@ typedef struct demo {
     double editing_value;
     char editing_text[256];     /* a string parameter's field while it is typed into */
 } demo;
-
-/* Selects a parameter (pass in file order, its index in the pass's table) for the keys. */
-void demo_select(demo *d, int pass, int param);
-/* Sets it from text as --set would, after checking its dependencies; the graph compiles
- * before the next frame, and a value that fails there is undone. The parameter is selected. */
-void demo_set_param(demo *d, int pass, int param, const char *text);
-/* One step up or down, as Right and Left do; the parameter is selected. */
-void demo_step_param(demo *d, int pass, int param, int direction);
-/* Shows the ldr output (0) or another of the keys' resources in the window, as keys 1..9. */
-void demo_show(demo *d, int index);
-/* Shows `source` in the viewer (marked as an output so that it is kept: a compile follows
- * when it was not one); "" shows none. */
-void demo_view_resource(demo *d, const char *source);
-/* Space: plays or pauses the animation (says so on stdout). */
-void demo_toggle_play(demo *d);
-/* [ and ]: pauses and moves the time by `frames` scrub steps (demo_clock_step). */
-void demo_step_time(demo *d, int frames);
-/* The UI's slider: pauses at t; `announce`: say the time on stdout (when the slider is let go). */
-void demo_seek_time(demo *d, double t, bool announce);
-/* L starts or stops turning the sun; Shift+L (reset) undoes the turn. */
-void demo_sun_key(demo *d, bool reset);
-/* The median of the last frames' times; 0 before the first. */
-double demo_frame_median_ms(const demo *d);
 
 #endif

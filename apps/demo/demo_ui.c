@@ -35,7 +35,7 @@ frame_times(demo *d, bool small)
         highest = history[i] > highest ? history[i] : highest;
     }
     char overlay[96];
-    snprintf(overlay, sizeof overlay, "frame %.1f ms (median of %d)", demo_frame_median_ms(d), d->frame_ms_count);
+    snprintf(overlay, sizeof overlay, "frame %.1f ms (median of %d)", d->frame_median_ms, d->frame_ms_count);
     ui_plot("##frames", history, d->frame_ms_count, 0, highest * 1.1f, small ? 22 : 40, overlay);
     ui_tooltip("Each frame from the start of the graph's execution to the end of the buffer swap, "
                "the UI included; the last 64 frames.");
@@ -61,7 +61,7 @@ passes(demo *d, bool small)
         ui_text("passes, in execution order");
     const int *order;
     int live = fg_graph_order(d->graph, &order);
-    double frame = demo_frame_median_ms(d), total = 0;
+    double frame = d->frame_median_ms, total = 0;
     for (int k = 0; k < live; k++) {
         double ms = fg_pass_milliseconds(fg_graph_pass_at(d->graph, order[k]));
         total += ms > 0 ? ms : 0;
@@ -115,14 +115,14 @@ animation(demo *d)
     demo_clock *c = &d->clock;
     if (c->animated) {
         if (ui_button(c->playing ? "Pause (Space)###play" : "Play (Space)###play"))
-            demo_toggle_play(d);
+            d->actions->toggle_play(d);
         ui_same_line();
         if (ui_small_button("<"))
-            demo_step_time(d, -1);
+            d->actions->step_time(d, -1);
         ui_tooltip("One frame back and pause, as [ (Shift+[: ten frames).");
         ui_same_line();
         if (ui_small_button(">"))
-            demo_step_time(d, 1);
+            d->actions->step_time(d, 1);
         ui_tooltip("One frame forward and pause, as ] (Shift+]: ten frames).");
         ui_same_line();
         ui_text("t = %.3f s", demo_clock_time(c));
@@ -130,9 +130,9 @@ animation(demo *d)
             double t = demo_clock_time(c);
             ui_set_next_item_width(ui_available_width() * 0.7f);
             if (ui_slider_double("time", &t, c->start, c->end, "%.3f s", false))
-                demo_seek_time(d, t, false);
+                d->actions->seek_time(d, t, false);
             if (ui_last_item_edited())
-                demo_seek_time(d, t, true);
+                d->actions->seek_time(d, t, true);
             ui_tooltip("Scrub the animation (it pauses): the scene is posed at this time, as "
                        "conegraph render --time poses it.");
         }
@@ -145,10 +145,10 @@ animation(demo *d)
     }
     if (d->sun.any) {
         if (ui_small_button(d->sun.moving ? "Stop sun (L)###sun" : "Turn sun (L)###sun"))
-            demo_sun_key(d, false);
+            d->actions->sun_key(d, false);
         ui_same_line();
         if (ui_small_button("Back (Shift+L)"))
-            demo_sun_key(d, true);
+            d->actions->sun_key(d, true);
         ui_same_line();
         ui_text_disabled("+%.1f deg", d->sun.angle * 180.0 / M_PI);
         ui_tooltip("L turns every directional light about world +y at 20 degrees a second, on top of "
@@ -168,7 +168,7 @@ shown_and_screenshots(demo *d)
     int current = d->shown_index;
     ui_set_next_item_width(ui_available_width() * 0.7f);
     if (ui_combo("shown", &current, items, d->shown_count) && current != d->shown_index)
-        demo_show(d, current);
+        d->actions->show(d, current);
     ui_tooltip("What the window shows (keys 1..9): the ldr output, or another 2D colour texture "
                "copied raw (clamped to 0..1).");
     if (ui_button("Screenshot (F12)"))
@@ -230,7 +230,7 @@ set_number(demo *d, int p, int i, const fg_param_desc *desc, double value)
 {
     char text[256];
     demo_param_format(desc, value, text, sizeof text);
-    demo_set_param(d, p, i, text);
+    d->actions->set_param(d, p, i, text);
 }
 
 static bool
@@ -281,7 +281,7 @@ text_control(demo *d, int p, int i, const fg_pass *pass, const fg_param_desc *de
     }
     if (enter) {
         d->editing_pass = -1;
-        demo_set_param(d, p, i, buf);
+        d->actions->set_param(d, p, i, buf);
     } else if (editing(d, p, i) && !ui_last_item_active()) {
         d->editing_pass = -1;
     }
@@ -319,7 +319,7 @@ param_control(demo *d, int p, int i, fg_pass *pass, const fg_param_desc *desc)
     case DEMO_CONTROL_CHECKBOX: {
         bool on = value != 0;
         if (ui_checkbox("##value", &on))
-            demo_set_param(d, p, i, on ? "true" : "false");
+            d->actions->set_param(d, p, i, on ? "true" : "false");
         break;
     }
     case DEMO_CONTROL_LIST:
@@ -338,11 +338,11 @@ param_control(demo *d, int p, int i, fg_pass *pass, const fg_param_desc *desc)
     if (c.kind != DEMO_CONTROL_CHECKBOX && c.kind != DEMO_CONTROL_TEXT) {
         ui_same_line();
         if (ui_small_button("-"))
-            demo_step_param(d, p, i, -1);
+            d->actions->step_param(d, p, i, -1);
         ui_tooltip("one step down, as Left");
         ui_same_line();
         if (ui_small_button("+"))
-            demo_step_param(d, p, i, 1);
+            d->actions->step_param(d, p, i, 1);
         ui_tooltip("one step up, as Right");
     }
     ui_same_line();
@@ -352,7 +352,7 @@ param_control(demo *d, int p, int i, fg_pass *pass, const fg_param_desc *desc)
     ui_pop_id();
     /* The keys go on from the control last used. */
     if (activated)
-        demo_select(d, p, i);
+        d->actions->select(d, p, i);
 }
 
 static void
@@ -553,7 +553,7 @@ viewer_panel(demo *d, const ui_window_place *place, cg_error *err)
         }
         ui_set_next_item_width(ui_available_width());
         if (ui_combo("##resource", &current, items, count))
-            demo_view_resource(d, names[current]);
+            d->actions->view_resource(d, names[current]);
         ui_tooltip("Any texture of the compiled graph; kept (never pooled) once chosen.");
         if (d->view_source[0])
             ok = view_resource(d, err);

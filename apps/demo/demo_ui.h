@@ -10,7 +10,8 @@
  *   (demo_param_describe) as a tooltip, and why the last change was refused or undone;
  * - "resource viewer": any texture resource of the compiled graph, a level and a slice or
  *   layer of it, through demo_view.h.
- * Every change goes through the demo's own paths (demo.h), as a key's would.
+ * Every change goes through d->actions (demo.h), the paths the keys take; the panels call
+ * nothing of the main loop by name.
  *
  * Layout (demo_ui_layout): from 1120x560 up, the frame panel above the viewer on the left and
  * the parameters on the right; smaller (the README's 640x360), the frame panel alone on the
