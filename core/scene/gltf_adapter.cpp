@@ -739,7 +739,7 @@ add_primitive(loader &L, int mesh_index, int prim_index, std::vector<int> *out)
     else if (!has_normals && !cg_mesh_generate_normals(&m, &local))
         ok = fail(L, local.status, local.message);
     // Tangents for a normal map when the file gives none (glTF 2.0, 3.7.2.1: the client
-    // computes them; scene.c's generator says how it departs from MikkTSpace).
+    // computes them; build.c's generator says how it departs from MikkTSpace).
     else if (!m.tangents && L.scene->materials[material].normal_texture >= 0 &&
              !cg_mesh_generate_tangents(&m, &local))
         ok = fail(L, local.status, local.message);

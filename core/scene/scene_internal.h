@@ -111,7 +111,7 @@ bool cg_mesh_generate_normals(cg_mesh *mesh, cg_error *err);
 /* Per-vertex tangents (allocates mesh->tangents when NULL; normals must be there) from the
  * triangles' texture-coordinate derivatives, accumulated per vertex, made orthogonal to the
  * normal (Gram-Schmidt), w = the handedness glTF's TANGENT has: bitangent = w cross(N, T)
- * points where the image's +Y (up, towards smaller v) lies. Not MikkTSpace (scene.c says
+ * points where the image's +Y (up, towards smaller v) lies. Not MikkTSpace (build.c says
  * where it differs). Without texcoords, or where the UVs give no direction, a tangent
  * perpendicular to the normal is chosen (w = 1). */
 bool cg_mesh_generate_tangents(cg_mesh *mesh, cg_error *err);

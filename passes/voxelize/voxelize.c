@@ -874,7 +874,7 @@ voxelize_execute(fg_pass *pass, voxelize_state *s, cg_error *err)
     for (int b = 0; b < (partial ? box_count : 1); b++) {
         const voxel_box *box = partial ? &s->boxes[b] : &volume;
         if (partial) {
-            /* The region's sums start from zero in each of the 14 slabs (voxelize.frag's
+            /* The region's sums start from zero in each of the 14 slabs (surface_sums.glsl's
              * surface_slab); what the accumulation holds elsewhere is never read. */
             for (int k = 0; k < 14; k++)
                 glClearTexSubImage(accum, 0, box->lo[0] + (k & 1) * region.dims[0],
