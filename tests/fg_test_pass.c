@@ -229,3 +229,29 @@ fg_test_register(fg_registry *registry, cg_error *err)
 {
     return fg_registry_add(registry, &test_type, err) && fg_registry_add(registry, &test_side_type, err);
 }
+
+int
+fg_test_fixture_setup(void **state)
+{
+    fg_test_fixture *f = calloc(1, sizeof *f);
+    if (!f)
+        return -1;
+    f->registry = fg_registry_create();
+    if (!fg_test_register(f->registry, &f->err))
+        return -1;
+    f->graph = fg_graph_create(f->registry);
+    f->frame.width = 64;
+    f->frame.height = 32;
+    *state = f;
+    return 0;
+}
+
+int
+fg_test_fixture_teardown(void **state)
+{
+    fg_test_fixture *f = *state;
+    fg_graph_destroy(f->graph);
+    fg_registry_destroy(f->registry);
+    free(f);
+    return 0;
+}

@@ -1,6 +1,7 @@
 /* tests/fg_test_pass.h: pass types for frame-graph tests whose slots come from parameters.
  *
- * Declares: fg_test_register.
+ * Declares: fg_test_register, fg_test_fixture, fg_test_fixture_setup,
+ *           fg_test_fixture_teardown, fg_test_unit.
  *
  * Registers two types, "t" and "t_side" (a side-effect pass), with the parameters
  *   inputs   "NAME:KIND:ACCESS[:opt] ..."   KIND 2d|3d|array|buffer, ACCESS sampled|load|store|
@@ -27,5 +28,21 @@
 #include "cg/fg.h"
 
 bool fg_test_register(fg_registry *registry, cg_error *err);
+
+/* A frame graph over a registry of these types, with a 64x32 frame (no scene) and default
+ * compile options: what the frame-graph tests start each test from. */
+typedef struct fg_test_fixture {
+    fg_registry *registry;
+    fg_graph *graph;
+    cg_error err;
+    fg_frame frame;
+    fg_compile_options options;
+} fg_test_fixture;
+
+/* cmocka per-test setup and teardown: a fresh fg_test_fixture in *state, freed after. */
+int fg_test_fixture_setup(void **state);
+int fg_test_fixture_teardown(void **state);
+/* A cmocka test entry run on a fresh fg_test_fixture. */
+#define fg_test_unit(test) cmocka_unit_test_setup_teardown(test, fg_test_fixture_setup, fg_test_fixture_teardown)
 
 #endif

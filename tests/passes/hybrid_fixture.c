@@ -12,28 +12,8 @@ hf_init(hf_scene *s)
 {
     memset(s, 0, sizeof *s);
     snprintf(s->scene.name, sizeof s->scene.name, "hybrid test scene");
-    for (int m = 0; m < 4; m++) {
-        cg_material *mat = &s->materials[m];
-        snprintf(mat->name, sizeof mat->name, "material %d", m);
-        for (int k = 0; k < 4; k++)
-            mat->base_color[k] = 1.0f;
-        mat->base_color_texture = -1;
-        /* Lambertian (specular 0), double-sided, no texture, identity uv transforms: the built-in
-         * scenes' default material (cg_material_default), which the GPU scene uploads field by field. */
-        mat->metallic_roughness_texture = mat->normal_texture = mat->occlusion_texture = mat->transmission_texture = -1;
-        mat->double_sided = true;
-        mat->alpha_cutoff = 0.5f;
-        mat->ior = 1.5f;
-        mat->normal_scale = mat->occlusion_strength = 1.0f;
-        mat->attenuation_distance = INFINITY;
-        for (int k = 0; k < 3; k++)
-            mat->specular_color[k] = mat->attenuation_color[k] = 1.0f;
-        for (int t = 0; t < CG_TEX_COUNT; t++)
-            mat->uv[t] = (cg_uv_transform){ { 1, 0, 0, 1, 0, 0 } };
-        mat->emissive_texture = -1;
-        mat->emissive_strength = 1.0f;
-        mat->roughness = 1.0f;
-    }
+    for (int m = 0; m < 4; m++)
+        cg_test_material_default(&s->materials[m], m);
     s->scene.materials = s->materials;
     s->scene.material_count = 4;
     s->scene.meshes = s->meshes;
@@ -230,6 +210,19 @@ hf_free(hf_scene *s)
         free(s->meshes[m].indices);
     }
     memset(s, 0, sizeof *s);
+}
+
+void
+hf_turn_sun(vf_runner *r, hf_scene *s, double degrees)
+{
+    double a = degrees * M_PI / 180.0, c = cos(a), sn = sin(a);
+    float *d = s->light.direction;
+    float x = d[0], z = d[2];
+    d[0] = (float)(c * x + sn * z);
+    d[2] = (float)(-sn * x + c * z);
+    cg_scene_lights_changed(&s->scene);
+    cg_error err = {0};
+    assert_cg_ok(cg_gpu_scene_update_lights(&r->gpu, &err), &err);
 }
 
 float *

@@ -2,7 +2,7 @@
  * (terrain) and a complex quad, with materials, an optional sun and an optional camera.
  *
  * Declares: hf_scene, hf_height_fn, hf_init, hf_grid, hf_quad, hf_sun, hf_camera_looking,
- *           hf_finish, hf_free, hf_read_2d.
+ *           hf_turn_sun, hf_finish, hf_free, hf_read_2d.
  */
 #ifndef CG_TEST_HYBRID_FIXTURE_H
 #define CG_TEST_HYBRID_FIXTURE_H
@@ -38,6 +38,9 @@ void hf_camera_looking(hf_scene *s, const double eye[3], const double forward[3]
  * tilted roof-like quad (albedo 0.6), about 2.6 m high in all; not finished (add lights, then
  * hf_finish). */
 void hf_town(hf_scene *s, int n, float wall_emission);
+/* Turns the sun about +y by `degrees` and uploads the scene's lights to the runner's GPU scene
+ * again, as an app does when only the lighting changed. */
+void hf_turn_sun(vf_runner *r, hf_scene *s, double degrees);
 /* Bounds and counts. */
 void hf_finish(hf_scene *s);
 void hf_free(hf_scene *s);

@@ -28,27 +28,10 @@ fx_add_material(fx_scene *s, float r, float g, float b)
 {
     assert_true(s->scene.material_count < FX_MAX);
     cg_material *m = &s->materials[s->scene.material_count];
-    snprintf(m->name, sizeof m->name, "material %d", s->scene.material_count);
+    cg_test_material_default(m, s->scene.material_count);
     m->base_color[0] = r;
     m->base_color[1] = g;
     m->base_color[2] = b;
-    m->base_color[3] = 1.0f;
-    m->base_color_texture = -1;
-    /* Lambertian (specular 0), double-sided, no texture, identity uv transforms: the built-in
-     * scenes' default material (cg_material_default), which the GPU scene uploads field by field. */
-    m->metallic_roughness_texture = m->normal_texture = m->occlusion_texture = m->transmission_texture = -1;
-    m->double_sided = true;
-    m->alpha_cutoff = 0.5f;
-    m->ior = 1.5f;
-    m->normal_scale = m->occlusion_strength = 1.0f;
-    m->attenuation_distance = INFINITY;
-    for (int k = 0; k < 3; k++)
-        m->specular_color[k] = m->attenuation_color[k] = 1.0f;
-    for (int t = 0; t < CG_TEX_COUNT; t++)
-        m->uv[t] = (cg_uv_transform){ { 1, 0, 0, 1, 0, 0 } };
-    m->emissive_texture = -1;
-    m->emissive_strength = 1.0f;
-    m->roughness = 1.0f;
     return s->scene.material_count++;
 }
 

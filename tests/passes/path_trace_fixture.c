@@ -21,22 +21,9 @@ ptf_add_material(cg_scene *s, float r, float g, float b, float emission)
 {
     s->materials = ptf_grow(s->materials, s->material_count, sizeof *s->materials);
     cg_material *m = &s->materials[s->material_count];
-    /* Lambertian (specular 0), double-sided, no texture, identity uv transforms: the built-in
-     * scenes' default material. */
-    m->metallic_roughness_texture = m->normal_texture = m->occlusion_texture = m->transmission_texture = -1;
-    m->double_sided = true;
-    m->ior = 1.5f;
-    m->attenuation_distance = INFINITY;
-    for (int k = 0; k < 3; k++)
-        m->specular_color[k] = m->attenuation_color[k] = 1.0f;
-    for (int t = 0; t < CG_TEX_COUNT; t++)
-        m->uv[t] = (cg_uv_transform){ { 1, 0, 0, 1, 0, 0 } };
-    m->base_color[0] = r, m->base_color[1] = g, m->base_color[2] = b, m->base_color[3] = 1.0f;
-    m->base_color_texture = -1;
+    cg_test_material_default(m, s->material_count);
+    m->base_color[0] = r, m->base_color[1] = g, m->base_color[2] = b;
     m->emissive[0] = m->emissive[1] = m->emissive[2] = emission;
-    m->emissive_texture = -1;
-    m->emissive_strength = 1.0f;
-    m->roughness = 1.0f;
     return s->material_count++;
 }
 

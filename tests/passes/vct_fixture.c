@@ -17,26 +17,9 @@ vf_scene_init(vf_scene *s, float albedo, float emission)
     snprintf(s->scene.name, sizeof s->scene.name, "vct test scene");
     for (int m = 0; m < 2; m++) {
         cg_material *mat = &s->materials[m];
-        snprintf(mat->name, sizeof mat->name, "material %d", m);
+        cg_test_material_default(mat, m);
         float a = m == 0 ? 1.0f : albedo;
         mat->base_color[0] = mat->base_color[1] = mat->base_color[2] = a;
-        mat->base_color[3] = 1.0f;
-        mat->base_color_texture = -1;
-        /* Lambertian (specular 0), double-sided, no texture, identity uv transforms: the built-in
-         * scenes' default material (cg_material_default), which the GPU scene uploads field by field. */
-        mat->metallic_roughness_texture = mat->normal_texture = mat->occlusion_texture = mat->transmission_texture = -1;
-        mat->double_sided = true;
-        mat->alpha_cutoff = 0.5f;
-        mat->ior = 1.5f;
-        mat->normal_scale = mat->occlusion_strength = 1.0f;
-        mat->attenuation_distance = INFINITY;
-        for (int k = 0; k < 3; k++)
-            mat->specular_color[k] = mat->attenuation_color[k] = 1.0f;
-        for (int t = 0; t < CG_TEX_COUNT; t++)
-            mat->uv[t] = (cg_uv_transform){ { 1, 0, 0, 1, 0, 0 } };
-        mat->emissive_texture = -1;
-        mat->emissive_strength = 1.0f;
-        mat->roughness = 1.0f;
         if (m == 1)
             mat->emissive[0] = mat->emissive[1] = mat->emissive[2] = emission;
     }
@@ -133,14 +116,10 @@ void
 vf_start_file(vf_runner *r, const cg_scene *scene, int width, int height, const char *graph,
               const char *const *overrides)
 {
-    const char *dir = getenv("CONEGRAPH_GRAPH_DIR");
-    assert_non_null(dir);
-    char path[4096];
-    snprintf(path, sizeof path, "%s/%s", dir, graph);
     char *json = NULL;
     size_t size = 0;
     cg_error err = {0};
-    assert_cg_ok(cg_read_file(path, &json, &size, &err), &err);
+    assert_cg_ok(cg_read_file(cg_test_graph_path(graph), &json, &size, &err), &err);
     vf_start(r, scene, width, height, json, overrides);
     free(json);
 }
@@ -175,6 +154,29 @@ vf_stop(vf_runner *r)
         cg_gpu_scene_destroy(&r->gpu);
     fg_registry_destroy(r->registry);
     memset(r, 0, sizeof *r);
+}
+
+const char *
+vf_rebuilt(const vf_runner *r, const char *pass)
+{
+    const fg_pass *p = fg_graph_find_pass(r->graph, pass);
+    if (!p)
+        fail_msg("the graph has no pass %s", pass);
+    return fg_pass_rebuilt(p);
+}
+
+float *
+vf_read_image(const vf_runner *r, const char *source, int width, int height)
+{
+    GLuint tex = fg_graph_texture(r->graph, source);
+    if (tex == 0)
+        fail_msg("no output %s", source);
+    int w = 0, h = 0, d = 0;
+    float *data = cg_test_read_texture(tex, 0, &w, &h, &d);
+    assert_non_null(data);
+    assert_int_equal(w, width);
+    assert_int_equal(h, height);
+    return data;
 }
 
 float *

@@ -2,7 +2,7 @@
  * VCT pass tests (voxelize, mip3d, cone_gather).
  *
  * Declares: vf_scene, vf_scene_init, vf_add_triangle, vf_finish, vf_runner, vf_start,
- *           vf_frame, vf_next_frame, vf_stop, vf_read_volume.
+ *           vf_frame, vf_next_frame, vf_stop, vf_rebuilt, vf_read_image, vf_read_volume.
  */
 #ifndef CG_TEST_VCT_FIXTURE_H
 #define CG_TEST_VCT_FIXTURE_H
@@ -54,6 +54,12 @@ void vf_frame(vf_runner *r);
 void vf_next_frame(vf_runner *r);
 void vf_stop(vf_runner *r);
 
+/* What pass `pass` of the runner's graph reported rebuilding in the last frame ("" when
+ * nothing); fails the test when the graph has no such pass. */
+const char *vf_rebuilt(const vf_runner *r, const char *pass);
+/* A graph's 2D output `source` ("pass.output") as RGBA floats, rows bottom to top; fails the
+ * test when the graph has no such output or its size is not width x height. */
+float *vf_read_image(const vf_runner *r, const char *source, int width, int height);
 /* Level `level` of a graph resource as RGBA floats (x fastest, then y, then z). */
 float *vf_read_volume(const vf_runner *r, const char *source, int level, int *size);
 

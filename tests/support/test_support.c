@@ -1,5 +1,8 @@
 #include "test_support.h"
 
+#include "cg/fs.h"
+
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -33,13 +36,49 @@ cg_test_tmpdir(void)
     return tmpdir;
 }
 
+static char *
+next_path_slot(void)
+{
+    static char paths[CG_TEST_PATH_SLOTS][4200];
+    static int next;
+    return paths[next++ % CG_TEST_PATH_SLOTS];
+}
+
+const char *
+cg_test_tmp_path(const char *name)
+{
+    char *path = next_path_slot();
+    snprintf(path, 4200, "%s/%s", cg_test_tmpdir(), name);
+    return path;
+}
+
+static const char *
+path_under(const char *variable, const char *relative)
+{
+    const char *dir = getenv(variable);
+    if (!dir)
+        fail_msg("%s is not set: run the test through meson test", variable);
+    char *path = next_path_slot();
+    snprintf(path, 4200, "%s/%s", dir, relative);
+    return path;
+}
+
+const char *
+cg_test_data_path(const char *relative)
+{
+    return path_under("CONEGRAPH_TEST_DATA", relative);
+}
+
+const char *
+cg_test_graph_path(const char *file)
+{
+    return path_under("CONEGRAPH_GRAPH_DIR", file);
+}
+
 const char *
 cg_test_write_file(const char *name, const void *data, size_t size)
 {
-    static char paths[8][4096];
-    static int next;
-    char *path = paths[next++ % 8];
-    snprintf(path, 4096, "%s/%s", cg_test_tmpdir(), name);
+    const char *path = cg_test_tmp_path(name);
     FILE *fp = fopen(path, "wb");
     if (!fp) {
         perror(path);
@@ -147,20 +186,80 @@ cg_test_skip_program(const char *reason)
     return 0;
 }
 
+/* Runs `'EXE' ARGS TAIL` through the shell, EXE from the environment variable exe_var; its
+ * stdout to out (NULL: read and dropped). Returns the exit code. */
+static int
+run_shell(const char *exe_var, const char *args, const char *tail, char *out, size_t size)
+{
+    const char *exe = getenv(exe_var);
+    if (!exe)
+        fail_msg("%s is not set: run the test through meson test", exe_var);
+    char cmd[16384];
+    int length = snprintf(cmd, sizeof cmd, "'%s' %s %s", exe, args, tail);
+    if (length < 0 || (size_t)length >= sizeof cmd)
+        fail_msg("command too long: %.200s...", cmd);
+    FILE *p = popen(cmd, "r");
+    if (!p)
+        fail_msg("could not run: %s", cmd);
+    if (out) {
+        size_t n = fread(out, 1, size - 1, p);
+        out[n] = '\0';
+    }
+    int status = pclose(p);
+    if (status == -1 || !WIFEXITED(status))
+        fail_msg("could not run: %s", cmd);
+    return WEXITSTATUS(status);
+}
+
+int
+cg_test_run_program(const char *exe_var, const char *args, bool with_stderr, char *out, size_t size)
+{
+    const char *tail = !out ? ">/dev/null 2>&1" : with_stderr ? "2>&1" : "2>/dev/null";
+    return run_shell(exe_var, args, tail, out, size);
+}
+
 int
 cg_test_run_conegraph(const char *args, bool with_stderr, char *out, size_t size)
 {
-    const char *exe = getenv("CONEGRAPH_EXE");
-    assert_non_null(exe);
-    char cmd[8192];
-    snprintf(cmd, sizeof cmd, "'%s' %s %s", exe, args, with_stderr ? "2>&1" : "2>/dev/null");
-    FILE *p = popen(cmd, "r");
-    assert_non_null(p);
-    size_t n = fread(out, 1, size - 1, p);
-    out[n] = '\0';
-    int status = pclose(p);
-    assert_true(WIFEXITED(status));
-    return WEXITSTATUS(status);
+    return cg_test_run_program("CONEGRAPH_EXE", args, with_stderr, out, size);
+}
+
+int
+cg_test_run_conegraph_split(const char *args, char *out, size_t out_size, char *err, size_t err_size)
+{
+    const char *err_path = cg_test_tmp_path("stderr.txt");
+    char tail[4300];
+    snprintf(tail, sizeof tail, "2>'%s'", err_path);
+    int code = run_shell("CONEGRAPH_EXE", args, tail, out, out_size);
+    char *text;
+    cg_error error = { 0 };
+    assert_cg_ok(cg_read_file(err_path, &text, NULL, &error), &error);
+    snprintf(err, err_size, "%s", text);
+    free(text);
+    return code;
+}
+
+void
+cg_test_material_default(cg_material *m, int index)
+{
+    *m = (cg_material){ 0 };
+    snprintf(m->name, sizeof m->name, "material %d", index);
+    for (int k = 0; k < 4; k++)
+        m->base_color[k] = 1.0f;
+    m->base_color_texture = -1;
+    m->metallic_roughness_texture = m->normal_texture = m->occlusion_texture = m->transmission_texture = -1;
+    m->double_sided = true;
+    m->alpha_cutoff = 0.5f;
+    m->ior = 1.5f;
+    m->normal_scale = m->occlusion_strength = 1.0f;
+    m->attenuation_distance = INFINITY;
+    for (int k = 0; k < 3; k++)
+        m->specular_color[k] = m->attenuation_color[k] = 1.0f;
+    for (int t = 0; t < CG_TEX_COUNT; t++)
+        m->uv[t] = (cg_uv_transform){ { 1, 0, 0, 1, 0, 0 } };
+    m->emissive_texture = -1;
+    m->emissive_strength = 1.0f;
+    m->roughness = 1.0f;
 }
 
 void

@@ -1,8 +1,11 @@
 /* tests/support/test_support.h: helpers shared by the cmocka tests.
  *
- * Declares: cg_test_tmpdir, cg_test_write_file, cg_test_scale_scene, assert_cg_ok, assert_cg_status,
- *           cg_test_gl_setup, cg_test_gl_teardown, cg_test_gl_context, assert_no_gl_errors,
- *           cg_test_read_texture, cg_test_read_framebuffer, cg_test_skip_program.
+ * Declares: cg_test_tmpdir, cg_test_tmp_path, cg_test_write_file, cg_test_data_path, cg_test_graph_path,
+ *           cg_test_run_program, cg_test_run_conegraph, cg_test_run_conegraph_split,
+ *           cg_test_list_graphs, cg_test_json_number, cg_test_material_default, cg_test_scale_scene,
+ *           assert_cg_ok, assert_cg_status, cg_test_gl_setup, cg_test_gl_teardown,
+ *           cg_test_gl_context, assert_no_gl_errors, cg_test_read_texture, cg_test_read_framebuffer,
+ *           CG_TEST_MAIN, cg_test_skip_program.
  *
  * GL tests: use the setup/teardown pair as cmocka group fixtures so that one headless
  * context serves every test of the file:
@@ -12,10 +15,8 @@
  *         ...GL calls...
  *         assert_no_gl_errors(ctx);
  *     }
- *     int main(void) {
- *         const struct CMUnitTest tests[] = { cmocka_unit_test(test_x) };
- *         return cmocka_run_group_tests(tests, cg_test_gl_setup, cg_test_gl_teardown);
- *     }
+ *     CG_TEST_MAIN(cg_test_gl_setup, cg_test_gl_teardown,
+ *                  cmocka_unit_test(test_x))
  *
  * With group fixtures, cmocka hands each test the pointer the group setup stored.
  */
@@ -36,12 +37,29 @@
 
 /* A fresh directory under $TMPDIR for this test process, removed at exit. */
 const char *cg_test_tmpdir(void);
-/* Writes `size` bytes (strlen when size is 0) to DIR/name and returns the full path (static storage per call slot). */
+/* The paths below are kept in one pool of CG_TEST_PATH_SLOTS slots used in turn: a test
+ * holds fewer paths than that at once. */
+#define CG_TEST_PATH_SLOTS 64
+/* cg_test_tmpdir()/name. */
+const char *cg_test_tmp_path(const char *name);
+/* Writes `size` bytes (strlen when size is 0) to DIR/name and returns the full path. */
 const char *cg_test_write_file(const char *name, const void *data, size_t size);
+/* $CONEGRAPH_TEST_DATA/relative (tests/data); fails the test when the variable is not set. */
+const char *cg_test_data_path(const char *relative);
+/* $CONEGRAPH_GRAPH_DIR/file (graphs/, e.g. "vct.json"); fails the test when it is not set. */
+const char *cg_test_graph_path(const char *file);
 
-/* Runs $CONEGRAPH_EXE with `args` (shell words) and returns its exit code; its stdout, and
- * its stderr too when with_stderr, goes to out (NUL-terminated, cut at size - 1). */
+/* Runs the program that the environment variable exe_var names (CONEGRAPH_EXE,
+ * CONEGRAPH_DEMO_EXE) with `args` (shell words) and returns its exit code; fails the test when
+ * the variable is not set or the program did not exit. Its stdout, and its stderr too when
+ * with_stderr, goes to out (NUL-terminated, cut at size - 1); with out NULL both are thrown
+ * away. Without with_stderr, stderr is thrown away. */
+int cg_test_run_program(const char *exe_var, const char *args, bool with_stderr, char *out, size_t size);
+/* cg_test_run_program for $CONEGRAPH_EXE. */
 int cg_test_run_conegraph(const char *args, bool with_stderr, char *out, size_t size);
+/* Runs $CONEGRAPH_EXE with stdout and stderr kept apart: in out and err (NUL-terminated, cut
+ * at their size - 1). Returns the exit code. */
+int cg_test_run_conegraph_split(const char *args, char *out, size_t out_size, char *err, size_t err_size);
 
 /* The graph files of $CONEGRAPH_GRAPH_DIR by name without ".json", sorted; fails the test when
  * the directory is not set or cannot be read. */
@@ -51,6 +69,12 @@ int cg_test_list_graphs(char names[CG_TEST_MAX_GRAPHS][256]);
 /* The number after "KEY": in the object that follows "SECTION": of a JSON text (as conegraph
  * prints it); fails the test when either is missing. */
 double cg_test_json_number(const char *json, const char *section, const char *key);
+
+/* The built-in scenes' default material (cg_material_default, which the library keeps to
+ * itself), named "material INDEX": white albedo, Lambertian (specular 0), double-sided, no
+ * texture, identity uv transforms, nothing emitted. The GPU scene uploads it field by field,
+ * so a hand-built scene sets every field as the loaders do. */
+void cg_test_material_default(cg_material *m, int index);
 
 /* Scales a whole scene about the origin by k: geometry (instance transforms), cameras (position,
  * clip planes, orthographic extents), light positions and ranges, and the intensity of point and
@@ -99,6 +123,22 @@ cg_context *cg_test_gl_context(void **state);
             fail_msg("%d GL error(s) reported through KHR_debug (messages logged above)", \
                      cg_gl_errors_);                                                      \
     } while (0)
+
+/* The main of a test program that runs its tests (cmocka_unit_test(name), ...) as one group
+ * with the group fixtures `setup` and `teardown` (cg_test_gl_setup and cg_test_gl_teardown for
+ * GL tests, NULL for none):
+ *
+ *     CG_TEST_MAIN(NULL, NULL,
+ *                  cmocka_unit_test(test_x),
+ *                  cmocka_unit_test(test_y))
+ *
+ * A program that must do more first (read its arguments, set the environment) writes its own. */
+#define CG_TEST_MAIN(setup, teardown, ...)                                                \
+    int main(void)                                                                        \
+    {                                                                                     \
+        const struct CMUnitTest tests[] = { __VA_ARGS__ };                                \
+        return cmocka_run_group_tests(tests, setup, teardown);                            \
+    }
 
 /* Skips a whole test program: prints the TAP plan "1..0 # SKIP reason" and returns 0
  * for main to return. Use it instead of cmocka's skip(): cmocka 1.1.5 prints a skipped
