@@ -554,13 +554,9 @@ static void
 skin_bends_the_strip(void **state)
 {
     (void)state;
-    char path[4200];
-    const char *data = getenv("CONEGRAPH_TEST_DATA");
-    assert_non_null(data);
-    snprintf(path, sizeof path, "%s/gltf/skin/bend.gltf", data);
     cg_scene s;
     cg_error err = { 0 };
-    assert_cg_ok(cg_scene_load(path, &s, &err), &err);
+    assert_cg_ok(cg_scene_load(cg_test_data_path("gltf/skin/bend.gltf"), &s, &err), &err);
     assert_int_equal(s.skin_count, 1);
     assert_int_equal(s.skinned_count, 1);
     assert_int_equal(s.skins[0].joint_count, 2);
@@ -610,18 +606,12 @@ skin_bends_the_strip(void **state)
     cg_scene_free(&s);
 }
 
-int
-main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(linear_and_step),
-        cmocka_unit_test(cubic_spline),
-        cmocka_unit_test(slerp_rotations),
-        cmocka_unit_test(hierarchy_follows),
-        cmocka_unit_test(bounds_cover_the_animation),
-        cmocka_unit_test(animated_gltf_round_trip),
-        cmocka_unit_test(openworld_motion),
-        cmocka_unit_test(skin_bends_the_strip),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+CG_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(linear_and_step),
+             cmocka_unit_test(cubic_spline),
+             cmocka_unit_test(slerp_rotations),
+             cmocka_unit_test(hierarchy_follows),
+             cmocka_unit_test(bounds_cover_the_animation),
+             cmocka_unit_test(animated_gltf_round_trip),
+             cmocka_unit_test(openworld_motion),
+             cmocka_unit_test(skin_bends_the_strip))

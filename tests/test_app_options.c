@@ -39,11 +39,5 @@ test_memory_sizes_need_a_unit(void **state)
     }
 }
 
-int
-main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_memory_sizes_need_a_unit),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+CG_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(test_memory_sizes_need_a_unit))

@@ -557,18 +557,12 @@ shards_merge_into_the_unsharded_table(void **state)
     assert_int_equal(run("bench --shard 1/2 --merge x", out, sizeof out), 2);
 }
 
-int
-main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(sweep_runs_and_caches_the_reference),
-        cmocka_unit_test(sweep_file),
-        cmocka_unit_test(sweep_lights_each_scene_once),
-        cmocka_unit_test(bad_input_exits_with_2),
-        cmocka_unit_test(output_dirs_refused_before_work),
-        cmocka_unit_test(one_bad_setting_renders_and_writes_nothing),
-        cmocka_unit_test(shards_merge_into_the_unsharded_table),
-        cmocka_unit_test(gi_and_direct_columns),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+CG_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(sweep_runs_and_caches_the_reference),
+             cmocka_unit_test(sweep_file),
+             cmocka_unit_test(sweep_lights_each_scene_once),
+             cmocka_unit_test(bad_input_exits_with_2),
+             cmocka_unit_test(output_dirs_refused_before_work),
+             cmocka_unit_test(one_bad_setting_renders_and_writes_nothing),
+             cmocka_unit_test(shards_merge_into_the_unsharded_table),
+             cmocka_unit_test(gi_and_direct_columns))

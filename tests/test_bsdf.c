@@ -341,18 +341,12 @@ refraction_obeys_snell(void **state)
         assert_true(fabsf(r.l[k] + v[k]) < 1e-5f);
 }
 
-int
-main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(ggx_d_is_normalised),
-        cmocka_unit_test(fresnel_of_a_glass_and_total_internal_reflection),
-        cmocka_unit_test(reflection_is_reciprocal),
-        cmocka_unit_test(albedo_terms_match_quadrature),
-        cmocka_unit_test(no_lobe_reflects_more_than_it_receives),
-        cmocka_unit_test(sampling_agrees_with_eval_and_pdf),
-        cmocka_unit_test(smooth_lobes_are_deltas),
-        cmocka_unit_test(refraction_obeys_snell),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+CG_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(ggx_d_is_normalised),
+             cmocka_unit_test(fresnel_of_a_glass_and_total_internal_reflection),
+             cmocka_unit_test(reflection_is_reciprocal),
+             cmocka_unit_test(albedo_terms_match_quadrature),
+             cmocka_unit_test(no_lobe_reflects_more_than_it_receives),
+             cmocka_unit_test(sampling_agrees_with_eval_and_pdf),
+             cmocka_unit_test(smooth_lobes_are_deltas),
+             cmocka_unit_test(refraction_obeys_snell))

@@ -551,20 +551,14 @@ export_failures_leave_nothing(void **state)
     cg_scene_free(&s);
 }
 
-int
-main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(openworld_triangles_follow_parameter),
-        cmocka_unit_test(same_seed_same_scene),
-        cmocka_unit_test(openworld_has_heightfield_complex_and_space_under),
-        cmocka_unit_test(cornell_box),
-        cmocka_unit_test(cornell_scales),
-        cmocka_unit_test(furnace_scales),
-        cmocka_unit_test(unit_scenes),
-        cmocka_unit_test(bad_names_and_parameters),
-        cmocka_unit_test(export_then_load_back),
-        cmocka_unit_test(export_failures_leave_nothing),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+CG_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(openworld_triangles_follow_parameter),
+             cmocka_unit_test(same_seed_same_scene),
+             cmocka_unit_test(openworld_has_heightfield_complex_and_space_under),
+             cmocka_unit_test(cornell_box),
+             cmocka_unit_test(cornell_scales),
+             cmocka_unit_test(furnace_scales),
+             cmocka_unit_test(unit_scenes),
+             cmocka_unit_test(bad_names_and_parameters),
+             cmocka_unit_test(export_then_load_back),
+             cmocka_unit_test(export_failures_leave_nothing))

@@ -327,16 +327,10 @@ camera_selection(void **state)
     cg_scene_free(&s);
 }
 
-int
-main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(cornell_point_lands_on_pixel),
-        cmocka_unit_test(orthographic_and_scaled_cameras),
-        cmocka_unit_test(framed_view_sees_the_bounds),
-        cmocka_unit_test(camera_selection),
-        cmocka_unit_test(own_aspect_ratio_is_fitted_not_stretched),
-        cmocka_unit_test(view_spec_moves_aims_and_zooms),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+CG_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(cornell_point_lands_on_pixel),
+             cmocka_unit_test(orthographic_and_scaled_cameras),
+             cmocka_unit_test(framed_view_sees_the_bounds),
+             cmocka_unit_test(camera_selection),
+             cmocka_unit_test(own_aspect_ratio_is_fitted_not_stretched),
+             cmocka_unit_test(view_spec_moves_aims_and_zooms))

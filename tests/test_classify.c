@@ -368,16 +368,10 @@ through_the_loader(void **state)
     cg_scene_free(&s);
 }
 
-int
-main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(cliff_and_skirt),
-        cmocka_unit_test(two_layers),
-        cmocka_unit_test(down_facing_and_box),
-        cmocka_unit_test(resolution_scale_points_instances),
-        cmocka_unit_test(openworld_kinds),
-        cmocka_unit_test(through_the_loader),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+CG_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(cliff_and_skirt),
+             cmocka_unit_test(two_layers),
+             cmocka_unit_test(down_facing_and_box),
+             cmocka_unit_test(resolution_scale_points_instances),
+             cmocka_unit_test(openworld_kinds),
+             cmocka_unit_test(through_the_loader))

@@ -8,7 +8,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include "cg/fs.h"
@@ -21,23 +20,7 @@ static char out_text[1 << 16], err_text[1 << 16];
 static int
 run(const char *args)
 {
-    const char *exe = getenv("CONEGRAPH_EXE");
-    assert_non_null(exe);
-    char err_path[4200], cmd[8192];
-    snprintf(err_path, sizeof err_path, "%s/stderr.txt", cg_test_tmpdir());
-    snprintf(cmd, sizeof cmd, "'%s' %s 2>'%s'", exe, args, err_path);
-    FILE *p = popen(cmd, "r");
-    assert_non_null(p);
-    size_t n = fread(out_text, 1, sizeof out_text - 1, p);
-    out_text[n] = '\0';
-    int status = pclose(p);
-    assert_true(WIFEXITED(status));
-    char *e;
-    cg_error err = { 0 };
-    assert_cg_ok(cg_read_file(err_path, &e, NULL, &err), &err);
-    snprintf(err_text, sizeof err_text, "%s", e);
-    free(e);
-    return WEXITSTATUS(status);
+    return cg_test_run_conegraph_split(args, out_text, sizeof out_text, err_text, sizeof err_text);
 }
 
 static void
@@ -211,16 +194,6 @@ mean_of(const char *path, float *corner)
     return mean;
 }
 
-static const char *
-tmp(const char *name)
-{
-    static char paths[8][4200];
-    static int next;
-    char *p = paths[next++ % 8];
-    snprintf(p, sizeof paths[0], "%s/%s", cg_test_tmpdir(), name);
-    return p;
-}
-
 /* A scene with no light renders lit, with one notice saying so and how to turn it off, in
  * render, graph and info; --no-default-light leaves it black, with a warning; exit 0 both. */
 static void
@@ -228,7 +201,7 @@ scene_without_light_gets_the_default_light(void **state)
 {
     (void)state;
     const char *scene = write_scene("nolight", false);
-    const char *out = tmp("nolight.exr");
+    const char *out = cg_test_tmp_path("nolight.exr");
     char args[9000];
     const char *graphs[] = { "direct.json", "vct.json" };
     for (int g = 0; g < 2; g++) {
@@ -277,7 +250,7 @@ sky_is_seen_and_command_line_wins(void **state)
 {
     (void)state;
     const char *scene = write_scene("skyscene", true);
-    const char *out = tmp("sky.exr");
+    const char *out = cg_test_tmp_path("sky.exr");
     char args[9000];
     float corner;
     snprintf(args, sizeof args, "render '%s' --graph reference.json --set trace.spp=2 --camera auto --size 32x18 "
@@ -289,9 +262,7 @@ sky_is_seen_and_command_line_wins(void **state)
     /* A graph file asking for a sky. */
     char *reference;
     cg_error err = { 0 };
-    char path[4200];
-    snprintf(path, sizeof path, "%s/reference.json", getenv("CONEGRAPH_GRAPH_DIR"));
-    assert_cg_ok(cg_read_file(path, &reference, NULL, &err), &err);
+    assert_cg_ok(cg_read_file(cg_test_graph_path("reference.json"), &reference, NULL, &err), &err);
     const char *version = strstr(reference, "\"version\": 1,");
     assert_non_null(version);
     static char with_sky[16384];
@@ -321,9 +292,9 @@ sky_is_seen_and_command_line_wins(void **state)
     /* Bad skies exit 2 before anything is written. */
     const char *bad[] = { "--sky -1", "--sky 1,2", "--sky preetham:11", "--sky blue" };
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
-        snprintf(args, sizeof args, "render '%s' --size 32x18 %s -o '%s'", scene, bad[i], tmp("never.exr"));
+        snprintf(args, sizeof args, "render '%s' --size 32x18 %s -o '%s'", scene, bad[i], cg_test_tmp_path("never.exr"));
         assert_int_equal(run(args), 2);
-        assert_int_not_equal(access(tmp("never.exr"), F_OK), 0);
+        assert_int_not_equal(access(cg_test_tmp_path("never.exr"), F_OK), 0);
     }
 }
 
@@ -334,7 +305,7 @@ cameras_as_users_ask_for_them(void **state)
 {
     (void)state;
     const char *scene = write_scene("camscene", true);
-    const char *out = tmp("cam.exr");
+    const char *out = cg_test_tmp_path("cam.exr");
     char args[9000];
     snprintf(args, sizeof args, "render '%s' --graph direct.json --size 64x36 -o '%s'", scene, out);
     assert_int_equal(run(args), 0);
@@ -357,10 +328,10 @@ cameras_as_users_ask_for_them(void **state)
                           "--from 0,1,4 --look-at 0,1,4", "--camera nobody", "--camera 3" };
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
         snprintf(args, sizeof args, "render '%s' --graph direct.json --size 32x18 %s -o '%s'", scene, bad[i],
-                 tmp("never.exr"));
+                 cg_test_tmp_path("never.exr"));
         if (run(args) != 2)
             fail_msg("%s did not exit 2: %s", bad[i], err_text);
-        assert_int_not_equal(access(tmp("never.exr"), F_OK), 0);
+        assert_int_not_equal(access(cg_test_tmp_path("never.exr"), F_OK), 0);
     }
 }
 
@@ -385,14 +356,8 @@ version_names_every_library(void **state)
     assert_int_equal(run("version --context vulkan"), 2);
 }
 
-int
-main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(version_names_every_library),
-        cmocka_unit_test(scene_without_light_gets_the_default_light),
-        cmocka_unit_test(sky_is_seen_and_command_line_wins),
-        cmocka_unit_test(cameras_as_users_ask_for_them),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+CG_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(version_names_every_library),
+             cmocka_unit_test(scene_without_light_gets_the_default_light),
+             cmocka_unit_test(sky_is_seen_and_command_line_wins),
+             cmocka_unit_test(cameras_as_users_ask_for_them))

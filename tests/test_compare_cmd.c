@@ -21,10 +21,7 @@ write_constant(const char *name, float v, int w, int h)
         img.rgba[4 * i] = img.rgba[4 * i + 1] = img.rgba[4 * i + 2] = v;
         img.rgba[4 * i + 3] = 1.0f;
     }
-    static char paths[8][4096];
-    static int next;
-    char *path = paths[next++ % 8];
-    snprintf(path, 4096, "%s/%s", cg_test_tmpdir(), name);
+    const char *path = cg_test_tmp_path(name);
     assert_cg_ok(cg_image_write(path, &img, CG_EXR_FLOAT, &err), &err);
     cg_image_free(&img);
     return path;
@@ -136,10 +133,7 @@ write_edge(const char *name, int edge, float lit, float dark, float add)
             p[0] = p[1] = p[2] = (x < edge ? lit : dark) + add;
             p[3] = 1.0f;
         }
-    static char paths[16][4096];
-    static int next;
-    char *path = paths[next++ % 16];
-    snprintf(path, 4096, "%s/%s", cg_test_tmpdir(), name);
+    const char *path = cg_test_tmp_path(name);
     assert_cg_ok(cg_image_write(path, &img, CG_EXR_FLOAT, &err), &err);
     cg_image_free(&img);
     return path;
@@ -250,16 +244,10 @@ bad_input_exits_with_2(void **state)
     assert_non_null(strstr(out, "usage: conegraph compare"));
 }
 
-int
-main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(identical_images),
-        cmocka_unit_test(offset_and_indirect_part),
-        cmocka_unit_test(own_direct_light_cancels_shadow_edges),
-        cmocka_unit_test(no_indirect_light_and_the_reference_itself),
-        cmocka_unit_test(bad_input_exits_with_2),
-        cmocka_unit_test(display_image_beside_linear_one_is_refused),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+CG_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(identical_images),
+             cmocka_unit_test(offset_and_indirect_part),
+             cmocka_unit_test(own_direct_light_cancels_shadow_edges),
+             cmocka_unit_test(no_indirect_light_and_the_reference_itself),
+             cmocka_unit_test(bad_input_exits_with_2),
+             cmocka_unit_test(display_image_beside_linear_one_is_refused))

@@ -142,15 +142,9 @@ test_frame_axes_and_grazing(void **state)
     }
 }
 
-int
-main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_sizes),
-        cmocka_unit_test(test_weights_sum_to_one),
-        cmocka_unit_test(test_six_cone_weights),
-        cmocka_unit_test(test_weights_match_quadrature),
-        cmocka_unit_test(test_frame_axes_and_grazing),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+CG_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(test_sizes),
+             cmocka_unit_test(test_weights_sum_to_one),
+             cmocka_unit_test(test_six_cone_weights),
+             cmocka_unit_test(test_weights_match_quadrature),
+             cmocka_unit_test(test_frame_axes_and_grazing))

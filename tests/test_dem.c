@@ -14,13 +14,9 @@
 static const char *
 data(const char *name)
 {
-    static char path[4][1024];
-    static int slot;
-    const char *dir = getenv("CONEGRAPH_TEST_DATA");
-    assert_non_null(dir);
-    char *p = path[slot++ % 4];
-    snprintf(p, sizeof path[0], "%s/dem/%s", dir, name);
-    return p;
+    char relative[1024];
+    snprintf(relative, sizeof relative, "dem/%s", name);
+    return cg_test_data_path(relative);
 }
 
 static void
@@ -232,14 +228,8 @@ height_field_normals_face_up(void **state)
         fail_msg("%d of %d covered pixels of the height field have a normal pointing down", down, covered);
 }
 
-int
-main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(grid_from_png_and_tiff),
-        cmocka_unit_test(village_placed_and_exported),
-        cmocka_unit_test(bad_sources),
-        cmocka_unit_test(height_field_normals_face_up),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+CG_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(grid_from_png_and_tiff),
+             cmocka_unit_test(village_placed_and_exported),
+             cmocka_unit_test(bad_sources),
+             cmocka_unit_test(height_field_normals_face_up))

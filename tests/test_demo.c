@@ -180,9 +180,7 @@ load_graph(const char *name, fg_registry **registry)
     assert_cg_ok(cg_builtin_passes_register(*registry, &err), &err);
     fg_graph *graph = fg_graph_create(*registry);
     assert_non_null(graph);
-    char path[4096];
-    snprintf(path, sizeof path, "%s/%s", getenv("CONEGRAPH_GRAPH_DIR"), name);
-    assert_cg_ok(fg_graph_load_file(graph, path, &err), &err);
+    assert_cg_ok(fg_graph_load_file(graph, cg_test_graph_path(name), &err), &err);
     return graph;
 }
 
@@ -868,15 +866,7 @@ test_sun_turn(void **state)
 static int
 run_demo(const char *args)
 {
-    const char *exe = getenv("CONEGRAPH_DEMO_EXE");
-    if (!exe)
-        fail_msg("CONEGRAPH_DEMO_EXE is not set");
-    char cmd[8192];
-    snprintf(cmd, sizeof cmd, "'%s' %s >/dev/null 2>&1", exe, args);
-    int status = system(cmd);
-    if (status == -1 || !WIFEXITED(status))
-        fail_msg("could not run: %s", cmd);
-    return WEXITSTATUS(status);
+    return cg_test_run_program("CONEGRAPH_DEMO_EXE", args, false, NULL, 0);
 }
 
 /* Bad input exits 2 before a window is asked for, so these need no display: run them with
@@ -887,17 +877,8 @@ static void
 test_help(void **state)
 {
     (void)state;
-    const char *exe = getenv("CONEGRAPH_DEMO_EXE");
-    assert_non_null(exe);
-    char cmd[4200];
-    snprintf(cmd, sizeof cmd, "'%s' --help", exe);
-    FILE *p = popen(cmd, "r");
-    assert_non_null(p);
     static char text[1 << 16];
-    size_t n = fread(text, 1, sizeof text - 1, p);
-    text[n] = '\0';
-    int status = pclose(p);
-    assert_true(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+    assert_int_equal(cg_test_run_program("CONEGRAPH_DEMO_EXE", "--help", false, text, sizeof text), 0);
     const char *options[] = { "--graph FILE", "--size WxH", "--camera NAME|INDEX|auto", "--from X,Y,Z",
                               "--look-at X,Y,Z", "--fov DEG", "--sky none|", "--no-default-light", "--time T",
                               "--fps F", "--play on|off", "--set PASS.PARAM=VALUE", "--plugin PATH",
@@ -966,28 +947,22 @@ test_bad_input(void **state)
     assert_int_equal(run_demo("builtin:cornell --graph direct.json --size 32x32 --frames 1"), 1);
 }
 
-int
-main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_step_int),
-        cmocka_unit_test(test_step_float),
-        cmocka_unit_test(test_step_bool_enum_string),
-        cmocka_unit_test(test_format),
-        cmocka_unit_test(test_selection),
-        cmocka_unit_test(test_describe),
-        cmocka_unit_test(test_adjust),
-        cmocka_unit_test(test_every_table_steps_validly),
-        cmocka_unit_test(test_controls),
-        cmocka_unit_test(test_snap),
-        cmocka_unit_test(test_every_control_valid),
-        cmocka_unit_test(test_param_set),
-        cmocka_unit_test(test_camera),
-        cmocka_unit_test(test_clock_fixed_step),
-        cmocka_unit_test(test_clock_wall_time),
-        cmocka_unit_test(test_sun_turn),
-        cmocka_unit_test(test_help),
-        cmocka_unit_test(test_bad_input),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+CG_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(test_step_int),
+             cmocka_unit_test(test_step_float),
+             cmocka_unit_test(test_step_bool_enum_string),
+             cmocka_unit_test(test_format),
+             cmocka_unit_test(test_selection),
+             cmocka_unit_test(test_describe),
+             cmocka_unit_test(test_adjust),
+             cmocka_unit_test(test_every_table_steps_validly),
+             cmocka_unit_test(test_controls),
+             cmocka_unit_test(test_snap),
+             cmocka_unit_test(test_every_control_valid),
+             cmocka_unit_test(test_param_set),
+             cmocka_unit_test(test_camera),
+             cmocka_unit_test(test_clock_fixed_step),
+             cmocka_unit_test(test_clock_wall_time),
+             cmocka_unit_test(test_sun_turn),
+             cmocka_unit_test(test_help),
+             cmocka_unit_test(test_bad_input))

@@ -40,17 +40,6 @@ run(const char *exe_var, const char *args, const char *stdout_path)
     return WEXITSTATUS(status);
 }
 
-/* DIR/name, in one of 32 slots used in turn: a test keeps fewer paths than that at once. */
-static const char *
-tmp(const char *name)
-{
-    static char paths[32][4096];
-    static int next;
-    char *p = paths[next++ % 32];
-    snprintf(p, 4096, "%s/%s", cg_test_tmpdir(), name);
-    return p;
-}
-
 /* Mean of RGB; fails on a non-finite or negative pixel or a wrong size. */
 static double
 check_image(const cg_image *img, int w, int h)
@@ -108,7 +97,7 @@ test_direct_matches_render(void **state)
 {
     (void)state;
     cg_error err = { 0 };
-    const char *shot = tmp("demo.png"), *ref = tmp("render.png"), *log = tmp("demo.txt");
+    const char *shot = cg_test_tmp_path("demo.png"), *ref = cg_test_tmp_path("render.png"), *log = cg_test_tmp_path("demo.txt");
     char args[8192];
     snprintf(args, sizeof args,
              "builtin:cornell --graph direct.json --size 64x64 --frames 3 --ui off --screenshot '%s'", shot);
@@ -145,7 +134,7 @@ test_vct_runs(void **state)
 {
     (void)state;
     cg_error err = { 0 };
-    const char *shot = tmp("vct.png"), *log = tmp("vct.txt");
+    const char *shot = cg_test_tmp_path("vct.png"), *log = cg_test_tmp_path("vct.txt");
     char args[8192];
     snprintf(args, sizeof args,
              "builtin:cornell --graph vct.json --set vox.resolution=32 --size 48x32 --frames 3 "
@@ -185,8 +174,8 @@ static void
 test_keys(void **state)
 {
     (void)state;
-    const char *plain = tmp("plain.png"), *bright = tmp("bright.png"), *other = tmp("other.png");
-    const char *log = tmp("keys.txt");
+    const char *plain = cg_test_tmp_path("plain.png"), *bright = cg_test_tmp_path("bright.png"), *other = cg_test_tmp_path("other.png");
+    const char *log = cg_test_tmp_path("keys.txt");
     char args[8192];
     snprintf(args, sizeof args, "builtin:cornell --graph direct.json --size 48x32 --frames 1 --ui off "
              "--screenshot '%s'", plain);
@@ -204,7 +193,7 @@ test_keys(void **state)
 
     /* Scripted flight: held for a fixed 0.25 s each, so the same distance on any machine.
      * Forward twice and right at 4x speed changes the view; R brings back the scene's. */
-    const char *flown = tmp("flown.png"), *back = tmp("back.png");
+    const char *flown = cg_test_tmp_path("flown.png"), *back = cg_test_tmp_path("back.png");
     snprintf(args, sizeof args, "builtin:cornell --graph direct.json --size 48x32 --frames 3 --ui off "
              "--keys shift+w,shift+w,shift+d --screenshot '%s'", flown);
     assert_int_equal(run("CONEGRAPH_DEMO_EXE", args, NULL), 0);
@@ -304,8 +293,8 @@ static void
 test_ui_shown(void **state)
 {
     (void)state;
-    const char *shown = tmp("ui.png"), *bare = tmp("bare.png"), *off = tmp("off.png"), *f1 = tmp("f1.png");
-    const char *log = tmp("ui.txt");
+    const char *shown = cg_test_tmp_path("ui.png"), *bare = cg_test_tmp_path("bare.png"), *off = cg_test_tmp_path("off.png"), *f1 = cg_test_tmp_path("f1.png");
+    const char *log = cg_test_tmp_path("ui.txt");
     char args[8192];
     snprintf(args, sizeof args, "builtin:cornell --graph direct.json --size " UI_SIZE " --frames 3 "
              "--keys shift+tab,right --screenshot '%s' --image-screenshot '%s'", shown, bare);
@@ -362,7 +351,7 @@ static void
 test_ui_small_window(void **state)
 {
     (void)state;
-    const char *shot = tmp("small.png"), *log = tmp("small.txt");
+    const char *shot = cg_test_tmp_path("small.png"), *log = cg_test_tmp_path("small.txt");
     char args[8192];
     snprintf(args, sizeof args, "builtin:cornell --graph direct.json --size 640x360 --frames 3 --screenshot '%s'", shot);
     assert_int_equal(run("CONEGRAPH_DEMO_EXE", args, log), 0);
@@ -419,7 +408,7 @@ test_viewer(void **state)
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
         char name[64], args[8192], view[128] = "";
         snprintf(name, sizeof name, "view%zu.png", k);
-        const char *shot = tmp(name), *log = tmp("view.txt");
+        const char *shot = cg_test_tmp_path(name), *log = cg_test_tmp_path("view.txt");
         if (cases[k].view)
             snprintf(view, sizeof view, "--view %s", cases[k].view);
         snprintf(args, sizeof args, "builtin:cornell --graph %s --set vox.resolution=32 --size 480x360 --frames 2 "
@@ -474,7 +463,7 @@ test_plugin_levels_and_gl_error(void **state)
 {
     (void)state;
     cg_error err = { 0 };
-    const char *shot = tmp("fill.png"), *log = tmp("fill.txt");
+    const char *shot = cg_test_tmp_path("fill.png"), *log = cg_test_tmp_path("fill.txt");
     char args[8192];
     snprintf(args, sizeof args, "builtin:cornell --plugin '%s' --graph '%s' --size 40x24 --frames 3 --ui off "
              "--screenshot '%s'", plugin_path, write_fill_graph("fill.json", -1), shot);
@@ -491,7 +480,7 @@ test_plugin_levels_and_gl_error(void **state)
         }
     cg_image_free(&img);
 
-    const char *broken = tmp("broken.png");
+    const char *broken = cg_test_tmp_path("broken.png");
     snprintf(args, sizeof args, "builtin:cornell --plugin '%s' --graph '%s' --size 40x24 --frames 5 "
              "--screenshot '%s'", plugin_path, write_fill_graph("error.json", 2), broken);
     assert_int_equal(run("CONEGRAPH_DEMO_EXE", args, log), 1);
@@ -516,7 +505,7 @@ render_png(const char *scene, const char *graph, const char *size, const char *e
 static const char *
 demo_png(const char *scene, const char *graph, const char *size, const char *extra, const char *out)
 {
-    const char *log = tmp("demo-run.txt");
+    const char *log = cg_test_tmp_path("demo-run.txt");
     char args[8192];
     snprintf(args, sizeof args, "'%s' --graph %s --size %s %s --image-screenshot '%s'", scene, graph, size, extra, out);
     assert_int_equal(run("CONEGRAPH_DEMO_EXE", args, log), 0);
@@ -549,12 +538,12 @@ static void
 test_animation(void **state)
 {
     (void)state;
-    const char *scene = tmp("moving.glb");
+    const char *scene = cg_test_tmp_path("moving.glb");
     char args[8192];
     snprintf(args, sizeof args, "export 'builtin:openworld?motion=all&period=4&triangles=20000' '%s'", scene);
     assert_int_equal(run("CONEGRAPH_EXE", args, NULL), 0);
-    const char *at0 = tmp("anim-r0.png"), *at025 = tmp("anim-r025.png"), *at1 = tmp("anim-r1.png");
-    const char *at325 = tmp("anim-r325.png");
+    const char *at0 = cg_test_tmp_path("anim-r0.png"), *at025 = cg_test_tmp_path("anim-r025.png"), *at1 = cg_test_tmp_path("anim-r1.png");
+    const char *at325 = cg_test_tmp_path("anim-r325.png");
     render_png(scene, "direct.json", ANIM_SIZE, "--time 0", at0);
     render_png(scene, "direct.json", ANIM_SIZE, "--time 0.25", at025);
     render_png(scene, "direct.json", ANIM_SIZE, "--time 1", at1);
@@ -562,31 +551,31 @@ test_animation(void **state)
     expect_different("render at 0 and 1 s", at0, at1);
 
     /* Five frames at 4 per second: the last at 1 s. */
-    const char *played = tmp("anim-played.png");
+    const char *played = cg_test_tmp_path("anim-played.png");
     const char *out = demo_png(scene, "direct.json", ANIM_SIZE, "--fps 4 --frames 5 --ui off", played);
     assert_non_null(strstr(out, "animation: keys from 0 to 4 s"));
     assert_non_null(strstr(out, "t = 1 s (playing)"));
     expect_same("played to 1 s", played, at1);
     /* --play off: the first frame's time throughout. */
-    const char *still = tmp("anim-still.png");
+    const char *still = cg_test_tmp_path("anim-still.png");
     demo_png(scene, "direct.json", ANIM_SIZE, "--fps 4 --frames 3 --ui off --play off", still);
     expect_same("not played", still, at0);
     /* Space on the third frame: frames 2 to 4 stay at the second frame's 0.25 s. */
-    const char *paused = tmp("anim-paused.png");
+    const char *paused = cg_test_tmp_path("anim-paused.png");
     out = demo_png(scene, "direct.json", ANIM_SIZE, "--fps 4 --frames 5 --ui off --keys tab,tab,space", paused);
     assert_non_null(strstr(out, "animation: t = 0.25 s (paused)"));
     expect_same("paused at 0.25 s", paused, at025);
     /* From 0.5 s: 0.75, 1, 0.75, then ten frames on to 3.25 s; paused there, with the UI. */
-    const char *scrubbed = tmp("anim-scrubbed.png");
+    const char *scrubbed = cg_test_tmp_path("anim-scrubbed.png");
     out = demo_png(scene, "direct.json", ANIM_SIZE, "--time 0.5 --fps 4 --frames 6 --keys '],],[,shift+]'",
                    scrubbed);
     assert_non_null(strstr(out, "animation: t = 0.75 s (paused)"));
     assert_non_null(strstr(out, "animation: t = 3.25 s (paused)"));
     expect_same("scrubbed to 3.25 s", scrubbed, at325);
     /* The same in real time: a frame moves on by its wall time, so only that it moved. */
-    const char *real = tmp("anim-real.png");
+    const char *real = cg_test_tmp_path("anim-real.png");
     demo_png(scene, "direct.json", ANIM_SIZE, "--time 0.5 --frames 2 --ui off --keys tab,]", real);
-    const char *at05_plus = tmp("anim-r0533.png");
+    const char *at05_plus = cg_test_tmp_path("anim-r0533.png");
     render_png(scene, "direct.json", ANIM_SIZE, "--time 0.5 --fps 30 --frames 2", at05_plus);
     expect_same("a step of 1/30 s without --fps", real, at05_plus);
 }
@@ -602,27 +591,27 @@ test_sun_key(void **state)
     (void)state;
     const char *still = "builtin:openworld", *moving = "builtin:openworld?motion=sun&period=18";
     const char *pt = "reference.json --set trace.spp=4 --set trace.progress=false";
-    const char *r0 = tmp("sun-r0.png"), *r1 = tmp("sun-r1.png"), *r15 = tmp("sun-r15.png"), *r2 = tmp("sun-r2.png");
+    const char *r0 = cg_test_tmp_path("sun-r0.png"), *r1 = cg_test_tmp_path("sun-r1.png"), *r15 = cg_test_tmp_path("sun-r15.png"), *r2 = cg_test_tmp_path("sun-r2.png");
     render_png(still, pt, "48x27", "", r0);
     render_png(moving, pt, "48x27", "--time 1", r1);
     render_png(moving, pt, "48x27", "--time 1.5", r15);
     render_png(moving, pt, "48x27", "--time 2", r2);
     expect_different("the path tracer's sun at 0 and 20 degrees", r0, r1);
 
-    const char *turned = tmp("sun-turned.png");
+    const char *turned = cg_test_tmp_path("sun-turned.png");
     const char *out = demo_png(still, pt, "48x27", "--fps 2 --frames 3 --ui off --keys l", turned);
     assert_non_null(strstr(out, "sun: moving"));
     expect_same("the path tracer after 1 s of L", turned, r1);
-    const char *both = tmp("sun-both.png");
+    const char *both = cg_test_tmp_path("sun-both.png");
     demo_png(moving, pt, "48x27", "--fps 2 --frames 3 --ui off --keys l", both);
     expect_same("1 s of L on 1 s of the animated sun", both, r2);
     /* L on frame 0, Shift+L on frame 2 (turned 10 degrees by then): the animation's 1.5 s. */
-    const char *back = tmp("sun-back.png");
+    const char *back = cg_test_tmp_path("sun-back.png");
     out = demo_png(moving, pt, "48x27", "--fps 2 --frames 4 --ui off --keys l,tab,shift+l", back);
     assert_non_null(strstr(out, "sun: back where the scene's animation has it"));
     expect_same("L, then Shift+L", back, r15);
 
-    const char *direct = tmp("sun-direct.png"), *direct_ref = tmp("sun-direct-r1.png");
+    const char *direct = cg_test_tmp_path("sun-direct.png"), *direct_ref = cg_test_tmp_path("sun-direct-r1.png");
     render_png(moving, "direct.json", "48x27", "--time 1", direct_ref);
     demo_png(still, "direct.json", "48x27", "--fps 2 --frames 3 --ui off --keys l", direct);
     expect_same("the raster graph after 1 s of L", direct, direct_ref);
@@ -681,8 +670,8 @@ test_camera_options(void **state)
 {
     (void)state;
     const char *view = "--from 1,2.5,4 --look-at 0,0.5,0 --fov 60";
-    const char *ref = tmp("cam-r.png"), *plain = tmp("cam-plain.png"), *flown = tmp("cam-flown.png");
-    const char *back = tmp("cam-back.png");
+    const char *ref = cg_test_tmp_path("cam-r.png"), *plain = cg_test_tmp_path("cam-plain.png"), *flown = cg_test_tmp_path("cam-flown.png");
+    const char *back = cg_test_tmp_path("cam-back.png");
     render_png("builtin:cornell", "direct.json", "48x32", view, ref);
     render_png("builtin:cornell", "direct.json", "48x32", "", plain);
     expect_different("--from, --look-at, --fov against the scene's camera", ref, plain);
@@ -695,14 +684,14 @@ test_camera_options(void **state)
     assert_non_null(strstr(out, "camera: reset to the view of --camera, --from, --look-at, --fov"));
     expect_same("--from, --look-at, --fov, flown and back", back, ref);
 
-    const char *framed = tmp("cam-auto.png"), *framed_ref = tmp("cam-auto-r.png");
+    const char *framed = cg_test_tmp_path("cam-auto.png"), *framed_ref = cg_test_tmp_path("cam-auto-r.png");
     render_png("builtin:cornell", "direct.json", "48x32", "--camera auto", framed_ref);
     demo_png("builtin:cornell", "direct.json", "48x32", "--camera auto --frames 1 --ui off", framed);
     expect_same("--camera auto", framed, framed_ref);
 
     const char *scene = write_moving_camera();
-    const char *narrow0 = tmp("cam-move-r0.png"), *narrow1 = tmp("cam-move-r1.png"), *wide1 = tmp("cam-move-w1.png");
-    const char *shown = tmp("cam-move.png");
+    const char *narrow0 = cg_test_tmp_path("cam-move-r0.png"), *narrow1 = cg_test_tmp_path("cam-move-r1.png"), *wide1 = cg_test_tmp_path("cam-move-w1.png");
+    const char *shown = cg_test_tmp_path("cam-move.png");
     render_png(scene, "direct.json", "48x32", "--fov 30 --time 0", narrow0);
     render_png(scene, "direct.json", "48x32", "--fov 30 --time 1", narrow1);
     render_png(scene, "direct.json", "48x32", "--time 1", wide1);

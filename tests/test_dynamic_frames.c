@@ -273,15 +273,9 @@ test_vct_one_moving(void **state)
     assert_true(d_fresh == 0.0 && d_rebuilt == 0.0);
 }
 
-int
-main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_every_object_moving),
-        cmocka_unit_test(test_sun_turning),
-        cmocka_unit_test(test_vct_every_object_moving),
-        cmocka_unit_test(test_vct_sun_turning),
-        cmocka_unit_test(test_vct_one_moving),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+CG_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(test_every_object_moving),
+             cmocka_unit_test(test_sun_turning),
+             cmocka_unit_test(test_vct_every_object_moving),
+             cmocka_unit_test(test_vct_sun_turning),
+             cmocka_unit_test(test_vct_one_moving))

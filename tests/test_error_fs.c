@@ -97,16 +97,10 @@ temp_path_keeps_extension_last(void **state)
     assert_string_equal(tmp + strlen(tmp) - 4, ".exr");
 }
 
-int
-main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(first_failure_wins),
-        cmocka_unit_test(every_status_has_a_name_and_exit_code),
-        cmocka_unit_test(atomic_write_replaces_only_on_commit),
-        cmocka_unit_test(atomic_open_in_missing_dir_fails),
-        cmocka_unit_test(read_missing_file_names_it),
-        cmocka_unit_test(temp_path_keeps_extension_last),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+CG_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(first_failure_wins),
+             cmocka_unit_test(every_status_has_a_name_and_exit_code),
+             cmocka_unit_test(atomic_write_replaces_only_on_commit),
+             cmocka_unit_test(atomic_open_in_missing_dir_fails),
+             cmocka_unit_test(read_missing_file_names_it),
+             cmocka_unit_test(temp_path_keeps_extension_last))

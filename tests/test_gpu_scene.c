@@ -214,13 +214,7 @@ test_material_buffer_layout(void **state)
     assert_no_gl_errors(ctx);
 }
 
-int
-main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_light_buffer_layout),
-        cmocka_unit_test(test_material_buffer_layout),
-        cmocka_unit_test(test_filters_bytes_and_draw),
-    };
-    return cmocka_run_group_tests(tests, cg_test_gl_setup, cg_test_gl_teardown);
-}
+CG_TEST_MAIN(cg_test_gl_setup, cg_test_gl_teardown,
+             cmocka_unit_test(test_light_buffer_layout),
+             cmocka_unit_test(test_material_buffer_layout),
+             cmocka_unit_test(test_filters_bytes_and_draw))

@@ -32,16 +32,6 @@ make_test_image(void)
     return img;
 }
 
-static const char *
-tmp_path(const char *name)
-{
-    static char paths[4][4096];
-    static int next;
-    char *p = paths[next++ % 4];
-    snprintf(p, 4096, "%s/%s", cg_test_tmpdir(), name);
-    return p;
-}
-
 static bool
 exists(const char *path)
 {
@@ -97,7 +87,7 @@ test_exr_float_round_trip_is_bit_exact(void **state)
     img.rgba[1] = -123.456f;
     img.rgba[2] = 1e-30f;
     img.rgba[3] = 3.0e38f;
-    const char *path = tmp_path("float.exr");
+    const char *path = cg_test_tmp_path("float.exr");
     cg_error err = { 0 };
     assert_cg_ok(cg_image_write(path, &img, CG_EXR_FLOAT, &err), &err);
     assert_cg_ok(cg_image_read(path, &back, &err), &err);
@@ -122,7 +112,7 @@ test_read_info_says_how_the_file_stored_its_values(void **state)
         { "info.png", CG_EXR_FLOAT, true, false, 8 },
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
-        const char *path = tmp_path(cases[i].name);
+        const char *path = cg_test_tmp_path(cases[i].name);
         assert_cg_ok(cg_image_write(path, &img, cases[i].type, &err), &err);
         assert_cg_ok(cg_image_read_info(path, &back, &info, &err), &err);
         assert_int_equal(info.display_encoded, cases[i].display);
@@ -142,7 +132,7 @@ test_exr_half_within_half_precision(void **state)
     cg_image img = make_test_image(), back;
     img.rgba[0] = 1.0f / 3.0f;
     img.rgba[1] = 1000.1f;
-    const char *path = tmp_path("half.exr");
+    const char *path = cg_test_tmp_path("half.exr");
     cg_error err = { 0 };
     assert_cg_ok(cg_image_write(path, &img, CG_EXR_HALF, &err), &err);
     assert_cg_ok(cg_image_read(path, &back, &err), &err);
@@ -180,7 +170,7 @@ test_png_srgb_round_trip(void **state)
         q[2] = (float)k / 255.0f;
         q[3] = 1.0f;
     }
-    const char *path = tmp_path("srgb.png");
+    const char *path = cg_test_tmp_path("srgb.png");
     assert_cg_ok(cg_image_write(path, &img, CG_EXR_HALF, &err), &err);
     assert_cg_ok(cg_image_read(path, &back, &err), &err);
     assert_int_equal(back.width, 256);
@@ -218,7 +208,7 @@ test_row_order_and_round_trip_orientation(void **state)
     assert_memory_equal(img.rgba, top, sizeof top);
     assert_memory_equal(img.rgba + 4, bottom, sizeof bottom);
     /* and writing keeps it */
-    const char *exr = tmp_path("rb.exr");
+    const char *exr = cg_test_tmp_path("rb.exr");
     assert_cg_ok(cg_image_write(exr, &img, CG_EXR_FLOAT, &err), &err);
     assert_cg_ok(cg_image_read(exr, &back, &err), &err);
     assert_memory_equal(back.rgba, img.rgba, sizeof(float) * 8);
@@ -255,7 +245,7 @@ test_bad_files_fail_clearly(void **state)
     assert_null(img.rgba);
     const char *noext = cg_test_write_file("garbage", "\x01\x02\x03", 3);
     assert_cg_status(cg_image_read(noext, &img, &err), &err, CG_ERR_IMAGE_FORMAT);
-    assert_cg_status(cg_image_read(tmp_path("does-not-exist.exr"), &img, &err), &err, CG_ERR_FILE_NOT_FOUND);
+    assert_cg_status(cg_image_read(cg_test_tmp_path("does-not-exist.exr"), &img, &err), &err, CG_ERR_FILE_NOT_FOUND);
     assert_non_null(strstr(err.message, "does-not-exist.exr"));
 }
 
@@ -265,11 +255,11 @@ test_unsupported_extension_writes_nothing(void **state)
     (void)state;
     cg_image img = make_test_image();
     cg_error err;
-    const char *path = tmp_path("out.bmp");
+    const char *path = cg_test_tmp_path("out.bmp");
     assert_cg_status(cg_image_write(path, &img, CG_EXR_HALF, &err), &err, CG_ERR_IMAGE_FORMAT);
     assert_non_null(strstr(err.message, "out.bmp"));
     assert_false(exists(path));
-    assert_cg_status(cg_image_write(tmp_path("no_extension"), &img, CG_EXR_HALF, &err), &err,
+    assert_cg_status(cg_image_write(cg_test_tmp_path("no_extension"), &img, CG_EXR_HALF, &err), &err,
                      CG_ERR_IMAGE_FORMAT);
     cg_image_free(&img);
 }
@@ -357,21 +347,15 @@ test_alloc_rejects_bad_sizes(void **state)
     cg_image_free(&img); /* twice is harmless */
 }
 
-int
-main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_srgb_transfer),
-        cmocka_unit_test(test_exr_float_round_trip_is_bit_exact),
-        cmocka_unit_test(test_exr_half_within_half_precision),
-        cmocka_unit_test(test_read_info_says_how_the_file_stored_its_values),
-        cmocka_unit_test(test_png_srgb_round_trip),
-        cmocka_unit_test(test_row_order_and_round_trip_orientation),
-        cmocka_unit_test(test_grey_without_alpha),
-        cmocka_unit_test(test_bad_files_fail_clearly),
-        cmocka_unit_test(test_unsupported_extension_writes_nothing),
-        cmocka_unit_test(test_failed_write_leaves_nothing_and_clobbers_nothing),
-        cmocka_unit_test(test_alloc_rejects_bad_sizes),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+CG_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(test_srgb_transfer),
+             cmocka_unit_test(test_exr_float_round_trip_is_bit_exact),
+             cmocka_unit_test(test_exr_half_within_half_precision),
+             cmocka_unit_test(test_read_info_says_how_the_file_stored_its_values),
+             cmocka_unit_test(test_png_srgb_round_trip),
+             cmocka_unit_test(test_row_order_and_round_trip_orientation),
+             cmocka_unit_test(test_grey_without_alpha),
+             cmocka_unit_test(test_bad_files_fail_clearly),
+             cmocka_unit_test(test_unsupported_extension_writes_nothing),
+             cmocka_unit_test(test_failed_write_leaves_nothing_and_clobbers_nothing),
+             cmocka_unit_test(test_alloc_rejects_bad_sizes))

@@ -332,22 +332,16 @@ heatmap_is_dark_where_equal_and_bright_where_wrong(void **state)
     image_release(&map);
 }
 
-int
-main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(identical_images_have_zero_error),
-        cmocka_unit_test(constant_offset_gives_closed_form),
-        cmocka_unit_test(scaled_image_gives_closed_form),
-        cmocka_unit_test(nonfinite_pixels_are_counted_and_left_out),
-        cmocka_unit_test(black_reference_ratio),
-        cmocka_unit_test(size_mismatch_is_an_image_format_error),
-        cmocka_unit_test(subtract_gives_the_indirect_part),
-        cmocka_unit_test(heatmap_is_dark_where_equal_and_bright_where_wrong),
-        cmocka_unit_test(part_metrics_of_a_known_pair),
-        cmocka_unit_test(part_metrics_of_nothing_and_of_the_truth),
-        cmocka_unit_test(part_metrics_against_a_black_truth),
-        cmocka_unit_test(part_metrics_leave_nonfinite_pixels_out),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+CG_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(identical_images_have_zero_error),
+             cmocka_unit_test(constant_offset_gives_closed_form),
+             cmocka_unit_test(scaled_image_gives_closed_form),
+             cmocka_unit_test(nonfinite_pixels_are_counted_and_left_out),
+             cmocka_unit_test(black_reference_ratio),
+             cmocka_unit_test(size_mismatch_is_an_image_format_error),
+             cmocka_unit_test(subtract_gives_the_indirect_part),
+             cmocka_unit_test(heatmap_is_dark_where_equal_and_bright_where_wrong),
+             cmocka_unit_test(part_metrics_of_a_known_pair),
+             cmocka_unit_test(part_metrics_of_nothing_and_of_the_truth),
+             cmocka_unit_test(part_metrics_against_a_black_truth),
+             cmocka_unit_test(part_metrics_leave_nonfinite_pixels_out))

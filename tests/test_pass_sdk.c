@@ -72,12 +72,9 @@ static void
 blocks_have_the_c_layout_in_glsl(void **state)
 {
     cg_context *ctx = cg_test_gl_context(state);
-    const char *data = getenv("CONEGRAPH_TEST_DATA");
-    assert_non_null(data);
-    char path[4096];
-    snprintf(path, sizeof path, "%s/shaders/blocks_layout.comp", data);
     cg_error err = {0};
-    assert_cg_ok(cg_program_compute(path, NULL, &layout_program, &err), &err);
+    assert_cg_ok(cg_program_compute(cg_test_data_path("shaders/blocks_layout.comp"), NULL, &layout_program, &err),
+                 &err);
     CHECK_BLOCK("CgShadow", cg_shadow_block, CG_SHADOW_BLOCK, GL_UNIFORM_BLOCK, GL_UNIFORM);
     CHECK_BLOCK("CgVolumeBlock", cg_volume_block, CG_VOLUME_BLOCK, GL_UNIFORM_BLOCK, GL_UNIFORM);
     CHECK_BLOCK("CgHeightmapBlock", cg_heightmap_block, CG_HEIGHTMAP_BLOCK, GL_UNIFORM_BLOCK, GL_UNIFORM);
@@ -244,15 +241,9 @@ instances_changed_by_filter(void **state)
     cg_scene_free(&scene);
 }
 
-int
-main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(blocks_have_the_c_layout_in_glsl),
-        cmocka_unit_test(state_deletes_what_it_owns),
-        cmocka_unit_test(registration_checks_the_abi_first),
-        cmocka_unit_test(mesh_bounds_of_a_subset),
-        cmocka_unit_test(instances_changed_by_filter),
-    };
-    return cmocka_run_group_tests(tests, cg_test_gl_setup, cg_test_gl_teardown);
-}
+CG_TEST_MAIN(cg_test_gl_setup, cg_test_gl_teardown,
+             cmocka_unit_test(blocks_have_the_c_layout_in_glsl),
+             cmocka_unit_test(state_deletes_what_it_owns),
+             cmocka_unit_test(registration_checks_the_abi_first),
+             cmocka_unit_test(mesh_bounds_of_a_subset),
+             cmocka_unit_test(instances_changed_by_filter))

@@ -253,17 +253,11 @@ heatmap_has_its_colour_scale(void **state)
     cg_image_free(&out);
 }
 
-int
-main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(markers_follow_the_data),
-        cmocka_unit_test(rings_and_lines_are_drawn),
-        cmocka_unit_test(markers_and_labels),
-        cmocka_unit_test(every_point_is_labelled),
-        cmocka_unit_test(lower_case_has_its_own_glyphs),
-        cmocka_unit_test(legend_beside_the_plot),
-        cmocka_unit_test(heatmap_has_its_colour_scale),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+CG_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(markers_follow_the_data),
+             cmocka_unit_test(rings_and_lines_are_drawn),
+             cmocka_unit_test(markers_and_labels),
+             cmocka_unit_test(every_point_is_labelled),
+             cmocka_unit_test(lower_case_has_its_own_glyphs),
+             cmocka_unit_test(legend_beside_the_plot),
+             cmocka_unit_test(heatmap_has_its_colour_scale))

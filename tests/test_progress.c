@@ -170,16 +170,10 @@ log_info(void **state)
     return 0;
 }
 
-int
-main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(into_a_file_tenths_and_no_carriage_return),
-        cmocka_unit_test(few_units_a_line_each),
-        cmocka_unit_test(short_work_is_silent),
-        cmocka_unit_test(on_a_terminal_one_line),
-        cmocka_unit_test(quiet_prints_nothing),
-        cmocka_unit_test(delay_from_the_environment),
-    };
-    return cmocka_run_group_tests(tests, log_info, NULL);
-}
+CG_TEST_MAIN(log_info, NULL,
+             cmocka_unit_test(into_a_file_tenths_and_no_carriage_return),
+             cmocka_unit_test(few_units_a_line_each),
+             cmocka_unit_test(short_work_is_silent),
+             cmocka_unit_test(on_a_terminal_one_line),
+             cmocka_unit_test(quiet_prints_nothing),
+             cmocka_unit_test(delay_from_the_environment))

@@ -13,28 +13,13 @@
 #include "cg/metrics.h"
 #include "test_support.h"
 
+/* `conegraph render ARGS`, its output thrown away; returns the exit code. */
 static int
 run(const char *args)
 {
-    const char *exe = getenv("CONEGRAPH_EXE");
-    if (!exe)
-        fail_msg("CONEGRAPH_EXE is not set");
-    char cmd[8192];
-    snprintf(cmd, sizeof cmd, "'%s' render %s 2>/dev/null >/dev/null", exe, args);
-    int status = system(cmd);
-    if (status == -1 || !WIFEXITED(status))
-        fail_msg("could not run: %s", cmd);
-    return WEXITSTATUS(status);
-}
-
-static const char *
-tmp(const char *name)
-{
-    static char paths[8][4096];
-    static int next;
-    char *p = paths[next++ % 8];
-    snprintf(p, 4096, "%s/%s", cg_test_tmpdir(), name);
-    return p;
+    char words[8400];
+    snprintf(words, sizeof words, "render %s", args);
+    return cg_test_run_program("CONEGRAPH_EXE", words, false, NULL, 0);
 }
 
 static double
@@ -78,7 +63,7 @@ static void
 test_bad_input_writes_nothing(void **state)
 {
     (void)state;
-    const char *out = tmp("bad.png");
+    const char *out = cg_test_tmp_path("bad.png");
     char args[8192];
     const char *cases[] = {
         "builtin:nosuchscene",
@@ -109,7 +94,7 @@ static void
 test_refused_parameter_points_at_its_source(void **state)
 {
     (void)state;
-    const char *out_png = tmp("refused.png");
+    const char *out_png = cg_test_tmp_path("refused.png");
     static char out[1 << 14];
     char args[8192];
     snprintf(args, sizeof args, "render builtin:cornell --size 32x32 --set gather.cones=7 -o '%s'", out_png);
@@ -147,8 +132,8 @@ static void
 test_render_png_exr_dump_report(void **state)
 {
     (void)state;
-    const char *png = tmp("cornell.png"), *exr = tmp("cornell.exr");
-    const char *dump = tmp("normal.exr"), *report = tmp("report.json");
+    const char *png = cg_test_tmp_path("cornell.png"), *exr = cg_test_tmp_path("cornell.exr");
+    const char *dump = cg_test_tmp_path("normal.exr"), *report = cg_test_tmp_path("report.json");
     char args[8192];
     snprintf(args, sizeof args,
              "builtin:cornell --graph direct.json --size 32x24 --frames 2 -o '%s' --dump gbuf.normal='%s' "
@@ -201,7 +186,7 @@ static void
 test_frames_end_at_the_last_time(void **state)
 {
     (void)state;
-    const char *last = tmp("frames.exr"), *at = tmp("at.exr"), *first = tmp("first.exr");
+    const char *last = cg_test_tmp_path("frames.exr"), *at = cg_test_tmp_path("at.exr"), *first = cg_test_tmp_path("first.exr");
     static char out[1 << 16];
     char args[8192];
     snprintf(args, sizeof args, "render " MOVING " --size 64x36 --frames 4 --fps 10 --time 0.5 --verbose -o '%s'",
@@ -254,7 +239,7 @@ test_images_load_their_library_on_use(void **state)
     }
     for (size_t i = 0; i < sizeof runs / sizeof runs[0]; i++) {
         char args[4096];
-        snprintf(args, sizeof args, runs[i].args, tmp("lazy.exr"));
+        snprintf(args, sizeof args, runs[i].args, cg_test_tmp_path("lazy.exr"));
         snprintf(cmd, sizeof cmd, "LD_DEBUG=files '%s' %s 2>&1 >/dev/null", exe, args);
         FILE *p = popen(cmd, "r");
         assert_non_null(p);
@@ -267,7 +252,7 @@ test_images_load_their_library_on_use(void **state)
                      runs[i].loads ? "loaded" : "not loaded");
     }
 
-    const char *missing = tmp("missing.exr");
+    const char *missing = cg_test_tmp_path("missing.exr");
     char args[4096];
     snprintf(args, sizeof args, "render builtin:cornell --size 16x16 -o '%s'", missing);
     setenv("CONEGRAPH_OIIO_MODULE", "/nonexistent/libcg-oiio.so", 1);
@@ -285,7 +270,7 @@ static void
 test_exported_animation_renders(void **state)
 {
     (void)state;
-    const char *glb = tmp("moving.glb"), *from_file = tmp("from_file.exr"), *builtin = tmp("builtin.exr");
+    const char *glb = cg_test_tmp_path("moving.glb"), *from_file = cg_test_tmp_path("from_file.exr"), *builtin = cg_test_tmp_path("builtin.exr");
     static char out[1 << 16];
     char args[8192];
     snprintf(args, sizeof args, "export " MOVING " '%s'", glb);
@@ -306,7 +291,7 @@ static void
 test_output_paths_refused_before_work(void **state)
 {
     (void)state;
-    const char *written = tmp("written.png"), *costs = tmp("costs.csv");
+    const char *written = cg_test_tmp_path("written.png"), *costs = cg_test_tmp_path("costs.csv");
     static char out[1 << 14];
     char args[8192];
     struct { const char *options, *named; } cases[] = {
@@ -321,7 +306,7 @@ test_output_paths_refused_before_work(void **state)
     FILE *f = fopen(written, "w"); /* a file where a case wants a directory */
     assert_non_null(f);
     fclose(f);
-    assert_int_equal(mkdir(tmp("adir.png"), 0755), 0); /* a directory where a case wants a file */
+    assert_int_equal(mkdir(cg_test_tmp_path("adir.png"), 0755), 0); /* a directory where a case wants a file */
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         char options[1024];
         snprintf(options, sizeof options, cases[i].options, cg_test_tmpdir(), "%s");
@@ -336,7 +321,7 @@ test_output_paths_refused_before_work(void **state)
             fail_msg("'%s' took %.0f ms to be refused", options, ms);
     }
     assert_false(exists(costs));
-    assert_false(exists(tmp("x.png")));
+    assert_false(exists(cg_test_tmp_path("x.png")));
 }
 
 /* -o with %d writes every frame of --frames N; the default run says one line, --quiet none,
@@ -353,11 +338,11 @@ test_sequence_and_verbosity(void **state)
     for (int k = 0; k < 3; k++) {
         char name[64];
         snprintf(name, sizeof name, "f-%04d.png", k);
-        if (!exists(tmp(name)))
+        if (!exists(cg_test_tmp_path(name)))
             fail_msg("no %s after --frames 3: %s", name, out);
     }
-    assert_false(exists(tmp("f-0003.png")));
-    snprintf(args, sizeof args, "render builtin:cornell --graph direct.json --size 32x32 -o '%s'", tmp("one.png"));
+    assert_false(exists(cg_test_tmp_path("f-0003.png")));
+    snprintf(args, sizeof args, "render builtin:cornell --graph direct.json --size 32x32 -o '%s'", cg_test_tmp_path("one.png"));
     assert_int_equal(cg_test_run_conegraph(args, true, out, sizeof out), 0);
     int lines = 0;
     for (const char *p = out; *p; p++)
@@ -389,24 +374,13 @@ test_graph_lookup_and_unknown_pass(void **state)
         fail_msg("the missing graph's message: %s", out);
     char args[8192];
     snprintf(args, sizeof args, "render builtin:cornell --graph vct.json --size 32x32 -o '%s' --set nosuch.x=1",
-             tmp("unknown.png"));
+             cg_test_tmp_path("unknown.png"));
     assert_int_equal(cg_test_run_conegraph(args, true, out, sizeof out), 2);
     if (!strstr(out, "its passes: shadow, gbuf, direct"))
         fail_msg("the unknown pass's message does not list the passes: %s", out);
 }
 
 /* ------------------------------------------------------------------ skins and progress */
-
-/* A glTF file of the test data (CONEGRAPH_TEST_DATA/gltf/NAME). */
-static const char *
-data_file(const char *name)
-{
-    static char path[4200];
-    const char *data = getenv("CONEGRAPH_TEST_DATA");
-    assert_non_null(data);
-    snprintf(path, sizeof path, "%s/gltf/%s", data, name);
-    return path;
-}
 
 /* A skinned mesh is posed by its joints (tests/data/gltf/skin/bend.gltf: the strip's top turns a
  * quarter turn over 1 s): the images at 0 and 1 s differ, and the last of three frames of
@@ -417,8 +391,8 @@ static void
 test_skins_pose_at_two_times(void **state)
 {
     (void)state;
-    const char *bend = data_file("skin/bend.gltf");
-    const char *at0 = tmp("bend0.exr"), *at1 = tmp("bend1.exr"), *frames = tmp("bend_frames.exr");
+    const char *bend = cg_test_data_path("gltf/skin/bend.gltf");
+    const char *at0 = cg_test_tmp_path("bend0.exr"), *at1 = cg_test_tmp_path("bend1.exr"), *frames = cg_test_tmp_path("bend_frames.exr");
     char args[8192];
     snprintf(args, sizeof args, "'%s' --graph direct.json --size 48x48 --time 0 -o '%s'", bend, at0);
     assert_int_equal(run(args), 0);
@@ -461,7 +435,7 @@ static const char *
 stderr_of(const char *args)
 {
     const char *exe = getenv("CONEGRAPH_EXE");
-    const char *err_path = tmp("stderr.txt");
+    const char *err_path = cg_test_tmp_path("stderr.txt");
     static char text[1 << 16];
     char cmd[8192];
     snprintf(cmd, sizeof cmd, "CONEGRAPH_LOG=info CONEGRAPH_PROGRESS_DELAY=0 '%s' render %s 2>'%s' >/dev/null", exe,
@@ -486,7 +460,7 @@ test_progress_into_a_file(void **state)
     (void)state;
     char args[8192];
     snprintf(args, sizeof args, "builtin:cornell --graph reference.json --size 32x32 --set trace.spp=4 --frames 2 -o '%s'",
-             tmp("pt.png"));
+             cg_test_tmp_path("pt.png"));
     const char *err = stderr_of(args);
     if (strchr(err, '\r'))
         fail_msg("a carriage return in stderr sent to a file: %s", err);
@@ -504,22 +478,16 @@ test_progress_into_a_file(void **state)
         fail_msg("--quiet wrote: %s", err);
 }
 
-int
-main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_help_and_usage),
-        cmocka_unit_test(test_bad_input_writes_nothing),
-        cmocka_unit_test(test_output_paths_refused_before_work),
-        cmocka_unit_test(test_sequence_and_verbosity),
-        cmocka_unit_test(test_graph_lookup_and_unknown_pass),
-        cmocka_unit_test(test_refused_parameter_points_at_its_source),
-        cmocka_unit_test(test_render_png_exr_dump_report),
-        cmocka_unit_test(test_frames_end_at_the_last_time),
-        cmocka_unit_test(test_exported_animation_renders),
-        cmocka_unit_test(test_images_load_their_library_on_use),
-        cmocka_unit_test(test_skins_pose_at_two_times),
-        cmocka_unit_test(test_progress_into_a_file),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+CG_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(test_help_and_usage),
+             cmocka_unit_test(test_bad_input_writes_nothing),
+             cmocka_unit_test(test_output_paths_refused_before_work),
+             cmocka_unit_test(test_sequence_and_verbosity),
+             cmocka_unit_test(test_graph_lookup_and_unknown_pass),
+             cmocka_unit_test(test_refused_parameter_points_at_its_source),
+             cmocka_unit_test(test_render_png_exr_dump_report),
+             cmocka_unit_test(test_frames_end_at_the_last_time),
+             cmocka_unit_test(test_exported_animation_renders),
+             cmocka_unit_test(test_images_load_their_library_on_use),
+             cmocka_unit_test(test_skins_pose_at_two_times),
+             cmocka_unit_test(test_progress_into_a_file))

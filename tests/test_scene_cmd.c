@@ -3,10 +3,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
-#include "cg/fs.h"
 #include "test_support.h"
 
 static char out_text[1 << 16], err_text[1 << 14];
@@ -15,23 +13,7 @@ static char out_text[1 << 16], err_text[1 << 14];
 static int
 run(const char *args)
 {
-    const char *exe = getenv("CONEGRAPH_EXE");
-    assert_non_null(exe);
-    char err_path[4200], cmd[8192];
-    snprintf(err_path, sizeof err_path, "%s/stderr.txt", cg_test_tmpdir());
-    snprintf(cmd, sizeof cmd, "'%s' %s 2>'%s'", exe, args, err_path);
-    FILE *p = popen(cmd, "r");
-    assert_non_null(p);
-    size_t n = fread(out_text, 1, sizeof out_text - 1, p);
-    out_text[n] = '\0';
-    int status = pclose(p);
-    assert_true(WIFEXITED(status));
-    char *e;
-    cg_error err = { 0 };
-    assert_cg_ok(cg_read_file(err_path, &e, NULL, &err), &err);
-    snprintf(err_text, sizeof err_text, "%s", e);
-    free(e);
-    return WEXITSTATUS(status);
+    return cg_test_run_conegraph_split(args, out_text, sizeof out_text, err_text, sizeof err_text);
 }
 
 static void
@@ -122,14 +104,8 @@ export_writes_and_refuses(void **state)
     assert_int_equal(run("export builtin:cornell"), 2);
 }
 
-int
-main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(info_prints_the_scene),
-        cmocka_unit_test(info_gl_reports_the_context),
-        cmocka_unit_test(info_bad_input),
-        cmocka_unit_test(export_writes_and_refuses),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+CG_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(info_prints_the_scene),
+             cmocka_unit_test(info_gl_reports_the_context),
+             cmocka_unit_test(info_bad_input),
+             cmocka_unit_test(export_writes_and_refuses))

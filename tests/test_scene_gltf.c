@@ -17,17 +17,6 @@
 
 /* ------------------------------------------------------------------ writing test files */
 
-/* A file of the test data (CONEGRAPH_TEST_DATA/gltf/NAME). */
-static const char *
-data_file(const char *name)
-{
-    static char path[4200];
-    const char *data = getenv("CONEGRAPH_TEST_DATA");
-    assert_non_null(data);
-    snprintf(path, sizeof path, "%s/gltf/%s", data, name);
-    return path;
-}
-
 typedef struct blob {
     unsigned char data[8192];
     size_t size;
@@ -375,8 +364,7 @@ write_png(const char *name)
     assert_cg_ok(cg_image_alloc(&img, 2, 2, &err), &err);
     const float px[4][4] = { { 1, 0, 0, 1 }, { 0, 1, 0, 1 }, { 0, 0, 1, 1 }, { 1, 1, 1, 1 } };
     memcpy(img.rgba, px, sizeof px);
-    static char path[4096];
-    snprintf(path, sizeof path, "%s/%s", cg_test_tmpdir(), name);
+    const char *path = cg_test_tmp_path(name);
     assert_cg_ok(cg_image_write(path, &img, CG_EXR_FLOAT, &err), &err);
     cg_image_free(&img);
     return path;
@@ -652,10 +640,8 @@ static void
 malformed_corpus(void **state)
 {
     (void)state;
-    const char *data = getenv("CONEGRAPH_TEST_DATA");
-    assert_non_null(data);
     char dir[4096], manifest[4200];
-    snprintf(dir, sizeof dir, "%s/gltf/malformed", data);
+    snprintf(dir, sizeof dir, "%s", cg_test_data_path("gltf/malformed"));
     snprintf(manifest, sizeof manifest, "%s/expected.txt", dir);
     FILE *fp = fopen(manifest, "r");
     assert_non_null(fp);
@@ -872,7 +858,7 @@ materials_as_gltf_defines_them(void **state)
 {
     (void)state;
     cg_scene s;
-    load_ok(data_file("materials/materials.gltf"), &s);
+    load_ok(cg_test_data_path("gltf/materials/materials.gltf"), &s);
     /* The loader's material 0 (for a primitive without one) and a material with nothing given
      * are glTF's default material. */
     check_gltf_defaults(&s.materials[0]);
@@ -915,7 +901,7 @@ notice_lists_what_is_left_out(void **state)
     assert_true(dup2(fileno(capture), 2) >= 0);
     cg_scene s;
     cg_error err = { 0 };
-    bool ok = cg_scene_load(data_file("materials/materials.gltf"), &s, &err);
+    bool ok = cg_scene_load(cg_test_data_path("gltf/materials/materials.gltf"), &s, &err);
     fflush(stderr);
     dup2(saved, 2);
     close(saved);
@@ -973,7 +959,7 @@ morph_targets_and_skins_load_silently(void **state)
 {
     (void)state;
     cg_scene s;
-    char *text = load_capturing_stderr(data_file("morph/tent.gltf"), &s);
+    char *text = load_capturing_stderr(cg_test_data_path("gltf/morph/tent.gltf"), &s);
     if (text[0])
         fail_msg("tent.gltf loaded with a notice: %s", text);
     free(text);
@@ -999,7 +985,7 @@ morph_targets_and_skins_load_silently(void **state)
     assert_true(s.bounds_max[2] >= 1 - 1e-6);
     cg_scene_free(&s);
 
-    text = load_capturing_stderr(data_file("skin/bend.gltf"), &s);
+    text = load_capturing_stderr(cg_test_data_path("gltf/skin/bend.gltf"), &s);
     if (text[0])
         fail_msg("bend.gltf loaded with a notice: %s", text);
     assert_int_equal(s.skinned_count, 1);
@@ -1048,7 +1034,7 @@ materials_round_trip(void **state)
 {
     (void)state;
     cg_scene a;
-    load_ok(data_file("materials/materials.gltf"), &a);
+    load_ok(cg_test_data_path("gltf/materials/materials.gltf"), &a);
     const char *outs[2] = { "materials_out.gltf", "materials_out.glb" };
     for (int i = 0; i < 2; i++) {
         char path[4200];
@@ -1106,28 +1092,22 @@ builtin_materials_round_trip(void **state)
     }
 }
 
-int
-main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(triangle_with_and_without_indices),
-        cmocka_unit_test(strips_and_fans),
-        cmocka_unit_test(points_and_lines_are_skipped),
-        cmocka_unit_test(node_hierarchy),
-        cmocka_unit_test(lights_and_cameras),
-        cmocka_unit_test(materials_and_textures),
-        cmocka_unit_test(binary_gltf),
-        cmocka_unit_test(heightfield_classification),
-        cmocka_unit_test(sparse_accessors),
-        cmocka_unit_test(good_base_loads),
-        cmocka_unit_test(malformed_corpus),
-        cmocka_unit_test(buffer_from_a_device_is_refused),
-        cmocka_unit_test(missing_file),
-        cmocka_unit_test(materials_as_gltf_defines_them),
-        cmocka_unit_test(notice_lists_what_is_left_out),
-        cmocka_unit_test(morph_targets_and_skins_load_silently),
-        cmocka_unit_test(materials_round_trip),
-        cmocka_unit_test(builtin_materials_round_trip),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+CG_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(triangle_with_and_without_indices),
+             cmocka_unit_test(strips_and_fans),
+             cmocka_unit_test(points_and_lines_are_skipped),
+             cmocka_unit_test(node_hierarchy),
+             cmocka_unit_test(lights_and_cameras),
+             cmocka_unit_test(materials_and_textures),
+             cmocka_unit_test(binary_gltf),
+             cmocka_unit_test(heightfield_classification),
+             cmocka_unit_test(sparse_accessors),
+             cmocka_unit_test(good_base_loads),
+             cmocka_unit_test(malformed_corpus),
+             cmocka_unit_test(buffer_from_a_device_is_refused),
+             cmocka_unit_test(missing_file),
+             cmocka_unit_test(materials_as_gltf_defines_them),
+             cmocka_unit_test(notice_lists_what_is_left_out),
+             cmocka_unit_test(morph_targets_and_skins_load_silently),
+             cmocka_unit_test(materials_round_trip),
+             cmocka_unit_test(builtin_materials_round_trip))

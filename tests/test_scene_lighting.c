@@ -146,14 +146,8 @@ sky_text_round_trip(void **state)
     assert_false(cg_sky_equal(&a, &b));
 }
 
-int
-main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(what_lights_a_scene),
-        cmocka_unit_test(faint_emitters_do_not_light),
-        cmocka_unit_test(default_light),
-        cmocka_unit_test(sky_text_round_trip),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+CG_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(what_lights_a_scene),
+             cmocka_unit_test(faint_emitters_do_not_light),
+             cmocka_unit_test(default_light),
+             cmocka_unit_test(sky_text_round_trip))

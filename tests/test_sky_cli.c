@@ -19,16 +19,6 @@
 
 #define SIZE "--size 64x36"
 
-static const char *
-tmp(const char *name)
-{
-    static char paths[16][4096];
-    static int next;
-    char *p = paths[next++ % 16];
-    snprintf(p, 4096, "%s/%s", cg_test_tmpdir(), name);
-    return p;
-}
-
 static void
 run_ok(const char *args)
 {
@@ -48,7 +38,7 @@ static sky_figures
 measure(const char *scene, const char *sky, const char *graph, const char *ref, const char *ref_direct)
 {
     char args[8192];
-    const char *img = tmp("gi.exr"), *d = tmp("gi-direct.exr"), *e = tmp("gi-emissive.exr");
+    const char *img = cg_test_tmp_path("gi.exr"), *d = cg_test_tmp_path("gi-direct.exr"), *e = cg_test_tmp_path("gi-emissive.exr");
     snprintf(args, sizeof args, "render '%s' --sky %s --graph %s " SIZE " -o '%s' --dump direct.radiance='%s' "
              "--dump gbuf.emissive='%s'", scene, sky, graph, img, d, e);
     run_ok(args);
@@ -74,7 +64,7 @@ measure(const char *scene, const char *sky, const char *graph, const char *ref, 
 static const char *
 reference(const char *scene, const char *sky, int spp, const char *const *parts, char *ref_direct, size_t size)
 {
-    const char *ref = tmp("ref.exr");
+    const char *ref = cg_test_tmp_path("ref.exr");
     char args[8192];
     int n = snprintf(args, sizeof args, "render '%s' --sky %s --graph reference.json " SIZE " --set trace.parts=true "
                      "--set trace.spp=%d --set trace.progress=false -o '%s'", scene, sky, spp, ref);
@@ -82,7 +72,7 @@ reference(const char *scene, const char *sky, int spp, const char *const *parts,
     for (int i = 0; parts[i]; i++) {
         char name[64];
         snprintf(name, sizeof name, "ref-%s.exr", parts[i]);
-        const char *path = tmp(name);
+        const char *path = cg_test_tmp_path(name);
         n += snprintf(args + n, sizeof args - (size_t)n, " --dump trace.%s='%s'", parts[i], path);
         size_t used = strlen(ref_direct);
         snprintf(ref_direct + used, size - used, " --ref-direct '%s'", path);
@@ -105,7 +95,7 @@ box_under_the_sky(void **state)
         /* The background (gbuffer's emissive there) is the sky the path tracer's escaping camera
          * rays see (its `emitted` part), and nothing else emits: equal to the bit. */
         char args[8192], out[1 << 14];
-        snprintf(args, sizeof args, "compare '%s' '%s' --json", tmp("gi-emissive.exr"), tmp("ref-emitted.exr"));
+        snprintf(args, sizeof args, "compare '%s' '%s' --json", cg_test_tmp_path("gi-emissive.exr"), cg_test_tmp_path("ref-emitted.exr"));
         assert_int_equal(cg_test_run_conegraph(args, false, out, sizeof out), 0);
         assert_true(cg_test_json_number(out, "\"full\"", "rmse") == 0.0);
         assert_true(cg_test_json_number(out, "\"full\"", "mean_luminance_ref") > 0.1);
@@ -144,12 +134,6 @@ open_world_under_the_sky(void **state)
     }
 }
 
-int
-main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(box_under_the_sky),
-        cmocka_unit_test(open_world_under_the_sky),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+CG_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(box_under_the_sky),
+             cmocka_unit_test(open_world_under_the_sky))

@@ -127,13 +127,7 @@ the_next_conegraph_run_removes_it(void **state)
     assert_true(exists(target));
 }
 
-int
-main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(image_write_removes_what_a_killed_run_left),
-        cmocka_unit_test(atomic_file_and_export_remove_it_too),
-        cmocka_unit_test(the_next_conegraph_run_removes_it),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+CG_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(image_write_removes_what_a_killed_run_left),
+             cmocka_unit_test(atomic_file_and_export_remove_it_too),
+             cmocka_unit_test(the_next_conegraph_run_removes_it))
