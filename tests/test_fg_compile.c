@@ -9,37 +9,7 @@
 #include "cg/fg.h"
 #include "fg_test_pass.h"
 
-typedef struct fixture {
-    fg_registry *registry;
-    fg_graph *graph;
-    cg_error err;
-    fg_frame frame;
-    fg_compile_options options;
-} fixture;
-
-static int
-setup(void **state)
-{
-    fixture *f = calloc(1, sizeof *f);
-    f->registry = fg_registry_create();
-    if (!fg_test_register(f->registry, &f->err))
-        return -1;
-    f->graph = fg_graph_create(f->registry);
-    f->frame.width = 64;
-    f->frame.height = 32;
-    *state = f;
-    return 0;
-}
-
-static int
-teardown(void **state)
-{
-    fixture *f = *state;
-    fg_graph_destroy(f->graph);
-    fg_registry_destroy(f->registry);
-    free(f);
-    return 0;
-}
+typedef fg_test_fixture fixture;
 
 /* Adds a test pass with its slot specs. */
 static void
@@ -900,34 +870,28 @@ report_and_dot_mention_everything(void **state)
     free(text);
 }
 
-int
-main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test_setup_teardown(registry_checks_descriptors, setup, teardown),
-        cmocka_unit_test_setup_teardown(parameters_are_validated, setup, teardown),
-        cmocka_unit_test_setup_teardown(parameter_dependencies_are_checked_at_compile, setup, teardown),
-        cmocka_unit_test_setup_teardown(parameter_constraints_as_text, setup, teardown),
-        cmocka_unit_test_setup_teardown(building_errors_are_named, setup, teardown),
-        cmocka_unit_test_setup_teardown(order_is_topological_and_stable, setup, teardown),
-        cmocka_unit_test_setup_teardown(cycles_are_named, setup, teardown),
-        cmocka_unit_test_setup_teardown(self_cycle_is_a_cycle, setup, teardown),
-        cmocka_unit_test_setup_teardown(previous_frame_edges_close_loops, setup, teardown),
-        cmocka_unit_test_setup_teardown(previous_edge_to_a_later_pass, setup, teardown),
-        cmocka_unit_test_setup_teardown(missing_required_input, setup, teardown),
-        cmocka_unit_test_setup_teardown(connection_to_unknown_slot_or_pass, setup, teardown),
-        cmocka_unit_test_setup_teardown(culling_keeps_what_outputs_and_side_effects_need, setup, teardown),
-        cmocka_unit_test_setup_teardown(absent_inputs_adapt_or_cull, setup, teardown),
-        cmocka_unit_test_setup_teardown(all_outputs_absent_is_an_error, setup, teardown),
-        cmocka_unit_test_setup_teardown(incompatible_kinds_and_formats, setup, teardown),
-        cmocka_unit_test_setup_teardown(limits_and_budget, setup, teardown),
-        cmocka_unit_test_setup_teardown(in_place_update_shares_storage, setup, teardown),
-        cmocka_unit_test_setup_teardown(pool_reuses_identical_descriptors, setup, teardown),
-        cmocka_unit_test_setup_teardown(pool_never_shares_live_storage, setup, teardown),
-        cmocka_unit_test_setup_teardown(barrier_bits_from_writer_and_reader_access, setup, teardown),
-        cmocka_unit_test_setup_teardown(pool_handover_orders_writes, setup, teardown),
-        cmocka_unit_test(resource_bytes_and_levels),
-        cmocka_unit_test_setup_teardown(report_and_dot_mention_everything, setup, teardown),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+CG_TEST_MAIN(NULL, NULL,
+             fg_test_unit(registry_checks_descriptors),
+             fg_test_unit(parameters_are_validated),
+             fg_test_unit(parameter_dependencies_are_checked_at_compile),
+             fg_test_unit(parameter_constraints_as_text),
+             fg_test_unit(building_errors_are_named),
+             fg_test_unit(order_is_topological_and_stable),
+             fg_test_unit(cycles_are_named),
+             fg_test_unit(self_cycle_is_a_cycle),
+             fg_test_unit(previous_frame_edges_close_loops),
+             fg_test_unit(previous_edge_to_a_later_pass),
+             fg_test_unit(missing_required_input),
+             fg_test_unit(connection_to_unknown_slot_or_pass),
+             fg_test_unit(culling_keeps_what_outputs_and_side_effects_need),
+             fg_test_unit(absent_inputs_adapt_or_cull),
+             fg_test_unit(all_outputs_absent_is_an_error),
+             fg_test_unit(incompatible_kinds_and_formats),
+             fg_test_unit(limits_and_budget),
+             fg_test_unit(in_place_update_shares_storage),
+             fg_test_unit(pool_reuses_identical_descriptors),
+             fg_test_unit(pool_never_shares_live_storage),
+             fg_test_unit(barrier_bits_from_writer_and_reader_access),
+             fg_test_unit(pool_handover_orders_writes),
+             cmocka_unit_test(resource_bytes_and_levels),
+             fg_test_unit(report_and_dot_mention_everything))

@@ -150,11 +150,5 @@ graph_runs_and_is_timed(void **state)
     assert_no_gl_errors(ctx);
 }
 
-int
-main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(graph_runs_and_is_timed),
-    };
-    return cmocka_run_group_tests(tests, cg_test_gl_setup, cg_test_gl_teardown);
-}
+CG_TEST_MAIN(cg_test_gl_setup, cg_test_gl_teardown,
+             cmocka_unit_test(graph_runs_and_is_timed))

@@ -27,33 +27,7 @@ static const char good_graph[] =
     "  \"outputs\": [ \"use.out\" ]\n"
     "}\n";
 
-typedef struct fixture {
-    fg_registry *registry;
-    fg_graph *graph;
-    cg_error err;
-} fixture;
-
-static int
-setup(void **state)
-{
-    fixture *f = calloc(1, sizeof *f);
-    f->registry = fg_registry_create();
-    if (!fg_test_register(f->registry, &f->err))
-        return -1;
-    f->graph = fg_graph_create(f->registry);
-    *state = f;
-    return 0;
-}
-
-static int
-teardown(void **state)
-{
-    fixture *f = *state;
-    fg_graph_destroy(f->graph);
-    fg_registry_destroy(f->registry);
-    free(f);
-    return 0;
-}
+typedef fg_test_fixture fixture;
 
 static bool
 compile(fixture *f, size_t budget)
@@ -339,14 +313,8 @@ mutated_graphs_fail_with_locations(void **state)
     assert_true(compiled > 0 && compiled < 3000);
 }
 
-int
-main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test_setup_teardown(good_graph_loads, setup, teardown),
-        cmocka_unit_test_setup_teardown(bad_graph_corpus, setup, teardown),
-        cmocka_unit_test_setup_teardown(sky_entry, setup, teardown),
-        cmocka_unit_test_setup_teardown(mutated_graphs_fail_with_locations, setup, teardown),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+CG_TEST_MAIN(NULL, NULL,
+             fg_test_unit(good_graph_loads),
+             fg_test_unit(bad_graph_corpus),
+             fg_test_unit(sky_entry),
+             fg_test_unit(mutated_graphs_fail_with_locations))

@@ -220,10 +220,8 @@ test_glsl_matches_c(void **state)
     cg_error err = { 0 };
     cg_gpu_scene gpu;
     assert_cg_ok(cg_gpu_scene_upload(&s.scene, &gpu, &err), &err);
-    char path[4096];
-    snprintf(path, sizeof path, "%s/shaders/bsdf/bsdf_eval.comp", getenv("CONEGRAPH_TEST_DATA"));
     GLuint program = 0;
-    assert_cg_ok(cg_program_compute(path, NULL, &program, &err), &err);
+    assert_cg_ok(cg_program_compute(cg_test_data_path("shaders/bsdf/bsdf_eval.comp"), NULL, &program, &err), &err);
     GLuint buffers[2];
     glCreateBuffers(2, buffers);
     size_t result_bytes = (size_t)count * TEST_VEC4 * 4 * sizeof(float);

@@ -172,17 +172,6 @@ typedef struct gather_result {
     double worst_rel;   /* largest |albedo x gathered - target| / target */
 } gather_result;
 
-static float *
-read_2d(const vf_runner *r, const char *source, int *w, int *h)
-{
-    GLuint tex = fg_graph_texture(r->graph, source);
-    assert_true(tex != 0);
-    int d = 0;
-    float *data = cg_test_read_texture(tex, 0, w, h, &d);
-    assert_non_null(data);
-    return data;
-}
-
 static gather_result
 run_gather(cg_context *ctx, const cg_scene *scene, int resolution, const char *voxel_params,
            const char *opacity, int cones, double aperture, const char *gather_params, double target)
@@ -193,11 +182,11 @@ run_gather(cg_context *ctx, const cg_scene *scene, int resolution, const char *v
     vf_start(&r, scene, 32, 32, json, NULL);
     vf_frame(&r);
     int w = 0, h = 0;
-    float *gathered = read_2d(&r, "gather.radiance", &w, &h);
-    float *albedo = read_2d(&r, "gbuf.albedo", &w, &h);
-    float *position = read_2d(&r, "gbuf.position", &w, &h);
-    float *specular = read_2d(&r, "gather.reflection", &w, &h);
-    float *visibility = read_2d(&r, "gather.visibility", &w, &h);
+    float *gathered = hf_read_2d(&r, "gather.radiance", 0, &w, &h);
+    float *albedo = hf_read_2d(&r, "gbuf.albedo", 0, &w, &h);
+    float *position = hf_read_2d(&r, "gbuf.position", 0, &w, &h);
+    float *specular = hf_read_2d(&r, "gather.reflection", 0, &w, &h);
+    float *visibility = hf_read_2d(&r, "gather.visibility", 0, &w, &h);
     gather_result g = {0};
     for (int i = 0; i < w * h; i++) {
         for (int k = 0; k < 4; k++)
@@ -235,9 +224,9 @@ run_graph_file(cg_context *ctx, const cg_scene *scene, int size, const char *gra
     vf_start_file(&r, scene, size, size, graph, overrides);
     vf_frame(&r);
     int w = 0, h = 0;
-    float *gathered = read_2d(&r, "gather.radiance", &w, &h);
-    float *albedo = read_2d(&r, "gbuf.albedo", &w, &h);
-    float *position = read_2d(&r, "gbuf.position", &w, &h);
+    float *gathered = hf_read_2d(&r, "gather.radiance", 0, &w, &h);
+    float *albedo = hf_read_2d(&r, "gbuf.albedo", 0, &w, &h);
+    float *position = hf_read_2d(&r, "gbuf.position", 0, &w, &h);
     gather_result g = {0};
     for (int i = 0; i < w * h; i++) {
         for (int k = 0; k < 4; k++)
@@ -464,8 +453,8 @@ test_shadow_cone(void **state)
     vf_start(&r, &s.scene, 48, 48, shadow_graph, NULL);
     vf_frame(&r);
     int w = 0, h = 0;
-    float *vis = read_2d(&r, "gather.visibility", &w, &h);
-    float *pos = read_2d(&r, "gbuf.position", &w, &h);
+    float *vis = hf_read_2d(&r, "gather.visibility", 0, &w, &h);
+    float *pos = hf_read_2d(&r, "gbuf.position", 0, &w, &h);
     double sum[3] = {0, 0, 0}, worst[3] = {0, 1, 1};
     int count[3] = {0, 0, 0};
     for (int i = 0; i < w * h; i++) {
@@ -544,7 +533,7 @@ test_finite_everywhere(void **state)
     assert_true(fg_pass_is_culled(fg_graph_find_pass(r.graph, "vox")));
     assert_true(fg_pass_is_culled(fg_graph_find_pass(r.graph, "gather")));
     int w = 0, h = 0;
-    float *hdr = read_2d(&r, "final.hdr", &w, &h);
+    float *hdr = hf_read_2d(&r, "final.hdr", 0, &w, &h);
     for (int i = 0; i < 4 * w * h; i++)
         if (!isfinite(hdr[i]) || (i % 4 != 3 && hdr[i] != 0.0f))
             fail_msg("empty scene: value %g at %d", hdr[i], i);
@@ -554,17 +543,11 @@ test_finite_everywhere(void **state)
     free(s);
 }
 
-int
-main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_mip3d_matches_cpu_box_filter),
-        cmocka_unit_test(test_white_furnace),
-        cmocka_unit_test(test_furnace_bounces),
-        cmocka_unit_test(test_step_independence),
-        cmocka_unit_test(test_no_self_illumination),
-        cmocka_unit_test(test_shadow_cone),
-        cmocka_unit_test(test_finite_everywhere),
-    };
-    return cmocka_run_group_tests(tests, cg_test_gl_setup, cg_test_gl_teardown);
-}
+CG_TEST_MAIN(cg_test_gl_setup, cg_test_gl_teardown,
+             cmocka_unit_test(test_mip3d_matches_cpu_box_filter),
+             cmocka_unit_test(test_white_furnace),
+             cmocka_unit_test(test_furnace_bounces),
+             cmocka_unit_test(test_step_independence),
+             cmocka_unit_test(test_no_self_illumination),
+             cmocka_unit_test(test_shadow_cone),
+             cmocka_unit_test(test_finite_everywhere))

@@ -50,20 +50,6 @@ typedef struct gather_image {
     double camera[3];
 } gather_image;
 
-static float *
-read_output(const vf_runner *r, const char *source)
-{
-    GLuint tex = fg_graph_texture(r->graph, source);
-    if (tex == 0)
-        fail_msg("no output %s", source);
-    int w = 0, h = 0, d = 0;
-    float *data = cg_test_read_texture(tex, 0, &w, &h, &d);
-    assert_non_null(data);
-    assert_int_equal(w, SIZE);
-    assert_int_equal(h, SIZE);
-    return data;
-}
-
 static gather_image
 render(const cg_scene *scene, const char *type, int downsample)
 {
@@ -72,8 +58,9 @@ render(const cg_scene *scene, const char *type, int downsample)
     vf_runner r;
     vf_start(&r, scene, SIZE, SIZE, json, NULL);
     vf_frame(&r);
-    gather_image g = {read_output(&r, "gather.radiance"), read_output(&r, "gbuf.position"),
-                      read_output(&r, "gbuf.normal"), {0, 0, 0}};
+    gather_image g = {vf_read_image(&r, "gather.radiance", SIZE, SIZE),
+                      vf_read_image(&r, "gbuf.position", SIZE, SIZE),
+                      vf_read_image(&r, "gbuf.normal", SIZE, SIZE), {0, 0, 0}};
     for (int k = 0; k < 3; k++)
         g.camera[k] = r.frame.view.position[k];
     vf_stop(&r);
@@ -294,14 +281,13 @@ static void
 test_downsample_1_unchanged(void **state)
 {
     (void)state;
-    const char *data = getenv("CONEGRAPH_TEST_DATA");
-    if (!data)
-        fail_msg("CONEGRAPH_TEST_DATA is not set");
+    char kept_dir[4200]; /* a copy: the support's path slots are reused */
+    snprintf(kept_dir, sizeof kept_dir, "%s", cg_test_data_path("gather_downsample"));
     const char *scenes[2] = {"cornell", "openworld"}, *graphs[2] = {"vct", "hybrid"};
     for (int i = 0; i < 2; i++)
         for (int g = 0; g < 2; g++) {
-            static char out[1 << 14], kept[4096], fresh[4096], args[9000];
-            snprintf(kept, sizeof kept, "%s/gather_downsample/%s-%s-downsample1.exr", data, scenes[i], graphs[g]);
+            static char out[1 << 14], kept[4400], fresh[4096], args[9000];
+            snprintf(kept, sizeof kept, "%s/%s-%s-downsample1.exr", kept_dir, scenes[i], graphs[g]);
             snprintf(fresh, sizeof fresh, "%s/%s-%s-downsample1.exr", cg_test_tmpdir(), scenes[i], graphs[g]);
             snprintf(args, sizeof args, "render builtin:%s --graph %s.json --set gather.downsample=1 --size 64x36 -o '%s'",
                      scenes[i], graphs[g], fresh);
@@ -323,14 +309,8 @@ test_downsample_1_unchanged(void **state)
         }
 }
 
-int
-main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_downsample_values),
-        cmocka_unit_test(test_downsample_1_unchanged),
-        cmocka_unit_test_setup_teardown(test_cone_gather_downsample, cg_test_gl_setup, cg_test_gl_teardown),
-        cmocka_unit_test_setup_teardown(test_hybrid_gather_downsample, cg_test_gl_setup, cg_test_gl_teardown),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+CG_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(test_downsample_values),
+             cmocka_unit_test(test_downsample_1_unchanged),
+             cmocka_unit_test_setup_teardown(test_cone_gather_downsample, cg_test_gl_setup, cg_test_gl_teardown),
+             cmocka_unit_test_setup_teardown(test_hybrid_gather_downsample, cg_test_gl_setup, cg_test_gl_teardown))

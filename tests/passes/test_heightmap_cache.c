@@ -50,12 +50,6 @@ start(vf_runner *r, hf_scene *s, const char *format, bool cache)
     vf_frame(r);
 }
 
-static const char *
-rebuilt(const vf_runner *r)
-{
-    return fg_pass_rebuilt(fg_graph_find_pass(r->graph, "hm"));
-}
-
 /* Texels of level 0 that differ between the two runners' lightmaps. */
 static int
 differing_texels(const vf_runner *a, const vf_runner *b)
@@ -73,20 +67,6 @@ differing_texels(const vf_runner *a, const vf_runner *b)
     return differ;
 }
 
-/* Turns the sun about +y by `degrees`, in both scenes, and re-uploads their lights. */
-static void
-turn_sun(vf_runner *r, hf_scene *s, double degrees)
-{
-    double a = degrees * M_PI / 180.0, c = cos(a), sn = sin(a);
-    float *d = s->light.direction;
-    float x = d[0], z = d[2];
-    d[0] = (float)(c * x + sn * z);
-    d[2] = (float)(-sn * x + c * z);
-    cg_scene_lights_changed(&s->scene);
-    cg_error err = {0};
-    assert_cg_ok(cg_gpu_scene_update_lights(&r->gpu, &err), &err);
-}
-
 static void
 check_format(const char *format)
 {
@@ -95,18 +75,18 @@ check_format(const char *format)
     make_scene(&fresh_scene);
     vf_runner cached, fresh;
     start(&cached, &cached_scene, format, true);
-    assert_non_null(strstr(rebuilt(&cached), "geometry rasterized (first frame)"));
+    assert_non_null(strstr(vf_rebuilt(&cached, "hm"), "geometry rasterized (first frame)"));
     start(&fresh, &fresh_scene, format, false);
-    assert_string_equal(rebuilt(&fresh), "geometry and light rasterized (cache=false)");
+    assert_string_equal(vf_rebuilt(&fresh, "hm"), "geometry and light rasterized (cache=false)");
     assert_int_equal(differing_texels(&cached, &fresh), 0);
 
     /* The sun turns: the geometry is kept, the light follows. */
     for (int k = 1; k <= 3; k++) {
-        turn_sun(&cached, &cached_scene, 40.0);
-        turn_sun(&fresh, &fresh_scene, 40.0);
+        hf_turn_sun(&cached, &cached_scene, 40.0);
+        hf_turn_sun(&fresh, &fresh_scene, 40.0);
         vf_next_frame(&cached);
         vf_next_frame(&fresh);
-        assert_non_null(strstr(rebuilt(&cached), "geometry kept"));
+        assert_non_null(strstr(vf_rebuilt(&cached, "hm"), "geometry kept"));
         assert_int_equal(differing_texels(&cached, &fresh), 0);
     }
 
@@ -117,14 +97,14 @@ check_format(const char *format)
     memcpy(fresh_scene.instances[0].world, half_turn, sizeof half_turn);
     vf_next_frame(&cached);
     vf_next_frame(&fresh);
-    assert_non_null(strstr(rebuilt(&cached), "geometry rasterized (a height-field instance changed)"));
+    assert_non_null(strstr(vf_rebuilt(&cached, "hm"), "geometry rasterized (a height-field instance changed)"));
     assert_int_equal(differing_texels(&cached, &fresh), 0);
     vf_next_frame(&cached);
-    assert_non_null(strstr(rebuilt(&cached), "geometry kept"));
+    assert_non_null(strstr(vf_rebuilt(&cached, "hm"), "geometry kept"));
 
     /* The scene uploaded again: rasterized again. */
     vf_frame(&cached);
-    assert_non_null(strstr(rebuilt(&cached), "geometry rasterized (scene uploaded again)"));
+    assert_non_null(strstr(vf_rebuilt(&cached, "hm"), "geometry rasterized (scene uploaded again)"));
     printf("# heightmap_raster %s: cache=true equals cache=false bit for bit over 7 frames "
            "(sun turning, terrain turned by hand, scene re-uploaded)\n", format);
     vf_stop(&cached);
@@ -141,11 +121,5 @@ test_cache_follows_changes(void **state)
     check_format("rgba16f");
 }
 
-int
-main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_cache_follows_changes),
-    };
-    return cmocka_run_group_tests(tests, cg_test_gl_setup, cg_test_gl_teardown);
-}
+CG_TEST_MAIN(cg_test_gl_setup, cg_test_gl_teardown,
+             cmocka_unit_test(test_cache_follows_changes))

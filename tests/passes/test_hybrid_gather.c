@@ -468,9 +468,7 @@ gi_bytes(const cg_scene *scene, const char *graph, const char *const *overrides)
     fg_registry *registry = fg_registry_create();
     assert_cg_ok(cg_builtin_passes_register(registry, &err), &err);
     fg_graph *g = fg_graph_create(registry);
-    char path[4096];
-    snprintf(path, sizeof path, "%s/%s", getenv("CONEGRAPH_GRAPH_DIR"), graph);
-    assert_cg_ok(fg_graph_load_file(g, path, &err), &err);
+    assert_cg_ok(fg_graph_load_file(g, cg_test_graph_path(graph), &err), &err);
     for (int i = 0; overrides && overrides[i]; i++)
         assert_cg_ok(fg_graph_apply_override(g, overrides[i], &err), &err);
     fg_frame frame = {.scene = scene, .width = 1280, .height = 720};
@@ -555,17 +553,11 @@ test_segment_centroid(void **state)
     assert_true(fabs(open_lift(0.0)) < 1e-12);
 }
 
-int
-main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_segment_centroid),
-        cmocka_unit_test(test_flat_emissive_terrain),
-        cmocka_unit_test(test_ridge_occludes),
-        cmocka_unit_test(test_furnace_with_height_field),
-        cmocka_unit_test(test_skipping_changes_nothing),
-        cmocka_unit_test(test_cornell_equals_vct),
-        cmocka_unit_test(test_openworld),
-    };
-    return cmocka_run_group_tests(tests, cg_test_gl_setup, cg_test_gl_teardown);
-}
+CG_TEST_MAIN(cg_test_gl_setup, cg_test_gl_teardown,
+             cmocka_unit_test(test_segment_centroid),
+             cmocka_unit_test(test_flat_emissive_terrain),
+             cmocka_unit_test(test_ridge_occludes),
+             cmocka_unit_test(test_furnace_with_height_field),
+             cmocka_unit_test(test_skipping_changes_nothing),
+             cmocka_unit_test(test_cornell_equals_vct),
+             cmocka_unit_test(test_openworld))

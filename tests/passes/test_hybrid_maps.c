@@ -367,13 +367,11 @@ run_hsat(cg_context *ctx, int resolution, const char *mode, GLuint query_program
 static GLuint
 test_program(const char *name)
 {
-    const char *dir = getenv("CONEGRAPH_TEST_DATA");
-    assert_non_null(dir);
     char path[4096];
-    snprintf(path, sizeof path, "%s/shaders/%s", dir, name);
+    snprintf(path, sizeof path, "shaders/%s", name);
     GLuint program = 0;
     cg_error err = {0};
-    assert_cg_ok(cg_program_compute(path, NULL, &program, &err), &err);
+    assert_cg_ok(cg_program_compute(cg_test_data_path(path), NULL, &program, &err), &err);
     return program;
 }
 
@@ -546,15 +544,9 @@ test_fitting_cube(void **state)
     assert_no_gl_errors(ctx);
 }
 
-int
-main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_heightmap_tilted_plane),
-        cmocka_unit_test(test_heightmap_flat_far),
-        cmocka_unit_test(test_heightmap_culled_without_terrain),
-        cmocka_unit_test(test_hsat_against_brute_force),
-        cmocka_unit_test(test_fitting_cube),
-    };
-    return cmocka_run_group_tests(tests, cg_test_gl_setup, cg_test_gl_teardown);
-}
+CG_TEST_MAIN(cg_test_gl_setup, cg_test_gl_teardown,
+             cmocka_unit_test(test_heightmap_tilted_plane),
+             cmocka_unit_test(test_heightmap_flat_far),
+             cmocka_unit_test(test_heightmap_culled_without_terrain),
+             cmocka_unit_test(test_hsat_against_brute_force),
+             cmocka_unit_test(test_fitting_cube))

@@ -40,11 +40,7 @@ direct_graph_matches_path_tracer_at_zero_bounces(void **state)
     fg_registry *registry = fg_registry_create();
     assert_cg_ok(cg_builtin_passes_register(registry, &err), &err);
     fg_graph *graph = fg_graph_create(registry);
-    const char *dir = getenv("CONEGRAPH_GRAPH_DIR");
-    assert_non_null(dir);
-    char path[4096];
-    snprintf(path, sizeof path, "%s/direct.json", dir);
-    assert_cg_ok(fg_graph_load_file(graph, path, &err), &err);
+    assert_cg_ok(fg_graph_load_file(graph, cg_test_graph_path("direct.json"), &err), &err);
     cg_gpu_scene gpu;
     assert_cg_ok(cg_gpu_scene_upload(&scene, &gpu, &err), &err);
     frame.gpu_scene = &gpu;
@@ -115,11 +111,5 @@ direct_graph_matches_path_tracer_at_zero_bounces(void **state)
     cg_scene_free(&scene);
 }
 
-int
-main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(direct_graph_matches_path_tracer_at_zero_bounces),
-    };
-    return cmocka_run_group_tests(tests, cg_test_gl_setup, cg_test_gl_teardown);
-}
+CG_TEST_MAIN(cg_test_gl_setup, cg_test_gl_teardown,
+             cmocka_unit_test(direct_graph_matches_path_tracer_at_zero_bounces))

@@ -317,18 +317,12 @@ new_settings_are_checked(void **state)
     ptf_scene_release(&s);
 }
 
-int
-main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(furnace_returns_the_directional_albedo),
-        cmocka_unit_test(glass_slab_transmits_its_fresnel_and_beer_lambert),
-        cmocka_unit_test(mirror_reflects_the_sky_times_f0),
-        cmocka_unit_test(mirror_sees_a_lit_ceiling_within_its_glossy_bounces),
-        cmocka_unit_test(mask_holes_and_blend_let_light_through),
-        cmocka_unit_test(caustics_false_keeps_light_through_glass_off_a_diffuse_floor),
-        cmocka_unit_test(sun_disc_keeps_the_irradiance),
-        cmocka_unit_test(new_settings_are_checked),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+CG_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(furnace_returns_the_directional_albedo),
+             cmocka_unit_test(glass_slab_transmits_its_fresnel_and_beer_lambert),
+             cmocka_unit_test(mirror_reflects_the_sky_times_f0),
+             cmocka_unit_test(mirror_sees_a_lit_ceiling_within_its_glossy_bounces),
+             cmocka_unit_test(mask_holes_and_blend_let_light_through),
+             cmocka_unit_test(caustics_false_keeps_light_through_glass_off_a_diffuse_floor),
+             cmocka_unit_test(sun_disc_keeps_the_irradiance),
+             cmocka_unit_test(new_settings_are_checked))

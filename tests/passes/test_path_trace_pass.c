@@ -226,14 +226,10 @@ static void
 reference_graph_file_runs(void **state)
 {
     cg_context *ctx = cg_test_gl_context(state);
-    const char *dir = getenv("CONEGRAPH_GRAPH_DIR");
-    assert_non_null(dir);
-    char path[4096];
-    snprintf(path, sizeof path, "%s/reference.json", dir);
     char *json;
     size_t size;
     cg_error err = { 0 };
-    assert_cg_ok(cg_read_file(path, &json, &size, &err), &err);
+    assert_cg_ok(cg_read_file(cg_test_graph_path("reference.json"), &json, &size, &err), &err);
     /* A few samples keep the test fast; the file's own value is checked to be the documented one. */
     assert_non_null(strstr(json, "\"spp\": 256"));
     char *at = strstr(json, "\"spp\": 256");
@@ -273,15 +269,9 @@ parameters_are_validated(void **state)
     fg_registry_destroy(registry);
 }
 
-int
-main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(output_is_the_traced_image),
-        cmocka_unit_test(builtin_furnace_through_the_graph),
-        cmocka_unit_test(parts_are_outputs),
-        cmocka_unit_test(reference_graph_file_runs),
-        cmocka_unit_test(parameters_are_validated),
-    };
-    return cmocka_run_group_tests(tests, cg_test_gl_setup, cg_test_gl_teardown);
-}
+CG_TEST_MAIN(cg_test_gl_setup, cg_test_gl_teardown,
+             cmocka_unit_test(output_is_the_traced_image),
+             cmocka_unit_test(builtin_furnace_through_the_graph),
+             cmocka_unit_test(parts_are_outputs),
+             cmocka_unit_test(reference_graph_file_runs),
+             cmocka_unit_test(parameters_are_validated))

@@ -571,23 +571,17 @@ bad_settings_are_usage_errors(void **state)
     ptf_scene_release(&s);
 }
 
-int
-main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(directional_light_on_white_plane_gives_e_over_pi),
-        cmocka_unit_test(point_light_gives_inverse_square_cosine),
-        cmocka_unit_test(spot_light_follows_the_cone_falloff),
-        cmocka_unit_test(furnace_gives_the_closed_form),
-        cmocka_unit_test(emissive_rectangle_lights_the_floor_by_its_view_factor),
-        cmocka_unit_test(camera_rays_go_through_pixel_centres_top_row_first),
-        cmocka_unit_test(hard_shadows_block_punctual_light),
-        cmocka_unit_test(grazing_light_far_from_the_origin_casts_no_self_shadow),
-        cmocka_unit_test(base_colour_texture_is_srgb_decoded),
-        cmocka_unit_test(error_falls_with_sample_count),
-        cmocka_unit_test(bit_identical_across_runs_and_thread_counts),
-        cmocka_unit_test(parts_add_up_to_the_image),
-        cmocka_unit_test(bad_settings_are_usage_errors),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+CG_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(directional_light_on_white_plane_gives_e_over_pi),
+             cmocka_unit_test(point_light_gives_inverse_square_cosine),
+             cmocka_unit_test(spot_light_follows_the_cone_falloff),
+             cmocka_unit_test(furnace_gives_the_closed_form),
+             cmocka_unit_test(emissive_rectangle_lights_the_floor_by_its_view_factor),
+             cmocka_unit_test(camera_rays_go_through_pixel_centres_top_row_first),
+             cmocka_unit_test(hard_shadows_block_punctual_light),
+             cmocka_unit_test(grazing_light_far_from_the_origin_casts_no_self_shadow),
+             cmocka_unit_test(base_colour_texture_is_srgb_decoded),
+             cmocka_unit_test(error_falls_with_sample_count),
+             cmocka_unit_test(bit_identical_across_runs_and_thread_counts),
+             cmocka_unit_test(parts_add_up_to_the_image),
+             cmocka_unit_test(bad_settings_are_usage_errors))

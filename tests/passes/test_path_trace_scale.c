@@ -186,13 +186,7 @@ kilometre_scene_through_a_5cm_near_plane(void **state)
     free(ref);
 }
 
-int
-main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(furnace_at_every_scale),
-        cmocka_unit_test(cornell_at_every_scale),
-        cmocka_unit_test(kilometre_scene_through_a_5cm_near_plane),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+CG_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(furnace_at_every_scale),
+             cmocka_unit_test(cornell_at_every_scale),
+             cmocka_unit_test(kilometre_scene_through_a_5cm_near_plane))

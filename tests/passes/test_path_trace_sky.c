@@ -288,15 +288,9 @@ preetham_sky_on_a_white_plane(void **state)
     ptf_scene_release(&s);
 }
 
-int
-main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(sky_is_parsed_and_checked),
-        cmocka_unit_test(preetham_zenith_is_the_papers),
-        cmocka_unit_test(uniform_sky_on_a_white_plane_gives_albedo_times_l),
-        cmocka_unit_test(open_box_floor_sees_the_sky_through_its_opening),
-        cmocka_unit_test(preetham_sky_on_a_white_plane),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+CG_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(sky_is_parsed_and_checked),
+             cmocka_unit_test(preetham_zenith_is_the_papers),
+             cmocka_unit_test(uniform_sky_on_a_white_plane_gives_albedo_times_l),
+             cmocka_unit_test(open_box_floor_sees_the_sky_through_its_opening),
+             cmocka_unit_test(preetham_sky_on_a_white_plane))

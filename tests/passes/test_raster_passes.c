@@ -792,25 +792,19 @@ test_shadow_map_refuses_bad_light(void **state)
     assert_no_gl_errors(ctx);
 }
 
-int
-main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_shadow_map_depth_of_plane),
-        cmocka_unit_test(test_gbuffer_normal_albedo),
-        cmocka_unit_test(test_direct_directional_pcf3),
-        cmocka_unit_test(test_direct_directional_unfiltered),
-        cmocka_unit_test(test_direct_directional_pcf5),
-        cmocka_unit_test(test_wide_spot_is_unshadowed),
-        cmocka_unit_test(test_direct_point_light),
-        cmocka_unit_test(test_direct_point_light_range),
-        cmocka_unit_test(test_direct_spot_light),
-        cmocka_unit_test(test_composite_sums_inputs),
-        cmocka_unit_test(test_shadow_map_refuses_bad_light),
-        cmocka_unit_test(test_gbuffer_material_outputs),
-        cmocka_unit_test(test_gbuffer_normal_map_mask_and_sides),
-        cmocka_unit_test(test_shadow_map_mask),
-        cmocka_unit_test(test_direct_ggx),
-    };
-    return cmocka_run_group_tests(tests, cg_test_gl_setup, cg_test_gl_teardown);
-}
+CG_TEST_MAIN(cg_test_gl_setup, cg_test_gl_teardown,
+             cmocka_unit_test(test_shadow_map_depth_of_plane),
+             cmocka_unit_test(test_gbuffer_normal_albedo),
+             cmocka_unit_test(test_direct_directional_pcf3),
+             cmocka_unit_test(test_direct_directional_unfiltered),
+             cmocka_unit_test(test_direct_directional_pcf5),
+             cmocka_unit_test(test_wide_spot_is_unshadowed),
+             cmocka_unit_test(test_direct_point_light),
+             cmocka_unit_test(test_direct_point_light_range),
+             cmocka_unit_test(test_direct_spot_light),
+             cmocka_unit_test(test_composite_sums_inputs),
+             cmocka_unit_test(test_shadow_map_refuses_bad_light),
+             cmocka_unit_test(test_gbuffer_material_outputs),
+             cmocka_unit_test(test_gbuffer_normal_map_mask_and_sides),
+             cmocka_unit_test(test_shadow_map_mask),
+             cmocka_unit_test(test_direct_ggx))

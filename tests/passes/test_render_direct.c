@@ -31,11 +31,7 @@ test_cornell_direct(void **state)
     fg_registry *registry = fg_registry_create();
     assert_cg_ok(cg_builtin_passes_register(registry, &err), &err);
     fg_graph *graph = fg_graph_create(registry);
-    const char *dir = getenv("CONEGRAPH_GRAPH_DIR");
-    assert_non_null(dir);
-    char path[4096];
-    snprintf(path, sizeof path, "%s/direct.json", dir);
-    assert_cg_ok(fg_graph_load_file(graph, path, &err), &err);
+    assert_cg_ok(fg_graph_load_file(graph, cg_test_graph_path("direct.json"), &err), &err);
     /* The command-line override path, as `--set shadow.resolution=512` would take it. */
     assert_cg_ok(fg_graph_apply_override(graph, "shadow.resolution=512", &err), &err);
 
@@ -90,11 +86,5 @@ test_cornell_direct(void **state)
     assert_no_gl_errors(ctx);
 }
 
-int
-main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_cornell_direct),
-    };
-    return cmocka_run_group_tests(tests, cg_test_gl_setup, cg_test_gl_teardown);
-}
+CG_TEST_MAIN(cg_test_gl_setup, cg_test_gl_teardown,
+             cmocka_unit_test(test_cornell_direct))

@@ -138,13 +138,7 @@ test_every_graph_at_every_scale(void **state)
     assert_int_equal(failures, 0);
 }
 
-int
-main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_every_graph_at_every_scale),
-        cmocka_unit_test(test_openworld_at_every_scale),
-        cmocka_unit_test(test_cornell_away_from_the_origin),
-    };
-    return cmocka_run_group_tests(tests, cg_test_gl_setup, cg_test_gl_teardown);
-}
+CG_TEST_MAIN(cg_test_gl_setup, cg_test_gl_teardown,
+             cmocka_unit_test(test_every_graph_at_every_scale),
+             cmocka_unit_test(test_openworld_at_every_scale),
+             cmocka_unit_test(test_cornell_away_from_the_origin))

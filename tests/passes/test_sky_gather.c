@@ -294,14 +294,8 @@ test_plane_under_preetham(void **state)
     hf_free(&s);
 }
 
-int
-main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_bake),
-        cmocka_unit_test(test_bakes_once_per_change),
-        cmocka_unit_test(test_plane_under_uniform_sky),
-        cmocka_unit_test(test_plane_under_preetham),
-    };
-    return cmocka_run_group_tests(tests, cg_test_gl_setup, cg_test_gl_teardown);
-}
+CG_TEST_MAIN(cg_test_gl_setup, cg_test_gl_teardown,
+             cmocka_unit_test(test_bake),
+             cmocka_unit_test(test_bakes_once_per_change),
+             cmocka_unit_test(test_plane_under_uniform_sky),
+             cmocka_unit_test(test_plane_under_preetham))

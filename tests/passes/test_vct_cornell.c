@@ -20,19 +20,6 @@ typedef struct cornell_image {
     double bleed[2];    /* mean (R - G) / (R + G + B) over white surfaces, left and right halves */
 } cornell_image;
 
-static float *
-read_output(const vf_runner *r, const char *source)
-{
-    GLuint tex = fg_graph_texture(r->graph, source);
-    assert_true(tex != 0);
-    int w = 0, h = 0, d = 0;
-    float *data = cg_test_read_texture(tex, 0, &w, &h, &d);
-    assert_non_null(data);
-    assert_int_equal(w, SIZE);
-    assert_int_equal(h, SIZE);
-    return data;
-}
-
 /* White surfaces: where the G-buffer albedo is grey (the walls, floor, ceiling and blocks
  * of material "white"), from a run of graphs/direct.json. */
 static void
@@ -66,9 +53,9 @@ render(const cg_scene *scene, const char *graph, const char *const *overrides, c
     vf_runner r;
     vf_start_file(&r, scene, SIZE, SIZE, graph, overrides);
     vf_frame(&r);
-    img->hdr = read_output(&r, "final.hdr");
+    img->hdr = vf_read_image(&r, "final.hdr", SIZE, SIZE);
     if (albedo)
-        *albedo = read_output(&r, "gbuf.albedo");
+        *albedo = vf_read_image(&r, "gbuf.albedo", SIZE, SIZE);
     vf_stop(&r);
 }
 
@@ -136,11 +123,5 @@ test_cornell_bleeding_and_energy(void **state)
     cg_scene_free(&scene);
 }
 
-int
-main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_cornell_bleeding_and_energy),
-    };
-    return cmocka_run_group_tests(tests, cg_test_gl_setup, cg_test_gl_teardown);
-}
+CG_TEST_MAIN(cg_test_gl_setup, cg_test_gl_teardown,
+             cmocka_unit_test(test_cornell_bleeding_and_energy))

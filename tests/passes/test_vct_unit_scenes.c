@@ -27,20 +27,6 @@
 #define H 36
 #define PI 3.14159265358979323846
 
-static float *
-read_output(const vf_runner *r, const char *source)
-{
-    GLuint tex = fg_graph_texture(r->graph, source);
-    if (tex == 0)
-        fail_msg("no output %s", source);
-    int w = 0, h = 0, d = 0;
-    float *data = cg_test_read_texture(tex, 0, &w, &h, &d);
-    assert_non_null(data);
-    assert_int_equal(w, W);
-    assert_int_equal(h, H);
-    return data;
-}
-
 /* One render of vct.json: the indirect estimate (final.hdr - direct.radiance - gbuf.emissive) and the
  * G-buffer's positions and normals. */
 typedef struct unit_render {
@@ -53,8 +39,10 @@ render_graph(const cg_scene *scene, const char *graph, const char *const *overri
     vf_runner r;
     vf_start_file(&r, scene, W, H, graph, overrides);
     vf_frame(&r);
-    unit_render u = {read_output(&r, "final.hdr"), read_output(&r, "gbuf.position"), read_output(&r, "gbuf.normal")};
-    float *direct = read_output(&r, "direct.radiance"), *emissive = read_output(&r, "gbuf.emissive");
+    unit_render u = {vf_read_image(&r, "final.hdr", W, H), vf_read_image(&r, "gbuf.position", W, H),
+                     vf_read_image(&r, "gbuf.normal", W, H)};
+    float *direct = vf_read_image(&r, "direct.radiance", W, H);
+    float *emissive = vf_read_image(&r, "gbuf.emissive", W, H);
     for (int i = 0; i < W * H * 4; i++)
         u.estimate[i] -= direct[i] + emissive[i];
     free(direct);
@@ -87,8 +75,9 @@ path_traced_indirect(const cg_scene *scene)
     vf_runner r;
     vf_start_file(&r, scene, W, H, "reference.json", set);
     vf_frame(&r);
-    float *all = read_output(&r, "trace.radiance"), *emitted = read_output(&r, "trace.emitted"),
-          *punctual = read_output(&r, "trace.direct_punctual");
+    float *all = vf_read_image(&r, "trace.radiance", W, H);
+    float *emitted = vf_read_image(&r, "trace.emitted", W, H);
+    float *punctual = vf_read_image(&r, "trace.direct_punctual", W, H);
     for (int i = 0; i < W * H * 4; i++)
         all[i] -= emitted[i] + punctual[i];
     free(emitted);
@@ -398,16 +387,10 @@ test_openworld(void **state)
     cg_scene_free(&scene);
 }
 
-int
-main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_plates_view_factor),
-        cmocka_unit_test(test_plates_alignment),
-        cmocka_unit_test(test_openworld),
-        cmocka_unit_test(test_wallfloor_form_factor),
-        cmocka_unit_test(test_thinwall_dark_side),
-        cmocka_unit_test(test_boxplane_and_terrain),
-    };
-    return cmocka_run_group_tests(tests, cg_test_gl_setup, cg_test_gl_teardown);
-}
+CG_TEST_MAIN(cg_test_gl_setup, cg_test_gl_teardown,
+             cmocka_unit_test(test_plates_view_factor),
+             cmocka_unit_test(test_plates_alignment),
+             cmocka_unit_test(test_openworld),
+             cmocka_unit_test(test_wallfloor_form_factor),
+             cmocka_unit_test(test_thinwall_dark_side),
+             cmocka_unit_test(test_boxplane_and_terrain))

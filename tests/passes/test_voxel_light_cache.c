@@ -53,17 +53,11 @@ start(vf_runner *r, hf_scene *s, int bounces, bool cache)
     vf_frame(r);
 }
 
-static const char *
-rebuilt(const vf_runner *r)
-{
-    return fg_pass_rebuilt(fg_graph_find_pass(r->graph, "light"));
-}
-
 static void
 assert_rebuilt(const vf_runner *r, const char *expected)
 {
-    if (!strstr(rebuilt(r), expected))
-        fail_msg("voxel_light reported \"%s\", expected \"%s\" in it", rebuilt(r), expected);
+    if (!strstr(vf_rebuilt(r, "light"), expected))
+        fail_msg("voxel_light reported \"%s\", expected \"%s\" in it", vf_rebuilt(r, "light"), expected);
 }
 
 /* Voxels of levels 0 and 1 of the three volumes that differ between the two runners. */
@@ -83,20 +77,6 @@ differing_voxels(const vf_runner *a, const vf_runner *b)
             free(vb);
         }
     return differ;
-}
-
-/* Turns the sun about +y by `degrees` and uploads the lights again. */
-static void
-turn_sun(vf_runner *r, hf_scene *s, double degrees)
-{
-    double a = degrees * M_PI / 180.0, c = cos(a), sn = sin(a);
-    float *d = s->light.direction;
-    float x = d[0], z = d[2];
-    d[0] = (float)(c * x + sn * z);
-    d[2] = (float)(-sn * x + c * z);
-    cg_scene_lights_changed(&s->scene);
-    cg_error err = {0};
-    assert_cg_ok(cg_gpu_scene_update_lights(&r->gpu, &err), &err);
 }
 
 /* Level 0 of the radiance cleared to a value no relight writes; true when all of it still holds it. */
@@ -149,14 +129,14 @@ check(float sky, int bounces)
     assert_true(still_marked(&cached));
 
     /* The sun turns: relit (over the marker), the first gather kept under the sky with one bounce. */
-    turn_sun(&cached, &cached_scene, 35.0);
-    turn_sun(&fresh, &fresh_scene, 35.0);
+    hf_turn_sun(&cached, &cached_scene, 35.0);
+    hf_turn_sun(&fresh, &fresh_scene, 35.0);
     both_next(&cached, &fresh);
     assert_rebuilt(&cached, "volumes relit (lights changed");
     if (sky > 0.0f && bounces == 1)
         assert_rebuilt(&cached, "first gather kept");
     else
-        assert_null(strstr(rebuilt(&cached), "first gather kept"));
+        assert_null(strstr(vf_rebuilt(&cached, "light"), "first gather kept"));
     assert_false(still_marked(&cached));
     assert_int_equal(differing_voxels(&cached, &fresh), 0);
     vf_next_frame(&cached);
@@ -167,7 +147,7 @@ check(float sky, int bounces)
     fresh_scene.instances[1].world[12] += 0.35f;
     both_next(&cached, &fresh);
     assert_rebuilt(&cached, "volumes relit (an instance changed");
-    assert_null(strstr(rebuilt(&cached), "first gather kept"));
+    assert_null(strstr(vf_rebuilt(&cached, "light"), "first gather kept"));
     assert_int_equal(differing_voxels(&cached, &fresh), 0);
 
     /* The sky changes (or appears): relit. */
@@ -198,11 +178,5 @@ test_relights_what_changed(void **state)
     check(0.4f, 2);     /* two gathers, none kept */
 }
 
-int
-main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_relights_what_changed),
-    };
-    return cmocka_run_group_tests(tests, cg_test_gl_setup, cg_test_gl_teardown);
-}
+CG_TEST_MAIN(cg_test_gl_setup, cg_test_gl_teardown,
+             cmocka_unit_test(test_relights_what_changed))

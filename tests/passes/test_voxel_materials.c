@@ -145,12 +145,6 @@ test_compute_voxelizer(void **state)
     check_voxelizer(state, "compute");
 }
 
-int
-main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_geometry_voxelizer),
-        cmocka_unit_test(test_compute_voxelizer),
-    };
-    return cmocka_run_group_tests(tests, cg_test_gl_setup, cg_test_gl_teardown);
-}
+CG_TEST_MAIN(cg_test_gl_setup, cg_test_gl_teardown,
+             cmocka_unit_test(test_geometry_voxelizer),
+             cmocka_unit_test(test_compute_voxelizer))

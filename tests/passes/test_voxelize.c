@@ -350,14 +350,8 @@ test_mesh_filter(void **state)
     cg_scene_free(&scene);
 }
 
-int
-main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_coverage_exact),
-        cmocka_unit_test(test_plain_rasterization_leaves_holes),
-        cmocka_unit_test(test_lit_surface_radiance),
-        cmocka_unit_test(test_mesh_filter),
-    };
-    return cmocka_run_group_tests(tests, cg_test_gl_setup, cg_test_gl_teardown);
-}
+CG_TEST_MAIN(cg_test_gl_setup, cg_test_gl_teardown,
+             cmocka_unit_test(test_coverage_exact),
+             cmocka_unit_test(test_plain_rasterization_leaves_holes),
+             cmocka_unit_test(test_lit_surface_radiance),
+             cmocka_unit_test(test_mesh_filter))

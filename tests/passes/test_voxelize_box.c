@@ -281,12 +281,6 @@ test_box_holds_the_cube(void **state)
     check("compute");
 }
 
-int
-main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_box_holds_the_cube),
-        cmocka_unit_test(test_box_grows_its_voxel_for_moved_meshes),
-    };
-    return cmocka_run_group_tests(tests, cg_test_gl_setup, cg_test_gl_teardown);
-}
+CG_TEST_MAIN(cg_test_gl_setup, cg_test_gl_teardown,
+             cmocka_unit_test(test_box_holds_the_cube),
+             cmocka_unit_test(test_box_grows_its_voxel_for_moved_meshes))

@@ -52,12 +52,6 @@ start(vf_runner *r, hf_scene *s, bool cache, const char *voxelizer)
     vf_frame(r);
 }
 
-static const char *
-rebuilt(const vf_runner *r)
-{
-    return fg_pass_rebuilt(fg_graph_find_pass(r->graph, "vox"));
-}
-
 /* Voxels of the four volumes that differ between the two runners (any channel, bit for bit). */
 static int
 differing_voxels(const vf_runner *a, const vf_runner *b)
@@ -108,11 +102,11 @@ step(vf_runner *cached, vf_runner *whole, const char *want, const char *what)
 {
     vf_next_frame(cached);
     vf_next_frame(whole);
-    if (!strstr(rebuilt(cached), want))
-        fail_msg("%s: want '%s' in the report, got '%s'", what, want, rebuilt(cached));
-    assert_string_equal(rebuilt(whole), "geometry voxelized (cache=false)");
+    if (!strstr(vf_rebuilt(cached, "vox"), want))
+        fail_msg("%s: want '%s' in the report, got '%s'", what, want, vf_rebuilt(cached, "vox"));
+    assert_string_equal(vf_rebuilt(whole, "vox"), "geometry voxelized (cache=false)");
     int differ = differing_voxels(cached, whole);
-    printf("# %s: %s; %d voxels differ from cache=false\n", what, rebuilt(cached), differ);
+    printf("# %s: %s; %d voxels differ from cache=false\n", what, vf_rebuilt(cached, "vox"), differ);
     assert_int_equal(differ, 0);
 }
 
@@ -126,7 +120,7 @@ check_voxelizer(const char *voxelizer)
     vf_runner cached, whole;
     start(&cached, &cached_scene, true, voxelizer);
     start(&whole, &whole_scene, false, voxelizer);
-    assert_non_null(strstr(rebuilt(&cached), "geometry voxelized (first frame"));
+    assert_non_null(strstr(vf_rebuilt(&cached, "vox"), "geometry voxelized (first frame"));
     assert_int_equal(differing_voxels(&cached, &whole), 0);
     float *before = occupancy(&cached);
 
@@ -179,7 +173,7 @@ check_voxelizer(const char *voxelizer)
     set_world(&cached_scene, &whole_scene, 0, stretched);
     step(&cached, &whole, "geometry voxelized (a voxelized instance changed; changed regions",
          "terrain stretched");
-    assert_non_null(strstr(rebuilt(&cached), "builds: 2 whole, 5 partial"));
+    assert_non_null(strstr(vf_rebuilt(&cached, "vox"), "builds: 2 whole, 5 partial"));
 
     vf_stop(&cached);
     vf_stop(&whole);
@@ -195,11 +189,5 @@ test_partial_equals_whole(void **state)
     check_voxelizer("compute");
 }
 
-int
-main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_partial_equals_whole),
-    };
-    return cmocka_run_group_tests(tests, cg_test_gl_setup, cg_test_gl_teardown);
-}
+CG_TEST_MAIN(cg_test_gl_setup, cg_test_gl_teardown,
+             cmocka_unit_test(test_partial_equals_whole))
