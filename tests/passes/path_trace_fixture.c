@@ -210,3 +210,11 @@ ptf_corner_view_factor(double x, double y, double h)
     return (x / ax * atan(y / ax) + y / ay * atan(x / ay)) / (2.0 * PTF_PI);
 }
 
+pt_settings
+ptf_settings(int spp, int bounces)
+{
+    pt_settings st = pt_settings_default();
+    st.spp = spp;
+    st.bounces = bounces;
+    return st;
+}

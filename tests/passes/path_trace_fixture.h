@@ -4,7 +4,7 @@
  * Declares: PTF_PI, ptf_grow, ptf_add_material, ptf_scene_init, ptf_add_quad_mesh,
  *           ptf_add_instance, ptf_add_quad_at, ptf_add_light, ptf_scene_release,
  *           ptf_view_finish, ptf_view_top_ortho, ptf_view_perspective, ptf_pixel_on_plane,
- *           ptf_render, ptf_assert_rel, ptf_residual_mean, ptf_corner_view_factor.
+ *           ptf_settings, ptf_render, ptf_assert_rel, ptf_residual_mean, ptf_corner_view_factor.
  */
 #ifndef CG_TEST_PATH_TRACE_FIXTURE_H
 #define CG_TEST_PATH_TRACE_FIXTURE_H
@@ -40,6 +40,8 @@ cg_view ptf_view_perspective(int w, int h, vec3 eye, vec3 at);
 /* World point on the plane z = 0 at the centre of pixel (x, y) of ptf_view_top_ortho. */
 void ptf_pixel_on_plane(int x, int y, int w, int h, double *px, double *py);
 
+/* pt_settings_default() with `spp` samples per pixel and `bounces` diffuse bounces. */
+pt_settings ptf_settings(int spp, int bounces);
 /* pt_render's image (w x h x 4 floats, to be freed). */
 float *ptf_render(const cg_scene *scene, const cg_view *view, pt_settings st);
 /* Fails the test unless |got - want| <= tol x |want| (tol absolute when |want| < 1e-6). */

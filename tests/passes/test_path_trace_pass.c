@@ -15,6 +15,7 @@
 #include "cg/scene.h"
 #include "cg/pt_render.h"
 #include "test_support.h"
+#include "path_trace_fixture.h"
 
 enum { W = 40, H = 24 };
 
@@ -81,9 +82,7 @@ output_is_the_traced_image(void **state)
     pt_scene *pts;
     cg_error err = { 0 };
     assert_cg_ok(pt_scene_create(&r.scene, &pts, &err), &err);
-    pt_settings s = pt_settings_default();
-    s.spp = 4;
-    s.bounces = 1;
+    pt_settings s = ptf_settings(4, 1);
     s.seed = 5;
     float *direct = malloc(sizeof(float) * 4 * W * H);
     assert_non_null(direct);
@@ -169,9 +168,7 @@ parts_are_outputs(void **state)
     pt_scene *pts;
     cg_error err = { 0 };
     assert_cg_ok(pt_scene_create(&r.scene, &pts, &err), &err);
-    pt_settings s = pt_settings_default();
-    s.spp = 2;
-    s.bounces = 1;
+    pt_settings s = ptf_settings(2, 1);
     s.seed = 5;
     float *want = malloc(sizeof(float) * 4 * W * H), *parts[PT_PART_COUNT];
     assert_non_null(want);

@@ -25,9 +25,7 @@ directional_light_on_white_plane_gives_e_over_pi(void **state)
     l->direction[2] = -1.0f;
     cg_view v = ptf_view_top_ortho(W, H);
     for (int bounces = 0; bounces <= 2; bounces++) {
-        pt_settings st = pt_settings_default();
-        st.spp = 2;
-        st.bounces = bounces;
+        pt_settings st = ptf_settings(2, bounces);
         float *img = ptf_render(&s, &v, st);
         for (int i = 0; i < W * H; i++)
             for (int c = 0; c < 3; c++)
@@ -93,9 +91,7 @@ point_light_gives_inverse_square_cosine(void **state)
     cg_light *l = ptf_add_light(&s, CG_LIGHT_POINT, 10.0f);
     l->position[0] = 0.3f, l->position[1] = -0.2f, l->position[2] = 1.5f;
     cg_view v = ptf_view_top_ortho(W, H);
-    pt_settings st = pt_settings_default();
-    st.spp = 1;
-    st.bounces = 1;
+    pt_settings st = ptf_settings(1, 1);
     float *img = ptf_render(&s, &v, st);
     check_punctual(l, 0.7f, img, W, H);
     free(img);
@@ -158,9 +154,7 @@ furnace_gives_the_closed_form(void **state)
         double want = 0.0;
         for (int k = 0; k <= n + 1; k++)
             want += le * pow(a, k);
-        pt_settings st = pt_settings_default();
-        st.spp = 16;
-        st.bounces = n;
+        pt_settings st = ptf_settings(16, n);
         st.jitter = true;
         float *img = ptf_render(&s, &v, st);
         double mean, se;
@@ -198,9 +192,7 @@ emissive_rectangle_lights_the_floor_by_its_view_factor(void **state)
         glm_scale(m, (vec3){ (float)(0.5 * (x2 - x1)), (float)(0.5 * (y2 - y1)), 1.0f });
         ptf_add_instance(&s, ptf_add_quad_mesh(&s, lamp), m);
         cg_view v = ptf_view_top_ortho(W, H);
-        pt_settings st = pt_settings_default();
-        st.spp = 256;
-        st.bounces = 0;
+        pt_settings st = ptf_settings(256, 0);
         float *img = ptf_render(&s, &v, st);
         double want[W * H], total = 0.0;
         for (int y = 0; y < H; y++)
@@ -305,9 +297,7 @@ grazing_light_far_from_the_origin_casts_no_self_shadow(void **state)
         glm_lookat((vec3){ x0, y0, (float)(5 * size) }, (vec3){ x0, y0, 0 }, (vec3){ 0, 1, 0 }, view);
         glm_ortho((float)-size, (float)size, (float)-size, (float)size, (float)(0.1 * size), (float)(20 * size), proj);
         ptf_view_finish(&v, view, proj);
-        pt_settings st = pt_settings_default();
-        st.spp = 1;
-        st.bounces = 0;
+        pt_settings st = ptf_settings(1, 0);
         float *img = ptf_render(&s, &v, st);
         for (int i = 0; i < W * H; i++)
             for (int c = 0; c < 3; c++)
@@ -337,9 +327,7 @@ hard_shadows_block_punctual_light(void **state)
     glm_lookat((vec3){ 0, 0, 0.5f }, (vec3){ 0, 0, 0 }, (vec3){ 0, 1, 0 }, view);
     glm_ortho(-1, 1, -1, 1, 0.1f, 10.0f, proj);
     ptf_view_finish(&v, view, proj);
-    pt_settings st = pt_settings_default();
-    st.spp = 1;
-    st.bounces = 0;
+    pt_settings st = ptf_settings(1, 0);
     float *img = ptf_render(&s, &v, st);
     for (int y = 0; y < H; y++)
         for (int x = 0; x < W; x++)
@@ -426,9 +414,7 @@ error_falls_with_sample_count(void **state)
     cg_scene s;
     noisy_scene(&s);
     cg_view v = ptf_view_perspective(W, H, (vec3){ 0, 0, 3.0f }, (vec3){ 0, 0, 0 });
-    pt_settings st = pt_settings_default();
-    st.bounces = 2;
-    st.spp = 512;
+    pt_settings st = ptf_settings(512, 2);
     st.seed = 99; /* independent of the images under test */
     float *ref = ptf_render(&s, &v, st);
     st.seed = 1;
@@ -457,9 +443,7 @@ bit_identical_across_runs_and_thread_counts(void **state)
     cg_scene s;
     noisy_scene(&s);
     cg_view v = ptf_view_perspective(W, H, (vec3){ 0, 0, 3.0f }, (vec3){ 0, 0, 0 });
-    pt_settings st = pt_settings_default();
-    st.spp = 3;
-    st.bounces = 2;
+    pt_settings st = ptf_settings(3, 2);
     st.jitter = true;
     st.threads = 1;
     float *one = ptf_render(&s, &v, st);
@@ -498,9 +482,7 @@ parts_add_up_to_the_image(void **state)
     assert_cg_ok(pt_scene_create(&s, &pts, &err), &err);
     float *img[2], *parts[2][PT_PART_COUNT];
     for (int b = 0; b < 2; b++) {
-        pt_settings st = pt_settings_default();
-        st.spp = 4;
-        st.bounces = 2 * b;
+        pt_settings st = ptf_settings(4, 2 * b);
         img[b] = malloc(sizeof(float) * 4 * N);
         assert_non_null(img[b]);
         for (int p = 0; p < PT_PART_COUNT; p++) {

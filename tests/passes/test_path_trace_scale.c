@@ -15,6 +15,7 @@
 #include "cg/pt_render.h"
 #include "cg/scene.h"
 #include "test_support.h"
+#include "path_trace_fixture.h"
 
 static float *
 render_scene(const cg_scene *scene, int w, int h, const pt_settings *st)
@@ -69,9 +70,7 @@ furnace_at_every_scale(void **state)
 {
     (void)state;
     enum { W = 24, H = 16 };
-    pt_settings st = pt_settings_default();
-    st.spp = 16;
-    st.bounces = 1;
+    pt_settings st = ptf_settings(16, 1);
     st.jitter = true;
     st.threads = 2;
     const double a = 0.5, le = 1.0;
@@ -124,9 +123,7 @@ cornell_at_every_scale(void **state)
         bool jitter;
     } cases[] = { { 0x1p-20, false }, { 0x1p-10, false }, { 0x1p10, false }, { 0x1p20, false },
                   { 1e-6, true },     { 1e-3, true },     { 1e3, true },     { 1e6, true } };
-    pt_settings st = pt_settings_default();
-    st.spp = 8;
-    st.bounces = 1;
+    pt_settings st = ptf_settings(8, 1);
     st.threads = 2;
     cg_scene scene;
     cg_error err = { 0 };
@@ -164,9 +161,7 @@ kilometre_scene_through_a_5cm_near_plane(void **state)
 {
     (void)state;
     enum { W = 40, H = 40 };
-    pt_settings st = pt_settings_default();
-    st.spp = 8;
-    st.bounces = 1;
+    pt_settings st = ptf_settings(8, 1);
     st.threads = 2;
     cg_scene scene;
     cg_error err = { 0 };

@@ -111,9 +111,7 @@ uniform_sky_on_a_white_plane_gives_albedo_times_l(void **state)
     assert_cg_ok(cg_scene_set_sky(&s, &sky, &err), &err);
     cg_view v = ptf_view_top_ortho(W, H);
     for (int bounces = 0; bounces <= 2; bounces++) {
-        pt_settings st = pt_settings_default();
-        st.spp = 2;
-        st.bounces = bounces;
+        pt_settings st = ptf_settings(2, bounces);
         float *img = ptf_render(&s, &v, st);
         for (int i = 0; i < W * H; i++)
             for (int c = 0; c < 3; c++)
@@ -170,9 +168,7 @@ open_box_floor_sees_the_sky_through_its_opening(void **state)
             mean_want += want[y * W + x] / (W * H);
         }
     for (int bounces = 0; bounces <= 1; bounces++) {
-        pt_settings st = pt_settings_default();
-        st.spp = 128;
-        st.bounces = bounces;
+        pt_settings st = ptf_settings(128, bounces);
         float *img = ptf_render(&s, &v, st);
         double mean, se;
         ptf_residual_mean(img, want, W * H, &mean, &se);
@@ -255,9 +251,7 @@ preetham_sky_on_a_white_plane(void **state)
     glm_lookat((vec3){ 0, 5, 0 }, (vec3){ 0, 0, 0 }, (vec3){ 0, 0, -1 }, view);
     glm_ortho(-1, 1, -1, 1, 0.1f, 10.0f, proj);
     ptf_view_finish(&v, view, proj);
-    pt_settings st = pt_settings_default();
-    st.spp = 64;
-    st.bounces = 0;
+    pt_settings st = ptf_settings(64, 0);
     float *img = ptf_render(&s, &v, st);
     for (int c = 0; c < 3; c++) {
         double sum = 0.0, sum2 = 0.0;
