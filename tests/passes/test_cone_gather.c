@@ -91,11 +91,8 @@ check_mip_chain(cg_context *ctx, const char *opacity)
     sun->intensity = 4.0f;
     sun->direction[0] = 0.48f, sun->direction[1] = -0.8f, sun->direction[2] = 0.36f;
     vf_finish(s);
-    char json[1024];
-    snprintf(json, sizeof json, mip_graph, opacity);
     vf_runner r;
-    vf_start(&r, &s->scene, 32, 32, json, NULL);
-    vf_frame(&r);
+    vf_run_format(&r, &s->scene, 32, 32, mip_graph, opacity);
     bool use_max = strcmp(opacity, "max") == 0;
     int size = 0;
     float *fine = vf_read_volume(&r, "mip.volume", 0, &size);
@@ -176,11 +173,8 @@ static gather_result
 run_gather(cg_context *ctx, const cg_scene *scene, int resolution, const char *voxel_params,
            const char *opacity, int cones, double aperture, const char *gather_params, double target)
 {
-    char json[2048];
-    snprintf(json, sizeof json, gather_graph, resolution, voxel_params, opacity, cones, aperture, gather_params);
     vf_runner r;
-    vf_start(&r, scene, 32, 32, json, NULL);
-    vf_frame(&r);
+    vf_run_format(&r, scene, 32, 32, gather_graph, resolution, voxel_params, opacity, cones, aperture, gather_params);
     int w = 0, h = 0;
     float *gathered = hf_read_2d(&r, "gather.radiance", 0, &w, &h);
     float *albedo = hf_read_2d(&r, "gbuf.albedo", 0, &w, &h);

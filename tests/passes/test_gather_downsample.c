@@ -53,11 +53,8 @@ typedef struct gather_image {
 static gather_image
 render(const cg_scene *scene, const char *type, int downsample)
 {
-    char json[sizeof graph_format + 64];
-    snprintf(json, sizeof json, graph_format, type, downsample);
     vf_runner r;
-    vf_start(&r, scene, SIZE, SIZE, json, NULL);
-    vf_frame(&r);
+    vf_run_format(&r, scene, SIZE, SIZE, graph_format, type, downsample);
     gather_image g = {vf_read_image(&r, "gather.radiance", SIZE, SIZE),
                       vf_read_image(&r, "gbuf.position", SIZE, SIZE),
                       vf_read_image(&r, "gbuf.normal", SIZE, SIZE), {0, 0, 0}};

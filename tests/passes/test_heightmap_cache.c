@@ -44,10 +44,7 @@ make_scene(hf_scene *s)
 static void
 start(vf_runner *r, hf_scene *s, const char *format, bool cache)
 {
-    char json[1024];
-    snprintf(json, sizeof json, graph, format, cache ? "true" : "false");
-    vf_start(r, &s->scene, 16, 16, json, NULL);
-    vf_frame(r);
+    vf_run_format(r, &s->scene, 16, 16, graph, format, cache ? "true" : "false");
 }
 
 /* Texels of level 0 that differ between the two runners' lightmaps. */

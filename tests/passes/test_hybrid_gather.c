@@ -57,11 +57,8 @@ typedef struct gathered {
 static gathered
 gather(cg_context *ctx, const cg_scene *scene, const char *mode, int cones, const char *params, double target)
 {
-    char json[4096];
-    snprintf(json, sizeof json, furnace_graph, mode, cones, params);
     vf_runner r;
-    vf_start(&r, scene, 24, 24, json, NULL);
-    vf_frame(&r);
+    vf_run_format(&r, scene, 24, 24, furnace_graph, mode, cones, params);
     int w = 0, h = 0;
     float *g = hf_read_2d(&r, "gather.radiance", 0, &w, &h);
     float *albedo = hf_read_2d(&r, "gbuf.albedo", 0, &w, &h);

@@ -43,11 +43,8 @@ check_tilted_plane(cg_context *ctx, const char *format, double height_tolerance)
     const double sun[3] = {0.3, -1.0, 0.2};
     hf_sun(&s, sun, 3.0f);
     hf_finish(&s);
-    char json[1024];
-    snprintf(json, sizeof json, raster_graph, format);
     vf_runner r;
-    vf_start(&r, &s.scene, 32, 32, json, NULL);
-    vf_frame(&r);
+    vf_run_format(&r, &s.scene, 32, 32, raster_graph, format);
     int w = 0, h = 0;
     float *map = hf_read_2d(&r, "mip.lightmap", 0, &w, &h);
     assert_int_equal(w, 64);
@@ -133,11 +130,8 @@ test_heightmap_flat_far(void **state)
     hf_material(&s, 1, 0.5f, 0.25f);
     hf_grid(&s, 4, 1.0e5, -1.0e5, 500.0, flat_far, NULL);
     hf_finish(&s);
-    char json[1024];
-    snprintf(json, sizeof json, raster_graph, "rgba32f");
     vf_runner r;
-    vf_start(&r, &s.scene, 16, 16, json, NULL);
-    vf_frame(&r);
+    vf_run_format(&r, &s.scene, 16, 16, raster_graph, "rgba32f");
     int w = 0, h = 0;
     float *map = hf_read_2d(&r, "mip.lightmap", 0, &w, &h);
     for (int i = 0; i < w * h; i++)

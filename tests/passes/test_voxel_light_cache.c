@@ -47,10 +47,7 @@ make_scene(hf_scene *s, float sky)
 static void
 start(vf_runner *r, hf_scene *s, int bounces, bool cache)
 {
-    char json[2048];
-    snprintf(json, sizeof json, graph, bounces, cache ? "true" : "false");
-    vf_start(r, &s->scene, 16, 16, json, NULL);
-    vf_frame(r);
+    vf_run_format(r, &s->scene, 16, 16, graph, bounces, cache ? "true" : "false");
 }
 
 static void

@@ -34,11 +34,8 @@ voxelize_with(cg_context *ctx, void (*setup)(cg_material *), const char *voxeliz
     setup(&s->materials[1]);
     vf_add_triangle(s, (double[3]){ -1, -1, 0.3 }, (double[3]){ 1, -1, 0.3 }, (double[3]){ 0, 1, 0.3 });
     vf_finish(s);
-    char json[1024];
-    snprintf(json, sizeof json, graph, voxelizer);
     vf_runner r;
-    vf_start(&r, &s->scene, 16, 16, json, NULL);
-    vf_frame(&r);
+    vf_run_format(&r, &s->scene, 16, 16, graph, voxelizer);
     int size = 0;
     float *vox = vf_read_volume(&r, "vox.albedo", 0, &size);
     int count = 0;

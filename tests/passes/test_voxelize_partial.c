@@ -46,10 +46,7 @@ make_scene(hf_scene *s)
 static void
 start(vf_runner *r, hf_scene *s, bool cache, const char *voxelizer)
 {
-    char json[1024];
-    snprintf(json, sizeof json, graph, cache ? "true" : "false", voxelizer);
-    vf_start(r, &s->scene, 16, 16, json, NULL);
-    vf_frame(r);
+    vf_run_format(r, &s->scene, 16, 16, graph, cache ? "true" : "false", voxelizer);
 }
 
 /* Voxels of the four volumes that differ between the two runners (any channel, bit for bit). */

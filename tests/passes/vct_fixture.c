@@ -1,6 +1,7 @@
 #include "vct_fixture.h"
 
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -122,6 +123,20 @@ vf_start_file(vf_runner *r, const cg_scene *scene, int width, int height, const 
     assert_cg_ok(cg_read_file(cg_test_graph_path(graph), &json, &size, &err), &err);
     vf_start(r, scene, width, height, json, overrides);
     free(json);
+}
+
+void
+vf_run_format(vf_runner *r, const cg_scene *scene, int width, int height, const char *format, ...)
+{
+    char json[8192];
+    va_list args;
+    va_start(args, format);
+    int length = vsnprintf(json, sizeof json, format, args);
+    va_end(args);
+    if (length < 0 || (size_t)length >= sizeof json)
+        fail_msg("a graph of %d bytes: more than vf_run_format holds", length);
+    vf_start(r, scene, width, height, json, NULL);
+    vf_frame(r);
 }
 
 void

@@ -1,7 +1,7 @@
 /* tests/passes/vct_fixture.h: scenes of a few free triangles and a graph runner for the
  * VCT pass tests (voxelize, mip3d, cone_gather).
  *
- * Declares: vf_scene, vf_scene_init, vf_add_triangle, vf_finish, vf_runner, vf_start,
+ * Declares: vf_scene, vf_scene_init, vf_add_triangle, vf_finish, vf_runner, vf_start, vf_run_format,
  *           vf_frame, vf_next_frame, vf_stop, vf_rebuilt, vf_read_image, vf_read_volume.
  */
 #ifndef CG_TEST_VCT_FIXTURE_H
@@ -47,6 +47,10 @@ void vf_start(vf_runner *r, const cg_scene *scene, int width, int height, const 
 /* The same with a file of $CONEGRAPH_GRAPH_DIR (e.g. "vct.json"). */
 void vf_start_file(vf_runner *r, const cg_scene *scene, int width, int height, const char *graph,
                    const char *const *overrides);
+/* vf_start with the graph JSON formatted from `format` and what follows (printf), no
+ * overrides, then one frame (vf_frame): a graph with a setting or two filled in, run once. */
+void vf_run_format(vf_runner *r, const cg_scene *scene, int width, int height, const char *format, ...)
+    __attribute__((format(printf, 5, 6)));
 /* Re-uploads the (changed) scene and runs one frame. */
 void vf_frame(vf_runner *r);
 /* One more frame without uploading the scene again, as the apps run an animation (the graph's
