@@ -218,3 +218,10 @@ ptf_settings(int spp, int bounces)
     st.bounces = bounces;
     return st;
 }
+
+void
+ptf_floor_scene(cg_scene *s, float albedo)
+{
+    ptf_scene_init(s);
+    ptf_add_quad_at(s, ptf_add_material(s, albedo, albedo, albedo, 0.0f), 0, 0, 0, 10, 10);
+}

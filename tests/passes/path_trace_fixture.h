@@ -1,7 +1,7 @@
 /* tests/passes/path_trace_fixture.h: scenes built in code, views and statistics for the
  * path tracer's tests (test_path_trace_render.c, test_path_trace_sky.c). No GL.
  *
- * Declares: PTF_PI, ptf_grow, ptf_add_material, ptf_scene_init, ptf_add_quad_mesh,
+ * Declares: PTF_PI, ptf_grow, ptf_add_material, ptf_scene_init, ptf_floor_scene, ptf_add_quad_mesh,
  *           ptf_add_instance, ptf_add_quad_at, ptf_add_light, ptf_scene_release,
  *           ptf_view_finish, ptf_view_top_ortho, ptf_view_perspective, ptf_pixel_on_plane,
  *           ptf_settings, ptf_render, ptf_assert_rel, ptf_residual_mean, ptf_corner_view_factor.
@@ -24,6 +24,9 @@ void *ptf_grow(void *array, int count, size_t elem);
 int ptf_add_material(cg_scene *s, float r, float g, float b, float emission);
 /* An empty scene with the default white material at 0. */
 void ptf_scene_init(cg_scene *s);
+/* ptf_scene_init and a grey Lambertian floor of albedo `albedo`: the plane z = 0 over
+ * [-10, 10]^2, facing +z (what ptf_view_top_ortho looks down at). */
+void ptf_floor_scene(cg_scene *s, float albedo);
 /* The quad [-1,1]^2 in the xy plane facing +z, uv = (x+1)/2, (y+1)/2. */
 int ptf_add_quad_mesh(cg_scene *s, int material);
 void ptf_add_instance(cg_scene *s, int mesh, mat4 world);

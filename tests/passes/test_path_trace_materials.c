@@ -274,8 +274,7 @@ sun_disc_keeps_the_irradiance(void **state)
 {
     (void)state;
     cg_scene s;
-    ptf_scene_init(&s);
-    ptf_add_quad_at(&s, ptf_add_material(&s, 0.5f, 0.5f, 0.5f, 0.0f), 0, 0, 0, 10, 10);
+    ptf_floor_scene(&s, 0.5f);
     cg_light *l = ptf_add_light(&s, CG_LIGHT_DIRECTIONAL, 2.0f);
     l->direction[2] = -1.0f;
     l->angular_diameter = 0.2f; /* a large disc: the mean cosine over it is (1 + cos 0.1)/2 */

@@ -86,8 +86,7 @@ point_light_gives_inverse_square_cosine(void **state)
     (void)state;
     enum { W = 24, H = 16 };
     cg_scene s;
-    ptf_scene_init(&s);
-    ptf_add_quad_at(&s, ptf_add_material(&s, 0.7f, 0.7f, 0.7f, 0.0f), 0, 0, 0, 10, 10);
+    ptf_floor_scene(&s, 0.7f);
     cg_light *l = ptf_add_light(&s, CG_LIGHT_POINT, 10.0f);
     l->position[0] = 0.3f, l->position[1] = -0.2f, l->position[2] = 1.5f;
     cg_view v = ptf_view_top_ortho(W, H);

@@ -104,8 +104,7 @@ uniform_sky_on_a_white_plane_gives_albedo_times_l(void **state)
     (void)state;
     enum { W = 16, H = 16 };
     cg_scene s;
-    ptf_scene_init(&s);
-    ptf_add_quad_at(&s, ptf_add_material(&s, 0.7f, 0.7f, 0.7f, 0.0f), 0, 0, 0, 10, 10);
+    ptf_floor_scene(&s, 0.7f);
     cg_sky sky = { .type = CG_SKY_UNIFORM, .radiance = { 0.3f, 0.5f, 0.9f } };
     cg_error err = { 0 };
     assert_cg_ok(cg_scene_set_sky(&s, &sky, &err), &err);

@@ -326,3 +326,11 @@ cg_test_json_number(const char *json, const char *section, const char *key)
     assert_non_null(k);
     return strtod(k + strlen(pattern), NULL);
 }
+
+void
+cg_test_expect_all(const char *text, const char *what, const char *const *wanted)
+{
+    for (int i = 0; wanted[i]; i++)
+        if (!strstr(text, wanted[i]))
+            fail_msg("%s: expected '%s' in:\n%s", what, wanted[i], text);
+}

@@ -1,7 +1,7 @@
 /* tests/support/test_support.h: helpers shared by the cmocka tests.
  *
  * Declares: cg_test_tmpdir, cg_test_tmp_path, cg_test_write_file, cg_test_data_path, cg_test_graph_path,
- *           cg_test_run_program, cg_test_run_conegraph, cg_test_run_conegraph_split,
+ *           cg_test_run_program, cg_test_run_conegraph, cg_test_run_conegraph_split, cg_test_expect_all,
  *           cg_test_list_graphs, cg_test_json_number, cg_test_material_default, cg_test_scale_scene,
  *           assert_cg_ok, assert_cg_status, cg_test_gl_setup, cg_test_gl_teardown,
  *           cg_test_gl_context, assert_no_gl_errors, cg_test_read_texture, cg_test_read_framebuffer,
@@ -60,6 +60,10 @@ int cg_test_run_conegraph(const char *args, bool with_stderr, char *out, size_t 
 /* Runs $CONEGRAPH_EXE with stdout and stderr kept apart: in out and err (NUL-terminated, cut
  * at their size - 1). Returns the exit code. */
 int cg_test_run_conegraph_split(const char *args, char *out, size_t out_size, char *err, size_t err_size);
+
+/* Fails the test, showing `text`, unless it contains every string of `wanted` (a list ended
+ * by NULL); `what` names the text in the message (e.g. the command that printed it). */
+void cg_test_expect_all(const char *text, const char *what, const char *const *wanted);
 
 /* The graph files of $CONEGRAPH_GRAPH_DIR by name without ".json", sorted; fails the test when
  * the directory is not set or cannot be read. */
