@@ -18,31 +18,33 @@
 
 static GLuint layout_program;
 
+/* Property `prop` of the resource `name` of the layout program's `interface`; fails the test
+ * when the program has no such active resource. */
+static GLint
+resource_property(GLenum interface, const char *name, GLenum prop)
+{
+    GLuint index = glGetProgramResourceIndex(layout_program, interface, name);
+    if (index == GL_INVALID_INDEX)
+        fail_msg("%s: not active in the program", name);
+    GLint value = -1;
+    glGetProgramResourceiv(layout_program, interface, index, 1, &prop, 1, NULL, &value);
+    return value;
+}
+
 /* GL's offset of `member` in block `block` (interface: GL_UNIFORM or GL_BUFFER_VARIABLE). */
 static GLint
 member_offset(GLenum interface, const char *block, const char *member)
 {
     char name[256];
     snprintf(name, sizeof name, "%s.%s", block, member);
-    GLuint index = glGetProgramResourceIndex(layout_program, interface, name);
-    if (index == GL_INVALID_INDEX)
-        fail_msg("%s: not an active member of the program", name);
-    const GLenum prop = GL_OFFSET;
-    GLint offset = -1;
-    glGetProgramResourceiv(layout_program, interface, index, 1, &prop, 1, NULL, &offset);
-    return offset;
+    return resource_property(interface, name, GL_OFFSET);
 }
 
+/* GL's size of block `block` (interface: GL_UNIFORM_BLOCK or GL_SHADER_STORAGE_BLOCK). */
 static GLint
 block_size(GLenum interface, const char *block)
 {
-    GLuint index = glGetProgramResourceIndex(layout_program, interface, block);
-    if (index == GL_INVALID_INDEX)
-        fail_msg("block %s: not active in the program", block);
-    const GLenum prop = GL_BUFFER_DATA_SIZE;
-    GLint size = -1;
-    glGetProgramResourceiv(layout_program, interface, index, 1, &prop, 1, NULL, &size);
-    return size;
+    return resource_property(interface, block, GL_BUFFER_DATA_SIZE);
 }
 
 /* One check per member, expanded from the block's member list: C offsetof against GL_OFFSET. */

@@ -16,21 +16,19 @@
 #include "cg/error.h"
 #include "cg/fs.h"
 #include "cg/scene.h"
+#include "fuzz_input.h"
 
 #ifndef CG_FUZZ_GLTF_CORPUS
 #error "tests/fuzz/meson.build defines CG_FUZZ_GLTF_CORPUS"
 #endif
 
-static char dir[4096], path[4200];
-
+/* The side file copy_side_file put beside the input. */
 static void
-remove_dir(void)
+remove_side_file(void)
 {
     char side[4200];
-    snprintf(side, sizeof side, "%s/fuzz.bin", dir);
+    snprintf(side, sizeof side, "%s/fuzz.bin", fuzz_input_dir);
     unlink(side);
-    unlink(path);
-    rmdir(dir);
 }
 
 static void
@@ -38,7 +36,7 @@ copy_side_file(const char *from_dir, const char *name)
 {
     char from[4200], to[4200];
     snprintf(from, sizeof from, "%s/%s", from_dir, name);
-    snprintf(to, sizeof to, "%s/%s", dir, name);
+    snprintf(to, sizeof to, "%s/%s", fuzz_input_dir, name);
     char *data;
     size_t size;
     cg_error err = { 0 };
@@ -57,14 +55,7 @@ LLVMFuzzerInitialize(int *argc, char ***argv)
 {
     (void)argc;
     (void)argv;
-    const char *tmp = getenv("TMPDIR");
-    snprintf(dir, sizeof dir, "%s/conegraph-fuzz-gltf-XXXXXX", tmp && *tmp ? tmp : "/tmp");
-    if (!mkdtemp(dir)) {
-        perror("fuzz_gltf: mkdtemp");
-        abort();
-    }
-    snprintf(path, sizeof path, "%s/input.gltf", dir);
-    atexit(remove_dir);
+    fuzz_input_open("gltf", "input.gltf", remove_side_file);
     const char *corpus = getenv("CONEGRAPH_FUZZ_GLTF_DIR");
     copy_side_file(corpus && *corpus ? corpus : CG_FUZZ_GLTF_CORPUS, "fuzz.bin");
     return 0;
@@ -73,21 +64,16 @@ LLVMFuzzerInitialize(int *argc, char ***argv)
 int
 LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    FILE *fp = fopen(path, "wb");
-    if (!fp)
-        abort();
-    if (size && fwrite(data, 1, size, fp) != size)
-        abort();
-    fclose(fp);
+    fuzz_input_write(data, size);
     cg_scene scene;
     cg_error err = { 0 };
-    if (cg_scene_load(path, &scene, &err)) {
+    if (cg_scene_load(fuzz_input_path, &scene, &err)) {
         if (cg_scene_triangle_count(&scene) == 0) {
             fprintf(stderr, "fuzz_gltf: a scene without triangles loaded\n");
             abort();
         }
         cg_scene_free(&scene);
-    } else if (err.status == CG_OK || !strstr(err.message, path)) {
+    } else if (err.status == CG_OK || !strstr(err.message, fuzz_input_path)) {
         fprintf(stderr, "fuzz_gltf: refused with status %s and message '%s', which does not name the file\n",
                 cg_status_name(err.status), err.message);
         abort();

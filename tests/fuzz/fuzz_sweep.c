@@ -13,30 +13,16 @@
 #include <unistd.h>
 
 #include "bench.h"
+#include "fuzz_input.h"
 
-static char dir[4096], path[4200];
 static bench_config *config; /* large (the settings' tables): allocated once */
-
-static void
-remove_dir(void)
-{
-    unlink(path);
-    rmdir(dir);
-}
 
 int
 LLVMFuzzerInitialize(int *argc, char ***argv)
 {
     (void)argc;
     (void)argv;
-    const char *tmp = getenv("TMPDIR");
-    snprintf(dir, sizeof dir, "%s/conegraph-fuzz-sweep-XXXXXX", tmp && *tmp ? tmp : "/tmp");
-    if (!mkdtemp(dir)) {
-        perror("fuzz_sweep: mkdtemp");
-        abort();
-    }
-    snprintf(path, sizeof path, "%s/sweep.json", dir);
-    atexit(remove_dir);
+    fuzz_input_open("sweep", "sweep.json", NULL);
     config = malloc(sizeof *config);
     if (!config)
         abort();
@@ -46,13 +32,8 @@ LLVMFuzzerInitialize(int *argc, char ***argv)
 int
 LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    FILE *fp = fopen(path, "wb");
-    if (!fp)
-        abort();
-    if (size && fwrite(data, 1, size, fp) != size)
-        abort();
-    fclose(fp);
-    char *argv[] = { "bench", "--sweep", path, NULL };
+    fuzz_input_write(data, size);
+    char *argv[] = { "bench", "--sweep", fuzz_input_path, NULL };
     int code = bench_parse_args(3, argv, config);
     if (code != 0 && code != 2) {
         fprintf(stderr, "fuzz_sweep: bench_parse_args returned %d\n", code);
