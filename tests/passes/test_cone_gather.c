@@ -308,9 +308,7 @@ test_furnace_bounces(void **state)
 {
     cg_context *ctx = cg_test_gl_context(state);
     const double albedo = 0.5, radiance = 2.0;
-    cg_scene scene;
-    cg_error err = {0};
-    assert_cg_ok(cg_scene_load("builtin:furnace?albedo=0.5&radiance=2", &scene, &err), &err);
+    cg_scene scene = cg_test_load_scene("builtin:furnace?albedo=0.5&radiance=2");
     for (int bounces = 1; bounces <= 2; bounces++) {
         char set_bounces[64];
         snprintf(set_bounces, sizeof set_bounces, "light.bounces=%d", bounces);
@@ -344,9 +342,7 @@ static void
 test_step_independence(void **state)
 {
     cg_context *ctx = cg_test_gl_context(state);
-    cg_scene scene;
-    cg_error err = {0};
-    assert_cg_ok(cg_scene_load("builtin:cornell", &scene, &err), &err);
+    cg_scene scene = cg_test_load_scene("builtin:cornell");
     const char *const half[] = {"gather.step=0.5", NULL};
     const char *const quarter[] = {"gather.step=0.25", NULL};
     gather_result a = run_graph_file(ctx, &scene, 48, "vct.json", half, 0.0);
@@ -487,9 +483,7 @@ static void
 test_finite_everywhere(void **state)
 {
     cg_context *ctx = cg_test_gl_context(state);
-    cg_scene scene;
-    cg_error err = {0};
-    assert_cg_ok(cg_scene_load("builtin:furnace", &scene, &err), &err);
+    cg_scene scene = cg_test_load_scene("builtin:furnace");
     gather_result g = run_gather(ctx, &scene, 32, "", "max", 16, 150.0, "", 0.0);
     assert_int_equal(g.nonfinite, 0);
     g = run_gather(ctx, &scene, 32, "", "average", 1, 0.0, ", \"lod_bias\": 0", 0.0);

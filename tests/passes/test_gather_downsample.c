@@ -222,9 +222,7 @@ static void
 test_cone_gather_downsample(void **state)
 {
     cg_test_gl_context(state);
-    cg_scene scene;
-    cg_error err = {0};
-    assert_cg_ok(cg_scene_load("builtin:cornell", &scene, &err), &err);
+    cg_scene scene = cg_test_load_scene("builtin:cornell");
     check_downsample(&scene, "cone_gather");
     cg_scene_free(&scene);
 }
@@ -233,9 +231,7 @@ static void
 test_hybrid_gather_downsample(void **state)
 {
     cg_test_gl_context(state);
-    cg_scene scene;
-    cg_error err = {0};
-    assert_cg_ok(cg_scene_load("builtin:cornell", &scene, &err), &err);
+    cg_scene scene = cg_test_load_scene("builtin:cornell");
     check_downsample(&scene, "hybrid_gather");
     cg_scene_free(&scene);
 }

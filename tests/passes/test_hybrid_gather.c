@@ -54,15 +54,16 @@ typedef struct gathered {
     double mean, worst;     /* albedo x gathered (grey: channel 0..2 averaged), worst |. - target| */
 } gathered;
 
+/* albedo x gathered over the covered pixels of the runner's last frame, and the worst pixel
+ * against `target`: the absolute error of its grey value (channels 0..2 averaged), or with
+ * per_channel the relative error of its worst channel. Stops the runner. */
 static gathered
-gather(cg_context *ctx, const cg_scene *scene, const char *mode, int cones, const char *params, double target)
+measure_and_stop(cg_context *ctx, vf_runner *r, double target, bool per_channel)
 {
-    vf_runner r;
-    vf_run_format(&r, scene, 24, 24, furnace_graph, mode, cones, params);
     int w = 0, h = 0;
-    float *g = hf_read_2d(&r, "gather.radiance", 0, &w, &h);
-    float *albedo = hf_read_2d(&r, "gbuf.albedo", 0, &w, &h);
-    float *position = hf_read_2d(&r, "gbuf.position", 0, &w, &h);
+    float *g = hf_read_2d(r, "gather.radiance", 0, &w, &h);
+    float *albedo = hf_read_2d(r, "gbuf.albedo", 0, &w, &h);
+    float *position = hf_read_2d(r, "gbuf.position", 0, &w, &h);
     gathered out = {0};
     for (int i = 0; i < w * h; i++) {
         for (int k = 0; k < 4; k++)
@@ -70,19 +71,35 @@ gather(cg_context *ctx, const cg_scene *scene, const char *mode, int cones, cons
         if (position[4 * i + 3] <= 0.0f)
             continue;
         out.pixels++;
-        double v = 0;
-        for (int k = 0; k < 3; k++)
-            v += albedo[4 * i + k] * g[4 * i + k] / 3.0;
-        out.mean += v;
-        out.worst = fmax(out.worst, fabs(v - target));
+        if (per_channel) {
+            for (int k = 0; k < 3; k++) {
+                double v = (double)albedo[4 * i + k] * g[4 * i + k];
+                out.mean += v / 3.0;
+                out.worst = fmax(out.worst, fabs(v - target) / target);
+            }
+        } else {
+            double v = 0;
+            for (int k = 0; k < 3; k++)
+                v += albedo[4 * i + k] * g[4 * i + k] / 3.0;
+            out.mean += v;
+            out.worst = fmax(out.worst, fabs(v - target));
+        }
     }
     out.mean /= out.pixels > 0 ? out.pixels : 1;
     free(g);
     free(albedo);
     free(position);
     assert_no_gl_errors(ctx);
-    vf_stop(&r);
+    vf_stop(r);
     return out;
+}
+
+static gathered
+gather(cg_context *ctx, const cg_scene *scene, const char *mode, int cones, const char *params, double target)
+{
+    vf_runner r;
+    vf_run_format(&r, scene, 24, 24, furnace_graph, mode, cones, params);
+    return measure_and_stop(ctx, &r, target, false);
 }
 
 static void
@@ -292,9 +309,7 @@ static void
 test_cornell_equals_vct(void **state)
 {
     cg_context *ctx = cg_test_gl_context(state);
-    cg_scene scene;
-    cg_error err = {0};
-    assert_cg_ok(cg_scene_load("builtin:cornell", &scene, &err), &err);
+    cg_scene scene = cg_test_load_scene("builtin:cornell");
     /* hybrid.json's 3D part is vct.json's (voxelize model=surface, voxel_light, the same cones and
      * march); both at one resolution and start offset (hybrid.json starts 0.75 voxel off the
      * surface, vct.json one), so that they march alike. Cornell's bounds are a cube, so
@@ -339,30 +354,7 @@ furnace_through(cg_context *ctx, const cg_scene *scene, const char *graph, const
         if (fg_pass_is_culled(fg_graph_find_pass(r.graph, branch[i])))
             fail_msg("%s: pass '%s' of the 2D branch is culled", graph, branch[i]);
     vf_frame(&r);
-    int w = 0, h = 0;
-    float *g = hf_read_2d(&r, "gather.radiance", 0, &w, &h);
-    float *albedo = hf_read_2d(&r, "gbuf.albedo", 0, &w, &h);
-    float *position = hf_read_2d(&r, "gbuf.position", 0, &w, &h);
-    gathered out = {0};
-    for (int i = 0; i < w * h; i++) {
-        for (int k = 0; k < 4; k++)
-            out.nonfinite += !isfinite(g[4 * i + k]);
-        if (position[4 * i + 3] <= 0.0f)
-            continue;
-        out.pixels++;
-        for (int k = 0; k < 3; k++) {
-            double v = (double)albedo[4 * i + k] * g[4 * i + k];
-            out.mean += v / 3.0;
-            out.worst = fmax(out.worst, fabs(v - target) / target);
-        }
-    }
-    out.mean /= out.pixels > 0 ? out.pixels : 1;
-    free(g);
-    free(albedo);
-    free(position);
-    assert_no_gl_errors(ctx);
-    vf_stop(&r);
-    return out;
+    return measure_and_stop(ctx, &r, target, true);
 }
 
 /* The white furnace with a height field: builtin:furnace?heightfield=1 makes the floor a
@@ -424,9 +416,7 @@ static void
 test_skipping_changes_nothing(void **state)
 {
     cg_context *ctx = cg_test_gl_context(state);
-    cg_scene scene;
-    cg_error err = {0};
-    assert_cg_ok(cg_scene_load("builtin:openworld?triangles=20000", &scene, &err), &err);
+    cg_scene scene = cg_test_load_scene("builtin:openworld?triangles=20000");
     float *img[2];
     int w = 0, h = 0;
     for (int k = 0; k < 2; k++) {
@@ -483,9 +473,7 @@ static void
 test_openworld(void **state)
 {
     cg_context *ctx = cg_test_gl_context(state);
-    cg_scene scene;
-    cg_error err = {0};
-    assert_cg_ok(cg_scene_load("builtin:openworld", &scene, &err), &err);
+    cg_scene scene = cg_test_load_scene("builtin:openworld");
     const char *const small[] = {"vox.resolution=32", "terrain.resolution=256", "shadow.resolution=512", NULL};
     vf_runner r;
     float *hdr = render_final(&scene, 64, 36, "hybrid.json", small, &r);

@@ -207,8 +207,7 @@ parts_are_outputs(void **state)
                                       "\"outputs\": [ \"trace.indirect\" ] }",
                                       "noparts.json", &err),
                  &err);
-    cg_scene scene;
-    assert_cg_ok(cg_scene_load("builtin:cornell", &scene, &err), &err);
+    cg_scene scene = cg_test_load_scene("builtin:cornell");
     fg_frame frame = { .scene = &scene, .width = W, .height = H };
     cg_view_from_scene(&scene, 0, W, H, &frame.view);
     fg_compile_options options = { 0 };

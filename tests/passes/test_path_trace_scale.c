@@ -125,9 +125,8 @@ cornell_at_every_scale(void **state)
                   { 1e-6, true },     { 1e-3, true },     { 1e3, true },     { 1e6, true } };
     pt_settings st = ptf_settings(8, 1);
     st.threads = 2;
-    cg_scene scene;
     cg_error err = { 0 };
-    assert_cg_ok(cg_scene_load("builtin:cornell", &scene, &err), &err);
+    cg_scene scene = cg_test_load_scene("builtin:cornell");
     float *ref[2];
     for (int j = 0; j < 2; j++) {
         st.jitter = j;
@@ -163,9 +162,7 @@ kilometre_scene_through_a_5cm_near_plane(void **state)
     enum { W = 40, H = 40 };
     pt_settings st = ptf_settings(8, 1);
     st.threads = 2;
-    cg_scene scene;
-    cg_error err = { 0 };
-    assert_cg_ok(cg_scene_load("builtin:cornell", &scene, &err), &err);
+    cg_scene scene = cg_test_load_scene("builtin:cornell");
     float *ref = render_scene(&scene, W, H, &st);
     cg_test_scale_scene(&scene, 1024.0);
     scene.cameras[0].znear = 0.05f;

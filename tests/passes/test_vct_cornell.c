@@ -63,9 +63,7 @@ static void
 test_cornell_bleeding_and_energy(void **state)
 {
     cg_context *ctx = cg_test_gl_context(state);
-    cg_scene scene;
-    cg_error err = {0};
-    assert_cg_ok(cg_scene_load("builtin:cornell", &scene, &err), &err);
+    cg_scene scene = cg_test_load_scene("builtin:cornell");
     float *albedo = NULL;
     cornell_image direct = {0}, vct = {0}, paper = {0}, aniso = {0}, ref = {0};
     const char *const direct_set[] = {"final.exposure=0", NULL};

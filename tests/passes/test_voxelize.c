@@ -314,9 +314,8 @@ static void
 test_mesh_filter(void **state)
 {
     cg_context *ctx = cg_test_gl_context(state);
-    cg_scene scene;
     cg_error err = {0};
-    assert_cg_ok(cg_scene_load("builtin:openworld?triangles=5000", &scene, &err), &err);
+    cg_scene scene = cg_test_load_scene("builtin:openworld?triangles=5000");
     bool culled = false;
     float *all = occupancy(ctx, &scene, "all", &culled);
     float *terrain = occupancy(ctx, &scene, "heightfield", &culled);

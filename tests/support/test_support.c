@@ -334,3 +334,12 @@ cg_test_expect_all(const char *text, const char *what, const char *const *wanted
         if (!strstr(text, wanted[i]))
             fail_msg("%s: expected '%s' in:\n%s", what, wanted[i], text);
 }
+
+cg_scene
+cg_test_load_scene(const char *source)
+{
+    cg_scene scene;
+    cg_error err = { 0 };
+    assert_cg_ok(cg_scene_load(source, &scene, &err), &err);
+    return scene;
+}

@@ -2,7 +2,7 @@
  *
  * Declares: cg_test_tmpdir, cg_test_tmp_path, cg_test_write_file, cg_test_data_path, cg_test_graph_path,
  *           cg_test_run_program, cg_test_run_conegraph, cg_test_run_conegraph_split, cg_test_expect_all,
- *           cg_test_list_graphs, cg_test_json_number, cg_test_material_default, cg_test_scale_scene,
+ *           cg_test_list_graphs, cg_test_json_number, cg_test_load_scene, cg_test_material_default, cg_test_scale_scene,
  *           assert_cg_ok, assert_cg_status, cg_test_gl_setup, cg_test_gl_teardown,
  *           cg_test_gl_context, assert_no_gl_errors, cg_test_read_texture, cg_test_read_framebuffer,
  *           CG_TEST_MAIN, cg_test_skip_program.
@@ -73,6 +73,10 @@ int cg_test_list_graphs(char names[CG_TEST_MAX_GRAPHS][256]);
 /* The number after "KEY": in the object that follows "SECTION": of a JSON text (as conegraph
  * prints it); fails the test when either is missing. */
 double cg_test_json_number(const char *json, const char *section, const char *key);
+
+/* Loads a scene (a file, or builtin:NAME with its options); fails the test with the loader's
+ * message when it cannot. The caller frees it (cg_scene_free). */
+cg_scene cg_test_load_scene(const char *source);
 
 /* The built-in scenes' default material (cg_material_default, which the library keeps to
  * itself), named "material INDEX": white albedo, Lambertian (specular 0), double-sided, no
