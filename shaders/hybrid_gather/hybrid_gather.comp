@@ -237,7 +237,7 @@ centre_sample(CgHeightmap m, CgFittingCube cube, float lod)
 // One cone by the paper's steps (see the top of the file); `origin` already offset along the
 // normal (VI.B's self-influence).
 vec4
-trace_paper(vec3 origin, vec3 dir, float tan_half, float t_start, float t_max)
+trace_paper(sampler3D volume, vec3 origin, vec3 dir, float tan_half, float t_start, float t_max)
 {
     CgVolume v = hybrid_volume();
     CgHeightmap m = cg_heightmap();
@@ -287,7 +287,7 @@ trace_paper(vec3 origin, vec3 dir, float tan_half, float t_start, float t_max)
             if (!meets3)
                 break;
             vec3 centre = 0.5 * (lo + hi);
-            cg_cone_step(cg_gather_volume, v, cone, no_surface, CgConeSample(centre, d, -1.0), v.radiance_scale, state, acc);
+            cg_cone_step(volume, v, cone, no_surface, CgConeSample(centre, d, -1.0), v.radiance_scale, state, acc);
             t = t_next;
             continue;
         }
@@ -322,7 +322,7 @@ trace_paper(vec3 origin, vec3 dir, float tan_half, float t_start, float t_max)
             // Eq. 15: the intersection's geometric centre; Case 1 by the shared 3D step.
             float before = acc.a;
             vec3 centre = 0.5 * (lo + hi);
-            cg_cone_step(cg_gather_volume, v, cone, no_surface, CgConeSample(centre, d, -1.0), v.radiance_scale, state, acc);
+            cg_cone_step(volume, v, cone, no_surface, CgConeSample(centre, d, -1.0), v.radiance_scale, state, acc);
             a3 = (acc.a - before) / max(1.0 - before, 1e-6);
         }
         if (in2 && acc.a < CG_CONE_OPAQUE) {
@@ -599,7 +599,8 @@ open_lift(float covered)
 // the terrain samples with it; the outer one the 3D step on an occupied sample. The steps are the
 // same as one loop's.
 vec4
-trace_horizon(vec3 p, vec3 origin, vec3 dir, float tan_half, float t_start, float t_max, vec4 surface, Cell cell)
+trace_horizon(sampler3D volume, vec3 p, vec3 origin, vec3 dir, float tan_half, float t_start, float t_max, vec4 surface,
+              Cell cell)
 {
     CgVolume v = hybrid_volume();
     CgHeightmap m = cg_heightmap();
@@ -695,7 +696,7 @@ trace_horizon(vec3 p, vec3 origin, vec3 dir, float tan_half, float t_start, floa
             break;
         // The 3D step on the occupied sample, then the terrain.
         was_in3 = true;
-        float dt = cg_cone_step(cg_gather_volume, v, cone, surface, at, v.radiance_scale, state, acc);
+        float dt = cg_cone_step(volume, v, cone, surface, at, v.radiance_scale, state, acc);
         if (h.live && (t >= h.next || h.covered > 0.0) && acc.a < CG_CONE_OPAQUE)
             terrain_sample(m, p, dir, t, x, d, cell, steep, axis_slope, m_lo, m_hi, false, h, acc);
         t += dt;
@@ -730,17 +731,20 @@ cell_of_axis(vec3 dir, float tan_half)
 // A material lobe's cone (common/gather.glsl: the specular or refracted cone, as cone_gather's)
 // through this gather's march: the VCT march without a 2D lightmap, the paper's steps or the
 // horizon with one (the surface's own voxels left out as for the diffuse cones, `own_voxels`); the
-// sky through what it left open; rgb x the lobe's weight, a its coverage.
+// sky through what it left open; rgb x the lobe's weight, a its coverage. Its 3D samples read
+// CG_GATHER_LOBE_VOLUME (voxel_light's `glossy` where bound: one diffuse bounce further), its terrain
+// samples the 2D lightmap the diffuse cones read, which has no such second volume: terrain seen in
+// a mirror keeps one bounce fewer than the path tracer's (docs/vct.md, Per material).
 vec4
 trace_lobe(CgGatherLobe lobe, float t_max, float xel, bool own_voxels)
 {
     vec4 traced;
 #ifdef HAS_2D
 #ifdef METHOD_PAPER
-    traced = trace_paper(lobe.origin, lobe.direction, lobe.tan_half, xel, t_max);
+    traced = trace_paper(CG_GATHER_LOBE_VOLUME, lobe.origin, lobe.direction, lobe.tan_half, xel, t_max);
 #else
     vec3 p = lobe.origin - lobe.surface.xyz * lobe.surface.w;
-    traced = trace_horizon(p, lobe.origin, lobe.direction, lobe.tan_half, xel, t_max,
+    traced = trace_horizon(CG_GATHER_LOBE_VOLUME, p, lobe.origin, lobe.direction, lobe.tan_half, xel, t_max,
                            own_voxels ? lobe.surface : vec4(lobe.surface.xyz, -1.0),
                            cell_of_axis(lobe.direction, lobe.tan_half));
 #endif
@@ -811,16 +815,18 @@ trace_diffuse(vec3 position, vec3 n, Reach r)
     // What each cone left open, past the volume and the terrain, sees the sky (common/sky.glsl).
     for (int k = 0; k < cg_cone_count(); k++) {
         vec3 dir = cg_cone_direction(frame, k);
-        cg_cone_accumulate(diffuse, k, cg_sky_gather(trace_paper(origin, dir, cg_cone_tan_half(k), r.xel, r.t_max), dir,
-                                                     cg_cone_tan_half(k)));
+        float tan_half = cg_cone_tan_half(k);
+        vec4 traced = trace_paper(cg_gather_volume, origin, dir, tan_half, r.xel, r.t_max);
+        cg_cone_accumulate(diffuse, k, cg_sky_gather(traced, dir, tan_half));
     }
 #else
     vec4 surface = r.own_voxels ? vec4(n, march.start_offset * r.xel) : vec4(n, -1.0);
     for (int k = 0; k < cg_cone_count(); k++) {
         vec3 dir = cg_cone_direction(frame, k);
-        cg_cone_accumulate(diffuse, k, cg_sky_gather(trace_horizon(position, origin, dir, cg_cone_tan_half(k), r.xel,
-                                                                   r.t_max, surface, cell_of(k, frame)),
-                                                     dir, cg_cone_tan_half(k)));
+        float tan_half = cg_cone_tan_half(k);
+        vec4 traced = trace_horizon(cg_gather_volume, position, origin, dir, tan_half, r.xel, r.t_max, surface,
+                                    cell_of(k, frame));
+        cg_cone_accumulate(diffuse, k, cg_sky_gather(traced, dir, tan_half));
     }
 #endif
 #else

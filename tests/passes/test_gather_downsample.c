@@ -15,7 +15,8 @@
  *   - 3 is refused (CG_ERR_GRAPH_PARAM_RANGE, naming 1, 2 and 4), for both passes;
  *   - graphs/vct.json and hybrid.json with downsample = 1 render builtin:cornell and builtin:openworld
  *     (`conegraph render` at 64x36) bit for bit as before the parameter existed: the images of
- *     tests/data/gather_downsample/ are tests/data/regression/'s of that time (commit 4e0c56d). */
+ *     tests/data/gather_downsample/ are tests/data/regression/'s of that time (commit 4e0c56d),
+ *     renewed with them when voxel_light's shadow taps were lifted off corners. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>

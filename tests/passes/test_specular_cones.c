@@ -9,13 +9,14 @@
  *   - a Lambertian plate (the built-in scenes' material) gets no specular or refracted light;
  *   - the shadow cone of a sun with an angular diameter against the path tracer's soft shadow;
  *   - voxel_light's `glossy`, which the lobes' cones read, is the light of one bounce more: the
- *     `radiance` of the same pass with bounces + 1. */
+ *     `radiance` of the same pass with bounces + 1; both gathers' lobes read it. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "cg/bsdf.h"
+#include "cg/fs.h"
 #include "cg/gl.h"
 #include "cg/scene.h"
 #include "test_support.h"
@@ -485,6 +486,117 @@ test_glossy_is_one_bounce_more(void **state)
     }
 }
 
+/* The gathers' lobes read `glossy` in every march: a metal ground (material 1, roughness 0.2: a
+ * height field, in hybrid.json the 2D lightmap's) reflecting two sunlit Lambertian walls that light
+ * each other (the 3D part). Through each shipped graph (light.bounces 1: the lobes read V_2) the
+ * ground's `gather.reflection` equals that of the same graph with light.bounces 2 and no `glossy`
+ * input (its `volume`, V_2, read by the lobes), and differs from the graph at bounces 1 without it
+ * (V_1): the walls' light on each other is the bounce glossy adds. vct.json tests cone_gather's
+ * march, hybrid.json the horizon march over the 2D lightmap. */
+static char *
+graph_variant(const char *file, int bounces, bool glossy)
+{
+    char *json = NULL;
+    size_t size = 0;
+    cg_error err = {0};
+    assert_cg_ok(cg_read_file(cg_test_graph_path(file), &json, &size, &err), &err);
+    static const char *const edits[][2] = {
+        {"\"bounces\": 1, \"glossy\": true", NULL},
+        {"\"glossy\": \"light.glossy\", ", ""},
+    };
+    char light[64];
+    snprintf(light, sizeof light, glossy ? "\"bounces\": %d, \"glossy\": true" : "\"bounces\": %d", bounces);
+    for (int e = 0; e < 2; e++) {
+        if (e == 1 && glossy)
+            break;
+        const char *with = e == 0 ? light : edits[e][1];
+        char *at = strstr(json, edits[e][0]);
+        if (!at)
+            fail_msg("%s no longer has %s: update this test", file, edits[e][0]);
+        size_t before = (size_t)(at - json), cut = strlen(edits[e][0]), add = strlen(with);
+        char *out = malloc(strlen(json) - cut + add + 1);
+        assert_non_null(out);
+        memcpy(out, json, before);
+        memcpy(out + before, with, add);
+        strcpy(out + before + add, at + cut);
+        free(json);
+        json = out;
+    }
+    return json;
+}
+
+static float *
+mirror_reflection(const hf_scene *s, const char *file, int bounces, bool glossy, float **position)
+{
+    static const char *const sets[] = {"vox.resolution=64", NULL};
+    char *json = graph_variant(file, bounces, glossy);
+    vf_runner r;
+    vf_start(&r, &s->scene, SIZE, SIZE, json, sets);
+    free(json);
+    vf_frame(&r);
+    float *reflection = read_2d(&r, "gather.reflection");
+    if (position)
+        *position = read_2d(&r, "gbuf.position");
+    vf_stop(&r);
+    return reflection;
+}
+
+static void
+test_lobes_read_glossy(void **state)
+{
+    cg_context *ctx = cg_test_gl_context(state);
+    static const char *const graphs[] = {"vct.json", "hybrid.json"};
+    for (int g = 0; g < 2; g++) {
+        hf_scene s;
+        hf_init(&s);
+        hf_grid(&s, 8, -4.0, -4.0, 8.0, flat_ground, NULL);
+        const double back[3] = {-4, 0, -2}, back_u[3] = {8, 0, 0}, back_v[3] = {0, 3, 0};
+        const double side[3] = {3, 0, -2}, side_u[3] = {0, 0, 5}, side_v[3] = {0, 3, 0};
+        hf_quad(&s, back, back_u, back_v);   /* faces +z */
+        hf_quad(&s, side, side_u, side_v);   /* faces -x */
+        hf_material(&s, 2, 0.8f, 0.0f);
+        hf_material(&s, 3, 0.8f, 0.0f);
+        const double down[3] = {0.5, -1, -0.6};
+        hf_sun(&s, down, 3.0f);
+        const double eye[3] = {-1, 2.5, 5}, forward[3] = {0.25, -0.4, -1}, up[3] = {0, 1, 0};
+        hf_camera_looking(&s, eye, forward, up, 0.9f);
+        hf_finish(&s);
+        set_material(&s.materials[1], 1.0f, 1.0f, 0.2f);
+        float *position = NULL;
+        float *shipped = mirror_reflection(&s, graphs[g], 1, true, &position);
+        float *next = mirror_reflection(&s, graphs[g], 2, false, NULL);
+        float *plain = mirror_reflection(&s, graphs[g], 1, false, NULL);
+        double sum = 0.0, off_next = 0.0, off_plain = 0.0;
+        int pixels = 0;
+        for (int i = 0; i < SIZE * SIZE; i++) {
+            /* the ground's pixels */
+            if (!(position[4 * i + 3] > 0.0f && fabsf(position[4 * i + 1]) < 1e-3f))
+                continue;
+            pixels++;
+            for (int k = 0; k < 3; k++) {
+                sum += shipped[4 * i + k];
+                off_next += fabs(shipped[4 * i + k] - next[4 * i + k]);
+                off_plain += fabs(shipped[4 * i + k] - plain[4 * i + k]);
+            }
+        }
+        fprintf(stderr, "# %s, metal ground's reflection (%d pixels): mean |glossy - V_2| / mean %.4f, "
+                "|glossy - V_1| / mean %.4f\n", graphs[g], pixels, off_next / sum, off_plain / sum);
+        assert_true(pixels > SIZE * SIZE / 4);
+        assert_true(sum > 0.0);
+        if (off_next / sum > 0.01)
+            fail_msg("%s: the lobes' light is %.2f%% off the volume one bounce further", graphs[g], 100.0 * off_next / sum);
+        if (off_plain / sum < 0.02)
+            fail_msg("%s: the lobes' light is within %.2f%% of the diffuse cones' volume: glossy not read?", graphs[g],
+                     100.0 * off_plain / sum);
+        free(shipped);
+        free(next);
+        free(plain);
+        free(position);
+        assert_no_gl_errors(ctx);
+        hf_free(&s);
+    }
+}
+
 int
 main(void)
 {
@@ -496,6 +608,7 @@ main(void)
         cmocka_unit_test(test_lambertian_unchanged),
         cmocka_unit_test(test_shadow_cone_sun_disc),
         cmocka_unit_test(test_glossy_is_one_bounce_more),
+        cmocka_unit_test(test_lobes_read_glossy),
     };
     return cmocka_run_group_tests(tests, cg_test_gl_setup, cg_test_gl_teardown);
 }
