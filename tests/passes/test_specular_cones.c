@@ -493,6 +493,26 @@ test_glossy_is_one_bounce_more(void **state)
  * input (its `volume`, V_2, read by the lobes), and differs from the graph at bounces 1 without it
  * (V_1): the walls' light on each other is the bounce glossy adds. vct.json tests cone_gather's
  * march, hybrid.json the horizon march over the 2D lightmap. */
+/* json with its one `what` replaced by `with` (freed and reallocated); fails when the shipped graph no
+ * longer holds `what`. */
+static char *
+replace_once(char *json, const char *file, const char *what, const char *with)
+{
+    char *at = strstr(json, what);
+    if (!at)
+        fail_msg("%s no longer has %s: update this test", file, what);
+    size_t before = (size_t)(at - json), cut = strlen(what), add = strlen(with);
+    char *out = malloc(strlen(json) - cut + add + 1);
+    assert_non_null(out);
+    memcpy(out, json, before);
+    memcpy(out + before, with, add);
+    strcpy(out + before + add, at + cut);
+    free(json);
+    return out;
+}
+
+/* The shipped graph `file` with voxel_light's bounces set, and without `glossy` (the pass's and the
+ * gather's input) unless asked. */
 static char *
 graph_variant(const char *file, int bounces, bool glossy)
 {
@@ -500,28 +520,11 @@ graph_variant(const char *file, int bounces, bool glossy)
     size_t size = 0;
     cg_error err = {0};
     assert_cg_ok(cg_read_file(cg_test_graph_path(file), &json, &size, &err), &err);
-    static const char *const edits[][2] = {
-        {"\"bounces\": 1, \"glossy\": true", NULL},
-        {"\"glossy\": \"light.glossy\", ", ""},
-    };
     char light[64];
     snprintf(light, sizeof light, glossy ? "\"bounces\": %d, \"glossy\": true" : "\"bounces\": %d", bounces);
-    for (int e = 0; e < 2; e++) {
-        if (e == 1 && glossy)
-            break;
-        const char *with = e == 0 ? light : edits[e][1];
-        char *at = strstr(json, edits[e][0]);
-        if (!at)
-            fail_msg("%s no longer has %s: update this test", file, edits[e][0]);
-        size_t before = (size_t)(at - json), cut = strlen(edits[e][0]), add = strlen(with);
-        char *out = malloc(strlen(json) - cut + add + 1);
-        assert_non_null(out);
-        memcpy(out, json, before);
-        memcpy(out + before, with, add);
-        strcpy(out + before + add, at + cut);
-        free(json);
-        json = out;
-    }
+    json = replace_once(json, file, "\"bounces\": 1, \"glossy\": true", light);
+    if (!glossy)
+        json = replace_once(json, file, "\"glossy\": \"light.glossy\", ", "");
     return json;
 }
 
