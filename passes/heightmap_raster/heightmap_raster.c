@@ -5,7 +5,8 @@
  *   lightmap  2D, resolution^2, RGBA32F (default) or RGBA16F, `levels` mip levels declared (0:
  *             the full chain; mip2d fills levels 1..): rgb = outgoing diffuse radiance of the direct light
  *             (shadowed through the optional shadow map) plus emission, a = height, world y.
- *             Texels no height-field mesh covers hold black radiance at the lowest height.
+ *             Texels no height-field mesh covers hold black radiance at the lowest height; where a
+ *             MASK material's alpha is below its alphaCutoff the mesh is not there (raster.frag).
  *   region    std140 block CG_HEIGHTMAP_BLOCK (common/blocks.h) for common/heightmap.glsl:
  *             where the map lies and the scale that decodes its radiance.
  *   depth     the depth buffer of the raster (transient working memory, counted).

@@ -38,6 +38,11 @@ layout(location = 0) out vec4 out_texel;
 void
 main()
 {
+    // alphaMode MASK: below the cutoff the surface is not there (glTF 3.9.4), for the 2D lightmap
+    // too, as for the G-buffer and the voxels: the height and the light are those of what lies
+    // below, or the clear where nothing does.
+    if (cg_material_masked_out(cg_material_index, vs_texcoord))
+        discard;
     vec3 n = normalize(vs_normal);
     // The map stores the surface seen from above: its upper side.
     if (n.y < 0.0)
