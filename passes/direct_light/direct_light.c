@@ -14,6 +14,13 @@
  * so is a BLEND layer's hole (ior 1), which passes light straight on to pixels that look at the
  * light itself. The diffuse lobe is reflection only (glTF has no diffuse transmission without
  * KHR_materials_diffuse_transmission): a thin sheet's side facing away from a light stays dark.
+ *
+ * Shadow cones (VCT paper 3.2.3, "soft shadows"): the optional input `visibility` (a cone_gather's
+ * output of that name, with shadow_cone = true) is the transmittance of a cone from each pixel
+ * towards one light, `visibility_light` (the gather's shadow_light); where it is connected it
+ * darkens that light in place of the shadow map (which keeps serving its own light if that is
+ * another one). A sun with an angular diameter is the gather's cone, so its penumbra widens with
+ * the occluder's distance as the path tracer's does (docs/passes.md, "Shadow cones").
  */
 #include <stdlib.h>
 #include <string.h>
@@ -23,6 +30,12 @@
 #include "cg/fg.h"
 #include "cg/gpu_scene.h"
 #include "cg/shader.h"
+
+static const fg_param_desc direct_light_params[] = {
+    { .name = "visibility_light", .type = FG_PARAM_INT, .min = 0, .max = 65535,
+      .doc = "index of the scene light that the optional input 'visibility' (cone_gather's shadow cone) shadows "
+             "in place of the shadow map; the gather's shadow_light" },
+};
 
 typedef struct direct_light_state {
     GLuint program;
@@ -42,6 +55,14 @@ direct_light_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
     fg_declare_input(decl, "transmission", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, false);
     if (!cgp_declare_shadow_inputs(pass, decl, err))
         return false;
+    /* The shadow cone's transmittance, per pixel of the same image (its red channel is read). */
+    const fg_resource_desc *visibility =
+        fg_declare_input(decl, "visibility", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, false);
+    if (visibility && position && (visibility->width != position->width || visibility->height != position->height))
+        return cg_fail(err, CG_ERR_GRAPH_INCOMPATIBLE,
+                       "pass '%s': input 'visibility' is %dx%d, the G-buffer %dx%d: the shadow cone's "
+                       "visibility must be a gather's output at the image's size", fg_pass_name(pass),
+                       visibility->width, visibility->height, position->width, position->height);
     fg_resource_desc out = cgp_image_like(pass, position, GL_RGBA32F);
     fg_declare_output(decl, "radiance", &out, FG_ACCESS_IMAGE_STORE);
     return true;
@@ -80,17 +101,22 @@ direct_light_execute(fg_pass *pass, direct_light_state *st, cg_error *err)
     glUniform3fv(2, 1, frame->view.position);
     glUniform3f(3, frame->view.inv_view[8], frame->view.inv_view[9], frame->view.inv_view[10]);
     glUniform1i(4, frame->view.orthographic);
+    /* Without the input no light index matches (-1), and the albedo stands in at unit 9, never read. */
+    bool cone = fg_input_present(pass, "visibility");
+    glBindTextureUnit(9, cone ? fg_texture(pass, "visibility") : fg_texture(pass, "albedo"));
+    glUniform1i(5, cone ? fg_param_int(pass, "visibility_light") : -1);
     glBindImageTexture(0, fg_texture(pass, "radiance"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     cgp_dispatch_2d(out->width, out->height);
     glUseProgram(0);
     return true;
 }
 
-CGP_PASS(direct_light, CGP_NO_PARAMS,
+CGP_PASS(direct_light, CGP_PARAMS(direct_light_params),
          "Outgoing radiance of the G-buffer's surfaces lit directly by every scene light: "
          "glTF 2.0's BSDF x cos x E (Lambertian albedo x E x cos / pi plus GGX highlights where the "
          "optional inputs specular and material are connected, transmission for the ior; light from "
          "behind a surface is not transmitted) with E from KHR_lights_punctual (directional: "
          "intensity x color; point: I/d^2; spot: I/d^2 with the smooth cone falloff). The light "
          "served by the optional shadow map (inputs shadow and shadow_matrix) is shadowed; "
-         "the others, point lights included, are not.");
+         "the others, point lights included, are not. The optional input visibility (cone_gather's "
+         "shadow cone, VCT paper 3.2.3) shadows the light visibility_light instead of the shadow map.");

@@ -145,8 +145,19 @@ main()
         int light = cg_cone_gather_block.shadow.x;
         if (light >= 0 && uint(light) < cg_light_count()) {
             CgLightSample s = cg_light_sample(cg_lights[light], position);
-            CgCone towards = CgCone(origin, s.to_light, cg_cone_gather_block.tan_half.y, v.voxel_size,
-                                    min(t_max, s.distance), march.step, march.lod_bias);
+            float tan_half = cg_cone_gather_block.tan_half.y, reach = t_max;
+            vec3 direction = s.to_light;
+            if (!isinf(s.distance)) {
+                // A light at a finite distance (point, spot), aimed at from the cone's origin: the
+                // march ends where its footprint would reach the light, t (1 + tan) <= d, and at
+                // least a voxel short of it, so that the surface the light hangs under (a ceiling)
+                // does not shadow it.
+                vec3 to = position + s.to_light * s.distance - origin;
+                float d = length(to);
+                direction = d > 0.0 ? to / d : s.to_light;
+                reach = min(reach, min(d / (1.0 + tan_half), d - v.voxel_size));
+            }
+            CgCone towards = CgCone(origin, direction, tan_half, v.voxel_size, reach, march.step, march.lod_bias);
             visibility = 1.0 - cg_cone_trace_surface(cg_gather_volume, v, towards, surface).a;
         }
 #endif

@@ -1,5 +1,6 @@
 // direct_light: outgoing radiance of every G-buffer pixel lit by every scene light through glTF
-// 2.0's BSDF (common/bsdf.glsl; DESIGN.md units), shadowed by the one shadow map when present.
+// 2.0's BSDF (common/bsdf.glsl; the units of docs/architecture.md), shadowed by the one shadow map
+// when present, or for one light by a cone_gather's shadow cone (input `visibility`).
 // passes/direct_light/direct_light.c says which lobes a punctual light reaches.
 #version 450 core
 #include "common/bsdf.glsl"
@@ -15,6 +16,7 @@ layout(binding = 5) uniform sampler2D shadow_map;
 layout(binding = 6) uniform sampler2D gbuffer_specular;
 layout(binding = 7) uniform sampler2D gbuffer_material;
 layout(binding = 8) uniform sampler2D gbuffer_transmission;   // the ior: a solid's Fresnel
+layout(binding = 9) uniform sampler2D cone_visibility;        // r: the shadow cone's transmittance
 
 // Whether the inputs specular and material (u_glossy) and transmission are connected.
 layout(location = 0) uniform bool u_glossy;
@@ -22,9 +24,21 @@ layout(location = 1) uniform bool u_transmission;
 layout(location = 2) uniform vec3 u_camera;         // world position
 layout(location = 3) uniform vec3 u_camera_back;    // the camera's +z (towards the viewer), world
 layout(location = 4) uniform bool u_orthographic;
+// The light the shadow cone serves (input `visibility`), -1 without it.
+layout(location = 5) uniform int u_visibility_light;
 
 // fp32: radiance from starlight to sunlit snow without clipping (direct_light.c).
 layout(binding = 0, rgba32f) uniform writeonly image2D radiance;
+
+// The share of light `i` reaching p: the shadow cone's for its light (clamped: an R16F
+// transmittance may round a hair outside [0, 1]), else the shadow map's.
+float
+light_visibility(int i, vec3 p, vec3 n, float cone)
+{
+    if (i == u_visibility_light)
+        return clamp(cone, 0.0, 1.0);
+    return cg_shadow_visibility(shadow_map, i, p, n);
+}
 
 void
 main()
@@ -34,6 +48,7 @@ main()
     if (any(greaterThanEqual(pixel, size)))
         return;
     vec4 position = texelFetch(gbuffer_position, pixel, 0);
+    float cone = u_visibility_light >= 0 ? texelFetch(cone_visibility, pixel, 0).r : 1.0;
     vec3 result = vec3(0.0);
     if (position.w > 0.0) {
         vec3 n = normalize(texelFetch(gbuffer_normal, pixel, 0).xyz);
@@ -58,13 +73,13 @@ main()
             if (lambertian || nv <= 0.0) {
                 if (nl <= 0.0)
                     continue;
-                float visibility = cg_shadow_visibility(shadow_map, int(i), position.xyz, n);
+                float visibility = light_visibility(int(i), position.xyz, n, cone);
                 result += visibility * cg_lambert_radiance(albedo.rgb, n, s);
                 continue;
             }
             if (nl <= 0.0)
                 continue;
-            float visibility = cg_shadow_visibility(shadow_map, int(i), position.xyz, n);
+            float visibility = light_visibility(int(i), position.xyz, n, cone);
             // eta = ior: the camera is outside (only a solid's Fresnel from inside uses it).
             result += visibility * s.irradiance * cg_bsdf_eval(b, n, v, s.to_light, b.ior, lobes);
         }
