@@ -2,7 +2,9 @@
  * share of the lobe (checked by an independent quadrature), directions are unit and in the
  * hemisphere, and the tangent frame is orthonormal and finite for every normal. */
 #include <math.h>
+#include <stdio.h>
 
+#include "cg/bsdf.h"
 #include "sdk/cone.h"
 #include "test_support.h"
 
@@ -142,9 +144,44 @@ test_frame_axes_and_grazing(void **state)
     }
 }
 
+/* The specular lobe's hemispherical albedo terms (what voxelize stores per voxel) are the
+ * cosine-weighted means over n.v of the path tracer's directional albedo terms, integrated here on a
+ * finer grid than the table's 32 columns; a smooth lobe returns all of uniform light with F0 = F90 = 1,
+ * a rough one less (the single-scattering GGX loses energy), never more. */
+static void
+test_hemispherical_albedo(void **state)
+{
+    (void)state;
+    float rg[2 * CGP_BRDF_TABLE_SIZE];
+    cgp_brdf_hemispherical_fill(CGP_BRDF_TABLE_SIZE, rg);
+    const int columns[] = {0, 9, 18, CGP_BRDF_TABLE_SIZE - 1};
+    for (size_t c = 0; c < sizeof columns / sizeof columns[0]; c++) {
+        int j = columns[c];
+        float roughness = ((float)j + 0.5f) / CGP_BRDF_TABLE_SIZE;
+        double a = 0.0, b = 0.0;
+        const int steps = 96;
+        for (int i = 0; i < steps; i++) {
+            double nv = ((double)i + 0.5) / steps;
+            float scale = 0.0f, bias = 0.0f;
+            cg_bsdf_specular_albedo_terms(roughness * roughness, (float)nv, &scale, &bias);
+            a += 2.0 * nv * scale / steps;
+            b += 2.0 * nv * bias / steps;
+        }
+        fprintf(stderr, "# roughness %.3f: Abar %.4f (integrated %.4f), Bbar %.4f (%.4f)\n", roughness, rg[2 * j], a,
+                rg[2 * j + 1], b);
+        assert_true(fabs(rg[2 * j] - a) < 0.01 && fabs(rg[2 * j + 1] - b) < 0.01);
+        assert_true(rg[2 * j] + rg[2 * j + 1] <= 1.0f + 1e-4f);
+    }
+    /* Smooth: F0 + (1 - F0) times the hemispherical mean of (1 - n.v)^5, 1/21. */
+    assert_true(fabs(rg[0] + rg[1] - 1.0) < 0.01 && fabs(rg[1] - 1.0 / 21.0) < 0.01);
+    /* Rough: the lobe loses what bounces between microfacets. */
+    assert_true(rg[2 * (CGP_BRDF_TABLE_SIZE - 1)] + rg[2 * (CGP_BRDF_TABLE_SIZE - 1) + 1] < 0.95f);
+}
+
 CG_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_sizes),
              cmocka_unit_test(test_weights_sum_to_one),
              cmocka_unit_test(test_six_cone_weights),
              cmocka_unit_test(test_weights_match_quadrature),
-             cmocka_unit_test(test_frame_axes_and_grazing))
+             cmocka_unit_test(test_frame_axes_and_grazing),
+             cmocka_unit_test(test_hemispherical_albedo))

@@ -9,6 +9,8 @@
 #include <math.h>
 #include <stddef.h>
 #include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
 
 static const int cone_set_sizes[] = { CGP_CONE_SET_SIZES };
 
@@ -317,6 +319,49 @@ cgp_brdf_table_fill(int size, float *rgba)
             t[3] = 1.0f;
         }
     }
+}
+
+void
+cgp_brdf_hemispherical_fill(int size, float *rg)
+{
+    float *table = malloc(sizeof(float) * 4 * (size_t)size * (size_t)size);
+    if (!table) {
+        memset(rg, 0, sizeof(float) * 2 * (size_t)size);
+        return;
+    }
+    cgp_brdf_table_fill(size, table);
+    for (int j = 0; j < size; j++) {
+        double a = 0.0, b = 0.0;
+        for (int i = 0; i < size; i++) {
+            const float *t = &table[4 * ((size_t)j * (size_t)size + (size_t)i)];
+            double nv = ((double)i + 0.5) / (double)size;
+            a += 2.0 * nv * (double)t[0] / (double)size;
+            b += 2.0 * nv * (double)t[1] / (double)size;
+        }
+        rg[2 * j] = (float)a;
+        rg[2 * j + 1] = (float)b;
+    }
+    free(table);
+}
+
+GLuint
+cgp_brdf_hemispherical_texture(void *state)
+{
+    static float table[2 * CGP_BRDF_TABLE_SIZE];
+    static bool made;
+    if (!made) {
+        cgp_brdf_hemispherical_fill(CGP_BRDF_TABLE_SIZE, table);
+        made = true;
+    }
+    GLuint tex = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &tex);
+    glTextureStorage2D(tex, 1, GL_RG32F, CGP_BRDF_TABLE_SIZE, 1);
+    glTextureSubImage2D(tex, 0, 0, 0, CGP_BRDF_TABLE_SIZE, 1, GL_RG, GL_FLOAT, table);
+    glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(tex, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    return cgp_own(state, CGP_GL_TEXTURE, tex);
 }
 
 GLuint

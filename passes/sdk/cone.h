@@ -164,6 +164,16 @@ void cgp_brdf_table_fill(int size, float *rgba);
  * computed once per process. */
 GLuint cgp_brdf_table_texture(void *state);
 
+/* The specular lobe's hemispherical albedo terms per roughness: texel j (perceptual roughness
+ * (j + 0.5) / size) holds RG = (Abar, Bbar), the cosine-weighted means over n.v of the table's A and
+ * B (2 integral of A(n.v) n.v dn.v, midpoints of the table's columns), so that F0 Abar + F90 Bbar is
+ * what the lobe returns of uniform incident light averaged over the outgoing directions: the
+ * view-independent specular albedo a voxel stores (voxelize's `specular`), as
+ * cg_bsdf_diffuse_hemispherical is the diffuse lobe's. */
+void cgp_brdf_hemispherical_fill(int size, float *rg);
+/* That table at CGP_BRDF_TABLE_SIZE as a size x 1 RG32F texture owned by `state` (linear, clamped). */
+GLuint cgp_brdf_hemispherical_texture(void *state);
+
 /* Dispatches over `radiance` and unbinds what cgp_gather_begin bound. */
 void cgp_gather_end(const fg_pass *pass);
 

@@ -2,7 +2,8 @@
  * volumes the cone tracers read with CG_CONE_SURFACE (shaders/common/cone_trace.glsl).
  *
  * Inputs: albedo, coverage, normal, emission and region of a voxelize pass with model = surface
- * (required); shadow and shadow_matrix of a shadow_map pass (optional, together).
+ * (required); its specular (optional: the voxels' specular albedo, which `glossy` reflects);
+ * shadow and shadow_matrix of a shadow_map pass (optional, together).
  * Outputs, 3D RGBA16F, voxelize's voxels (a cube or a box), its mip chains (cgp_volume_levels):
  *   radiance  (w L_lit, w), w = alpha_x + alpha_y + alpha_z: the lit side's radiance premultiplied by
  *             the voxel's coverage sum (shaders/voxel_light/inject.comp)
@@ -13,7 +14,8 @@
  *             the gathers' specular and refracted cones read (sdk/cone.h, input 'glossy')
  *   voxels    the list of occupied voxels (list.comp), which the inject and the gathers run over
  *   and, where a bounce is gathered (the header's recursion), gathered_front, gathered_back (level 0:
- *   each side's gathered light).
+ *   each side's gathered light); with glossy and specular, source_front and source_back (R11F_G11F_B10F,
+ *   level 0: G(V_0), each side's light gathered straight from the sky and the emitters).
  *
  * The light is evaluated per voxel, at its surface point, from its geometry: a pass after
  * voxelize, so that the geometry can stay while the light changes. Bounces are counted as
@@ -26,6 +28,20 @@
  * G adds one more to both. Where no voxelized mesh emits and no sky shines, G(V_0) = 0 and the
  * first gather is skipped (V_1 = D): N - 1 gathers, N otherwise; each gather is followed by the mip chain
  * (mip.comp) of the new light.
+ *
+ * `glossy` is what a specular or refracted cone from the camera sees: a surface that path_trace reaches
+ * after a glossy or transmissive scattering at the first hit. Its diffuse lobe keeps every diffuse
+ * bounce (V_(N+1): glossy scattering does not count against them); its specular lobe, with one glossy
+ * bounce spent, shows the sources alone: the punctual lights and what it sees of the sky and the
+ * emitters, as path_trace's next-event estimation and the emitters its BSDF sample hits. With rho the
+ * diffuse albedo and rho_s the specular one (voxelize's `specular`, the lobe's hemispherical albedo: a
+ * voxel radiates one radiance every way),
+ *     glossy = Le + (rho + alpha rho_s) D + rho G(V_N) + rho_s G(V_0)
+ * (inject.comp; D here the lights' irradiance / pi, alpha the lobe's GGX alpha: a punctual light's
+ * reflection leaves in a lobe about its mirror direction, which one radiance every way cannot hold; a
+ * rough lobe keeps it, a mirror's drops it: inject.comp gives the measurement). A metal (rho = 0) is
+ * thus lit in the glossy volume and black in the diffuse ones, as path_trace with caustics off (no
+ * glossy scattering after a diffuse bounce) has it.
  *
  * Relighting what can have changed (cache = true, the default):
  * the three light volumes are persistent, and a frame relights them only when something the light
@@ -84,8 +100,8 @@ static const fg_param_desc voxel_light_params[] = {
              "surface a mirror shows keeps its bounce. One more gather at the voxels" },
 };
 
-static const char *const geometry_names[4] = {"albedo", "coverage", "normal", "emission"};
-static const GLenum geometry_formats[4] = {GL_RGBA8, GL_RGBA8, GL_RGBA8_SNORM, GL_RGBA16F};
+static const char *const geometry_names[5] = {"albedo", "coverage", "normal", "emission", "specular"};
+static const GLenum geometry_formats[5] = {GL_RGBA8, GL_RGBA8, GL_RGBA8_SNORM, GL_RGBA16F, GL_RGBA8};
 static const char *const light_names[3] = {"radiance", "sides", "normals"};
 
 typedef struct voxel_light_state {
@@ -97,6 +113,7 @@ typedef struct voxel_light_state {
     cgp_no_shadow no_shadow;
     cgp_sky sky;            /* the scene's sky, which the gathers at the voxels see (common/sky.glsl) */
     bool gathers;           /* the bounce resources exist */
+    bool source;            /* source_front and source_back exist (glossy, with a specular input) */
     bool cache;             /* the light volumes (and gathered_*, when kept) are persistent */
     /* What the last relight read (cache = true), to tell whether a frame must relight. */
     bool lit;               /* the volumes hold the light of `key` */
@@ -105,7 +122,7 @@ typedef struct voxel_light_state {
     GLuint listed;          /* occupied voxels found by the last listing (list_voxels) */
     cgp_instance_record instances;
     struct light_key {
-        GLuint textures[6];         /* the geometry volumes, the shadow map, the shadow matrix buffer */
+        GLuint textures[7];         /* the geometry volumes, the shadow map, the shadow matrix buffer */
         cg_volume_block region;     /* voxelize's region block as it was read back */
         unsigned char shadow[256];  /* the shadow_map's matrix block as read back (its first bytes) */
         int bounces, bounce_cones;
@@ -158,22 +175,22 @@ voxel_light_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
 {
     if (!cgp_declare_shadow_inputs(pass, decl, err))
         return false;
-    const fg_resource_desc *geometry[4];
-    for (int i = 0; i < 4; i++)
-        geometry[i] = fg_declare_input(decl, geometry_names[i], FG_TEXTURE_3D, FG_ACCESS_SAMPLED, true);
+    const fg_resource_desc *geometry[5];
+    for (int i = 0; i < 5; i++)
+        geometry[i] = fg_declare_input(decl, geometry_names[i], FG_TEXTURE_3D, FG_ACCESS_SAMPLED, i < 4);
     const fg_resource_desc *region = fg_declare_input(decl, "region", FG_BUFFER, FG_ACCESS_UNIFORM, true);
     for (int i = 0; i < 4; i++)
         if (!geometry[i])
             return true;    /* the graph reports the missing input, or culls the pass */
     if (!region)
         return true;
-    for (int i = 0; i < 4; i++)
-        if (geometry[i]->format != geometry_formats[i] || geometry[i]->width != geometry[0]->width ||
-            geometry[i]->height != geometry[0]->height || geometry[i]->depth != geometry[0]->depth)
+    for (int i = 0; i < 5; i++)
+        if (geometry[i] && (geometry[i]->format != geometry_formats[i] || geometry[i]->width != geometry[0]->width ||
+            geometry[i]->height != geometry[0]->height || geometry[i]->depth != geometry[0]->depth))
             return cg_fail(err, CG_ERR_GRAPH_INCOMPATIBLE,
                            "pass '%s': input '%s' is not a voxelize pass's output of model surface (a volume "
-                           "of its format, the size of the others): connect albedo, coverage, normal and emission "
-                           "of one voxelize pass",
+                           "of its format, the size of the others): connect albedo, coverage, normal, emission "
+                           "(and specular) of one voxelize pass",
                            fg_pass_name(pass), geometry_names[i]);
     if (region->buffer_bytes < sizeof(cg_volume_block))
         return cg_fail(err, CG_ERR_GRAPH_INCOMPATIBLE,
@@ -202,6 +219,15 @@ voxel_light_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
         fg_declare_output(decl, "gathered_front", &gathered, FG_ACCESS_IMAGE_STORE);
         fg_declare_output(decl, "gathered_back", &gathered, FG_ACCESS_IMAGE_STORE);
     }
+    if (glossy && geometry[4]) {
+        /* G(V_0), which glossy's specular lobe reflects, kept past the gathers that follow it. */
+        fg_resource_desc source = light;
+        source.format = GL_R11F_G11F_B10F;
+        source.levels = 1;
+        source.persistent = false;
+        fg_declare_output(decl, "source_front", &source, FG_ACCESS_IMAGE_STORE);
+        fg_declare_output(decl, "source_back", &source, FG_ACCESS_IMAGE_STORE);
+    }
     fg_resource_desc list = cgp_buffer_desc(sizeof(cg_voxel_list_block) + sizeof(GLuint) * list_capacity(g));
     list.gi = true;
     list.persistent = light.persistent;     /* kept while the geometry is */
@@ -222,6 +248,7 @@ voxel_light_prepare(fg_pass *pass, voxel_light_state *s, cg_error *err)
 {
     cgp_state_on_destroy(s, voxel_light_cleanup);
     s->gathers = fg_resource(pass, "gathered_front") != NULL;
+    s->source = fg_resource(pass, "source_front") != NULL;
     s->cache = fg_param_bool(pass, "cache");
     cgp_no_shadow_create(s, &s->no_shadow);
     cgp_sky_prepare(s, &s->sky);
@@ -316,12 +343,13 @@ inject_level0(const fg_pass *pass, voxel_light_state *s, bool direct, bool gathe
     }
 }
 
-/* Level 0 of `glossy`: inject's light with the gathered light of the last gather, on the side that
- * `normals` holds (u_radiance_only: sides and normals, shared with `radiance`, are bound and not
+/* Level 0 of `glossy`: inject's light with the gathered light of the last gather, and the specular
+ * albedo's share of the direct light and of G(V_0) (source: source_* hold it; else it is 0), on the
+ * side that `normals` holds (u_radiance_only: sides and normals, shared with `radiance`, are bound and not
  * written); over the list where it holds every occupied voxel (the level cleared first), as
  * inject_level0. */
 static void
-inject_glossy(const fg_pass *pass, voxel_light_state *s)
+inject_glossy(const fg_pass *pass, voxel_light_state *s, bool source)
 {
     const fg_resource_desc *volume = fg_resource(pass, "radiance");
     bool listed = s->listed <= list_capacity(volume);
@@ -330,6 +358,8 @@ inject_glossy(const fg_pass *pass, voxel_light_state *s)
     glUniform1i(5, true);
     glUniform1i(4, true);
     glUniform1i(1, true);
+    glUniform1i(6, fg_texture(pass, "specular") != 0);
+    glUniform1i(7, source);
     glUniform1ui(3, list_capacity(volume));
     if (!listed)
         glUniform1i(2, false);
@@ -351,6 +381,8 @@ inject_glossy(const fg_pass *pass, voxel_light_state *s)
     s->dispatches++;
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     glUniform1i(5, false);  /* the program's next inject writes all three volumes */
+    glUniform1i(6, false);
+    glUniform1i(7, false);
     glBindTextureUnit(7, 0);
 }
 
@@ -383,12 +415,19 @@ mip(const fg_pass *pass, voxel_light_state *s)
     mip_of(pass, s, "radiance");
 }
 
-/* Each listed voxel's gathered light on both sides, through the current volumes. */
+/* Each listed voxel's gathered light on both sides, through the current volumes; of_v0: they hold
+ * V_0, and the gathered light G(V_0) is written to source_front and source_back too (s->source). */
 static void
-gather(const fg_pass *pass, voxel_light_state *s)
+gather(const fg_pass *pass, voxel_light_state *s, bool of_v0)
 {
     glUseProgram(s->gather);
     glUniform1ui(3, list_capacity(fg_resource(pass, "radiance")));
+    bool source = of_v0 && s->source;
+    glUniform1i(4, source);
+    if (source) {
+        glBindImageTexture(2, fg_texture(pass, "source_front"), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R11F_G11F_B10F);
+        glBindImageTexture(3, fg_texture(pass, "source_back"), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R11F_G11F_B10F);
+    }
     glBindTextureUnit(CG_UNIT_VOLUME, fg_texture(pass, "radiance"));
     glBindTextureUnit(CG_UNIT_SIDES, fg_texture(pass, "sides"));
     glBindTextureUnit(CG_UNIT_NORMALS, fg_texture(pass, "normals"));
@@ -422,6 +461,9 @@ bind_inject_inputs(const fg_pass *pass, const voxel_light_state *s)
         glBindTextureUnit((GLuint)i, fg_texture(pass, geometry_names[i]));
     glBindTextureUnit(4, s->gathers ? fg_texture(pass, "gathered_front") : 0);
     glBindTextureUnit(5, s->gathers ? fg_texture(pass, "gathered_back") : 0);
+    glBindTextureUnit(8, fg_texture(pass, "specular"));
+    glBindTextureUnit(9, s->source ? fg_texture(pass, "source_front") : 0);
+    glBindTextureUnit(10, s->source ? fg_texture(pass, "source_back") : 0);
 }
 
 /* Whether the frame's scene has a material with a specular or transmission lobe (cg_scene_has_lobes):
@@ -437,17 +479,17 @@ static void
 read_key(const fg_pass *pass, struct light_key *key)
 {
     memset(key, 0, sizeof *key);
-    for (int i = 0; i < 4; i++)
+    for (int i = 0; i < 5; i++)
         key->textures[i] = fg_texture(pass, geometry_names[i]);
-    key->textures[4] = fg_texture(pass, "shadow");
-    key->textures[5] = fg_buffer(pass, "shadow_matrix");
+    key->textures[5] = fg_texture(pass, "shadow");
+    key->textures[6] = fg_buffer(pass, "shadow_matrix");
     /* voxelize writes its region block every frame: read back, it says whether the region, the
      * levels or the radiance scale moved (48 bytes; the pass's work is done by then anyway). */
     glGetNamedBufferSubData(fg_buffer(pass, "region"), 0, sizeof key->region, &key->region);
     const fg_resource_desc *matrix = fg_resource(pass, "shadow_matrix");
-    if (matrix && key->textures[5]) {
+    if (matrix && key->textures[6]) {
         size_t bytes = matrix->buffer_bytes < sizeof key->shadow ? matrix->buffer_bytes : sizeof key->shadow;
-        glGetNamedBufferSubData(key->textures[5], 0, (GLsizeiptr)bytes, key->shadow);
+        glGetNamedBufferSubData(key->textures[6], 0, (GLsizeiptr)bytes, key->shadow);
     }
     key->bounces = fg_param_int(pass, "bounces");
     key->bounce_cones = fg_param_int(pass, "bounce_cones");
@@ -470,7 +512,7 @@ what_changed(const fg_pass *pass, const voxel_light_state *s, const struct light
     const char *why = cgp_instances_changed(&s->instances, frame, CG_MESHES_ALL, "an instance changed");
     if (why)
         return why;
-    if (memcmp(key->textures, s->key.textures, 4 * sizeof key->textures[0]) ||
+    if (memcmp(key->textures, s->key.textures, 5 * sizeof key->textures[0]) ||
         memcmp(&key->region, &s->key.region, sizeof key->region))
         return "geometry volumes or region changed";
     if (key->bounces != s->key.bounces || key->bounce_cones != s->key.bounce_cones || key->glossy != s->key.glossy ||
@@ -480,7 +522,7 @@ what_changed(const fg_pass *pass, const voxel_light_state *s, const struct light
         return "sky changed";
     bool lights = scene->light_count != s->light_count ||
                   (s->light_count > 0 && memcmp(scene->lights, s->lights, sizeof *s->lights * (size_t)s->light_count));
-    bool shadow = memcmp(&key->textures[4], &s->key.textures[4], 2 * sizeof key->textures[0]) ||
+    bool shadow = memcmp(&key->textures[5], &s->key.textures[5], 2 * sizeof key->textures[0]) ||
                   memcmp(key->shadow, s->key.shadow, sizeof key->shadow);
     if (!lights && !shadow)
         return NULL;
@@ -573,8 +615,9 @@ voxel_light_execute(fg_pass *pass, voxel_light_state *s, cg_error *err)
                 return false;
             cgp_sky_bind(&s->sky);
         }
+        /* The volumes hold V_0 until the first gather where something emits (skip_first: G(V_0) = 0). */
         for (int b = 0; b < count; b++) {
-            gather(pass, s);
+            gather(pass, s, b == 0 && !skip_first);
             bind_inject_inputs(pass, s);
             inject_level0(pass, s, true, true, &clear);
             mip(pass, s);
@@ -587,16 +630,16 @@ voxel_light_execute(fg_pass *pass, voxel_light_state *s, cg_error *err)
                     return false;
                 cgp_sky_bind(&s->sky);
             }
-            gather(pass, s);
+            gather(pass, s, count == 0 && !skip_first);
             bind_inject_inputs(pass, s);
-            inject_glossy(pass, s);
+            inject_glossy(pass, s, s->source && !skip_first);
             mip_of(pass, s, "glossy");
             count++;
         }
         if (count > 0)
             cgp_sky_unbind();
     }
-    for (GLuint unit = 0; unit < 7; unit++)
+    for (GLuint unit = 0; unit < 11; unit++)
         glBindTextureUnit(unit, 0);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_VOXEL_LIST, 0);
     glUseProgram(0);

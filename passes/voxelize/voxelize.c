@@ -16,11 +16,15 @@
  *                 offset of their plane from the voxel's centre c, in voxels.
  *   emission      RGBA16F: mean emitted radiance (rgb) / the region's radiance scale, a = 1 where a
  *                 surface is.
+ *   specular      RGBA8: mean specular albedo of the voxel's fragments (F0 Abar + F90 Bbar, the GGX
+ *                 lobe's directional albedo averaged over the outgoing directions, sdk/cone.h), a = 1
+ *                 where a surface is: the light a metal's voxel returns, which voxel_light's `glossy`
+ *                 holds (0 for a Lambertian material).
  * Both models:
  *   region        std140 block CG_VOLUME_BLOCK (common/blocks.h) for common/volume.glsl: where
  *                 the volume lies and how its values decode (consumers bind it at CG_BINDING_VOLUME).
- *   accumulation  3D R32UI, resolution^2 x 4 resolution (surface model: 2 x 2 x 4 slabs of the
- *                 volume's size, 14 of its 16 used): the fixed-point sums and counts
+ *   accumulation  3D R32UI, resolution^2 x 4 resolution (surface model: 3 x 2 x 3 slabs of the
+ *                 volume's size, 17 of its 18 used, common/blocks.h): the fixed-point sums and counts
  *                 of the fragments (shaders/voxelize/voxelize.frag), transient working memory,
  *                 declared so that the memory report counts it.
  * Inputs (optional, together, model = radiance): shadow (depth) and shadow_matrix (buffer) of a
@@ -62,6 +66,7 @@
 #include <string.h>
 
 #include "sdk/blocks.h"
+#include "sdk/cone.h"
 #include "sdk/instances.h"
 #include "sdk/pass.h"
 #include "sdk/radiance.h"
@@ -77,8 +82,9 @@
 enum { FORMAT_RGBA8, FORMAT_RGBA16F };
 enum { MODEL_RADIANCE, MODEL_SURFACE };
 
-/* Accumulation slabs of the surface model (shaders/voxelize/voxelize.frag): count, albedo RGB,
- * emission RGB, normal xyz, plane offset, coverage xyz; 14 of 2 x 2 x 4. */
+/* The surface model's geometry volumes (level 0), as resolve.comp writes them. */
+static const char *const geometry_names[5] = {"albedo", "coverage", "normal", "emission", "specular"};
+static const GLenum geometry_formats[5] = {GL_RGBA8, GL_RGBA8, GL_RGBA8_SNORM, GL_RGBA16F, GL_RGBA8};
 /* Fragments one voxel may sum without overflowing 32 bits, surface model. */
 #define SURFACE_HEADROOM 4096.0
 /* The surface model's pre-exposure over sdk/radiance.h's (voxelize_execute). */
@@ -181,6 +187,7 @@ typedef struct voxelize_state {
     GLuint program;
     GLuint resolve;
     GLuint tri_program;     /* voxelizer=compute */
+    GLuint specular_hemispherical;  /* surface model: (Abar, Bbar) per roughness (sdk/cone.h) */
     bool compute;
     GLuint find_max;        /* RGBA8 only: the largest radiance, for the stored scale */
     GLuint max_buffer;
@@ -300,17 +307,15 @@ voxelize_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
     bool surface = fg_param_enum(pass, "model") == MODEL_SURFACE;
     if (surface) {
         /* Level 0 only: voxel_light lights it into volumes of its own, which it mips. */
-        static const char *const names[4] = {"albedo", "coverage", "normal", "emission"};
-        static const GLenum formats[4] = {GL_RGBA8, GL_RGBA8, GL_RGBA8_SNORM, GL_RGBA16F};
-        for (int i = 0; i < 4; i++) {
+        for (int i = 0; i < 5; i++) {
             /* cache: kept across frames; persistent storage is never pooled, so nothing else writes
              * it between two frames. */
             fg_resource_desc geometry = {
-                .kind = FG_TEXTURE_3D, .format = formats[i],
+                .kind = FG_TEXTURE_3D, .format = geometry_formats[i],
                 .width = region.dims[0], .height = region.dims[1], .depth = region.dims[2], .levels = 1, .gi = true,
                 .persistent = fg_param_bool(pass, "cache"),
             };
-            fg_declare_output(decl, names[i], &geometry, FG_ACCESS_IMAGE_STORE);
+            fg_declare_output(decl, geometry_names[i], &geometry, FG_ACCESS_IMAGE_STORE);
         }
     } else {
         fg_resource_desc radiance = {
@@ -326,8 +331,9 @@ voxelize_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
     fg_declare_output(decl, "region", &block, FG_ACCESS_TRANSFER | FG_ACCESS_STORAGE);
     fg_resource_desc accumulation = {
         .kind = FG_TEXTURE_3D, .format = GL_R32UI,
-        .width = (surface ? 2 : 1) * region.dims[0], .height = (surface ? 2 : 1) * region.dims[1],
-        .depth = 4 * region.dims[2],
+        .width = (surface ? CG_SURFACE_SLAB_GRID_X : 1) * region.dims[0],
+        .height = (surface ? CG_SURFACE_SLAB_GRID_Y : 1) * region.dims[1],
+        .depth = (surface ? CG_SURFACE_SLAB_GRID_Z : 4) * region.dims[2],
         .levels = 1,
         .gi = true,
     };
@@ -380,6 +386,7 @@ voxelize_prepare(fg_pass *pass, voxelize_state *s, cg_error *err)
         s->cache = fg_param_bool(pass, "cache");
         s->format = GL_RGBA16F;
         s->compute = fg_param_enum(pass, "voxelizer") == 1;
+        s->specular_hemispherical = cgp_brdf_hemispherical_texture(s);
         if (s->compute && !cgp_compute_program(s, "voxelize/voxelize_tri.comp", NULL, &s->tri_program, err))
             return false;
         return cgp_graphics_program(s, "voxelize/voxelize.vert", "voxelize/voxelize.geom", "voxelize/voxelize.frag",
@@ -714,19 +721,18 @@ static void
 resolve_surface(fg_pass *pass, voxelize_state *s, const voxel_region *region, const voxel_box *box, double unit_fixed,
                 double emission_fixed, double radiance_scale)
 {
-    static const char *const names[4] = {"albedo", "coverage", "normal", "emission"};
-    static const GLenum formats[4] = {GL_RGBA8, GL_RGBA8, GL_RGBA8_SNORM, GL_RGBA16F};
     glUseProgram(s->resolve);
     glUniform3i(7, region->dims[0], region->dims[1], region->dims[2]);
     glUniform4f(4, (float)unit_fixed, (float)emission_fixed, (float)radiance_scale, 0.0f);
     glUniform3i(5, box->lo[0], box->lo[1], box->lo[2]);
     glUniform3i(6, box->hi[0], box->hi[1], box->hi[2]);
     glBindImageTexture(0, fg_texture(pass, "accumulation"), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
-    for (int i = 0; i < 4; i++)
-        glBindImageTexture(1 + (GLuint)i, fg_texture(pass, names[i]), 0, GL_TRUE, 0, GL_WRITE_ONLY, formats[i]);
+    for (int i = 0; i < 5; i++)
+        glBindImageTexture(1 + (GLuint)i, fg_texture(pass, geometry_names[i]), 0, GL_TRUE, 0, GL_WRITE_ONLY,
+                           geometry_formats[i]);
     glDispatchCompute((GLuint)(box->hi[0] - box->lo[0] + 3) / 4, (GLuint)(box->hi[1] - box->lo[1] + 3) / 4,
                       (GLuint)(box->hi[2] - box->lo[2] + 3) / 4);
-    cgp_compute_end(5, 0, NULL);
+    cgp_compute_end(6, 0, NULL);
 }
 
 static bool
@@ -738,8 +744,9 @@ voxelize_execute(fg_pass *pass, voxelize_state *s, cg_error *err)
     int resolution = fg_param_int(pass, "resolution");
     /* The sides declared at compile: the volume's textures are of them. */
     const fg_resource_desc *accumulation = fg_resource(pass, "accumulation");
-    const int declared[3] = {accumulation->width / (s->surface ? 2 : 1), accumulation->height / (s->surface ? 2 : 1),
-                             accumulation->depth / 4};
+    const int declared[3] = {accumulation->width / (s->surface ? CG_SURFACE_SLAB_GRID_X : 1),
+                             accumulation->height / (s->surface ? CG_SURFACE_SLAB_GRID_Y : 1),
+                             accumulation->depth / (s->surface ? CG_SURFACE_SLAB_GRID_Z : 4)};
     voxel_region region;
     if (!voxelize_region(pass, scene, declared, &region))
         return cg_fail(err, CG_ERR_PASS, "pass '%s': the voxelized meshes vanished since compile", fg_pass_name(pass));
@@ -867,6 +874,8 @@ voxelize_execute(fg_pass *pass, voxelize_state *s, cg_error *err)
     glDisable(GL_CULL_FACE);
     cg_gpu_scene_bind_lights(frame->gpu_scene);
     cgp_bind_shadow(pass, &s->no_shadow, 2);
+    if (s->surface)
+        glBindTextureUnit(CG_UNIT_SPECULAR_HEMISPHERICAL, s->specular_hemispherical);
 
     const voxel_box volume = {{0, 0, 0}, {region.dims[0], region.dims[1], region.dims[2]}};
     size_t triangles = 0;
@@ -874,11 +883,12 @@ voxelize_execute(fg_pass *pass, voxelize_state *s, cg_error *err)
     for (int b = 0; b < (partial ? box_count : 1); b++) {
         const voxel_box *box = partial ? &s->boxes[b] : &volume;
         if (partial) {
-            /* The region's sums start from zero in each of the 14 slabs (surface_sums.glsl's
-             * surface_slab); what the accumulation holds elsewhere is never read. */
-            for (int k = 0; k < 14; k++)
-                glClearTexSubImage(accum, 0, box->lo[0] + (k & 1) * region.dims[0],
-                                   box->lo[1] + ((k >> 1) & 1) * region.dims[1], box->lo[2] + (k >> 2) * region.dims[2],
+            /* The region's sums start from zero in each slab (surface_sums.glsl's surface_slab);
+             * what the accumulation holds elsewhere is never read. */
+            for (int k = 0; k < CG_SURFACE_SLABS; k++)
+                glClearTexSubImage(accum, 0, box->lo[0] + CG_SURFACE_SLAB_X(k) * region.dims[0],
+                                   box->lo[1] + CG_SURFACE_SLAB_Y(k) * region.dims[1],
+                                   box->lo[2] + CG_SURFACE_SLAB_Z(k) * region.dims[2],
                                    box->hi[0] - box->lo[0], box->hi[1] - box->lo[1],
                                    box->hi[2] - box->lo[2], GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
             glMemoryBarrier(GL_ALL_BARRIER_BITS);
@@ -918,6 +928,7 @@ voxelize_execute(fg_pass *pass, voxelize_state *s, cg_error *err)
     glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
 
     if (s->surface) {
+        glBindTextureUnit(CG_UNIT_SPECULAR_HEMISPHERICAL, 0);
         if (!s->cache) {
             fg_pass_report_rebuilt(pass, "geometry voxelized (cache=false)");
             return true;

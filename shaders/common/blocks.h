@@ -66,6 +66,21 @@
 #define CG_UNIT_BRDF_TABLE 20           /* the GGX directional-albedo table (cgp_brdf_table_fill) */
 #define CG_UNIT_GLOSSY 22               /* voxel_light's glossy: its light one diffuse bounce further */
 #define CG_UNIT_GATHER_BLOCKS 21        /* a gather's diffuse light of one pixel per block (sdk/upsample.h) */
+/* ---- texture units of voxelize's surface model beside the scene's (common/scene.glsl: 0, 1, 24..27) */
+#define CG_UNIT_SPECULAR_HEMISPHERICAL 28 /* the specular lobe's (Abar, Bbar) per roughness (cgp_brdf_hemispherical_fill) */
+
+/* voxelize's surface model: its accumulation volume holds CG_SURFACE_SLABS R32UI slabs of the volume's
+ * size (shaders/voxelize/surface_sums.glsl: count, albedo RGB, emission RGB, normal xyz, plane offset,
+ * coverage xyz, specular albedo RGB, GGX alpha) on a grid of 3 x 2 x 3, slab k at (k % 3, (k / 3) % 2,
+ * k / 6): 512^3 voxels then fit GL_MAX_3D_TEXTURE_SIZE 2048 along every axis, which 18 along one would
+ * not. */
+#define CG_SURFACE_SLABS 18
+#define CG_SURFACE_SLAB_GRID_X 3
+#define CG_SURFACE_SLAB_GRID_Y 2
+#define CG_SURFACE_SLAB_GRID_Z 3
+#define CG_SURFACE_SLAB_X(k) ((k) % 3)
+#define CG_SURFACE_SLAB_Y(k) (((k) / 3) % 2)
+#define CG_SURFACE_SLAB_Z(k) ((k) / 6)
 
 /* The most cones a diffuse set holds (sdk/cone.h: CGP_CONE_MAX): the largest set, 26, rounded up to
  * a multiple of 4, as cell_width packs four cones per vec4. */

@@ -5,6 +5,9 @@
 // common/cone_trace.glsl with CG_CONE_SURFACE), from start_offset voxels off the plane; the result,
 // E_i / pi in the volumes' units, is the G+- that inject.comp adds times the albedo. A voxel whose
 // facets face both ways (|N| < 0.1) has no side to gather on and gathers nothing.
+// u_source: the volumes hold V_0 (the emitters' light); the result, G(V_0), is also written to
+// u_source_front and u_source_back, which inject.comp reads for the glossy volume's specular albedo
+// (passes/voxel_light's header).
 layout(local_size_x = 64) in;
 
 #include "common/cone_trace.glsl"
@@ -17,6 +20,9 @@ layout(rgba16f, binding = 0) writeonly uniform image3D u_gathered_front;
 layout(rgba16f, binding = 1) writeonly uniform image3D u_gathered_back;
 
 layout(location = 3) uniform uint u_list_capacity;
+layout(location = 4) uniform bool u_source;
+layout(r11f_g11f_b10f, binding = 2) writeonly uniform image3D u_source_front;
+layout(r11f_g11f_b10f, binding = 3) writeonly uniform image3D u_source_back;
 
 void
 main()
@@ -44,4 +50,8 @@ main()
     }
     imageStore(u_gathered_front, v, gathered[0]);
     imageStore(u_gathered_back, v, gathered[1]);
+    if (u_source) {
+        imageStore(u_source_front, v, gathered[0]);
+        imageStore(u_source_back, v, gathered[1]);
+    }
 }

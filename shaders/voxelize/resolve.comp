@@ -5,8 +5,8 @@
 // where any fragment fell and 0 elsewhere (premultiplied colour: rgb = radiance there).
 // The accumulation volume stacks four R32UI slabs along z: red, green, blue sums and the
 // fragment count, each `resolution` deep.
-// SURFACE (the surface model): the geometry of each voxel from its 14 slabs (voxelize.frag):
-// means of albedo, emission, normal and plane offset over its fragments, and the coverage per
+// SURFACE (the surface model): the geometry of each voxel from its 17 slabs (voxelize.frag):
+// means of albedo, emission, normal, plane offset and specular albedo over its fragments, and the coverage per
 // axis rounded up to RGBA8's next step, so that quantisation never opens a wall.
 // Defines: FORMAT (rgba16f or rgba8); FIND_MAX for the first of RGBA8's two dispatches,
 // which finds the largest radiance component so that the second stores radiance / max and
@@ -22,6 +22,7 @@ layout(rgba8, binding = 1) writeonly uniform image3D u_albedo;
 layout(rgba8, binding = 2) writeonly uniform image3D u_coverage;
 layout(rgba8_snorm, binding = 3) writeonly uniform image3D u_normal;
 layout(rgba16f, binding = 4) writeonly uniform image3D u_emission;
+layout(rgba8, binding = 5) writeonly uniform image3D u_specular;
 // The volume's voxels along x, y, z: the size of one slab.
 layout(location = 7) uniform ivec3 u_dims;
 // x: fixed-point units per unit of albedo, normal, offset and coverage; y: per unit of emission;
@@ -35,8 +36,8 @@ layout(location = 6) uniform ivec3 u_box_hi;
 uint
 slab(ivec3 v, int k)
 {
-    // 2 x 2 x 4 slabs of the volume's size (surface_sums.glsl's surface_slab)
-    return imageLoad(u_accum, v + ivec3(k & 1, (k >> 1) & 1, k >> 2) * u_dims).r;
+    // surface_sums.glsl's surface_slab
+    return imageLoad(u_accum, v + ivec3(CG_SURFACE_SLAB_X(k), CG_SURFACE_SLAB_Y(k), CG_SURFACE_SLAB_Z(k)) * u_dims).r;
 }
 
 void
@@ -51,6 +52,7 @@ main()
         imageStore(u_coverage, v, vec4(0.0));
         imageStore(u_normal, v, vec4(0.0));
         imageStore(u_emission, v, vec4(0.0));
+        imageStore(u_specular, v, vec4(0.0));
         return;
     }
     float unit = float(count) * u_surface_fixed.x;
@@ -63,6 +65,10 @@ main()
     imageStore(u_coverage, v, vec4(ceil(coverage * 255.0 - 1e-3) / 255.0, 0.0));
     imageStore(u_normal, v, vec4(clamp(normal, -1.0, 1.0), clamp(offset, -1.0, 1.0)));
     imageStore(u_emission, v, vec4(emission, 1.0));
+    // a: the fragments' GGX alpha, weighted by their specular albedo's luminance.
+    vec3 specular = vec3(slab(v, 14), slab(v, 15), slab(v, 16)) / unit;
+    float y = dot(specular, vec3(0.2126, 0.7152, 0.0722));
+    imageStore(u_specular, v, vec4(specular, y > 0.0 ? clamp(float(slab(v, 17)) / unit / y, 0.0, 1.0) : 0.0));
 }
 #else
 

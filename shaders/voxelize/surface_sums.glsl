@@ -1,21 +1,28 @@
-// voxelize/surface_sums.glsl: the surface model's 14 sums of one surface point into one voxel
+// voxelize/surface_sums.glsl: the surface model's 18 sums of one surface point into one voxel
 // (voxelize.frag's header says what each slab holds), written once for the two voxelizers,
 // the geometry shader's (voxelize.frag, SURFACE) and the compute one (voxelize_tri.comp), so
 // that both fill the same slabs with the same fixed-point rounding.
 //
-// The includer declares u_accum (the R32UI accumulation volume), u_dims (the volume's voxels
-// along x, y, z: one slab's size), u_surface_fixed (x: fixed-point units per unit of albedo,
-// normal, offset in voxels and coverage; y: per unit of emitted radiance) and u_origin_voxel
-// (xyz: the volume's origin, w: a voxel's size).
+// The includer includes common/scene.glsl (the materials) and declares u_accum (the R32UI
+// accumulation volume), u_dims (the volume's voxels along x, y, z: one slab's size),
+// u_surface_fixed (x: fixed-point units per unit of albedo, normal, offset in voxels and coverage;
+// y: per unit of emitted radiance) and u_origin_voxel (xyz: the volume's origin, w: a voxel's size).
 #ifndef VOXELIZE_SURFACE_SUMS_GLSL
 #define VOXELIZE_SURFACE_SUMS_GLSL
 
-// Where slab k of the surface model's 14 lies in the accumulation volume, 2 x 2 x 4 slabs of the
-// volume's size (so that 512^3 fits GL_MAX_3D_TEXTURE_SIZE 2048, which 14 along z would not).
+#include "common/blocks.h"
+
+// The specular lobe's (Abar, Bbar) per perceptual roughness (passes/sdk/cone.h,
+// cgp_brdf_hemispherical_fill).
+layout(binding = CG_UNIT_SPECULAR_HEMISPHERICAL) uniform sampler2D u_specular_hemispherical;
+
+// Where slab k of the surface model's CG_SURFACE_SLABS lies in the accumulation volume (common/blocks.h):
+// 0 count, 1..3 albedo RGB, 4..6 emission RGB, 7..9 normal xyz, 10 plane offset, 11..13 coverage
+// xyz, 14..16 specular albedo RGB, 17 its luminance times the lobe's GGX alpha.
 ivec3
 surface_slab(int k)
 {
-    return ivec3(k & 1, (k >> 1) & 1, k >> 2) * u_dims;
+    return ivec3(CG_SURFACE_SLAB_X(k), CG_SURFACE_SLAB_Y(k), CG_SURFACE_SLAB_Z(k)) * u_dims;
 }
 
 // What one surface point adds, in fixed point: the same for every voxel it reaches but the
@@ -25,17 +32,44 @@ struct SurfaceSums {
     uvec3 emission;
     uvec3 normal;   // two's complement
     uvec3 share;    // per axis |n_i| / |n|_1 of the triangle's plane, added by maximum
+    uvec3 specular;
+    uint alpha;     // the specular albedo's luminance (Rec. 709) x GGX alpha = roughness^2
 };
 
-// albedo clamped to [0, 1], emission >= 0, normal of unit length, share summing to 1.
-SurfaceSums
-surface_sums(vec3 albedo, vec3 emission, vec3 normal, vec3 share)
+// What the specular lobe reflects, as voxels store it: F0 Abar + F90 Bbar, the lobe's directional
+// albedo averaged over the outgoing directions (cosine-weighted), so that a voxel radiating one
+// radiance every way returns the lobe's exitance under uniform light, x the coverage alpha of a
+// BLEND layer as cg_material_diffuse. 0 for a Lambertian material (F0 = F90 = 0). A metal's voxel
+// holds its light here (its diffuse albedo is 0), for voxel_light's `glossy`.
+vec3
+surface_specular(int material, vec2 uv)
 {
+    CgBsdf b = cg_material_bsdf(material, uv);
+    vec2 terms = texture(u_specular_hemispherical, vec2(b.roughness, 0.5)).rg;
+    vec3 specular = b.f0 * terms.x + b.f90 * terms.y;
+    if (cg_material_alpha_mode(material) == CG_ALPHA_BLEND)
+        specular *= clamp(cg_material_base_color(material, uv).a, 0.0, 1.0);
+    return specular;
+}
+
+// The sums of a point of `material` at texture coordinate uv: its diffuse albedo
+// (cg_material_diffuse: a metal's and a glass's are 0, while their coverage still makes their
+// voxels opaque: with caustics off, glass and metal shadow fully), emission and specular albedo,
+// its normal (unit) and the triangle's share (summing to 1).
+SurfaceSums
+surface_sums(int material, vec2 uv, vec3 normal, vec3 share)
+{
+    vec3 albedo = clamp(cg_material_diffuse(material, uv), 0.0, 1.0);
+    vec3 emission = max(cg_material_emissive(material, uv), vec3(0.0));
+    vec3 specular = clamp(surface_specular(material, uv), 0.0, 1.0);
+    float alpha = dot(specular, vec3(0.2126, 0.7152, 0.0722)) * cg_material_bsdf(material, uv).alpha;
     SurfaceSums s;
     s.albedo = uvec3(albedo * u_surface_fixed.x + 0.5);
     s.emission = uvec3(min(emission * u_surface_fixed.y + 0.5, vec3(4294967295.0)));
     s.normal = uvec3(ivec3(round(normal * u_surface_fixed.x)));
     s.share = uvec3(ceil(share * u_surface_fixed.x));
+    s.specular = uvec3(specular * u_surface_fixed.x + 0.5);
+    s.alpha = uint(clamp(alpha, 0.0, 1.0) * u_surface_fixed.x + 0.5);
     return s;
 }
 
@@ -66,6 +100,13 @@ surface_add(ivec3 v, SurfaceSums s, uint offset)
     imageAtomicMax(u_accum, v + surface_slab(11), s.share.x);
     imageAtomicMax(u_accum, v + surface_slab(12), s.share.y);
     imageAtomicMax(u_accum, v + surface_slab(13), s.share.z);
+    // A Lambertian point adds nothing: no atomic where it would add 0.
+    if (s.specular != uvec3(0u)) {
+        imageAtomicAdd(u_accum, v + surface_slab(14), s.specular.r);
+        imageAtomicAdd(u_accum, v + surface_slab(15), s.specular.g);
+        imageAtomicAdd(u_accum, v + surface_slab(16), s.specular.b);
+        imageAtomicAdd(u_accum, v + surface_slab(17), s.alpha);
+    }
 }
 
 #endif

@@ -3,11 +3,12 @@
 // one, plus emission: VCT paper 3.1 and 4, emissive materials) to every voxel of its pixel
 // column that the triangle touches.
 // SURFACE (the surface model, docs/vct.md): no light; each fragment adds its geometry instead,
-// to 14 slabs: count, albedo RGB, emission RGB, unit normal xyz (as authored, two's-complement
-// sums), the offset n . (x - c) / voxel of its plane from the voxel's centre c (likewise), and
+// to 17 slabs: count, albedo RGB, emission RGB, unit normal xyz (as authored, two's-complement
+// sums), the offset n . (x - c) / voxel of its plane from the voxel's centre c (likewise),
 // per axis i the largest |n_i| / |n|_1 of its triangle's plane (imageAtomicMax): crossing the
 // voxels a plane touches (a slab |n|_1 voxels thick along n) along axis i, a path meets the
-// plane's coverage at the rate |n_i| / |n|_1 per voxel of path, 1 in all (docs/vct.md).
+// plane's coverage at the rate |n_i| / |n|_1 per voxel of path, 1 in all (docs/vct.md), and the
+// specular albedo RGB (surface_sums.glsl).
 //
 // Averaging: the sums are fixed-point integers added with imageAtomicAdd into R32UI slabs
 // (red, green, blue, count), and resolve.comp divides by the count. Integer addition is
@@ -117,16 +118,11 @@ main()
 
 #ifdef SURFACE
     vec3 normal = normalize(gs_normal);
-    // The diffuse weight rho (cg_material_diffuse): a metal's voxel holds no diffuse light and a
-    // glass's none either (its transmission is not diffuse), while its coverage (the count and the
-    // shares) still makes it opaque: with caustics off, glass and metal shadow fully (DESIGN.md).
-    vec3 albedo = clamp(cg_material_diffuse(cg_material_index, gs_texcoord), 0.0, 1.0);
-    vec3 emission = max(cg_material_emissive(cg_material_index, gs_texcoord), vec3(0.0));
     // The triangle's own plane (in volume axes) for the coverage: the voxels it touches form a
     // slab of its geometric normal, whatever the shading normal says.
     vec3 plane = abs(unswizzle_vector(n, gs_axis));
     vec3 share = plane / (plane.x + plane.y + plane.z);
-    SurfaceSums sums = surface_sums(albedo, emission, normal, share);
+    SurfaceSums sums = surface_sums(cg_material_index, gs_texcoord, normal, share);
 #else
     uvec3 value = uvec3(min(max(outgoing_radiance(), vec3(0.0)) * u_fixed_scale + 0.5,
                             vec3(4294967295.0)));

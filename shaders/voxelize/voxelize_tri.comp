@@ -73,8 +73,6 @@ main()
                 // alphaMode MASK: nothing there below the cutoff (voxelize.frag).
                 if (cg_material_masked_out(cg_material_index, tex))
                     continue;
-                vec3 albedo = clamp(cg_material_diffuse(cg_material_index, tex), 0.0, 1.0);
-                vec3 emission = max(cg_material_emissive(cg_material_index, tex), vec3(0.0));
-                surface_add(v, surface_sums(albedo, emission, normal, share), surface_offset(normal, world, v));
+                surface_add(v, surface_sums(cg_material_index, tex, normal, share), surface_offset(normal, world, v));
             }
 }

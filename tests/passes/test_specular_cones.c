@@ -9,7 +9,8 @@
  *   - a Lambertian plate (the built-in scenes' material) gets no specular or refracted light;
  *   - the shadow cone of a sun with an angular diameter against the path tracer's soft shadow;
  *   - voxel_light's `glossy`, which the lobes' cones read, is the light of one bounce more: the
- *     `radiance` of the same pass with bounces + 1; both gathers' lobes read it. */
+ *     `radiance` of the same pass with bounces + 1; both gathers' lobes read it; a metal's voxels hold
+ *     its specular albedo's light there (the sky's, and a rough lobe's share of the sun's). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -19,6 +20,7 @@
 #include "cg/fs.h"
 #include "cg/gl.h"
 #include "cg/scene.h"
+#include "sdk/cone.h"
 #include "test_support.h"
 #include "hybrid_fixture.h"
 #include "vct_fixture.h"
@@ -600,6 +602,102 @@ test_lobes_read_glossy(void **state)
     }
 }
 
+/* voxel_light's `glossy` holds a metal's light (voxelize's `specular`): two coplanar plates under a
+ * uniform sky L and a sun, a Lambertian one (albedo a) and a white metal (base F0, roughness r). In
+ * glossy the metal's voxels return rho_s (alpha S + L), rho_s = F0 Abar(r) + Bbar(r) (the lobe's
+ * hemispherical albedo, sdk/cone.h), alpha = r^2, S the sun's E cos / pi, against the Lambertian's
+ * a (S + L) in radiance (the same coverage and scale: the ratio is the closed form); in radiance the
+ * metal is black (no diffuse lobe), and the Lambertian's glossy is its radiance (the plates do not see
+ * each other). */
+static const char metal_graph[] =
+    "{ \"version\": 1, \"passes\": {"
+    " \"shadow\": { \"type\": \"shadow_map\", \"params\": { \"resolution\": 512 } },"
+    " \"vox\": { \"type\": \"voxelize\", \"params\": { \"model\": \"surface\", \"resolution\": 32 } },"
+    " \"light\": { \"type\": \"voxel_light\", \"params\": { \"bounces\": 1, \"glossy\": true }, \"inputs\": {"
+    "   \"albedo\": \"vox.albedo\", \"coverage\": \"vox.coverage\", \"normal\": \"vox.normal\", \"emission\": \"vox.emission\","
+    "   \"specular\": \"vox.specular\", \"region\": \"vox.region\", \"shadow\": \"shadow.depth\","
+    "   \"shadow_matrix\": \"shadow.matrix\" } } },"
+    " \"outputs\": [ \"light.glossy\", \"light.radiance\", \"vox.albedo\", \"vox.specular\" ] }";
+
+static void
+test_metal_voxels_in_glossy(void **state)
+{
+    cg_context *ctx = cg_test_gl_context(state);
+    const float a = 0.5f, f0 = 0.9f, r = 0.6f, sky = 1.0f, sun = 3.0f;
+    hf_scene s;
+    hf_init(&s);
+    const double lambert[3] = {-8, 0, -4}, metal[3] = {1, 0, -4}, e1[3] = {0, 0, 8}, e2[3] = {7, 0, 0};
+    hf_quad(&s, lambert, e1, e2);   /* material 2, faces +y */
+    hf_quad(&s, metal, e1, e2);     /* material 3 */
+    hf_material(&s, 2, a, 0.0f);
+    const double down[3] = {0.3, -1, 0.2};
+    hf_sun(&s, down, sun);
+    hf_finish(&s);
+    set_material(&s.materials[3], f0, 1.0f, r);
+    cg_sky uniform = {.type = CG_SKY_UNIFORM, .radiance = {sky, sky, sky}};
+    cg_error err = {0};
+    assert_cg_ok(cg_scene_set_sky(&s.scene, &uniform, &err), &err);
+    vf_runner run;
+    vf_start(&run, &s.scene, SIZE, SIZE, metal_graph, NULL);
+    vf_frame(&run);
+    int n = 0, m = 0;
+    float *glossy = vf_read_volume(&run, "light.glossy", 0, &n);
+    float *radiance = vf_read_volume(&run, "light.radiance", 0, &m);
+    float *albedo = vf_read_volume(&run, "vox.albedo", 0, &m);
+    float *specular = vf_read_volume(&run, "vox.specular", 0, &m);
+    assert_int_equal(n, m);
+    float rg[2 * CGP_BRDF_TABLE_SIZE];
+    cgp_brdf_hemispherical_fill(CGP_BRDF_TABLE_SIZE, rg);
+    float at = r * CGP_BRDF_TABLE_SIZE - 0.5f;
+    int j = (int)floorf(at);
+    float t = at - (float)j;
+    double rho_s = f0 * ((1.0f - t) * rg[2 * j] + t * rg[2 * j + 2]) + ((1.0f - t) * rg[2 * j + 1] + t * rg[2 * j + 3]);
+    double len = sqrt(0.3 * 0.3 + 1.0 + 0.2 * 0.2), cosine = 1.0 / len, direct = sun * cosine / M_PI;
+    double expect = rho_s * (r * r * direct + sky) / (a * (direct + sky));
+    /* Means over each plate's voxels, per coverage w (alpha): the planes are alike, so w is too. */
+    double lit[2] = {0.0, 0.0}, black = 0.0, same = 0.0, held = 0.0, weight[2] = {0.0, 0.0};
+    int voxels[2] = {0, 0}, off_alpha = 0;
+    for (size_t i = 0; i < (size_t)n * n * n; i++) {
+        const float *g = &glossy[4 * i], *v = &radiance[4 * i];
+        if (v[3] <= 0.0f)
+            continue;
+        bool is_metal = specular[4 * i] > 0.0f && albedo[4 * i] == 0.0f;
+        bool is_lambert = specular[4 * i] == 0.0f && albedo[4 * i] > 0.0f;
+        if (is_metal) {
+            lit[1] += g[1];
+            weight[1] += v[3];
+            black = fmax(black, v[1]);
+            held += specular[4 * i + 1];
+            off_alpha += fabsf(specular[4 * i + 3] - r * r) > 1.5f / 255.0f;
+            voxels[1]++;
+        } else if (is_lambert) {
+            lit[0] += v[1];
+            weight[0] += v[3];
+            same = fmax(same, fabs(g[1] - v[1]) / fmax(v[1], 1e-6));
+            voxels[0]++;
+        }
+    }
+    double ratio = (lit[1] / weight[1]) / (lit[0] / weight[0]);
+    fprintf(stderr, "# metal plate in glossy / Lambertian plate in radiance: %.4f, closed form %.4f (rho_s %.4f, "
+            "voxelized %.4f); %d and %d voxels; metal in radiance at most %.2g; Lambertian glossy off its radiance "
+            "by at most %.4f; %d voxels with another alpha\n", ratio, expect, rho_s, held / fmax(voxels[1], 1),
+            voxels[1], voxels[0], black, same, off_alpha);
+    assert_true(voxels[0] > 100 && voxels[1] > 100);
+    assert_true(fabs(held / voxels[1] - rho_s) < 2.0 / 255.0);
+    assert_int_equal(off_alpha, 0);
+    assert_true(black == 0.0);
+    assert_true(same < 1e-3);
+    if (fabs(ratio / expect - 1.0) > 0.02)
+        fail_msg("the metal's glossy light is %.4f of the Lambertian's, the closed form %.4f", ratio, expect);
+    free(glossy);
+    free(radiance);
+    free(albedo);
+    free(specular);
+    assert_no_gl_errors(ctx);
+    vf_stop(&run);
+    hf_free(&s);
+}
+
 int
 main(void)
 {
@@ -612,6 +710,7 @@ main(void)
         cmocka_unit_test(test_shadow_cone_sun_disc),
         cmocka_unit_test(test_glossy_is_one_bounce_more),
         cmocka_unit_test(test_lobes_read_glossy),
+        cmocka_unit_test(test_metal_voxels_in_glossy),
     };
     return cmocka_run_group_tests(tests, cg_test_gl_setup, cg_test_gl_teardown);
 }

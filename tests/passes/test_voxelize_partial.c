@@ -30,17 +30,22 @@ static const char graph[] =
     "   \"voxelizer\": \"%s\","
     "   \"region\": \"explicit\", \"padding\": 0, \"min_x\": -4, \"min_y\": -4, \"min_z\": -4,"
     "   \"max_x\": 4, \"max_y\": 4, \"max_z\": 4 } } },"
-    " \"outputs\": [ \"vox.albedo\", \"vox.coverage\", \"vox.normal\", \"vox.emission\" ] }";
+    " \"outputs\": [ \"vox.albedo\", \"vox.coverage\", \"vox.normal\", \"vox.emission\", \"vox.specular\" ] }";
 
-static const char *const volumes[4] = {"vox.albedo", "vox.coverage", "vox.normal", "vox.emission"};
+static const char *const volumes[5] = {"vox.albedo", "vox.coverage", "vox.normal", "vox.emission", "vox.specular"};
 
 /* hf_town: a terrain of 100 x 100 quads over the volume's floor, a wall standing on it and a
- * roof-like quad elsewhere that never moves. */
+ * roof-like quad elsewhere that never moves; the wall a rough metal, so that the specular volume's
+ * sums move with it too. */
 static void
 make_scene(hf_scene *s)
 {
     hf_town(s, 100, 0.5f);
     hf_finish(s);
+    s->materials[2].metallic = 1.0f;
+    s->materials[2].roughness = 0.5f;
+    s->materials[2].specular = 1.0f;
+    s->materials[2].ior = 1.5f;
 }
 
 static void
@@ -49,12 +54,12 @@ start(vf_runner *r, hf_scene *s, bool cache, const char *voxelizer)
     vf_run_format(r, &s->scene, 16, 16, graph, cache ? "true" : "false", voxelizer);
 }
 
-/* Voxels of the four volumes that differ between the two runners (any channel, bit for bit). */
+/* Voxels of the five volumes that differ between the two runners (any channel, bit for bit). */
 static int
 differing_voxels(const vf_runner *a, const vf_runner *b)
 {
     int differ = 0;
-    for (int v = 0; v < 4; v++) {
+    for (int v = 0; v < 5; v++) {
         int na = 0, nb = 0;
         float *va = vf_read_volume(a, volumes[v], 0, &na);
         float *vb = vf_read_volume(b, volumes[v], 0, &nb);

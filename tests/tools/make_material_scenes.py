@@ -4,7 +4,7 @@ as small glTF 2.0 files (.gltf, buffers embedded as base64), in pure Python:
 
     python3 tests/tools/make_material_scenes.py OUTDIR
 
-writes OUTDIR/glossy_room.gltf, OUTDIR/glass.gltf and OUTDIR/spheres.gltf:
+writes OUTDIR/glossy_room.gltf, OUTDIR/glass.gltf, OUTDIR/spheres.gltf and OUTDIR/spheres_sun.gltf:
 
 - glossy_room: a Lambertian floor, back wall and left wall (KHR_materials_specular
   specularFactor 0: glTF's dielectric otherwise has a specular lobe), a gold metal block
@@ -19,6 +19,8 @@ writes OUTDIR/glossy_room.gltf, OUTDIR/glass.gltf and OUTDIR/spheres.gltf:
   Lambertian one (the control: radiance = sky), white metals of roughness 1 and 0.3 (F0 = 1:
   Schlick's F is 1 whatever its angle, so only the GGX lobe is compared), gold 0.3, chrome
   0.05, the red dielectric 0.1 and solid glass: the Fresnel forms' difference alone.
+- spheres_sun: the same spheres under glossy_room's sun and sky: metals that reflect each other's
+  sunlit sides (what a metal's voxel returns of a punctual light).
 
 Every scene has one camera (the first, which conegraph uses), 16:9. Metres, Y up.
 The numbers below are read by tests/tools/cycles_reference.py too (it imports this file).
@@ -299,7 +301,7 @@ def glass_scene(path):
     w.write(path)
 
 
-def spheres_scene(path):
+def spheres_scene(path, sun=False):
     w = Writer()
     spheres = [(lambert("white_lambert", (1.0, 1.0, 1.0)), (-2.4, 0.55)),
                (metal("white_metal_r1", (1.0, 1.0, 1.0), 1.0), (-1.2, 0.55)),
@@ -312,11 +314,14 @@ def spheres_scene(path):
     for m, (x, y) in spheres:
         w.mesh(m["name"], sphere((x, y, 0.0), 0.5), m)
     w.camera((0.0, 0.0, 6.0), (0.0, 0.0, 0.0), 32.0)
+    if sun:
+        w.sun(SUN_DIRECTION, SUN_INTENSITY)
     w.write(path)
 
 
 SCENES = {"glossy_room": (glossy_room, SKY), "glass": (glass_scene, SKY),
-          "spheres": (spheres_scene, FURNACE_SKY)}
+          "spheres": (spheres_scene, FURNACE_SKY),
+          "spheres_sun": (lambda path: spheres_scene(path, sun=True), SKY)}
 
 
 def main():
