@@ -157,7 +157,7 @@ test_hemispherical_albedo(void **state)
     const int columns[] = {0, 9, 18, CGP_BRDF_TABLE_SIZE - 1};
     for (size_t c = 0; c < sizeof columns / sizeof columns[0]; c++) {
         int j = columns[c];
-        float roughness = ((float)j + 0.5f) / CGP_BRDF_TABLE_SIZE;
+        float roughness = (float)j / (CGP_BRDF_TABLE_SIZE - 1);
         double a = 0.0, b = 0.0;
         const int steps = 96;
         for (int i = 0; i < steps; i++) {
@@ -172,7 +172,8 @@ test_hemispherical_albedo(void **state)
         assert_true(fabs(rg[2 * j] - a) < 0.01 && fabs(rg[2 * j + 1] - b) < 0.01);
         assert_true(rg[2 * j] + rg[2 * j + 1] <= 1.0f + 1e-4f);
     }
-    /* Smooth: F0 + (1 - F0) times the hemispherical mean of (1 - n.v)^5, 1/21. */
+    /* Smooth (roughness 0, the first texel): F0 + (1 - F0) times the hemispherical mean of
+     * (1 - n.v)^5, 1/21. */
     assert_true(fabs(rg[0] + rg[1] - 1.0) < 0.01 && fabs(rg[1] - 1.0 / 21.0) < 0.01);
     /* Rough: the lobe loses what bounces between microfacets. */
     assert_true(rg[2 * (CGP_BRDF_TABLE_SIZE - 1)] + rg[2 * (CGP_BRDF_TABLE_SIZE - 1) + 1] < 0.95f);

@@ -307,10 +307,10 @@ cgp_brdf_table_fill(int size, float *rgba)
 {
     /* The integrals are cg/bsdf.h's, the path tracer's BSDF: one definition of the lobes. */
     for (int i = 0; i < size; i++) {
-        float nv = ((float)i + 0.5f) / (float)size, keep = 0.0f, c = 0.0f;
+        float nv = (float)i / (float)(size - 1), keep = 0.0f, c = 0.0f;
         cg_bsdf_diffuse_albedo_terms(nv, &keep, &c);
         for (int j = 0; j < size; j++) {
-            float roughness = ((float)j + 0.5f) / (float)size, scale = 0.0f, bias = 0.0f;
+            float roughness = (float)j / (float)(size - 1), scale = 0.0f, bias = 0.0f;
             cg_bsdf_specular_albedo_terms(roughness * roughness, nv, &scale, &bias);
             float *t = &rgba[4 * ((size_t)j * (size_t)size + (size_t)i)];
             t[0] = scale;
@@ -332,11 +332,12 @@ cgp_brdf_hemispherical_fill(int size, float *rg)
     cgp_brdf_table_fill(size, table);
     for (int j = 0; j < size; j++) {
         double a = 0.0, b = 0.0;
+        /* The trapezoid rule over the columns, which lie at n.v = i / (size - 1). */
         for (int i = 0; i < size; i++) {
             const float *t = &table[4 * ((size_t)j * (size_t)size + (size_t)i)];
-            double nv = ((double)i + 0.5) / (double)size;
-            a += 2.0 * nv * (double)t[0] / (double)size;
-            b += 2.0 * nv * (double)t[1] / (double)size;
+            double nv = (double)i / (double)(size - 1), w = (i == 0 || i == size - 1 ? 0.5 : 1.0) / (double)(size - 1);
+            a += 2.0 * nv * (double)t[0] * w;
+            b += 2.0 * nv * (double)t[1] * w;
         }
         rg[2 * j] = (float)a;
         rg[2 * j + 1] = (float)b;

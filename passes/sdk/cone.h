@@ -147,8 +147,11 @@ bool cgp_gather_declare_material(fg_pass *pass, fg_declare *decl, bool *present,
 
 /* The split-sum table (Karis 2013, "Real Shading in Unreal Engine 4", eq. 8 and its environment BRDF)
  * of the GGX lobe with height-correlated Smith visibility and Schlick Fresnel (the glTF spec's
- * Appendix B), size x size texels, texel (i, j) at n.v = (i + 0.5) / size and perceptual roughness
- * (j + 0.5) / size (alpha = roughness^2), RGBA:
+ * Appendix B), size x size texels, texel (i, j) at n.v = i / (size - 1) and perceptual roughness
+ * j / (size - 1) (alpha = roughness^2): the edges hold n.v and roughness 0 and 1 themselves (read
+ * at (x (size - 1) + 0.5) / size: common/gather.glsl's cg_gather_brdf), where texel centres at
+ * (j + 0.5) / size clamped roughness 1 to 0.984, whose albedo is 5% higher (a rough metal in the
+ * furnace read 1.05), RGBA:
  *   r = A(n.v, alpha) = integral of D V (1 - (1 - v.h)^5) n.l dl,
  *   g = B(n.v, alpha) = integral of D V (1 - v.h)^5 n.l dl,
  *     so that the lobe's directional albedo is F0 A + F90 B;
@@ -165,8 +168,9 @@ void cgp_brdf_table_fill(int size, float *rgba);
 GLuint cgp_brdf_table_texture(void *state);
 
 /* The specular lobe's hemispherical albedo terms per roughness: texel j (perceptual roughness
- * (j + 0.5) / size) holds RG = (Abar, Bbar), the cosine-weighted means over n.v of the table's A and
- * B (2 integral of A(n.v) n.v dn.v, midpoints of the table's columns), so that F0 Abar + F90 Bbar is
+ * j / (size - 1), as the table's rows) holds RG = (Abar, Bbar), the cosine-weighted means over n.v of
+ * the table's A and B (2 integral of A(n.v) n.v dn.v, the trapezoid rule over the table's columns),
+ * so that F0 Abar + F90 Bbar is
  * what the lobe returns of uniform incident light averaged over the outgoing directions: the
  * view-independent specular albedo a voxel stores (voxelize's `specular`), as
  * cg_bsdf_diffuse_hemispherical is the diffuse lobe's. */

@@ -6,11 +6,13 @@
 //           CG_GATHER_MATERIAL (the G-buffer's material inputs, cgp_gather_declare_material) also
 //           CgGatherMaterial, cg_gather_material(), cg_gather_brdf(), cg_gather_specular_tan_half(),
 //           cg_gather_diffuse_share(), cg_gather_specular_weight(), cg_gather_transmission_share(),
-//           CgGatherLobe, cg_gather_reflection_lobe(), cg_gather_refraction_lobe().
+//           CgGatherLobe, cg_gather_reflection_lobe(), cg_gather_refraction_lobe(), cg_gather_reflection()
+//           (which calls cg_gather_trace_lobe(), defined by the including pass after this file).
 #ifndef CG_COMMON_GATHER_GLSL
 #define CG_COMMON_GATHER_GLSL
 
 #include "common/blocks.h"
+#include "common/bsdf.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -115,7 +117,10 @@ cg_gather_material(ivec2 pixel)
 vec3
 cg_gather_brdf(float nv, float roughness)
 {
-    return textureLod(cg_gather_brdf_table, vec2(clamp(nv, 0.0, 1.0), roughness), 0.0).rgb;
+    // Texel i at i / (size - 1) (cgp_brdf_table_fill): 0 and 1 at the edge texels' centres.
+    float size = float(textureSize(cg_gather_brdf_table, 0).x);
+    vec2 at = (clamp(vec2(nv, roughness), 0.0, 1.0) * (size - 1.0) + 0.5) / size;
+    return textureLod(cg_gather_brdf_table, at, 0.0).rgb;
 }
 
 // The specular cone's aperture from the roughness (the VCT paper's "specular diffusion factor",
@@ -169,6 +174,58 @@ cg_gather_reflection_lobe(CgGatherMaterial m, vec3 position, vec3 n, vec3 view, 
     vec3 brdf = cg_gather_brdf(nv, m.roughness);
     return CgGatherLobe(position + n * offset, reflect(view, n), cg_gather_specular_tan_half(m.roughness),
                         vec4(n, offset), cg_gather_specular_weight(m, brdf));
+}
+
+// A material lobe's cone through the including pass's march (defined there, after this file): rgb the
+// gathered radiance x lobe.weight, a its coverage; `reach` the pass's march limits, passed through.
+vec4 cg_gather_trace_lobe(CgGatherLobe lobe, vec4 reach);
+
+// Where a rough lobe leaves the single cone for the diffuse cone set (perceptual roughness; between
+// the two, both, blended). The single cone of a rough lobe is wide (60 degrees from alpha 0.5): on a
+// curved surface its first samples cover the surface's own voxels beside the pixel, which the own
+// plane left out does not remove (a white metal sphere of roughness 1 in a furnace read 0.61 of the
+// path tracer; docs/vct.md, Per material).
+#define CG_GATHER_ROUGH_FROM 0.5
+#define CG_GATHER_ROUGH_TO 0.75
+
+// The specular lobe's light: the mirror's single cone (cg_gather_reflection_lobe) where the lobe is
+// narrow; where it is rough, the pass's diffuse cone set about n (common/cone_trace.glsl), each cone k
+// weighted by W_k D(h_k) V(l_k, v) (the set's weights integrate the cosine lobe, so W_k f_k is the
+// BRDF's share of that cone, Fresnel aside) over their sum, times the lobe's weight F0 A + F90 B: a
+// uniform sky still returns the split sum, and the light comes from the lobe's directions, not its
+// axis. `mirror` is the single cone (its origin, surface and weight serve the set's cones too).
+vec4
+cg_gather_reflection(CgGatherMaterial m, CgGatherLobe mirror, vec3 view, vec4 reach)
+{
+    float share = smoothstep(CG_GATHER_ROUGH_FROM, CG_GATHER_ROUGH_TO, m.roughness);
+    vec4 reflection = vec4(0.0);
+    if (share < 1.0)
+        reflection = (1.0 - share) * cg_gather_trace_lobe(mirror, reach);
+    if (share <= 0.0)
+        return reflection;
+    vec3 n = mirror.surface.xyz, v = -view;
+    mat3 frame = cg_tangent_frame(n);
+    float alpha = max(m.roughness * m.roughness, CG_BSDF_ALPHA_MIN), nv = max(dot(n, v), 1e-4);
+    float density[CG_CONE_SET_MAX];
+    float sum = 0.0;
+    for (int k = 0; k < cg_cone_count(); k++) {
+        vec3 l = cg_cone_direction(frame, k);
+        float nl = max(dot(n, l), 1e-4);
+        vec3 h = normalize(l + v);
+        density[k] = cg_cone_set_block.cones[k].w * cg_bsdf_ggx_d(alpha, max(dot(n, h), 0.0)) *
+                     cg_bsdf_smith_v(alpha, nl, nv);
+        sum += density[k];
+    }
+    for (int k = 0; k < cg_cone_count(); k++) {
+        float w = sum > 0.0 ? share * density[k] / sum : 0.0;
+        if (w <= 0.0)
+            continue;
+        CgGatherLobe cone = CgGatherLobe(mirror.origin, cg_cone_direction(frame, k), cg_cone_tan_half(k), mirror.surface,
+                                         w * mirror.weight);
+        vec4 traced = cg_gather_trace_lobe(cone, reach);
+        reflection += vec4(traced.rgb, w * traced.a);
+    }
+    return reflection;
 }
 
 // The refracted cone (VCT paper 3.2.2: "a refracted cone (using Snell's law)"), with both faces of a

@@ -54,6 +54,15 @@ trace_lobe(CgVolume v, CgMarch march, float t_max, CgGatherLobe lobe)
     return vec4(traced.rgb * lobe.weight, traced.a);
 }
 
+#ifdef CG_GATHER_MATERIAL
+// cg_gather_reflection's march (common/gather.glsl): reach.x = t_max.
+vec4
+cg_gather_trace_lobe(CgGatherLobe lobe, vec4 reach)
+{
+    return trace_lobe(cg_volume(), cg_cone_march(), reach.x, lobe);
+}
+#endif
+
 // The diffuse cones of the surface point `position` with unit normal `n` (before the material's
 // diffuse share): rgb the incident radiance integral E_i / pi, a the ambient visibility.
 vec4
@@ -133,8 +142,12 @@ main()
 #else
         CgGatherLobe mirror = CgGatherLobe(origin, reflect(view, n), cg_cone_gather_block.tan_half.x, surface, vec3(1.0));
 #endif
+#ifdef CG_GATHER_MATERIAL
         if (any(greaterThan(mirror.weight, vec3(0.0))))
-            reflection = trace_lobe(v, march, t_max, mirror);
+            reflection = cg_gather_reflection(m, mirror, view, vec4(t_max, 0.0, 0.0, 0.0));
+#else
+        reflection = trace_lobe(v, march, t_max, mirror);
+#endif
 #endif
 #ifdef REFRACTION
         CgGatherLobe through = cg_gather_refraction_lobe(m, position, n, view, offset);

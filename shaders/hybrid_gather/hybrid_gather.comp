@@ -757,6 +757,13 @@ trace_lobe(CgGatherLobe lobe, float t_max, float xel, bool own_voxels)
     traced = cg_sky_gather(traced, lobe.direction, lobe.tan_half);
     return vec4(traced.rgb * lobe.weight, traced.a);
 }
+
+// cg_gather_reflection's march (common/gather.glsl): reach = (t_max, xel, own voxels, -).
+vec4
+cg_gather_trace_lobe(CgGatherLobe lobe, vec4 reach)
+{
+    return trace_lobe(lobe, reach.x, reach.y, reach.z > 0.0);
+}
 #endif
 
 // The volume and terrain bounds' reach, the cones' voxel (the 3D lightmap's, or the terrain's xel
@@ -886,7 +893,8 @@ main()
 #ifdef SPECULAR
         CgGatherLobe mirror = cg_gather_reflection_lobe(mat, position, n, view, offset);
         if (any(greaterThan(mirror.weight, vec3(0.0))))
-            reflection = trace_lobe(mirror, reach.t_max, reach.xel, reach.own_voxels);
+            reflection = cg_gather_reflection(mat, mirror, view,
+                                              vec4(reach.t_max, reach.xel, reach.own_voxels ? 1.0 : 0.0, 0.0));
 #endif
 #ifdef REFRACTION
         CgGatherLobe through = cg_gather_refraction_lobe(mat, position, n, view, offset);

@@ -45,7 +45,9 @@ vec3
 surface_specular(int material, vec2 uv)
 {
     CgBsdf b = cg_material_bsdf(material, uv);
-    vec2 terms = texture(u_specular_hemispherical, vec2(b.roughness, 0.5)).rg;
+    // Texel j at roughness j / (size - 1) (cgp_brdf_hemispherical_fill).
+    float size = float(textureSize(u_specular_hemispherical, 0).x);
+    vec2 terms = textureLod(u_specular_hemispherical, vec2((clamp(b.roughness, 0.0, 1.0) * (size - 1.0) + 0.5) / size, 0.5), 0.0).rg;
     vec3 specular = b.f0 * terms.x + b.f90 * terms.y;
     if (cg_material_alpha_mode(material) == CG_ALPHA_BLEND)
         specular *= clamp(cg_material_base_color(material, uv).a, 0.0, 1.0);

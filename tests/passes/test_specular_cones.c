@@ -156,6 +156,43 @@ flat(double x, double z, const void *user)
     return 0.0;
 }
 
+static double
+dome(double x, double z, const void *user)
+{
+    (void)user;
+    return 1.5 - 2.0 * (x * x + z * z);
+}
+
+/* A rough metal on a curved surface in the furnace: a dome (a convex paraboloid, so that no point of it
+ * sees another and every direction above a point's plane sees the sky), roughness 1: the single cone
+ * would be 60 degrees wide and read the dome's own voxels beside the pixel (it returned 0.6 of the
+ * sky on a rough white metal sphere); the diffuse cone set weighted by the lobe (common/gather.glsl,
+ * cg_gather_reflection) returns L x the directional albedo. */
+static void
+test_furnace_rough_dome(void **state)
+{
+    cg_context *ctx = cg_test_gl_context(state);
+    const double radiance = 2.0;
+    hf_scene s;
+    hf_init(&s);
+    hf_grid(&s, 48, -1.0, -1.0, 2.0, dome, NULL);
+    const double eye[3] = {0, 4, 3.5}, forward[3] = {0, -1.1, -1}, up[3] = {0, 1, 0};
+    hf_camera_looking(&s, eye, forward, up, 0.55f);
+    hf_finish(&s);
+    set_material(&s.materials[1], 0.9f, 1.0f, 1.0f);
+    cg_sky sky = {.type = CG_SKY_UNIFORM, .radiance = {radiance, radiance, radiance}};
+    cg_error err = {0};
+    assert_cg_ok(cg_scene_set_sky(&s.scene, &sky, &err), &err);
+    static const char *const no_bounce[] = {"light.bounces=0", NULL};
+    furnace_result f = furnace(ctx, &s, 1, "vct.json", no_bounce, radiance);
+    fprintf(stderr, "# furnace, rough metal dome (roughness 1), vct.json: mean ratio %.4f, worst pixel %.2f%% (%d pixels)\n",
+            f.mean_ratio, 100.0 * f.worst, f.pixels);
+    assert_true(f.pixels > SIZE * SIZE / 4);
+    if (fabs(f.mean_ratio - 1.0) > 0.01 || f.worst > 0.02)
+        fail_msg("furnace, rough metal dome: mean ratio %.4f, worst pixel %.2f%% off", f.mean_ratio, 100.0 * f.worst);
+    hf_free(&s);
+}
+
 /* The same furnace through hybrid.json on a height field (material 1, the terrain): the specular
  * cone through the horizon march (common/gather.glsl's cones, hybrid_gather's trace). */
 static void
@@ -648,7 +685,7 @@ test_metal_voxels_in_glossy(void **state)
     assert_int_equal(n, m);
     float rg[2 * CGP_BRDF_TABLE_SIZE];
     cgp_brdf_hemispherical_fill(CGP_BRDF_TABLE_SIZE, rg);
-    float at = r * CGP_BRDF_TABLE_SIZE - 0.5f;
+    float at = r * (CGP_BRDF_TABLE_SIZE - 1);   /* texel j at roughness j / (size - 1) */
     int j = (int)floorf(at);
     float t = at - (float)j;
     double rho_s = f0 * ((1.0f - t) * rg[2 * j] + t * rg[2 * j + 2]) + ((1.0f - t) * rg[2 * j + 1] + t * rg[2 * j + 3]);
@@ -704,6 +741,7 @@ main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_furnace_ggx),
         cmocka_unit_test(test_furnace_hybrid),
+        cmocka_unit_test(test_furnace_rough_dome),
         cmocka_unit_test(test_mirror),
         cmocka_unit_test(test_glass_slab),
         cmocka_unit_test(test_lambertian_unchanged),
