@@ -156,6 +156,43 @@ test_vct_runs(void **state)
     assert_true(atof(gi + 5) > 0.1);
 }
 
+/* Parameter stages: a change of a parameter that the gather reads every frame (step) or at its
+ * prepare (cones) compiles nothing and keeps the voxels (the demo's rebuilt line after the change);
+ * one that changes the graph's slots (specular: an output) compiles it again, which voxelizes
+ * again. */
+static void
+test_param_stages(void **state)
+{
+    (void)state;
+    static const struct {
+        const char *keys, *applied;
+        bool compiles;
+    } cases[] = {
+        {"shift+tab,shift+tab,down,down,right", "param: gather.step applied (read by the next frame", false},
+        {"shift+tab,shift+tab,left", "param: gather.cones applied (the pass prepared again", false},
+        {"shift+tab,shift+tab,down,down,down,down,down,down,right", "param: gather.specular = false", true},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        const char *log = cg_test_tmp_path("stages.txt");
+        char args[8192];
+        snprintf(args, sizeof args,
+                 "builtin:cornell --graph vct.json --set vox.resolution=32 --size 48x32 --frames %d "
+                 "--timing sync --ui off --keys %s", (int)strlen(cases[i].keys) / 4 + 4, cases[i].keys);
+        assert_int_equal(run("CONEGRAPH_DEMO_EXE", args, log), 0);
+        const char *out = read_text(log);
+        if (!strstr(out, cases[i].applied))
+            fail_msg("keys %s: no '%s' in:\n%s", cases[i].keys, cases[i].applied, out);
+        const char *rebuilt = strstr(out, "rebuilt: ");
+        assert_non_null(rebuilt);
+        bool compiled = strstr(out, "graph: compiled") != NULL;
+        bool kept = strncmp(strstr(rebuilt, "vox: ") ? strstr(rebuilt, "vox: ") + 5 : "", "geometry kept", 13) == 0;
+        fprintf(stderr, "# keys %s: graph compiled again %s, voxels %s\n", cases[i].keys, compiled ? "yes" : "no",
+                kept ? "kept" : "voxelized again");
+        if (compiled != cases[i].compiles || kept == cases[i].compiles)
+            fail_msg("keys %s: compiled %d, voxels kept %d:\n%s", cases[i].keys, compiled, kept, out);
+    }
+}
+
 static double
 mean_of(const char *path)
 {
@@ -169,7 +206,7 @@ mean_of(const char *path)
 
 /* Keys typed through --keys take the same path as the window's: Shift+Tab from the first
  * pass wraps to the last (final, composite), whose first parameter is exposure; two steps
- * of Right raise it by 1 EV, recompile, and the image brightens. Key 2 shows another resource. */
+ * of Right raise it by 1 EV, read by the next frame, and the image brightens. Key 2 shows another resource. */
 static void
 test_keys(void **state)
 {
@@ -184,9 +221,11 @@ test_keys(void **state)
              "--keys shift+tab,right,right --screenshot '%s'", bright);
     assert_int_equal(run("CONEGRAPH_DEMO_EXE", args, log), 0);
     const char *out = read_text(log);
-    assert_non_null(strstr(out, "param: final.exposure = 0.5 (float -20..20, step 0.5)"));
-    assert_non_null(strstr(out, "param: final.exposure = 1 (float -20..20, step 0.5)"));
-    assert_non_null(strstr(out, "graph: compiled and prepared for 48x32"));
+    assert_non_null(strstr(out, "param: final.exposure = 0.5 (float -20..20, step 0.5; a change redoes: frame)"));
+    assert_non_null(strstr(out, "param: final.exposure = 1 (float -20..20, step 0.5; a change redoes: frame)"));
+    /* exposure is read by composite's execute: nothing compiles again. */
+    assert_non_null(strstr(out, "param: final.exposure applied (read by the next frame"));
+    assert_null(strstr(out, "graph: compiled and prepared"));
     double m0 = mean_of(plain), m1 = mean_of(bright);
     if (!(m1 > m0 * 1.3))
         fail_msg("+1 EV: mean %g, before %g", m1, m0);
@@ -715,6 +754,7 @@ main(int argc, char **argv)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_direct_matches_render),
         cmocka_unit_test(test_vct_runs),
+        cmocka_unit_test(test_param_stages),
         cmocka_unit_test(test_keys),
         cmocka_unit_test(test_plugin_levels_and_gl_error),
         cmocka_unit_test(test_ui_shown),

@@ -13,9 +13,11 @@ passes_usage(FILE *out)
         "\n"
         "Lists every registered pass type (built-in passes, plugins from $CONEGRAPH_PLUGIN_PATH\n"
         "and --plugin) with its description and parameters: name, type, default, the values it\n"
-        "takes (range, allowed values, power of two, choices), a one-line doc and, in brackets,\n"
-        "what it depends on, all read from the pass types' parameter tables: the same data that\n"
-        "validates graph files and --set, and that the demo steps through.\n"
+        "takes (range, allowed values, power of two, choices), what a change redoes (graph: the\n"
+        "graph compiles again; prepare: the pass alone is prepared again; frame: nothing, the\n"
+        "next frame reads it), a one-line doc and, in brackets, what it depends on, all read from\n"
+        "the pass types' parameter tables: the same data that validates graph files and --set,\n"
+        "and that the demo steps through.\n"
         "\n"
         "  --markdown     print Markdown (docs/pass-parameters.md is generated this way)\n"
         "  --plugin PATH  load a pass plugin (a shared object) first; may be repeated\n"
@@ -103,7 +105,10 @@ print_markdown(const fg_registry *registry)
            "(see graph-files.md). A value is checked where it is set: ranges are inclusive, a list\n"
            "of values is all the parameter takes. Dependencies on other parameters of the same pass\n"
            "are in italics: \"only with\" names the setting under which the parameter matters at all,\n"
-           "\"greater than\" and \"less than\" are checked (while it matters) when the graph compiles.\n");
+           "\"greater than\" and \"less than\" are checked (while it matters) when the graph compiles.\n"
+           "The column \"a change redoes\" says what an interface (the demo) redoes when the value\n"
+           "changes: the graph (compiled and prepared again: every pass's kept work is dropped), the\n"
+           "pass's prepare alone, or nothing but the next frame.\n");
     for (int i = 0; i < fg_registry_count(registry); i++) {
         const fg_pass_type *t = fg_registry_at(registry, i);
         printf("\n## `%s`%s\n\n%s\n\n", t->name, t->side_effect ? " (side effect: never culled)" : "",
@@ -112,8 +117,8 @@ print_markdown(const fg_registry *registry)
             printf("No parameters.\n");
             continue;
         }
-        printf("| parameter | type | default | values | description |\n"
-               "|---|---|---|---|---|\n");
+        printf("| parameter | type | default | values | a change redoes | description |\n"
+               "|---|---|---|---|---|---|\n");
         for (int k = 0; k < t->param_count; k++) {
             const fg_param_desc *p = &t->params[k];
             param_texts x;
@@ -122,7 +127,7 @@ print_markdown(const fg_registry *registry)
             markdown_cell(x.def);
             printf("` | ");
             markdown_cell(x.values);
-            printf(" | ");
+            printf(" | %s | ", fg_param_stage_name(p->stage));
             markdown_cell(p->doc);
             if (x.depends[0]) {
                 printf(" (*");
@@ -144,8 +149,9 @@ print_text(const fg_registry *registry)
             const fg_param_desc *p = &t->params[k];
             param_texts x;
             describe(p, &x);
-            printf("  %-16s %-6s default %-8s %-24s %s%s%s%s\n", p->name, type_name(p->type), x.def, x.values,
-                   p->doc, x.depends[0] ? " [" : "", x.depends, x.depends[0] ? "]" : "");
+            printf("  %-16s %-6s default %-8s %-24s %-7s %s%s%s%s\n", p->name, type_name(p->type), x.def, x.values,
+                   fg_param_stage_name(p->stage), p->doc, x.depends[0] ? " [" : "", x.depends,
+                   x.depends[0] ? "]" : "");
         }
     }
 }

@@ -325,6 +325,7 @@ apply_changes(demo *d, cg_error *err)
     cg_error why = { 0 };
     if (compile_and_prepare(d, &why)) {
         d->change_count = 0;
+        d->report_rebuilt = true;
         return true;
     }
     fprintf(stderr, "conegraph-demo: %s; change undone\n", why.message);
@@ -356,9 +357,42 @@ next_change(demo *d)
     return &d->changes[d->change_count];
 }
 
+static void refuse(demo *d, const char *why);
+
+/* A change of a parameter that execute reads (FG_STAGE_FRAME) or prepare (FG_STAGE_PREPARE) is
+ * applied at once, without compiling the graph: the passes keep what they cached (the voxels when
+ * only the gather's march changed). Its dependencies are checked as a compile would; what fails is
+ * undone. False: the change needs the graph compiled (FG_STAGE_GRAPH). */
+static bool
+apply_in_place(demo *d, pending_change *c, const fg_pass *pass, const fg_param_desc *desc)
+{
+    if (desc->stage == FG_STAGE_GRAPH)
+        return false;
+    cg_error why = { 0 };
+    bool ok = fg_pass_check_params(pass, &why) &&
+              (desc->stage != FG_STAGE_PREPARE || fg_graph_prepare_pass(d->graph, fg_pass_name(pass), &why));
+    if (!ok) {
+        cg_error undo = { 0 };
+        if (!fg_graph_set_param(d->graph, fg_pass_name(pass), desc->name, c->previous, NULL, &undo) ||
+            (desc->stage == FG_STAGE_PREPARE && !fg_graph_prepare_pass(d->graph, fg_pass_name(pass), &undo)))
+            d->recompile = true;    /* the pass could not go back as it was: compile it all */
+        refuse(d, why.message);
+        return true;
+    }
+    printf("param: %s.%s applied (%s)\n", fg_pass_name(pass), desc->name,
+           desc->stage == FG_STAGE_FRAME ? "read by the next frame; nothing recompiled"
+                                         : "the pass prepared again; the graph and the other passes kept");
+    d->report_rebuilt = true;
+    d->notice[0] = '\0';
+    print_selection(d);
+    return true;
+}
+
 static void
 commit_change(demo *d, pending_change *c, const fg_pass *pass, const fg_param_desc *desc)
 {
+    if (apply_in_place(d, c, pass, desc))
+        return;
     snprintf(c->pass, sizeof c->pass, "%s", fg_pass_name(pass));
     snprintf(c->param, sizeof c->param, "%s", desc->name);
     d->change_count++;
@@ -894,6 +928,25 @@ frame_median_ms(const demo *d)
     return app_median(sorted, d->frame_ms_count);
 }
 
+/* stdout: what each pass that keeps work across frames redid in the frame just run
+ * (fg_pass_rebuilt), one line, so that a parameter's change shows what it cost. */
+static void
+print_rebuilt(demo *d)
+{
+    const int *order;
+    int live = fg_graph_order(d->graph, &order);
+    printf("rebuilt:");
+    int listed = 0;
+    for (int k = 0; k < live; k++) {
+        const fg_pass *pass = fg_graph_pass_at(d->graph, order[k]);
+        const char *what = fg_pass_rebuilt(pass);
+        if (what && *what)
+            printf("%s %s: %s", listed++ ? " |" : "", fg_pass_name(pass), what);
+    }
+    printf("%s\n", listed ? "" : " (no pass keeps work across frames)");
+    fflush(stdout);
+}
+
 /* Title and stdout: the selection, frame time, per-pass times and GI memory. */
 static void
 report_status(demo *d, bool force)
@@ -1068,6 +1121,10 @@ run(demo *d)
         if (errors > 0) {
             fprintf(stderr, "conegraph-demo: %d GL error(s) in frame %d (logged above)\n", errors, frames_run);
             return 1;
+        }
+        if (d->report_rebuilt) {
+            d->report_rebuilt = false;
+            print_rebuilt(d);
         }
         if (d->print_report) {
             d->print_report = false;

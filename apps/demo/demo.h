@@ -115,6 +115,7 @@ typedef struct demo {
     int screenshot_serial;
     char last_screenshot[4096]; /* the latest path written, for the UI */
     bool print_report;
+    bool report_rebuilt;        /* after a change: the next frame prints what each pass redid */
 
     double frame_ms[FRAME_HISTORY];
     int frame_ms_count;

@@ -361,7 +361,8 @@ demo_param_describe(const fg_pass *pass, const fg_param_desc *desc, char *out, s
     fg_param_dependency_text(desc, depends, sizeof depends);
     if (depends[0])
         snprintf(state, sizeof state, "; %s%s", depends, fg_param_active(pass, desc) ? "" : ": inactive now");
-    snprintf(out, size, "%s.%s = %s (%s%s): %s", fg_pass_name(pass), desc->name, text, range, state, desc->doc);
+    snprintf(out, size, "%s.%s = %s (%s%s; a change redoes: %s): %s", fg_pass_name(pass), desc->name, text, range,
+             state, fg_param_stage_name(desc->stage), desc->doc);
 }
 
 /* ------------------------------------------------------------ selection */

@@ -246,6 +246,36 @@ fg_graph_prepare(fg_graph *graph, cg_error *err)
     return true;
 }
 
+bool
+fg_graph_prepare_pass(fg_graph *graph, const char *pass_name, cg_error *err)
+{
+    if (!graph->prepared)
+        return cg_fail(err, CG_ERR_USAGE, "fg_graph_prepare_pass: the graph is not prepared");
+    fg_pass *pass = fg_graph_find_pass(graph, pass_name);
+    if (!pass)
+        return cg_fail(err, CG_ERR_USAGE, "fg_graph_prepare_pass: no pass '%s'", pass_name);
+    if (!pass->prepared)
+        return true;    /* culled: nothing made, nothing to make */
+    if (pass->type->destroy)
+        pass->type->destroy(pass->state);
+    pass->state = NULL;
+    pass->prepared = false;
+    pass->rebuilt[0] = '\0';
+    if (!pass->type->prepare) {
+        pass->prepared = true;
+        return true;
+    }
+    cg_error local = { 0 };
+    if (!pass->type->prepare(pass, &pass->state, &local)) {
+        if (local.status == CG_OK)
+            return cg_fail(err, CG_ERR_PASS, "pass '%s' (type %s): prepare failed without a reason", pass->name,
+                           pass->type->name);
+        return cg_fail(err, local.status, "pass '%s' (type %s): %s", pass->name, pass->type->name, local.message);
+    }
+    pass->prepared = true;
+    return true;
+}
+
 /* ---------------------------------------------------------------- execute */
 
 static double

@@ -174,6 +174,20 @@ fg_param_accepts(const fg_param_desc *p, double v)
     return true;
 }
 
+const char *
+fg_param_stage_name(fg_param_stage stage)
+{
+    switch (stage) {
+    case FG_STAGE_PREPARE:
+        return "prepare";
+    case FG_STAGE_FRAME:
+        return "frame";
+    case FG_STAGE_GRAPH:
+    default:
+        return "graph";
+    }
+}
+
 void
 fg_param_values_text(const fg_param_desc *p, char *buf, size_t size)
 {

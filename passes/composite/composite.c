@@ -20,10 +20,10 @@
 enum { TONEMAP_NONE, TONEMAP_REINHARD, TONEMAP_ACES };
 
 static const fg_param_desc composite_params[] = {
-    { .name = "exposure", .type = FG_PARAM_FLOAT, .min = -20.0, .max = 20.0,
+    { .name = "exposure", .type = FG_PARAM_FLOAT, .stage = FG_STAGE_FRAME, .min = -20.0, .max = 20.0,
       .step = 0.5,
       .doc = "exposure of the ldr output in EV: radiance is scaled by 2^exposure before the tonemap (hdr is not)" },
-    { .name = "tonemap", .type = FG_PARAM_ENUM, .default_value = TONEMAP_ACES, .choices = "none|reinhard|aces",
+    { .name = "tonemap", .type = FG_PARAM_ENUM, .stage = FG_STAGE_FRAME, .default_value = TONEMAP_ACES, .choices = "none|reinhard|aces",
       .doc = "tonemap operator of the ldr output: clamp, Reinhard on luminance, or the Narkowicz ACES fit" },
 };
 

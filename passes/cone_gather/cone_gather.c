@@ -35,28 +35,12 @@
 #include "cg/shader.h"
 
 static const fg_param_desc cone_gather_params[] = {
-    { .name = "cones", .type = FG_PARAM_INT, .default_value = 6, .min = 1, .max = 26,
-      .allowed = FG_PARAM_VALUES(CGP_CONE_SET_SIZES),
-      .doc = "diffuse cones: 1, 6 (Crassin et al.), 9 (VCT paper 3.2.1), 16 or 26 (16 with its outer ring split in two); weights integrate the cosine lobe to 1" },
-    { .name = "aperture", .type = FG_PARAM_FLOAT, .min = 0, .max = 150,
-      .step = 5,
-      .doc = "full apex angle of the diffuse cones in degrees; 0: per cone, the cone with its cell's solid angle" },
-    { .name = "step", .type = FG_PARAM_FLOAT, .default_value = 0.5, .min = 0.05, .max = 4,
-      .doc = "sample spacing as a fraction of the cone diameter; 0.5 and less: one sampled voxel or less, "
-             "where the coverage per step is exact and the result independent of the step" },
-    { .name = "start_offset", .type = FG_PARAM_FLOAT, .default_value = 1.5, .min = 0, .max = 16,
-      .doc = "voxels the cone origin is moved along the normal, off the surface's own voxels" },
-    { .name = "lod_bias", .type = FG_PARAM_FLOAT, .min = -4, .max = 4,
-      .step = 0.25,
-      .doc = "added to the matched level, one below hybrid eq. 8 (a trilinear sample there spans the "
-             "footprint); -1 (graphs/vct.json) measured closer to the path tracer, docs/vct.md" },
-    { .name = "max_distance", .type = FG_PARAM_FLOAT, .min = 0, .max = 1e9,
-      .doc = "metres a cone travels at most; 0: the volume's diagonal" },
+    CGP_MARCH_PARAMS,
     { .name = "specular", .type = FG_PARAM_BOOL,
       .doc = "also trace a specular cone (output 'reflection', VCT paper 3.2.2): its aperture from the pixel's "
              "roughness, weighted by the GGX lobe's directional albedo (split sum) with the material inputs" },
     { .name = "roughness", .type = FG_PARAM_FLOAT, .default_value = 0.3, .min = 0, .max = 1,
-      .step = 0.05, .active_when = "specular",
+      .step = 0.05, .active_when = "specular", .stage = FG_STAGE_FRAME,
       .doc = "specular cone without the material inputs: its half-angle has tangent roughness^2, at least 0.01" },
     { .name = "refraction", .type = FG_PARAM_BOOL,
       .doc = "also trace a refracted cone where the material transmits (output 'refraction', VCT paper 3.2.2; "
@@ -64,10 +48,10 @@ static const fg_param_desc cone_gather_params[] = {
     { .name = "shadow_cone", .type = FG_PARAM_BOOL,
       .doc = "also trace a cone towards a light (output 'visibility', VCT paper 3.2.3)" },
     { .name = "shadow_light", .type = FG_PARAM_INT, .min = 0, .max = 65535,
-      .active_when = "shadow_cone",
+      .active_when = "shadow_cone", .stage = FG_STAGE_FRAME,
       .doc = "shadow cone: index of the scene light" },
     { .name = "shadow_aperture", .type = FG_PARAM_FLOAT, .default_value = 10, .min = 0.1, .max = 90,
-      .step = 1, .active_when = "shadow_cone",
+      .step = 1, .active_when = "shadow_cone", .stage = FG_STAGE_FRAME,
       .doc = "shadow cone: full apex angle in degrees; a directional light with an angular diameter takes that instead" },
     { .name = "count_reads", .type = FG_PARAM_BOOL,
       .doc = "also output 'reads': the volume reads of each pixel's diffuse cones (a cost measure that does "

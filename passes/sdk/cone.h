@@ -1,6 +1,6 @@
 /* sdk/cone.h (pass SDK): diffuse cone sets for cone tracing: directions, apertures and weights.
  *
- * Declares: CGP_CONE_MAX, CGP_CONE_SET_SIZES, cgp_cone, cgp_cone_set, cgp_cone_set_make,
+ * Declares: CGP_CONE_MAX, CGP_CONE_SET_SIZES, CGP_MARCH_PARAMS, cgp_cone, cgp_cone_set, cgp_cone_set_make,
  *           cgp_cone_set_sizes, cgp_cone_set_valid_size, cgp_cone_frame, cgp_cone_set_of_param,
  *           cgp_cone_set_of_pass,
  *           cgp_cone_block_fill, cgp_cone_block_fill_march, cgp_cone_upload, cgp_volume_model,
@@ -32,6 +32,35 @@
 /* The sizes of the sets cgp_cone_set_make makes, as a list for parameter tables:
  * `.allowed = FG_PARAM_VALUES(CGP_CONE_SET_SIZES)`. */
 #define CGP_CONE_SET_SIZES 1, 6, 9, 16, 26
+
+/* The march parameters both gather passes take, the first six entries of their tables:
+ * cgp_cone_set_of_param reads `cones` at prepare, cgp_gather_begin the others every frame
+ * (cgp_cone_block_fill), so a change of those redoes nothing but the next frame. */
+#define CGP_MARCH_PARAMS                                                                              \
+    { .name = "cones", .type = FG_PARAM_INT, .default_value = 6, .min = 1, .max = 26,                 \
+      .allowed = FG_PARAM_VALUES(CGP_CONE_SET_SIZES), .stage = FG_STAGE_PREPARE,                      \
+      .doc = "diffuse cones: 1, 6 (Crassin et al.), 9 (VCT paper 3.2.1), 16 or 26 (16 with its outer " \
+             "ring split in two); weights integrate the cosine lobe to 1 (hybrid eq. 3-4)" },          \
+    { .name = "aperture", .type = FG_PARAM_FLOAT, .min = 0, .max = 150, .step = 5,                    \
+      .stage = FG_STAGE_FRAME,                                                                       \
+      .doc = "full apex angle of the diffuse cones in degrees; 0: per cone, the cone with its cell's " \
+             "solid angle" },                                                                        \
+    { .name = "step", .type = FG_PARAM_FLOAT, .default_value = 0.5, .min = 0.05, .max = 4,            \
+      .stage = FG_STAGE_FRAME,                                                                       \
+      .doc = "sample spacing as a fraction of the cone diameter (hybrid_gather: its 3D steps, and "   \
+             "method=paper with advance=step); 0.5 and less: one sampled voxel or less, where the "   \
+             "coverage per step is exact and the result independent of the step" },                  \
+    { .name = "start_offset", .type = FG_PARAM_FLOAT, .default_value = 1.5, .min = 0, .max = 16,      \
+      .stage = FG_STAGE_FRAME,                                                                       \
+      .doc = "voxels the cone origin is moved along the normal, off the surface's own voxels "       \
+             "(hybrid_gather with method=paper: the coarser of voxel and 2D texel)" },              \
+    { .name = "lod_bias", .type = FG_PARAM_FLOAT, .min = -4, .max = 4, .step = 0.25,                  \
+      .stage = FG_STAGE_FRAME,                                                                       \
+      .doc = "added to the mip level (cone_gather: the matched level, one below hybrid eq. 8, where " \
+             "a trilinear sample spans the footprint; hybrid_gather: both lightmaps', see level); -1 " \
+             "(graphs/vct.json) measured closer to the path tracer, docs/vct.md" },                 \
+    { .name = "max_distance", .type = FG_PARAM_FLOAT, .min = 0, .max = 1e9, .stage = FG_STAGE_FRAME,  \
+      .doc = "metres a cone travels at most; 0: the volume's (hybrid_gather: the maps') diagonal" }
 
 typedef struct cgp_cone {
     float direction[3];     /* tangent space, z = normal; unit length */

@@ -1,8 +1,8 @@
 /* cg/fg.h: the frame graph: pass types, their parameters and resources, compile and execute.
  *
  * Declares:
- *   pass types   FG_ABI_VERSION, fg_param_type, fg_param_values, FG_PARAM_VALUES,
- *                fg_param_bound, fg_param_desc, fg_pass_type
+ *   pass types   FG_ABI_VERSION, fg_param_type, fg_param_stage, fg_param_stage_name, fg_param_values,
+ *                FG_PARAM_VALUES, fg_param_bound, fg_param_desc, fg_pass_type
  *   resources    fg_resource_kind, fg_access, fg_resource_desc, fg_resource_bytes
  *   registry     fg_registry, fg_registry_create, fg_registry_destroy, fg_registry_add,
  *                fg_registry_find, fg_registry_count, fg_registry_at, fg_param_values_text,
@@ -15,7 +15,8 @@
  *                fg_buffer, fg_resource, fg_pass_report_rebuilt, fg_pass_rebuilt
  *   graph        fg_graph, fg_source_loc, fg_graph_create, fg_graph_destroy, fg_graph_add_pass,
  *                fg_graph_set_param, fg_graph_connect, fg_graph_mark_output, fg_graph_compile,
- *                fg_graph_prepare, fg_graph_execute, introspection and report functions
+ *                fg_graph_prepare, fg_graph_prepare_pass, fg_graph_execute, introspection and
+ *                report functions
  *
  * A pass type is static data plus four callbacks. A pass instance (fg_pass) is a node of
  * a graph with parameter values. declare() states the instance's inputs and outputs for
@@ -41,10 +42,27 @@
  * 2: fg_param_desc gained its constraints (allowed values, power of two, step hints,
  *    dependencies between parameters).
  * 3: cg_gpu_scene lost its no-shadow fallback and cg_gpu_scene_bind_shadow (now the pass SDK's,
- *    sdk/shadow.h). */
-#define FG_ABI_VERSION 3u
+ *    sdk/shadow.h).
+ * 4: fg_param_desc gained its stage. */
+#define FG_ABI_VERSION 4u
 
 /* ---------------------------------------------------------------- parameters */
+
+/* What a change of a parameter's value redoes, so that an interface (the demo) redoes no more:
+ * FG_STAGE_GRAPH     the graph is compiled and prepared again (declare reads it: slots, formats,
+ *                    sizes; the default, always safe), which drops every pass's kept work;
+ * FG_STAGE_PREPARE   the pass's prepare alone runs again (its programs, its state: prepare reads
+ *                    it), the graph's storage and the other passes' work kept
+ *                    (fg_graph_prepare_pass);
+ * FG_STAGE_FRAME     nothing: execute reads it every frame, so the next frame has it. */
+typedef enum fg_param_stage {
+    FG_STAGE_GRAPH = 0,
+    FG_STAGE_PREPARE,
+    FG_STAGE_FRAME
+} fg_param_stage;
+
+/* "graph", "prepare" or "frame". */
+const char *fg_param_stage_name(fg_param_stage stage);
 
 typedef enum fg_param_type {
     FG_PARAM_INT,
@@ -106,6 +124,8 @@ typedef struct fg_param_desc {
                               * NULL: always. The bounds below are checked only while active. */
     fg_param_bound greater_than; /* value > scale x that parameter's value */
     fg_param_bound less_than;    /* value < scale x that parameter's value */
+
+    fg_param_stage stage;   /* what a change redoes (above); 0: the graph */
 } fg_param_desc;
 
 /* ---------------------------------------------------------------- resources */
@@ -305,6 +325,9 @@ bool fg_graph_compile(fg_graph *graph, const fg_frame *frame, const fg_compile_o
                       cg_error *err);
 /* Creates GL storage and calls each live pass's prepare(). GL must be current. */
 bool fg_graph_prepare(fg_graph *graph, cg_error *err);
+/* Prepares one live pass again (destroy, then prepare) in a prepared graph, its storage and the
+ * other passes as they are: what a change of a FG_STAGE_PREPARE parameter needs. GL current. */
+bool fg_graph_prepare_pass(fg_graph *graph, const char *pass, cg_error *err);
 /* Runs one frame: per live pass, its barrier, a timestamp, execute(), a timestamp. */
 bool fg_graph_execute(fg_graph *graph, const fg_frame *frame, fg_timing_mode timing, cg_error *err);
 
