@@ -24,67 +24,6 @@ fg_resource_storage(const fg_graph *graph, int resource, bool previous)
     return &graph->storage[second ? r->storage2 : r->info.storage];
 }
 
-/* An input shadows an output of the same name: both are then one in-place resource. */
-static const fg_storage *
-slot_storage(const fg_pass *pass, const char *name, const fg_resource_desc **desc)
-{
-    const fg_graph *graph = pass->graph;
-    for (int i = 0; i < pass->input_count; i++) {
-        const fg_input *in = &pass->inputs[i];
-        if (strcmp(in->name, name))
-            continue;
-        for (int o = 0; o < pass->output_count; o++)
-            if (pass->outputs[o].in_place_input == i) {
-                if (desc)
-                    *desc = &graph->resources[pass->outputs[o].resource].info.desc;
-                return fg_resource_storage(graph, pass->outputs[o].resource, false);
-            }
-        if (in->resource < 0)
-            return NULL;
-        if (desc)
-            *desc = &graph->resources[in->resource].info.desc;
-        return fg_resource_storage(graph, in->resource, in->previous);
-    }
-    for (int o = 0; o < pass->output_count; o++) {
-        if (strcmp(pass->outputs[o].name, name) || pass->outputs[o].resource < 0)
-            continue;
-        if (desc)
-            *desc = &graph->resources[pass->outputs[o].resource].info.desc;
-        return fg_resource_storage(graph, pass->outputs[o].resource, false);
-    }
-    return NULL;
-}
-
-bool
-fg_input_present(const fg_pass *pass, const char *name)
-{
-    for (int i = 0; i < pass->input_count; i++)
-        if (!strcmp(pass->inputs[i].name, name))
-            return pass->inputs[i].resource >= 0;
-    return false;
-}
-
-GLuint
-fg_texture(const fg_pass *pass, const char *name)
-{
-    const fg_storage *s = slot_storage(pass, name, NULL);
-    return s && s->desc.kind != FG_BUFFER ? s->object : 0;
-}
-
-GLuint
-fg_buffer(const fg_pass *pass, const char *name)
-{
-    const fg_storage *s = slot_storage(pass, name, NULL);
-    return s && s->desc.kind == FG_BUFFER ? s->object : 0;
-}
-
-const fg_resource_desc *
-fg_resource(const fg_pass *pass, const char *name)
-{
-    const fg_resource_desc *desc = NULL;
-    return slot_storage(pass, name, &desc) ? desc : NULL;
-}
-
 GLuint
 fg_graph_texture(const fg_graph *graph, const char *source)
 {
@@ -229,12 +168,17 @@ fg_graph_prepare(fg_graph *graph, cg_error *err)
         fg_pass *pass = graph->passes[graph->order[k]];
         pass->ms = -1;
         pass->rebuilt[0] = '\0';
+        pass->undeclared_slot[0] = '\0';
         if (!pass->type->prepare) {
             pass->prepared = true;
             continue;
         }
         cg_error local = { 0 };
-        if (!pass->type->prepare(pass, &pass->state, &local)) {
+        bool prepared = pass->type->prepare(pass, &pass->state, &local);
+        pass->prepared = prepared;  /* a state made is released with the graph's */
+        if (!fg_pass_slots_check(pass, err))
+            return false;           /* a misspelt slot, whatever prepare() said */
+        if (!prepared) {
             if (local.status == CG_OK)
                 return cg_fail(err, CG_ERR_PASS, "pass '%s' (type %s): prepare failed without a reason",
                                pass->name, pass->type->name);
@@ -261,12 +205,17 @@ fg_graph_prepare_pass(fg_graph *graph, const char *pass_name, cg_error *err)
     pass->state = NULL;
     pass->prepared = false;
     pass->rebuilt[0] = '\0';
+    pass->undeclared_slot[0] = '\0';
     if (!pass->type->prepare) {
         pass->prepared = true;
         return true;
     }
     cg_error local = { 0 };
-    if (!pass->type->prepare(pass, &pass->state, &local)) {
+    bool prepared = pass->type->prepare(pass, &pass->state, &local);
+    pass->prepared = prepared;
+    if (!fg_pass_slots_check(pass, err))
+        return false;
+    if (!prepared) {
         if (local.status == CG_OK)
             return cg_fail(err, CG_ERR_PASS, "pass '%s' (type %s): prepare failed without a reason", pass->name,
                            pass->type->name);
@@ -337,7 +286,11 @@ fg_graph_execute(fg_graph *graph, const fg_frame *frame, fg_timing_mode timing, 
         }
         cg_error local = { 0 };
         pass->rebuilt[0] = '\0';
-        if (!pass->type->execute(pass, pass->state, &local)) {
+        pass->undeclared_slot[0] = '\0';
+        bool executed = pass->type->execute(pass, pass->state, &local);
+        if (!fg_pass_slots_check(pass, err))
+            return false;
+        if (!executed) {
             if (local.status == CG_OK)
                 return cg_fail(err, CG_ERR_PASS, "pass '%s' (type %s): execute failed without a reason",
                                pass->name, pass->type->name);

@@ -5,8 +5,8 @@
  *           fg_split_source, fg_param_value,
  *           fg_connection, fg_input, fg_output, fg_res, fg_storage, struct fg_pass,
  *           struct fg_graph, struct fg_declare, struct fg_registry, fg_graph_free, fg_graph_release_gl,
- *           fg_graph_reset_compile, fg_is_identifier, fg_param_find, fg_param_choice_count,
- *           fg_param_choice, fg_param_table_check, fg_param_parse, fg_param_accepts,
+ *           fg_graph_reset_compile, fg_pass_slots_check, fg_is_identifier, fg_param_find,
+ *           fg_param_choice_count, fg_param_choice, fg_param_table_check, fg_param_parse, fg_param_accepts,
  *           fg_param_expected, fg_loc_is_assignment, fg_param_lead, fg_param_active_in.
  *
  * Nothing here is part of the public interface: passes see only cg/fg.h.
@@ -173,6 +173,9 @@ struct fg_pass {
     bool prepared;
     double ms;
     char rebuilt[FG_REBUILT_MAX]; /* fg_pass_report_rebuilt during the last execute */
+    /* The first slot name the pass looked up without having declared it (fg_pass_slot, fg_texture,
+     * ...), "" when none: fg_graph_prepare and fg_graph_execute fail with it after the callback. */
+    char undeclared_slot[64];
     GLuint queries[FG_QUERY_RING][2];
     bool query_issued[FG_QUERY_RING];
 };
@@ -251,6 +254,9 @@ int fg_graph_find_resource_index(const fg_graph *graph, const char *source);
 void fg_graph_free(fg_graph *graph);
 /* Drops GL objects and pass states (GL must be current when anything was prepared). */
 void fg_graph_release_gl(fg_graph *graph);
+/* After a pass's prepare() or execute(): false, with an error naming the pass and the slot, when it
+ * looked up a slot it did not declare; clears the record. */
+bool fg_pass_slots_check(fg_pass *pass, cg_error *err);
 /* Forgets everything compile produced. */
 void fg_graph_reset_compile(fg_graph *graph);
 

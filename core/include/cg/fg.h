@@ -11,8 +11,10 @@
  *   declare      fg_declare, fg_declare_input, fg_declare_output, fg_declare_nothing_to_do
  *   pass access  fg_pass, fg_pass_name, fg_pass_type_of, fg_pass_frame, fg_param_int,
  *                fg_param_float, fg_param_bool, fg_param_enum, fg_param_string,
- *                fg_param_active, fg_pass_check_params, fg_input_present, fg_texture,
- *                fg_buffer, fg_resource, fg_pass_report_rebuilt, fg_pass_rebuilt
+ *                fg_param_active, fg_pass_check_params, fg_slot, FG_NO_SLOT, fg_pass_slot,
+ *                fg_pass_slot_if_declared, fg_slot_present, fg_slot_texture, fg_slot_buffer,
+ *                fg_slot_resource, fg_input_present, fg_texture, fg_buffer, fg_resource,
+ *                fg_pass_report_rebuilt, fg_pass_rebuilt
  *   graph        fg_graph, fg_source_loc, fg_graph_create, fg_graph_destroy, fg_graph_add_pass,
  *                fg_graph_set_param, fg_graph_connect, fg_graph_mark_output, fg_graph_compile,
  *                fg_graph_prepare, fg_graph_prepare_pass, fg_graph_execute, introspection and
@@ -224,7 +226,32 @@ bool fg_param_active(const fg_pass *pass, const fg_param_desc *desc);
  * calls it for every pass before any declare(); an interface may call it after a change. */
 bool fg_pass_check_params(const fg_pass *pass, cg_error *err);
 
-/* During execute: resources of this pass by slot name (inputs and outputs). */
+/* A slot of a pass instance: one of the inputs and outputs its declare() stated, found by name once
+ * in prepare() and kept in the pass's state; execute() binds through it:
+ *     s->normal = fg_pass_slot(pass, "normal");                       (prepare)
+ *     glBindTextureUnit(1, fg_slot_texture(pass, s->normal));          (execute)
+ * A name the pass did not declare is an error, not an absent slot: fg_graph_prepare (or
+ * fg_graph_execute, for a lookup there) fails after the callback with "pass 'P' (type T) looks up
+ * slot 'S', which it does not declare (its slots: ...)". A declared optional input that is not
+ * connected, or whose writer had nothing to do, is a slot whose resource is absent. A handle is
+ * valid until the next fg_graph_compile, which releases every state. */
+typedef struct fg_slot {
+    int index;              /* private: 0 is no slot */
+} fg_slot;
+#define FG_NO_SLOT ((fg_slot){ 0 })
+
+fg_slot fg_pass_slot(const fg_pass *pass, const char *name);
+/* For a slot that declare() states only for some parameter values or scenes: FG_NO_SLOT when it
+ * did not this time (not an error). Use the same name constant in declare() and here. */
+fg_slot fg_pass_slot_if_declared(const fg_pass *pass, const char *name);
+/* The slot's resource is there (connected and not absent); false for FG_NO_SLOT. */
+bool fg_slot_present(const fg_pass *pass, fg_slot slot);
+GLuint fg_slot_texture(const fg_pass *pass, fg_slot slot);  /* 0 when absent or a buffer */
+GLuint fg_slot_buffer(const fg_pass *pass, fg_slot slot);   /* 0 when absent or a texture */
+const fg_resource_desc *fg_slot_resource(const fg_pass *pass, fg_slot slot); /* NULL when absent */
+
+/* The same by slot name, found on every call (a plugin's or a test's shortcut): an undeclared name
+ * fails the graph as above. */
 bool fg_input_present(const fg_pass *pass, const char *name);
 GLuint fg_texture(const fg_pass *pass, const char *name);   /* 0 when absent */
 GLuint fg_buffer(const fg_pass *pass, const char *name);    /* 0 when absent */
