@@ -27,8 +27,14 @@ static const fg_param_desc composite_params[] = {
       .doc = "tonemap operator of the ldr output: clamp, Reinhard on luminance, or the Narkowicz ACES fit" },
 };
 
+/* The optional inputs, declared and found by these names. */
+enum { INDIRECT, ALBEDO, EMISSIVE, REFLECTION, REFRACTION, OPTIONAL_INPUTS };
+static const char *const optional_names[OPTIONAL_INPUTS] = { "indirect", "albedo", "emissive", "reflection",
+                                                             "refraction" };
+
 typedef struct composite_state {
     GLuint program;
+    fg_slot direct, optional[OPTIONAL_INPUTS], hdr, ldr;
 } composite_state;
 
 static bool
@@ -42,23 +48,18 @@ composite_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
 {
     const fg_resource_desc *direct =
         fg_declare_input(decl, "direct", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, true);
-    const fg_resource_desc *inputs[5] = {
-        fg_declare_input(decl, "indirect", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, false),
-        fg_declare_input(decl, "albedo", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, false),
-        fg_declare_input(decl, "emissive", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, false),
-        fg_declare_input(decl, "reflection", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, false),
-        fg_declare_input(decl, "refraction", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, false),
-    };
-    static const char *const names[5] = { "indirect", "albedo", "emissive", "reflection", "refraction" };
-    if (inputs[0] && !inputs[1])
+    const fg_resource_desc *inputs[OPTIONAL_INPUTS];
+    for (int i = 0; i < OPTIONAL_INPUTS; i++)
+        inputs[i] = fg_declare_input(decl, optional_names[i], FG_TEXTURE_2D, FG_ACCESS_SAMPLED, false);
+    if (inputs[INDIRECT] && !inputs[ALBEDO])
         return cg_fail(err, CG_ERR_GRAPH_MISSING_INPUT,
                        "pass '%s': input 'indirect' needs 'albedo' (outgoing = albedo x indirect)",
                        fg_pass_name(pass));
-    for (int i = 0; i < 5; i++)
+    for (int i = 0; i < OPTIONAL_INPUTS; i++)
         if (direct && inputs[i] && !same_size(direct, inputs[i]))
             return cg_fail(err, CG_ERR_GRAPH_INCOMPATIBLE,
                            "pass '%s': input '%s' is %dx%d, input 'direct' %dx%d; composite reads "
-                           "them pixel for pixel", fg_pass_name(pass), names[i], inputs[i]->width,
+                           "them pixel for pixel", fg_pass_name(pass), optional_names[i], inputs[i]->width,
                            inputs[i]->height, direct->width, direct->height);
     fg_resource_desc out = cgp_image_like(pass, direct, GL_RGBA32F);
     fg_declare_output(decl, "hdr", &out, FG_ACCESS_IMAGE_STORE);
@@ -70,7 +71,11 @@ composite_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
 static bool
 composite_prepare(fg_pass *pass, composite_state *st, cg_error *err)
 {
-    (void)pass;
+    st->direct = fg_pass_slot(pass, "direct");
+    for (int i = 0; i < OPTIONAL_INPUTS; i++)
+        st->optional[i] = fg_pass_slot(pass, optional_names[i]);
+    st->hdr = fg_pass_slot(pass, "hdr");
+    st->ldr = fg_pass_slot(pass, "ldr");
     return cgp_compute_program(st, "composite/composite.comp", NULL, &st->program, err);
 }
 
@@ -78,29 +83,29 @@ static bool
 composite_execute(fg_pass *pass, composite_state *st, cg_error *err)
 {
     (void)err;
-    const fg_resource_desc *out = fg_resource(pass, "hdr");
-    GLuint direct = fg_texture(pass, "direct");
-    bool has_indirect = fg_input_present(pass, "indirect");
-    bool has_emissive = fg_input_present(pass, "emissive");
-    bool has_reflection = fg_input_present(pass, "reflection");
-    bool has_refraction = fg_input_present(pass, "refraction");
+    const fg_resource_desc *out = fg_slot_resource(pass, st->hdr);
+    GLuint direct = fg_slot_texture(pass, st->direct);
+    bool has_indirect = fg_slot_present(pass, st->optional[INDIRECT]);
+    bool has_emissive = fg_slot_present(pass, st->optional[EMISSIVE]);
+    bool has_reflection = fg_slot_present(pass, st->optional[REFLECTION]);
+    bool has_refraction = fg_slot_present(pass, st->optional[REFRACTION]);
 
     glUseProgram(st->program);
     /* Absent inputs are never read (the flags say so); a valid texture stays bound anyway. */
     glBindTextureUnit(0, direct);
-    glBindTextureUnit(1, has_indirect ? fg_texture(pass, "indirect") : direct);
-    glBindTextureUnit(2, has_indirect ? fg_texture(pass, "albedo") : direct);
-    glBindTextureUnit(3, has_emissive ? fg_texture(pass, "emissive") : direct);
-    glBindTextureUnit(4, has_reflection ? fg_texture(pass, "reflection") : direct);
-    glBindTextureUnit(5, has_refraction ? fg_texture(pass, "refraction") : direct);
+    glBindTextureUnit(1, has_indirect ? fg_slot_texture(pass, st->optional[INDIRECT]) : direct);
+    glBindTextureUnit(2, has_indirect ? fg_slot_texture(pass, st->optional[ALBEDO]) : direct);
+    glBindTextureUnit(3, has_emissive ? fg_slot_texture(pass, st->optional[EMISSIVE]) : direct);
+    glBindTextureUnit(4, has_reflection ? fg_slot_texture(pass, st->optional[REFLECTION]) : direct);
+    glBindTextureUnit(5, has_refraction ? fg_slot_texture(pass, st->optional[REFRACTION]) : direct);
     glUniform1i(0, has_indirect);
     glUniform1i(1, has_emissive);
     glUniform1i(4, has_reflection);
     glUniform1i(5, has_refraction);
     glUniform1f(2, exp2f(fg_param_float(pass, "exposure")));
     glUniform1i(3, fg_param_enum(pass, "tonemap"));
-    glBindImageTexture(0, fg_texture(pass, "hdr"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-    glBindImageTexture(1, fg_texture(pass, "ldr"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
+    glBindImageTexture(0, fg_slot_texture(pass, st->hdr), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    glBindImageTexture(1, fg_slot_texture(pass, st->ldr), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
     cgp_dispatch_2d(out->width, out->height);
     glUseProgram(0);
     return true;

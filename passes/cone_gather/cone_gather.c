@@ -63,6 +63,7 @@ typedef struct cone_gather_state {
     cgp_gather gather;      /* its block: CG_CONE_GATHER_BLOCK */
     cgp_gather_blocks blocks; /* downsample > 1: the diffuse cones of one pixel a block */
     bool specular, refraction, shadow_cone, count_reads;
+    fg_slot reflection_out, refraction_out, visibility, reads; /* declared with their parameters */
 } cone_gather_state;
 
 static bool
@@ -111,12 +112,18 @@ cone_gather_prepare(fg_pass *pass, cone_gather_state *s, cg_error *err)
     s->refraction = fg_param_bool(pass, "refraction");
     s->shadow_cone = fg_param_bool(pass, "shadow_cone");
     s->count_reads = fg_param_bool(pass, "count_reads");
+    s->reflection_out = s->specular ? fg_pass_slot(pass, "reflection") : FG_NO_SLOT;
+    s->refraction_out = s->refraction ? fg_pass_slot(pass, "refraction") : FG_NO_SLOT;
+    s->visibility = s->shadow_cone ? fg_pass_slot(pass, "visibility") : FG_NO_SLOT;
+    s->reads = s->count_reads ? fg_pass_slot(pass, "reads") : FG_NO_SLOT;
+    const cgp_gather_io io = {fg_pass_slot(pass, "position"), fg_pass_slot(pass, "normal"),
+                              fg_pass_slot(pass, "radiance")};
     char downsample[64], defines[224];
     snprintf(defines, sizeof defines, "%s%s%s%s%s", s->specular ? "#define SPECULAR\n" : "",
              s->refraction ? "#define REFRACTION\n" : "", s->shadow_cone ? "#define SHADOW_CONE\n" : "",
              s->count_reads ? "#define CG_CONE_COUNT_READS\n" : "",
              cgp_gather_blocks_define(pass, downsample, sizeof downsample));
-    return cgp_gather_prepare(s, pass, &s->gather, "cone_gather/cone_gather.comp", defines,
+    return cgp_gather_prepare(s, pass, &s->gather, io, "cone_gather/cone_gather.comp", defines,
                               sizeof(cg_cone_gather_block), err) &&
            cgp_gather_blocks_prepare(s, pass, &s->gather, &s->blocks, "cone_gather/cone_gather.comp", defines, err);
 }
@@ -145,21 +152,21 @@ cone_gather_execute(fg_pass *pass, cone_gather_state *s, cg_error *err)
         .shadow = {light},
     };
 
-    if (!cgp_gather_begin(pass, &s->gather, &block, sizeof block, fg_texture(pass, "volume"),
-                          fg_buffer(pass, "region"), err))
+    if (!cgp_gather_begin(pass, &s->gather, &block, sizeof block, fg_slot_texture(pass, s->gather.slots.volume),
+                          fg_slot_buffer(pass, s->gather.slots.region), err))
         return false;
     if (frame->gpu_scene)
         cg_gpu_scene_bind_lights(frame->gpu_scene);
     if (s->specular)
-        glBindImageTexture(1, fg_texture(pass, "reflection"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+        glBindImageTexture(1, fg_slot_texture(pass, s->reflection_out), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     if (s->refraction)
-        glBindImageTexture(4, fg_texture(pass, "refraction"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+        glBindImageTexture(4, fg_slot_texture(pass, s->refraction_out), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     if (s->shadow_cone)
-        glBindImageTexture(2, fg_texture(pass, "visibility"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
+        glBindImageTexture(2, fg_slot_texture(pass, s->visibility), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
     if (s->count_reads)
-        glBindImageTexture(3, fg_texture(pass, "reads"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+        glBindImageTexture(3, fg_slot_texture(pass, s->reads), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
     cgp_gather_blocks_trace(pass, &s->gather, &s->blocks);
-    cgp_gather_end(pass);
+    cgp_gather_end(pass, &s->gather);
     cgp_gather_blocks_end(&s->blocks);
     return true;
 }

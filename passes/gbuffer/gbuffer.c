@@ -39,19 +39,21 @@
 #include "cg/gpu_scene.h"
 #include "cg/shader.h"
 
-typedef struct gbuffer_state {
-    GLuint program;
-    GLuint fbo;
-    GLuint sky_program;     /* 0 until a frame has a sky */
-    cgp_sky sky;
-} gbuffer_state;
-
 static const char *const color_outputs[] = { "position", "normal", "albedo", "emissive",
                                             "specular", "transmission", "material", "attenuation" };
 static const GLenum color_formats[] = { GL_RGBA32F, GL_RGBA16F, GL_RGBA16F, GL_RGBA32F,
                                         GL_RGBA16F, GL_RGBA16F, GL_RGBA16F, GL_RGBA16F };
 /* GL 4.5 guarantees GL_MAX_DRAW_BUFFERS >= 8: the material takes every one of them. */
 #define COLOR_OUTPUTS 8
+#define EMISSIVE 3          /* color_outputs[EMISSIVE] */
+
+typedef struct gbuffer_state {
+    GLuint program;
+    GLuint fbo;
+    GLuint sky_program;     /* 0 until a frame has a sky */
+    cgp_sky sky;
+    fg_slot depth, color[COLOR_OUTPUTS];
+} gbuffer_state;
 
 static bool
 gbuffer_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
@@ -69,7 +71,9 @@ gbuffer_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
 static bool
 gbuffer_prepare(fg_pass *pass, gbuffer_state *st, cg_error *err)
 {
-    (void)pass;
+    st->depth = fg_pass_slot(pass, "depth");
+    for (int i = 0; i < COLOR_OUTPUTS; i++)
+        st->color[i] = fg_pass_slot(pass, color_outputs[i]);
     st->fbo = cgp_framebuffer(st);
     static const GLenum draw_buffers[COLOR_OUTPUTS] = {
         GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3,
@@ -99,7 +103,7 @@ background_sky(fg_pass *pass, gbuffer_state *st, cg_error *err)
     glUniformMatrix4fv(0, 1, GL_FALSE, frame->view.inv_proj);
     glUniformMatrix4fv(1, 1, GL_FALSE, frame->view.inv_view);
     glUniform1i(2, frame->view.orthographic);
-    glBindImageTexture(0, fg_texture(pass, "emissive"), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+    glBindImageTexture(0, fg_slot_texture(pass, st->color[EMISSIVE]), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
     cgp_dispatch_2d(frame->width, frame->height);
     cgp_sky_unbind();
     glUseProgram(0);
@@ -113,10 +117,10 @@ gbuffer_execute(fg_pass *pass, gbuffer_state *st, cg_error *err)
 {
     const fg_frame *frame = fg_pass_frame(pass);
     /* Pooled storage may hand this pass other textures from frame to frame: attach each time. */
-    glNamedFramebufferTexture(st->fbo, GL_DEPTH_ATTACHMENT, fg_texture(pass, "depth"), 0);
+    glNamedFramebufferTexture(st->fbo, GL_DEPTH_ATTACHMENT, fg_slot_texture(pass, st->depth), 0);
     for (int i = 0; i < COLOR_OUTPUTS; i++)
         glNamedFramebufferTexture(st->fbo, GL_COLOR_ATTACHMENT0 + (GLenum)i,
-                                  fg_texture(pass, color_outputs[i]), 0);
+                                  fg_slot_texture(pass, st->color[i]), 0);
     GLenum status = glCheckNamedFramebufferStatus(st->fbo, GL_FRAMEBUFFER);
     if (status != GL_FRAMEBUFFER_COMPLETE)
         return cg_fail(err, CG_ERR_GL, "pass '%s': G-buffer framebuffer incomplete (0x%x)",

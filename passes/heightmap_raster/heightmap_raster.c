@@ -95,6 +95,8 @@ typedef struct heightmap_raster_state {
     int resolution;
     heightmap_region region;
     uint64_t builds;        /* geometry rasterizations since prepare */
+    fg_slot lightmap, block, depth;
+    fg_slot geometry[GEOMETRY_TARGETS]; /* cache=true */
 } heightmap_raster_state;
 
 /* World bounds of the height-field instances; false when there is none or all lie in a
@@ -161,12 +163,17 @@ heightmap_raster_prepare(fg_pass *pass, heightmap_raster_state *s, cg_error *err
 {
     cgp_state_on_destroy(s, heightmap_raster_cleanup);
     s->cache = fg_param_bool(pass, "cache");
+    s->lightmap = fg_pass_slot(pass, "lightmap");
+    s->block = fg_pass_slot(pass, "region");
+    s->depth = fg_pass_slot(pass, "depth");
+    for (int i = 0; i < GEOMETRY_TARGETS && s->cache; i++)
+        s->geometry[i] = fg_pass_slot(pass, geometry_outputs[i]);
     s->fbo = cgp_framebuffer(s);
-    cgp_no_shadow_create(s, &s->no_shadow);
+    cgp_no_shadow_create(s, pass, &s->no_shadow);
     if (!s->cache)
         return cgp_graphics_program(s, "heightmap_raster/raster.vert", NULL, "heightmap_raster/raster.frag", NULL,
                                     &s->program, err);
-    const fg_resource_desc *desc = fg_resource(pass, "lightmap");
+    const fg_resource_desc *desc = fg_slot_resource(pass, s->lightmap);
     char defines[64];
     snprintf(defines, sizeof defines, "#define LIGHTMAP_FORMAT %s\n",
              desc && desc->format == GL_RGBA16F ? "rgba16f" : "rgba32f");
@@ -263,8 +270,8 @@ execute_cached(fg_pass *pass, heightmap_raster_state *s, const heightmap_region 
             GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3,
         };
         for (int i = 0; i < GEOMETRY_TARGETS; i++)
-            glNamedFramebufferTexture(s->fbo, buffers[i], fg_texture(pass, geometry_outputs[i]), 0);
-        glNamedFramebufferTexture(s->fbo, GL_DEPTH_ATTACHMENT, fg_texture(pass, "depth"), 0);
+            glNamedFramebufferTexture(s->fbo, buffers[i], fg_slot_texture(pass, s->geometry[i]), 0);
+        glNamedFramebufferTexture(s->fbo, GL_DEPTH_ATTACHMENT, fg_slot_texture(pass, s->depth), 0);
         glNamedFramebufferDrawBuffers(s->fbo, GEOMETRY_TARGETS, buffers);
         if (!framebuffer_complete(pass, s, err))
             return false;
@@ -282,9 +289,9 @@ execute_cached(fg_pass *pass, heightmap_raster_state *s, const heightmap_region 
     cg_gpu_scene_bind_lights(frame->gpu_scene);
     cgp_bind_shadow(pass, &s->no_shadow, 2);
     for (int i = 0; i < GEOMETRY_TARGETS; i++)
-        glBindTextureUnit(3 + (GLuint)i, fg_texture(pass, geometry_outputs[i]));
-    const fg_resource_desc *desc = fg_resource(pass, "lightmap");
-    glBindImageTexture(0, fg_texture(pass, "lightmap"), 0, GL_FALSE, 0, GL_WRITE_ONLY, desc->format);
+        glBindTextureUnit(3 + (GLuint)i, fg_slot_texture(pass, s->geometry[i]));
+    const fg_resource_desc *desc = fg_slot_resource(pass, s->lightmap);
+    glBindImageTexture(0, fg_slot_texture(pass, s->lightmap), 0, GL_FALSE, 0, GL_WRITE_ONLY, desc->format);
     /* The geometry raster's attachments are read as textures right after: framebuffer writes
      * are visible to later commands without a barrier. */
     cgp_dispatch_2d(resolution, resolution);
@@ -306,7 +313,7 @@ heightmap_raster_execute(fg_pass *pass, heightmap_raster_state *s, cg_error *err
     if (!heightfield_bounds(frame->scene, &region))
         return cg_fail(err, CG_ERR_PASS, "pass '%s': the height-field meshes vanished since compile",
                        fg_pass_name(pass));
-    const fg_resource_desc *desc = fg_resource(pass, "lightmap");
+    const fg_resource_desc *desc = fg_slot_resource(pass, s->lightmap);
     int resolution = desc->width;
     /* The pre-exposure of a half-float map; radiance is averaged over texels, so a point light
      * counts as never nearer than half a texel. */
@@ -323,8 +330,8 @@ heightmap_raster_execute(fg_pass *pass, heightmap_raster_state *s, cg_error *err
         if (!execute_cached(pass, s, &region, resolution, radiance_scale, err))
             return false;
     } else {
-        glNamedFramebufferTexture(s->fbo, GL_COLOR_ATTACHMENT0, fg_texture(pass, "lightmap"), 0);
-        glNamedFramebufferTexture(s->fbo, GL_DEPTH_ATTACHMENT, fg_texture(pass, "depth"), 0);
+        glNamedFramebufferTexture(s->fbo, GL_COLOR_ATTACHMENT0, fg_slot_texture(pass, s->lightmap), 0);
+        glNamedFramebufferTexture(s->fbo, GL_DEPTH_ATTACHMENT, fg_slot_texture(pass, s->depth), 0);
         glNamedFramebufferDrawBuffer(s->fbo, GL_COLOR_ATTACHMENT0);
         if (!framebuffer_complete(pass, s, err))
             return false;
@@ -340,7 +347,7 @@ heightmap_raster_execute(fg_pass *pass, heightmap_raster_state *s, cg_error *err
         .info = {(float)resolution, (float)desc->levels, (float)region.lo[1], (float)region.hi[1]},
         .radiance = {(float)radiance_scale, 0.0f, 0.0f, 0.0f},
     };
-    glNamedBufferSubData(fg_buffer(pass, "region"), 0, sizeof block, &block);
+    glNamedBufferSubData(fg_slot_buffer(pass, s->block), 0, sizeof block, &block);
     return true;
 }
 

@@ -44,6 +44,7 @@ typedef struct hsat_state {
     GLuint first, next;                     /* pyramid */
     GLuint row_sums, mean, rows, columns;   /* SAT stages */
     GLuint row_buffer;
+    fg_slot lightmap, region, table, info;
 } hsat_state;
 
 static bool
@@ -82,7 +83,11 @@ static bool
 hsat_prepare(fg_pass *pass, hsat_state *s, cg_error *err)
 {
     s->mode = fg_param_enum(pass, "mode");
-    s->lightmap_format = fg_resource(pass, "lightmap")->format;
+    s->lightmap = fg_pass_slot(pass, "lightmap");
+    s->region = fg_pass_slot(pass, "region");
+    s->table = fg_pass_slot(pass, "table");
+    s->info = fg_pass_slot(pass, "info");
+    s->lightmap_format = fg_slot_resource(pass, s->lightmap)->format;
     const char *format = s->lightmap_format == GL_RGBA16F ? "rgba16f" : "rgba32f";
     char defines[128];
     bool ok = true;
@@ -98,7 +103,7 @@ hsat_prepare(fg_pass *pass, hsat_state *s, cg_error *err)
             ok = cgp_compute_program(s, "hsat/sat.comp", defines, programs[i], err);
         }
         if (ok) {
-            int size = fg_resource(pass, "lightmap")->width;
+            int size = fg_slot_resource(pass, s->lightmap)->width;
             s->row_buffer = cgp_buffer(s, (size_t)size * 4 * sizeof(double), NULL, 0);
         }
     }
@@ -109,10 +114,10 @@ static bool
 hsat_execute(fg_pass *pass, hsat_state *s, cg_error *err)
 {
     (void)err;
-    const fg_resource_desc *lightmap_desc = fg_resource(pass, "lightmap");
-    GLuint lightmap = fg_texture(pass, "lightmap");
-    GLuint table = fg_texture(pass, "table");
-    GLuint info = fg_buffer(pass, "info");
+    const fg_resource_desc *lightmap_desc = fg_slot_resource(pass, s->lightmap);
+    GLuint lightmap = fg_slot_texture(pass, s->lightmap);
+    GLuint table = fg_slot_texture(pass, s->table);
+    GLuint info = fg_slot_buffer(pass, s->info);
     int levels = lightmap_desc->levels;
     float p = fg_param_float(pass, "p");
     /* The means are zero until the SAT stages write them (the pyramid has none). */
@@ -137,7 +142,7 @@ hsat_execute(fg_pass *pass, hsat_state *s, cg_error *err)
         return true;
     }
 
-    glBindBufferBase(GL_UNIFORM_BUFFER, CG_BINDING_HEIGHTMAP, fg_buffer(pass, "region"));
+    glBindBufferBase(GL_UNIFORM_BUFFER, CG_BINDING_HEIGHTMAP, fg_slot_buffer(pass, s->region));
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_HSAT, info);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_HSAT_ROWS, s->row_buffer);
     const GLuint stages[4] = {s->row_sums, s->mean, s->rows, s->columns};

@@ -121,6 +121,8 @@ typedef struct hybrid_gather_state {
     GLuint map_sampler, table_sampler;
     GLuint empty_block;     /* bound where a map is absent, so no block is left unbound */
     bool has_2d, has_3d, specular, refraction;
+    fg_slot lightmap2d, region2d, hsat, hsat_info;
+    fg_slot reflection_out, refraction_out;   /* declared with their parameters */
     cg_hybrid_gather_block block;   /* 5.5 KiB: kept here rather than on the stack */
 } hybrid_gather_state;
 
@@ -222,8 +224,11 @@ cell_points(const cgp_cone_set *set, cg_hybrid_gather_block *b)
 static bool
 hybrid_gather_prepare(fg_pass *pass, hybrid_gather_state *s, cg_error *err)
 {
-    s->has_3d = fg_input_present(pass, "volume");
-    s->has_2d = fg_input_present(pass, "lightmap2d");
+    s->lightmap2d = fg_pass_slot(pass, "lightmap2d");
+    s->region2d = fg_pass_slot(pass, "region2d");
+    s->hsat = fg_pass_slot(pass, "hsat");
+    s->hsat_info = fg_pass_slot(pass, "hsat_info");
+    s->has_2d = fg_slot_present(pass, s->lightmap2d);
     /* The cube-centre sample (dda = false) reads the 2D lightmap filtered; the DDA and HSAT fetch. */
     s->map_sampler = cgp_sampler_lightmap2d(s);
     s->table_sampler = cgp_sampler_table(s);
@@ -231,15 +236,21 @@ hybrid_gather_prepare(fg_pass *pass, hybrid_gather_state *s, cg_error *err)
     s->empty_block = cgp_buffer(s, sizeof zero, &zero, 0);
     s->specular = fg_param_bool(pass, "specular");
     s->refraction = fg_param_bool(pass, "refraction");
+    s->reflection_out = s->specular ? fg_pass_slot(pass, "reflection") : FG_NO_SLOT;
+    s->refraction_out = s->refraction ? fg_pass_slot(pass, "refraction") : FG_NO_SLOT;
+    const cgp_gather_io io = {fg_pass_slot(pass, "position"), fg_pass_slot(pass, "normal"),
+                              fg_pass_slot(pass, "radiance")};
     const char *maps = !s->has_2d ? ""
                        : fg_param_enum(pass, "method") == METHOD_PAPER ? "#define HAS_2D\n#define METHOD_PAPER\n"
                                                                        : "#define HAS_2D\n";
     char downsample[64], defines[224];
     snprintf(defines, sizeof defines, "%s%s%s%s", maps, s->specular ? "#define SPECULAR\n" : "",
              s->refraction ? "#define REFRACTION\n" : "", cgp_gather_blocks_define(pass, downsample, sizeof downsample));
-    return cgp_gather_prepare(s, pass, &s->gather, "hybrid_gather/hybrid_gather.comp", defines,
-                              sizeof(cg_hybrid_gather_block), err) &&
-           cgp_gather_blocks_prepare(s, pass, &s->gather, &s->blocks, "hybrid_gather/hybrid_gather.comp", defines,
+    if (!cgp_gather_prepare(s, pass, &s->gather, io, "hybrid_gather/hybrid_gather.comp", defines,
+                            sizeof(cg_hybrid_gather_block), err))
+        return false;
+    s->has_3d = fg_slot_present(pass, s->gather.slots.volume);
+    return cgp_gather_blocks_prepare(s, pass, &s->gather, &s->blocks, "hybrid_gather/hybrid_gather.comp", defines,
                                      err);
 }
 
@@ -273,22 +284,24 @@ hybrid_gather_execute(fg_pass *pass, hybrid_gather_state *s, cg_error *err)
         block->box3_hi[k] = (float)hi[k];
     }
 
-    if (!cgp_gather_begin(pass, &s->gather, block, sizeof *block, s->has_3d ? fg_texture(pass, "volume") : 0,
-                          s->has_3d ? fg_buffer(pass, "region") : s->empty_block, err))
+    const cgp_gather_slots *slots = &s->gather.slots;
+    if (!cgp_gather_begin(pass, &s->gather, block, sizeof *block, s->has_3d ? fg_slot_texture(pass, slots->volume) : 0,
+                          s->has_3d ? fg_slot_buffer(pass, slots->region) : s->empty_block, err))
         return false;
-    glBindBufferBase(GL_UNIFORM_BUFFER, CG_BINDING_HEIGHTMAP, s->has_2d ? fg_buffer(pass, "region2d") : s->empty_block);
+    glBindBufferBase(GL_UNIFORM_BUFFER, CG_BINDING_HEIGHTMAP,
+                     s->has_2d ? fg_slot_buffer(pass, s->region2d) : s->empty_block);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_HSAT,
-                     s->has_2d ? fg_buffer(pass, "hsat_info") : s->empty_block);
-    glBindTextureUnit(CG_UNIT_LIGHTMAP2D, s->has_2d ? fg_texture(pass, "lightmap2d") : 0);
+                     s->has_2d ? fg_slot_buffer(pass, s->hsat_info) : s->empty_block);
+    glBindTextureUnit(CG_UNIT_LIGHTMAP2D, s->has_2d ? fg_slot_texture(pass, s->lightmap2d) : 0);
     glBindSampler(CG_UNIT_LIGHTMAP2D, s->map_sampler);
-    glBindTextureUnit(CG_UNIT_HSAT, s->has_2d ? fg_texture(pass, "hsat") : 0);
+    glBindTextureUnit(CG_UNIT_HSAT, s->has_2d ? fg_slot_texture(pass, s->hsat) : 0);
     glBindSampler(CG_UNIT_HSAT, s->table_sampler);
     if (s->specular)
-        glBindImageTexture(1, fg_texture(pass, "reflection"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+        glBindImageTexture(1, fg_slot_texture(pass, s->reflection_out), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     if (s->refraction)
-        glBindImageTexture(4, fg_texture(pass, "refraction"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+        glBindImageTexture(4, fg_slot_texture(pass, s->refraction_out), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     cgp_gather_blocks_trace(pass, &s->gather, &s->blocks);
-    cgp_gather_end(pass);
+    cgp_gather_end(pass, &s->gather);
     cgp_gather_blocks_end(&s->blocks);
     glBindSampler(CG_UNIT_LIGHTMAP2D, 0);
     glBindSampler(CG_UNIT_HSAT, 0);

@@ -15,6 +15,7 @@
 typedef struct mip2d_state {
     GLuint program;
     GLenum format;
+    fg_slot lightmap;
 } mip2d_state;
 
 static bool
@@ -38,7 +39,8 @@ mip2d_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
 static bool
 mip2d_prepare(fg_pass *pass, mip2d_state *s, cg_error *err)
 {
-    s->format = fg_resource(pass, "lightmap")->format;
+    s->lightmap = fg_pass_slot(pass, "lightmap");
+    s->format = fg_slot_resource(pass, s->lightmap)->format;
     char defines[64];
     snprintf(defines, sizeof defines, "#define FORMAT %s\n", s->format == GL_RGBA16F ? "rgba16f" : "rgba32f");
     return cgp_compute_program(s, "mip2d/downsample.comp", defines, &s->program, err);
@@ -48,8 +50,8 @@ static bool
 mip2d_execute(fg_pass *pass, mip2d_state *s, cg_error *err)
 {
     (void)err;
-    const fg_resource_desc *desc = fg_resource(pass, "lightmap");
-    GLuint tex = fg_texture(pass, "lightmap");
+    const fg_resource_desc *desc = fg_slot_resource(pass, s->lightmap);
+    GLuint tex = fg_slot_texture(pass, s->lightmap);
     glUseProgram(s->program);
     for (int level = 1; level < desc->levels; level++) {
         int size = desc->width >> level;

@@ -28,6 +28,7 @@ typedef struct mip3d_state {
     GLuint directional;
     GLenum format;
     bool anisotropic;
+    fg_slot volume, directions[6];  /* directions: with anisotropic */
 } mip3d_state;
 
 static bool
@@ -60,13 +61,16 @@ mip3d_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
 static bool
 mip3d_prepare(fg_pass *pass, mip3d_state *s, cg_error *err)
 {
-    const fg_resource_desc *desc = fg_resource(pass, "volume");
+    s->volume = fg_pass_slot(pass, "volume");
+    const fg_resource_desc *desc = fg_slot_resource(pass, s->volume);
     s->format = desc->format;
     char defines[128];
     snprintf(defines, sizeof defines, "#define FORMAT %s\n#define %s\n",
              s->format == GL_RGBA8 ? "rgba8" : "rgba16f",
              fg_param_enum(pass, "opacity") == 0 ? "OPACITY_MAX" : "OPACITY_AVERAGE");
     s->anisotropic = fg_param_bool(pass, "anisotropic");
+    for (int d = 0; d < 6 && s->anisotropic; d++)
+        s->directions[d] = fg_pass_slot(pass, direction_names[d]);
     char format_define[64];
     snprintf(format_define, sizeof format_define, "#define FORMAT %s\n", s->format == GL_RGBA8 ? "rgba8" : "rgba16f");
     return cgp_compute_program(s, "mip3d/downsample.comp", defines, &s->program, err) &&
@@ -78,8 +82,8 @@ static bool
 mip3d_execute(fg_pass *pass, mip3d_state *s, cg_error *err)
 {
     (void)err;
-    const fg_resource_desc *desc = fg_resource(pass, "volume");
-    GLuint tex = fg_texture(pass, "volume");
+    const fg_resource_desc *desc = fg_slot_resource(pass, s->volume);
+    GLuint tex = fg_slot_texture(pass, s->volume);
     glUseProgram(s->program);
     for (int level = 1; level < desc->levels; level++) {
         int size = desc->width >> level;
@@ -95,7 +99,7 @@ mip3d_execute(fg_pass *pass, mip3d_state *s, cg_error *err)
     if (s->anisotropic) {
         glUseProgram(s->directional);
         for (int d = 0; d < 6; d++) {
-            GLuint dir = fg_texture(pass, direction_names[d]);
+            GLuint dir = fg_slot_texture(pass, s->directions[d]);
             glUniform1i(0, d / 2);
             glUniform1i(1, d % 2 == 0 ? 1 : -1);
             for (int k = 0; k < desc->levels - 1; k++) {

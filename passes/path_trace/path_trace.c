@@ -60,6 +60,7 @@ typedef struct path_trace_state {
     pt_settings settings;
     bool with_parts;
     bool valid;
+    fg_slot radiance, part_slots[PT_PART_COUNT]; /* part_slots: declared with `parts` */
 } path_trace_state;
 
 static bool
@@ -90,7 +91,9 @@ static bool
 path_trace_prepare(fg_pass *pass, path_trace_state *st, cg_error *err)
 {
     (void)err;
-    (void)pass;
+    st->radiance = fg_pass_slot(pass, "radiance");
+    for (int p = 0; p < PT_PART_COUNT && fg_param_bool(pass, "parts"); p++)
+        st->part_slots[p] = fg_pass_slot(pass, pt_part_name((pt_part)p));
     cgp_state_on_destroy(st, path_trace_cleanup);
     return true;
 }
@@ -132,9 +135,9 @@ flip_rows(float *dst, const float *src, int w, int h)
 }
 
 static void
-upload(fg_pass *pass, const char *output, const float *rgba, int w, int h)
+upload(fg_pass *pass, fg_slot output, const float *rgba, int w, int h)
 {
-    glTextureSubImage2D(fg_texture(pass, output), 0, 0, 0, w, h, GL_RGBA, GL_FLOAT, rgba);
+    glTextureSubImage2D(fg_slot_texture(pass, output), 0, 0, 0, w, h, GL_RGBA, GL_FLOAT, rgba);
 }
 
 static bool
@@ -152,7 +155,7 @@ path_trace_execute(fg_pass *pass, path_trace_state *st, cg_error *err)
         st->revision = frame->scene->revision;
     }
     int w = frame->view.width, h = frame->view.height;
-    const fg_resource_desc *out = fg_resource(pass, "radiance");
+    const fg_resource_desc *out = fg_slot_resource(pass, st->radiance);
     if (!out || out->width != w || out->height != h)
         return cg_fail(err, CG_ERR_PASS, "pass '%s': output is %dx%d, the view %dx%d", fg_pass_name(pass),
                        out ? out->width : 0, out ? out->height : 0, w, h);
@@ -200,9 +203,9 @@ path_trace_execute(fg_pass *pass, path_trace_state *st, cg_error *err)
     }
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
     glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
-    upload(pass, "radiance", st->rgba, w, h);
+    upload(pass, st->radiance, st->rgba, w, h);
     for (int p = 0; with_parts && p < PT_PART_COUNT; p++)
-        upload(pass, pt_part_name((pt_part)p), st->parts[p], w, h);
+        upload(pass, st->part_slots[p], st->parts[p], w, h);
     return true;
 }
 

@@ -200,6 +200,9 @@ cgp_cone_upload(const fg_pass *pass, const cgp_cone_set *set, GLuint buffer)
     cgp_uniform_upload(buffer, CG_BINDING_CONES, &block, sizeof block);
 }
 
+/* The inputs the SDK declares for a gather, by these names in declare and found by them in
+ * cgp_gather_prepare (cgp_gather_slots). */
+static const char *const volume_name = "volume", *const region_name = "region", *const glossy_name = "glossy";
 static const char *const direction_names[6] = {"px", "nx", "py", "ny", "pz", "nz"};
 static const char *const surface_names[2] = {"sides", "normals"};
 
@@ -207,8 +210,8 @@ bool
 cgp_gather_declare_volume(fg_pass *pass, fg_declare *decl, const fg_resource_desc **volume,
                           const fg_resource_desc **region, cg_error *err)
 {
-    *volume = fg_declare_input(decl, "volume", FG_TEXTURE_3D, FG_ACCESS_SAMPLED, false);
-    *region = fg_declare_input(decl, "region", FG_BUFFER, FG_ACCESS_UNIFORM, false);
+    *volume = fg_declare_input(decl, volume_name, FG_TEXTURE_3D, FG_ACCESS_SAMPLED, false);
+    *region = fg_declare_input(decl, region_name, FG_BUFFER, FG_ACCESS_UNIFORM, false);
     int directions = 0, surface = 0;
     for (int d = 0; d < 6; d++)
         directions += fg_declare_input(decl, direction_names[d], FG_TEXTURE_3D, FG_ACCESS_SAMPLED, false) != NULL;
@@ -233,7 +236,7 @@ cgp_gather_declare_volume(fg_pass *pass, fg_declare *decl, const fg_resource_des
         return cg_fail(err, CG_ERR_GRAPH_MISSING_INPUT,
                        "pass '%s': input 'volume' needs input 'region' (a voxelize or voxel_light pass's output "
                        "'region')", fg_pass_name(pass));
-    if (fg_declare_input(decl, "glossy", FG_TEXTURE_3D, FG_ACCESS_SAMPLED, false) && !surface)
+    if (fg_declare_input(decl, glossy_name, FG_TEXTURE_3D, FG_ACCESS_SAMPLED, false) && !surface)
         return cg_fail(err, CG_ERR_GRAPH_MISSING_INPUT,
                        "pass '%s': input 'glossy' (a voxel_light pass's output with glossy = true) needs that pass's "
                        "'radiance', 'sides' and 'normals' as 'volume', 'sides' and 'normals'", fg_pass_name(pass));
@@ -245,11 +248,11 @@ cgp_gather_declare_volume(fg_pass *pass, fg_declare *decl, const fg_resource_des
 }
 
 cgp_volume_model
-cgp_gather_volume_model(const fg_pass *pass)
+cgp_gather_volume_model(const fg_pass *pass, const cgp_gather_slots *slots)
 {
-    if (fg_resource(pass, "px"))
+    if (fg_slot_present(pass, slots->directions[0]))
         return CGP_VOLUME_ANISOTROPIC;
-    if (fg_resource(pass, "sides"))
+    if (fg_slot_present(pass, slots->surface[0]))
         return CGP_VOLUME_SURFACE;
     return CGP_VOLUME_RADIANCE;
 }
@@ -266,17 +269,18 @@ cgp_gather_volume_define(cgp_volume_model model)
 }
 
 void
-cgp_gather_bind_volume(const fg_pass *pass, cgp_volume_model model, GLuint sampler, bool unbind)
+cgp_gather_bind_volume(const fg_pass *pass, const cgp_gather *g, GLuint sampler, bool unbind)
 {
+    cgp_volume_model model = g->model;
     if (model == CGP_VOLUME_ANISOTROPIC)
         for (int d = 0; d < 6; d++) {
-            glBindTextureUnit(CG_UNIT_ANISO + (GLuint)d, unbind ? 0 : fg_texture(pass, direction_names[d]));
+            glBindTextureUnit(CG_UNIT_ANISO + (GLuint)d, unbind ? 0 : fg_slot_texture(pass, g->slots.directions[d]));
             glBindSampler(CG_UNIT_ANISO + (GLuint)d, unbind ? 0 : sampler);
         }
     if (model == CGP_VOLUME_SURFACE) {
         static const GLuint units[2] = {CG_UNIT_SIDES, CG_UNIT_NORMALS};
         for (int d = 0; d < 2; d++) {
-            glBindTextureUnit(units[d], unbind ? 0 : fg_texture(pass, surface_names[d]));
+            glBindTextureUnit(units[d], unbind ? 0 : fg_slot_texture(pass, g->slots.surface[d]));
             glBindSampler(units[d], unbind ? 0 : sampler);
         }
     }
@@ -385,16 +389,32 @@ cgp_brdf_table_texture(void *state)
     return cgp_own(state, CGP_GL_TEXTURE, tex);
 }
 
-bool
-cgp_gather_prepare(void *state, const fg_pass *pass, cgp_gather *g, const char *shader, const char *defines,
-                   size_t gather_bytes, cg_error *err)
+void
+cgp_gather_find_slots(const fg_pass *pass, cgp_gather_io io, cgp_gather_slots *out)
 {
-    g->model = cgp_gather_volume_model(pass);
-    g->material = fg_resource(pass, "specular") && fg_resource(pass, "material");
+    *out = (cgp_gather_slots){.position = io.position, .normal = io.normal, .radiance = io.radiance};
+    out->volume = fg_pass_slot(pass, volume_name);
+    out->region = fg_pass_slot(pass, region_name);
+    out->glossy = fg_pass_slot(pass, glossy_name);
+    for (int d = 0; d < 6; d++)
+        out->directions[d] = fg_pass_slot(pass, direction_names[d]);
+    for (int d = 0; d < 2; d++)
+        out->surface[d] = fg_pass_slot(pass, surface_names[d]);
+    for (int i = 0; i < 5; i++)
+        out->material[i] = fg_pass_slot(pass, material_names[i]);
+}
+
+bool
+cgp_gather_prepare(void *state, const fg_pass *pass, cgp_gather *g, cgp_gather_io io, const char *shader,
+                   const char *defines, size_t gather_bytes, cg_error *err)
+{
+    cgp_gather_find_slots(pass, io, &g->slots);
+    g->model = cgp_gather_volume_model(pass, &g->slots);
+    g->material = fg_slot_present(pass, g->slots.material[1]) && fg_slot_present(pass, g->slots.material[2]);
     char all[1024];
     snprintf(all, sizeof all, "%s%s%s%s", defines ? defines : "", cgp_gather_volume_define(g->model),
              g->material ? "#define CG_GATHER_MATERIAL\n" : "",
-             fg_resource(pass, "glossy") ? "#define CG_GATHER_GLOSSY\n" : "");
+             fg_slot_present(pass, g->slots.glossy) ? "#define CG_GATHER_GLOSSY\n" : "");
     if (!cgp_cone_set_of_pass(pass, &g->set, err) || !cgp_compute_program(state, shader, all, &g->program, err))
         return false;
     g->volume_sampler = cgp_sampler_volume(state);
@@ -422,38 +442,38 @@ cgp_gather_begin(const fg_pass *pass, cgp_gather *g, const void *block, size_t g
     glBindTextureUnit(CG_UNIT_VOLUME, volume);
     glBindSampler(CG_UNIT_VOLUME, g->volume_sampler);
     if (volume)
-        cgp_gather_bind_volume(pass, g->model, g->volume_sampler, false);
+        cgp_gather_bind_volume(pass, g, g->volume_sampler, false);
     if (volume && g->model == CGP_VOLUME_SURFACE) {
         glBindTextureUnit(CG_UNIT_OCCUPANCY, volume);
         glBindSampler(CG_UNIT_OCCUPANCY, g->one_level_sampler);
         /* The lobes' volume: its occupancy is `volume`'s (one geometry, voxel_light's glossy). */
-        if (fg_resource(pass, "glossy")) {
-            glBindTextureUnit(CG_UNIT_GLOSSY, fg_texture(pass, "glossy"));
+        if (fg_slot_present(pass, g->slots.glossy)) {
+            glBindTextureUnit(CG_UNIT_GLOSSY, fg_slot_texture(pass, g->slots.glossy));
             glBindSampler(CG_UNIT_GLOSSY, g->volume_sampler);
         }
     }
-    glBindTextureUnit(CG_UNIT_POSITION, fg_texture(pass, "position"));
-    glBindTextureUnit(CG_UNIT_NORMAL, fg_texture(pass, "normal"));
+    glBindTextureUnit(CG_UNIT_POSITION, fg_slot_texture(pass, g->slots.position));
+    glBindTextureUnit(CG_UNIT_NORMAL, fg_slot_texture(pass, g->slots.normal));
     if (g->material) {
         for (int i = 0; i < 5; i++)
-            glBindTextureUnit(material_units[i], fg_texture(pass, material_names[i]));
+            glBindTextureUnit(material_units[i], fg_slot_texture(pass, g->slots.material[i]));
         glBindTextureUnit(CG_UNIT_BRDF_TABLE, g->brdf_table);
     }
-    glBindImageTexture(0, fg_texture(pass, "radiance"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    glBindImageTexture(0, fg_slot_texture(pass, g->slots.radiance), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     return true;
 }
 
 void
-cgp_gather_end(const fg_pass *pass)
+cgp_gather_end(const fg_pass *pass, const cgp_gather *g)
 {
-    const fg_resource_desc *out = fg_resource(pass, "radiance");
+    const fg_resource_desc *out = fg_slot_resource(pass, g->slots.radiance);
     cgp_dispatch_2d(out->width, out->height);
     glBindSampler(CG_UNIT_VOLUME, 0);
     glBindSampler(CG_UNIT_OCCUPANCY, 0);
     glBindTextureUnit(CG_UNIT_OCCUPANCY, 0);
     glBindSampler(CG_UNIT_GLOSSY, 0);
     glBindTextureUnit(CG_UNIT_GLOSSY, 0);
-    cgp_gather_bind_volume(pass, cgp_gather_volume_model(pass), 0, true);
+    cgp_gather_bind_volume(pass, g, 0, true);
     cgp_sky_unbind();
     glUseProgram(0);
 }

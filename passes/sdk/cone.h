@@ -4,6 +4,7 @@
  *           cgp_cone_set_sizes, cgp_cone_set_valid_size, cgp_cone_frame, cgp_cone_set_of_param,
  *           cgp_cone_set_of_pass,
  *           cgp_cone_block_fill, cgp_cone_block_fill_march, cgp_cone_upload, cgp_volume_model,
+ *           cgp_gather_io, cgp_gather_slots, cgp_gather_find_slots,
  *           cgp_gather_declare_volume, cgp_gather_volume_model, cgp_gather_volume_define, cgp_gather,
  *           cgp_gather_prepare, cgp_gather_begin, cgp_gather_bind_volume, cgp_gather_end.
  *
@@ -127,8 +128,24 @@ typedef enum cgp_volume_model {
  * cgp_gather_begin at CG_UNIT_GLOSSY); without it they read `volume`. */
 bool cgp_gather_declare_volume(fg_pass *pass, fg_declare *decl, const fg_resource_desc **volume,
                                const fg_resource_desc **region, cg_error *err);
+/* The slots of a cone gather: its own G-buffer inputs and output, which the pass declares and
+ * finds itself (cgp_gather_io), and the inputs that cgp_gather_declare_volume and
+ * cgp_gather_declare_material declare, which cgp_gather_find_slots finds by the names they declared. */
+typedef struct cgp_gather_io {
+    fg_slot position, normal;   /* the G-buffer's: at CG_UNIT_POSITION and CG_UNIT_NORMAL */
+    fg_slot radiance;           /* the output image (RGBA32F) at image unit 0, the dispatch's size */
+} cgp_gather_io;
+typedef struct cgp_gather_slots {
+    fg_slot position, normal, radiance;
+    fg_slot volume, region, glossy;
+    fg_slot directions[6];      /* px nx py ny pz nz */
+    fg_slot surface[2];         /* sides, normals */
+    fg_slot material[5];        /* albedo, specular, material, transmission, attenuation */
+} cgp_gather_slots;
+/* In prepare(): `io` and the SDK's slots (cgp_gather_prepare calls it). */
+void cgp_gather_find_slots(const fg_pass *pass, cgp_gather_io io, cgp_gather_slots *out);
 /* The model of a compiled pass's inputs, and the shader define it needs ("" for the radiance model). */
-cgp_volume_model cgp_gather_volume_model(const fg_pass *pass);
+cgp_volume_model cgp_gather_volume_model(const fg_pass *pass, const cgp_gather_slots *slots);
 const char *cgp_gather_volume_define(cgp_volume_model model);
 
 /* What every cone gather's state holds, and its frame around the dispatch: the G-buffer inputs
@@ -149,22 +166,23 @@ typedef struct cgp_gather {
     GLuint gather_block;    /* the pass's block */
     void *state;            /* the pass state that owns these objects */
     cgp_sky sky;            /* baked once per change of the frame's scene's sky */
+    cgp_gather_slots slots; /* found by cgp_gather_prepare */
 } cgp_gather;
 
-/* In prepare(): the cone set of the parameter `cones`, the volume model of the inputs, the compute
- * program `shader` with `defines` (and the model's), the sampler and the blocks (`gather_bytes` for
- * the pass's), owned by `state`. */
-bool cgp_gather_prepare(void *state, const fg_pass *pass, cgp_gather *g, const char *shader, const char *defines,
-                        size_t gather_bytes, cg_error *err);
+/* In prepare(): the slots (the pass's `io` and the SDK's), the cone set of the parameter `cones`,
+ * the volume model of the inputs, the compute program `shader` with `defines` (and the model's), the
+ * sampler and the blocks (`gather_bytes` for the pass's), owned by `state`. */
+bool cgp_gather_prepare(void *state, const fg_pass *pass, cgp_gather *g, cgp_gather_io io, const char *shader,
+                        const char *defines, size_t gather_bytes, cg_error *err);
 /* In execute(): uses the program, uploads the cone set and the pass's block (`gather_bytes` at
  * `block`), bakes the sky if it changed (cgp_sky_update; fails as it does), binds the G-buffer,
  * `volume` with its `region` block (either may be 0), the model's other volumes
  * (cgp_gather_bind_volume), the sky and `radiance`. */
 bool cgp_gather_begin(const fg_pass *pass, cgp_gather *g, const void *block, size_t gather_bytes, GLuint volume,
                       GLuint region, cg_error *err);
-/* Binds the model's volumes beside `volume` (the directional chains at CG_UNIT_ANISO.., or `sides`
+/* Binds g's model's volumes beside `volume` (the directional chains at CG_UNIT_ANISO.., or `sides`
  * and `normals` at CG_UNIT_SIDES and CG_UNIT_NORMALS) with `sampler`; with unbind, unbinds them. */
-void cgp_gather_bind_volume(const fg_pass *pass, cgp_volume_model model, GLuint sampler, bool unbind);
+void cgp_gather_bind_volume(const fg_pass *pass, const cgp_gather *g, GLuint sampler, bool unbind);
 /* ---- the material terms of a gather (common/gather.glsl, CG_GATHER_MATERIAL)
  *
  * The G-buffer's material outputs as optional inputs of a gather: `albedo` (rho, occlusion),
@@ -208,6 +226,6 @@ void cgp_brdf_hemispherical_fill(int size, float *rg);
 GLuint cgp_brdf_hemispherical_texture(void *state);
 
 /* Dispatches over `radiance` and unbinds what cgp_gather_begin bound. */
-void cgp_gather_end(const fg_pass *pass);
+void cgp_gather_end(const fg_pass *pass, const cgp_gather *g);
 
 #endif

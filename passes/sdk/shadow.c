@@ -4,11 +4,14 @@
 #include "sdk/blocks.h"
 #include "sdk/pass.h"
 
+/* Declared by these names, found by them in cgp_no_shadow_create. */
+static const char *const shadow_name = "shadow", *const matrix_name = "shadow_matrix";
+
 bool
 cgp_declare_shadow_inputs(fg_pass *pass, fg_declare *decl, cg_error *err)
 {
-    const fg_resource_desc *shadow = fg_declare_input(decl, "shadow", FG_TEXTURE_2D, FG_ACCESS_SAMPLED, false);
-    const fg_resource_desc *matrix = fg_declare_input(decl, "shadow_matrix", FG_BUFFER, FG_ACCESS_UNIFORM, false);
+    const fg_resource_desc *shadow = fg_declare_input(decl, shadow_name, FG_TEXTURE_2D, FG_ACCESS_SAMPLED, false);
+    const fg_resource_desc *matrix = fg_declare_input(decl, matrix_name, FG_BUFFER, FG_ACCESS_UNIFORM, false);
     if (!shadow != !matrix)
         return cg_fail(err, CG_ERR_GRAPH_MISSING_INPUT,
                        "pass '%s': inputs 'shadow' and 'shadow_matrix' go together (a shadow_map "
@@ -24,8 +27,10 @@ cgp_declare_shadow_inputs(fg_pass *pass, fg_declare *decl, cg_error *err)
 }
 
 void
-cgp_no_shadow_create(void *state, cgp_no_shadow *out)
+cgp_no_shadow_create(void *state, const fg_pass *pass, cgp_no_shadow *out)
 {
+    out->shadow = fg_pass_slot(pass, shadow_name);
+    out->matrix = fg_pass_slot(pass, matrix_name);
     const cg_shadow_block block = {.frustum = {-1.0f, 0.0f, 0.0f, 0.0f}};
     glCreateBuffers(1, &out->block);
     glNamedBufferStorage(out->block, sizeof block, &block, 0);
@@ -40,7 +45,7 @@ cgp_no_shadow_create(void *state, cgp_no_shadow *out)
 void
 cgp_bind_shadow(const fg_pass *pass, const cgp_no_shadow *fallback, GLuint texture_unit)
 {
-    GLuint map = fg_texture(pass, "shadow"), block = fg_buffer(pass, "shadow_matrix");
+    GLuint map = fg_slot_texture(pass, fallback->shadow), block = fg_slot_buffer(pass, fallback->matrix);
     bool shadowed = map != 0 && block != 0;
     glBindBufferBase(GL_UNIFORM_BUFFER, CG_BINDING_SHADOW, shadowed ? block : fallback->block);
     glBindTextureUnit(texture_unit, shadowed ? map : fallback->map);

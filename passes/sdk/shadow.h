@@ -21,13 +21,15 @@
  * smaller than a CG_SHADOW_BLOCK (CG_ERR_GRAPH_INCOMPATIBLE). */
 bool cgp_declare_shadow_inputs(fg_pass *pass, fg_declare *decl, cg_error *err);
 
-/* The "no shadow map" fallback of one pass. */
+/* The shadow inputs' slots and the "no shadow map" fallback of one pass. */
 typedef struct cgp_no_shadow {
+    fg_slot shadow, matrix; /* the inputs `shadow` and `shadow_matrix` */
     GLuint block;   /* CG_SHADOW_BLOCK with light index -1 */
     GLuint map;     /* 1x1 GL_DEPTH_COMPONENT32F at the far plane */
 } cgp_no_shadow;
 
-void cgp_no_shadow_create(void *state, cgp_no_shadow *out);
+/* In prepare(): the slots of a pass that called cgp_declare_shadow_inputs, and the fallback. */
+void cgp_no_shadow_create(void *state, const fg_pass *pass, cgp_no_shadow *out);
 
 /* Binds the pass's inputs `shadow` at `texture_unit` and `shadow_matrix` at CG_BINDING_SHADOW,
  * or the fallback where they are absent. */

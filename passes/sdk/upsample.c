@@ -22,7 +22,7 @@ cgp_gather_blocks_prepare(void *state, const fg_pass *pass, const cgp_gather *g,
                           const char *shader, const char *defines, cg_error *err)
 {
     *b = (cgp_gather_blocks){.downsample = fg_param_int(pass, "downsample")};
-    const fg_resource_desc *out = fg_resource(pass, "radiance");
+    const fg_resource_desc *out = fg_slot_resource(pass, g->slots.radiance);
     if (b->downsample <= 1 || !out)
         return true;
     char all[1024];
@@ -56,7 +56,7 @@ cgp_gather_blocks_trace(const fg_pass *pass, const cgp_gather *g, const cgp_gath
     glBindTextureUnit(CG_UNIT_GATHER_BLOCKS, b->texture);
     glBindSampler(CG_UNIT_GATHER_BLOCKS, 0);
     glUseProgram(g->program);
-    glBindImageTexture(0, fg_texture(pass, "radiance"), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    glBindImageTexture(0, fg_slot_texture(pass, g->slots.radiance), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
 }
 
 void

@@ -45,6 +45,7 @@ typedef struct shadow_map_state {
     GLuint masked_program;  /* with mask.frag, for scenes with an alphaMode MASK material; 0 until one */
     GLuint fbo;
     GLuint staging;
+    fg_slot depth, matrix;
 } shadow_map_state;
 
 /* The light this instance serves: the `light` parameter, or the first directional or spot
@@ -113,7 +114,8 @@ shadow_map_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
 static bool
 shadow_map_prepare(fg_pass *pass, shadow_map_state *st, cg_error *err)
 {
-    (void)pass;
+    st->depth = fg_pass_slot(pass, "depth");
+    st->matrix = fg_pass_slot(pass, "matrix");
     st->fbo = cgp_framebuffer(st);
     glNamedFramebufferDrawBuffer(st->fbo, GL_NONE);
     glNamedFramebufferReadBuffer(st->fbo, GL_NONE);
@@ -268,9 +270,9 @@ shadow_map_execute(fg_pass *pass, shadow_map_state *st, cg_error *err)
     block.params[3] = (float)resolution;
     block.frustum[0] = (float)index;
     glNamedBufferSubData(st->staging, 0, sizeof block, &block);
-    glCopyNamedBufferSubData(st->staging, fg_buffer(pass, "matrix"), 0, 0, sizeof block);
+    glCopyNamedBufferSubData(st->staging, fg_slot_buffer(pass, st->matrix), 0, 0, sizeof block);
 
-    glNamedFramebufferTexture(st->fbo, GL_DEPTH_ATTACHMENT, fg_texture(pass, "depth"), 0);
+    glNamedFramebufferTexture(st->fbo, GL_DEPTH_ATTACHMENT, fg_slot_texture(pass, st->depth), 0);
     cgp_depth_draw_begin(st->fbo, resolution, resolution);
     /* Occluders in front of the near plane still cast shadows. */
     glEnable(GL_DEPTH_CLAMP);

@@ -103,6 +103,10 @@ static const fg_param_desc voxel_light_params[] = {
 static const char *const geometry_names[5] = {"albedo", "coverage", "normal", "emission", "specular"};
 static const GLenum geometry_formats[5] = {GL_RGBA8, GL_RGBA8, GL_RGBA8_SNORM, GL_RGBA16F, GL_RGBA8};
 static const char *const light_names[3] = {"radiance", "sides", "normals"};
+/* The outputs declared for some parameters only (voxel_light_declare), found by these names. */
+static const char *const glossy_name = "glossy";
+static const char *const gathered_names[2] = {"gathered_front", "gathered_back"};
+static const char *const source_names[2] = {"source_front", "source_back"};
 
 typedef struct voxel_light_state {
     GLuint inject, inject_listed, list, mip, gather;
@@ -133,6 +137,9 @@ typedef struct voxel_light_state {
     int light_count;
     uint64_t relights;      /* frames that relit since prepare */
     int dispatches;         /* compute dispatches of this frame's execute */
+    fg_slot geometry[5];    /* geometry_names */
+    fg_slot region, light[3], voxels;   /* light: light_names */
+    fg_slot glossy_slot, gathered[2], source_slots[2]; /* FG_NO_SLOT when not declared */
 } voxel_light_state;
 
 /* Entries of the list of occupied voxels: a quarter of the volume, far beyond what surfaces
@@ -209,24 +216,26 @@ voxel_light_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
         fg_declare_output(decl, light_names[i], &light, FG_ACCESS_IMAGE_STORE);
     bool glossy = fg_param_bool(pass, "glossy");
     if (glossy)
-        fg_declare_output(decl, "glossy", &light, FG_ACCESS_IMAGE_STORE);
+        fg_declare_output(decl, glossy_name, &light, FG_ACCESS_IMAGE_STORE);
     if (gathers(pass) > 0 || glossy) {
         fg_resource_desc gathered = light;
         gathered.levels = 1;
         /* G(V_0) is kept while only the lights change where it is the only gather (glossy's gather
          * overwrites it). */
         gathered.persistent = light.persistent && gathers(pass) == 1 && fg_param_int(pass, "bounces") == 1 && !glossy;
-        fg_declare_output(decl, "gathered_front", &gathered, FG_ACCESS_IMAGE_STORE);
-        fg_declare_output(decl, "gathered_back", &gathered, FG_ACCESS_IMAGE_STORE);
+        for (int i = 0; i < 2; i++)
+            fg_declare_output(decl, gathered_names[i], &gathered, FG_ACCESS_IMAGE_STORE);
     }
-    if (glossy && geometry[4]) {
-        /* G(V_0), which glossy's specular lobe reflects, kept past the gathers that follow it. */
+    const fg_frame *frame = fg_pass_frame(pass);
+    if (glossy && geometry[4] && frame && frame->scene && cg_scene_has_lobes(frame->scene)) {
+        /* G(V_0), which glossy's specular lobe reflects, kept past the gathers that follow it; only
+         * where a material has a lobe, as `glossy` is lit only there (16 MiB at 128^3). */
         fg_resource_desc source = light;
         source.format = GL_R11F_G11F_B10F;
         source.levels = 1;
         source.persistent = false;
-        fg_declare_output(decl, "source_front", &source, FG_ACCESS_IMAGE_STORE);
-        fg_declare_output(decl, "source_back", &source, FG_ACCESS_IMAGE_STORE);
+        for (int i = 0; i < 2; i++)
+            fg_declare_output(decl, source_names[i], &source, FG_ACCESS_IMAGE_STORE);
     }
     fg_resource_desc list = cgp_buffer_desc(sizeof(cg_voxel_list_block) + sizeof(GLuint) * list_capacity(g));
     list.gi = true;
@@ -247,10 +256,21 @@ static bool
 voxel_light_prepare(fg_pass *pass, voxel_light_state *s, cg_error *err)
 {
     cgp_state_on_destroy(s, voxel_light_cleanup);
-    s->gathers = fg_resource(pass, "gathered_front") != NULL;
-    s->source = fg_resource(pass, "source_front") != NULL;
+    for (int i = 0; i < 5; i++)
+        s->geometry[i] = fg_pass_slot(pass, geometry_names[i]);
+    for (int i = 0; i < 3; i++)
+        s->light[i] = fg_pass_slot(pass, light_names[i]);
+    s->region = fg_pass_slot(pass, "region");
+    s->voxels = fg_pass_slot(pass, "voxels");
+    s->glossy_slot = fg_pass_slot_if_declared(pass, glossy_name);
+    for (int i = 0; i < 2; i++) {
+        s->gathered[i] = fg_pass_slot_if_declared(pass, gathered_names[i]);
+        s->source_slots[i] = fg_pass_slot_if_declared(pass, source_names[i]);
+    }
+    s->gathers = fg_slot_present(pass, s->gathered[0]);
+    s->source = fg_slot_present(pass, s->source_slots[0]);
     s->cache = fg_param_bool(pass, "cache");
-    cgp_no_shadow_create(s, &s->no_shadow);
+    cgp_no_shadow_create(s, pass, &s->no_shadow);
     cgp_sky_prepare(s, &s->sky);
     s->sampler = cgp_sampler_volume(s);
     s->one_level = cgp_sampler_volume_one_level(s);
@@ -270,14 +290,14 @@ voxel_light_prepare(fg_pass *pass, voxel_light_state *s, cg_error *err)
 static GLuint
 list_voxels(const fg_pass *pass, voxel_light_state *s)
 {
-    const fg_resource_desc *volume = fg_resource(pass, "radiance");
-    GLuint voxels = fg_buffer(pass, "voxels");
+    const fg_resource_desc *volume = fg_slot_resource(pass, s->light[0]);
+    GLuint voxels = fg_slot_buffer(pass, s->voxels);
     const cg_voxel_list_block empty = {.dispatch = {0, 1, 1, 0}};
     glNamedBufferSubData(voxels, 0, sizeof empty, &empty);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_VOXEL_LIST, voxels);
     glUseProgram(s->list);
     glUniform1ui(3, list_capacity(volume));
-    glBindTextureUnit(0, fg_texture(pass, "albedo"));
+    glBindTextureUnit(0, fg_slot_texture(pass, s->geometry[0]));
     glDispatchCompute((GLuint)(volume->width + 3) / 4, (GLuint)(volume->height + 3) / 4, (GLuint)(volume->depth + 3) / 4);
     s->dispatches++;
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
@@ -295,15 +315,15 @@ inject_listed(const fg_pass *pass, voxel_light_state *s, bool direct, bool gathe
     glUniform1i(5, false);
     glUniform1i(4, direct);
     glUniform1i(1, gathered);
-    glUniform1ui(3, list_capacity(fg_resource(pass, "radiance")));
+    glUniform1ui(3, list_capacity(fg_slot_resource(pass, s->light[0])));
     for (int i = 0; i < 3; i++) {
-        GLuint tex = fg_texture(pass, light_names[i]);
+        GLuint tex = fg_slot_texture(pass, s->light[i]);
         if (clear)
             glClearTexImage(tex, 0, GL_RGBA, GL_FLOAT, NULL);
         glBindImageTexture((GLuint)i, tex, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     }
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_VOXEL_LIST, fg_buffer(pass, "voxels"));
-    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, fg_buffer(pass, "voxels"));
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_VOXEL_LIST, fg_slot_buffer(pass, s->voxels));
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, fg_slot_buffer(pass, s->voxels));
     glDispatchComputeIndirect(0);
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
     s->dispatches++;
@@ -320,10 +340,10 @@ inject(const fg_pass *pass, voxel_light_state *s, bool direct, bool gathered, bo
     glUniform1i(4, direct);
     glUniform1i(1, gathered);
     glUniform1i(2, build_list);
-    const fg_resource_desc *volume = fg_resource(pass, "radiance");
+    const fg_resource_desc *volume = fg_slot_resource(pass, s->light[0]);
     glUniform1ui(3, s->gathers ? list_capacity(volume) : 0u);
     for (int i = 0; i < 3; i++)
-        glBindImageTexture((GLuint)i, fg_texture(pass, light_names[i]), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+        glBindImageTexture((GLuint)i, fg_slot_texture(pass, s->light[i]), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glDispatchCompute((GLuint)(volume->width + 3) / 4, (GLuint)(volume->height + 3) / 4, (GLuint)(volume->depth + 3) / 4);
     s->dispatches++;
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT |
@@ -335,7 +355,7 @@ inject(const fg_pass *pass, voxel_light_state *s, bool direct, bool gathered, bo
 static void
 inject_level0(const fg_pass *pass, voxel_light_state *s, bool direct, bool gathered, bool *clear)
 {
-    if (s->listed <= list_capacity(fg_resource(pass, "radiance"))) {
+    if (s->listed <= list_capacity(fg_slot_resource(pass, s->light[0]))) {
         inject_listed(pass, s, direct, gathered, *clear);
         *clear = false;
     } else {
@@ -351,27 +371,27 @@ inject_level0(const fg_pass *pass, voxel_light_state *s, bool direct, bool gathe
 static void
 inject_glossy(const fg_pass *pass, voxel_light_state *s, bool source)
 {
-    const fg_resource_desc *volume = fg_resource(pass, "radiance");
+    const fg_resource_desc *volume = fg_slot_resource(pass, s->light[0]);
     bool listed = s->listed <= list_capacity(volume);
-    GLuint glossy = fg_texture(pass, "glossy");
+    GLuint glossy = fg_slot_texture(pass, s->glossy_slot);
     glUseProgram(listed ? s->inject_listed : s->inject);
     glUniform1i(5, true);
     glUniform1i(4, true);
     glUniform1i(1, true);
-    glUniform1i(6, fg_texture(pass, "specular") != 0);
+    glUniform1i(6, fg_slot_texture(pass, s->geometry[4]) != 0);
     glUniform1i(7, source);
     glUniform1ui(3, list_capacity(volume));
     if (!listed)
         glUniform1i(2, false);
     else
         glClearTexImage(glossy, 0, GL_RGBA, GL_FLOAT, NULL);
-    glBindTextureUnit(7, fg_texture(pass, "normals"));
+    glBindTextureUnit(7, fg_slot_texture(pass, s->light[2]));
     glBindImageTexture(0, glossy, 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     for (int i = 1; i < 3; i++)
-        glBindImageTexture((GLuint)i, fg_texture(pass, light_names[i]), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+        glBindImageTexture((GLuint)i, fg_slot_texture(pass, s->light[i]), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     if (listed) {
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_VOXEL_LIST, fg_buffer(pass, "voxels"));
-        glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, fg_buffer(pass, "voxels"));
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_VOXEL_LIST, fg_slot_buffer(pass, s->voxels));
+        glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, fg_slot_buffer(pass, s->voxels));
         glDispatchComputeIndirect(0);
         glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
     } else {
@@ -389,13 +409,13 @@ inject_glossy(const fg_pass *pass, voxel_light_state *s, bool source)
 /* Levels 1.. of the three volumes from level 0, the first being `first` ("radiance" or "glossy": the
  * sides and normals, the same geometry, are written again as they were). */
 static void
-mip_of(const fg_pass *pass, voxel_light_state *s, const char *first)
+mip_of(const fg_pass *pass, voxel_light_state *s, fg_slot first)
 {
     glUseProgram(s->mip);
-    const fg_resource_desc *volume = fg_resource(pass, "radiance");
+    const fg_resource_desc *volume = fg_slot_resource(pass, s->light[0]);
     for (int level = 1; level < volume->levels; level++) {
         for (int i = 0; i < 3; i++) {
-            GLuint tex = fg_texture(pass, i == 0 ? first : light_names[i]);
+            GLuint tex = fg_slot_texture(pass, i == 0 ? first : s->light[i]);
             glBindImageTexture((GLuint)i, tex, level - 1, GL_TRUE, 0, GL_READ_ONLY, GL_RGBA16F);
             glBindImageTexture(3 + (GLuint)i, tex, level, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
         }
@@ -412,7 +432,7 @@ mip_of(const fg_pass *pass, voxel_light_state *s, const char *first)
 static void
 mip(const fg_pass *pass, voxel_light_state *s)
 {
-    mip_of(pass, s, "radiance");
+    mip_of(pass, s, s->light[0]);
 }
 
 /* Each listed voxel's gathered light on both sides, through the current volumes; of_v0: they hold
@@ -421,25 +441,26 @@ static void
 gather(const fg_pass *pass, voxel_light_state *s, bool of_v0)
 {
     glUseProgram(s->gather);
-    glUniform1ui(3, list_capacity(fg_resource(pass, "radiance")));
+    glUniform1ui(3, list_capacity(fg_slot_resource(pass, s->light[0])));
     bool source = of_v0 && s->source;
     glUniform1i(4, source);
     if (source) {
-        glBindImageTexture(2, fg_texture(pass, "source_front"), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R11F_G11F_B10F);
-        glBindImageTexture(3, fg_texture(pass, "source_back"), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R11F_G11F_B10F);
+        for (int i = 0; i < 2; i++)
+            glBindImageTexture(2 + (GLuint)i, fg_slot_texture(pass, s->source_slots[i]), 0, GL_TRUE, 0, GL_WRITE_ONLY,
+                               GL_R11F_G11F_B10F);
     }
-    glBindTextureUnit(CG_UNIT_VOLUME, fg_texture(pass, "radiance"));
-    glBindTextureUnit(CG_UNIT_SIDES, fg_texture(pass, "sides"));
-    glBindTextureUnit(CG_UNIT_NORMALS, fg_texture(pass, "normals"));
+    glBindTextureUnit(CG_UNIT_VOLUME, fg_slot_texture(pass, s->light[0]));
+    glBindTextureUnit(CG_UNIT_SIDES, fg_slot_texture(pass, s->light[1]));
+    glBindTextureUnit(CG_UNIT_NORMALS, fg_slot_texture(pass, s->light[2]));
     glBindSampler(CG_UNIT_VOLUME, s->sampler);
     glBindSampler(CG_UNIT_SIDES, s->sampler);
     glBindSampler(CG_UNIT_NORMALS, s->sampler);
-    glBindTextureUnit(CG_UNIT_OCCUPANCY, fg_texture(pass, "radiance"));
+    glBindTextureUnit(CG_UNIT_OCCUPANCY, fg_slot_texture(pass, s->light[0]));
     glBindSampler(CG_UNIT_OCCUPANCY, s->one_level);
-    glBindTextureUnit(2, fg_texture(pass, "normal"));
-    glBindImageTexture(0, fg_texture(pass, "gathered_front"), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    glBindImageTexture(1, fg_texture(pass, "gathered_back"), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, fg_buffer(pass, "voxels"));
+    glBindTextureUnit(2, fg_slot_texture(pass, s->geometry[2]));
+    glBindImageTexture(0, fg_slot_texture(pass, s->gathered[0]), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindImageTexture(1, fg_slot_texture(pass, s->gathered[1]), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, fg_slot_buffer(pass, s->voxels));
     glDispatchComputeIndirect(0);
     s->dispatches++;
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
@@ -458,12 +479,12 @@ static void
 bind_inject_inputs(const fg_pass *pass, const voxel_light_state *s)
 {
     for (int i = 0; i < 4; i++)
-        glBindTextureUnit((GLuint)i, fg_texture(pass, geometry_names[i]));
-    glBindTextureUnit(4, s->gathers ? fg_texture(pass, "gathered_front") : 0);
-    glBindTextureUnit(5, s->gathers ? fg_texture(pass, "gathered_back") : 0);
-    glBindTextureUnit(8, fg_texture(pass, "specular"));
-    glBindTextureUnit(9, s->source ? fg_texture(pass, "source_front") : 0);
-    glBindTextureUnit(10, s->source ? fg_texture(pass, "source_back") : 0);
+        glBindTextureUnit((GLuint)i, fg_slot_texture(pass, s->geometry[i]));
+    glBindTextureUnit(4, s->gathers ? fg_slot_texture(pass, s->gathered[0]) : 0);
+    glBindTextureUnit(5, s->gathers ? fg_slot_texture(pass, s->gathered[1]) : 0);
+    glBindTextureUnit(8, fg_slot_texture(pass, s->geometry[4]));
+    glBindTextureUnit(9, s->source ? fg_slot_texture(pass, s->source_slots[0]) : 0);
+    glBindTextureUnit(10, s->source ? fg_slot_texture(pass, s->source_slots[1]) : 0);
 }
 
 /* Whether the frame's scene has a material with a specular or transmission lobe (cg_scene_has_lobes):
@@ -476,17 +497,17 @@ key_lobes(const fg_frame *frame)
 
 /* What a relight would read this frame beside the scene's instances and lights (cache = true). */
 static void
-read_key(const fg_pass *pass, struct light_key *key)
+read_key(const fg_pass *pass, const voxel_light_state *s, struct light_key *key)
 {
     memset(key, 0, sizeof *key);
     for (int i = 0; i < 5; i++)
-        key->textures[i] = fg_texture(pass, geometry_names[i]);
-    key->textures[5] = fg_texture(pass, "shadow");
-    key->textures[6] = fg_buffer(pass, "shadow_matrix");
+        key->textures[i] = fg_slot_texture(pass, s->geometry[i]);
+    key->textures[5] = fg_slot_texture(pass, s->no_shadow.shadow);
+    key->textures[6] = fg_slot_buffer(pass, s->no_shadow.matrix);
     /* voxelize writes its region block every frame: read back, it says whether the region, the
      * levels or the radiance scale moved (48 bytes; the pass's work is done by then anyway). */
-    glGetNamedBufferSubData(fg_buffer(pass, "region"), 0, sizeof key->region, &key->region);
-    const fg_resource_desc *matrix = fg_resource(pass, "shadow_matrix");
+    glGetNamedBufferSubData(fg_slot_buffer(pass, s->region), 0, sizeof key->region, &key->region);
+    const fg_resource_desc *matrix = fg_slot_resource(pass, s->no_shadow.matrix);
     if (matrix && key->textures[6]) {
         size_t bytes = matrix->buffer_bytes < sizeof key->shadow ? matrix->buffer_bytes : sizeof key->shadow;
         glGetNamedBufferSubData(key->textures[6], 0, (GLsizeiptr)bytes, key->shadow);
@@ -566,12 +587,12 @@ voxel_light_execute(fg_pass *pass, voxel_light_state *s, cg_error *err)
     const fg_frame *frame = fg_pass_frame(pass);
     int bounces = fg_param_int(pass, "bounces");
     s->dispatches = 0;
-    glBindBufferBase(GL_UNIFORM_BUFFER, CG_BINDING_VOLUME, fg_buffer(pass, "region"));
+    glBindBufferBase(GL_UNIFORM_BUFFER, CG_BINDING_VOLUME, fg_slot_buffer(pass, s->region));
     struct light_key key;
     bool lights_only = false;
     const char *why = "cache=false";
     if (s->cache) {
-        read_key(pass, &key);
+        read_key(pass, s, &key);
         why = what_changed(pass, s, &key, &lights_only);
         if (!why) {
             fg_pass_report_rebuilt(pass, "volumes kept (0 dispatches; %llu relight%s since prepare)",
@@ -585,7 +606,7 @@ voxel_light_execute(fg_pass *pass, voxel_light_state *s, cg_error *err)
     int count = s->gathers ? gathers(pass) : 0;
     bool skip_first = bounces > 0 && count < bounces;
     /* G(V_0) kept where it is the only gather and its outputs persist (declare). */
-    const fg_resource_desc *gathered = fg_resource(pass, "gathered_front");
+    const fg_resource_desc *gathered = fg_slot_resource(pass, s->gathered[0]);
     bool keeps_first = s->cache && count == 1 && bounces == 1 && gathered && gathered->persistent;
     bool reuse_first = keeps_first && lights_only && s->first_gather_kept;
     /* The occupied voxels, listed again unless only the lights changed since they were. Level 0 is
@@ -594,7 +615,7 @@ voxel_light_execute(fg_pass *pass, voxel_light_state *s, cg_error *err)
     if (!(s->cache && lights_only && s->list_kept))
         s->listed = list_voxels(pass, s);
     bool clear = true;
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_VOXEL_LIST, fg_buffer(pass, "voxels"));
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_VOXEL_LIST, fg_slot_buffer(pass, s->voxels));
     if (s->gathers && !reuse_first) {
         cg_cone_set_block cones;
         cgp_cone_block_fill_march(&s->set, BOUNCE_STEP, BOUNCE_START_OFFSET, 0.0, BOUNCE_LOD_BIAS, &cones);
@@ -624,7 +645,7 @@ voxel_light_execute(fg_pass *pass, voxel_light_state *s, cg_error *err)
         }
         /* V_(N+1) = Le + D + G(V_N) into `glossy` (keeps_first is false: its gather is the last), only
          * where a material has a lobe whose cone reads it (none in the built-in scenes: no cost there). */
-        if (fg_resource(pass, "glossy") && key_lobes(frame)) {
+        if (fg_slot_resource(pass, s->glossy_slot) && key_lobes(frame)) {
             if (count == 0) {
                 if (!cgp_sky_update(s, &s->sky, frame->scene, err))
                     return false;
@@ -633,7 +654,7 @@ voxel_light_execute(fg_pass *pass, voxel_light_state *s, cg_error *err)
             gather(pass, s, count == 0 && !skip_first);
             bind_inject_inputs(pass, s);
             inject_glossy(pass, s, s->source && !skip_first);
-            mip_of(pass, s, "glossy");
+            mip_of(pass, s, s->glossy_slot);
             count++;
         }
         if (count > 0)

@@ -212,6 +212,9 @@ typedef struct voxelize_state {
     GLsizei *range_counts;
     GLsizeiptr *range_firsts;
     int range_cap;
+    fg_slot block, accumulation;
+    fg_slot radiance;       /* the radiance model */
+    fg_slot geometry[5];    /* the surface model: geometry_names */
 } voxelize_state;
 
 /* The sides of a `fit = box` volume: with `voxel` the cube's voxel (the longest side's bounds and
@@ -379,9 +382,14 @@ voxelize_prepare(fg_pass *pass, voxelize_state *s, cg_error *err)
 {
     cgp_state_on_destroy(s, voxelize_cleanup);
     s->surface = fg_param_enum(pass, "model") == MODEL_SURFACE;
+    s->block = fg_pass_slot(pass, "region");
+    s->accumulation = fg_pass_slot(pass, "accumulation");
+    for (int i = 0; i < 5 && s->surface; i++)
+        s->geometry[i] = fg_pass_slot(pass, geometry_names[i]);
+    s->radiance = s->surface ? FG_NO_SLOT : fg_pass_slot(pass, "radiance");
     s->max_buffer = cgp_buffer(s, sizeof(GLuint), NULL, GL_DYNAMIC_STORAGE_BIT);
     s->fbo = cgp_framebuffer(s);
-    cgp_no_shadow_create(s, &s->no_shadow);
+    cgp_no_shadow_create(s, pass, &s->no_shadow);
     if (s->surface) {
         s->cache = fg_param_bool(pass, "cache");
         s->format = GL_RGBA16F;
@@ -393,7 +401,7 @@ voxelize_prepare(fg_pass *pass, voxelize_state *s, cg_error *err)
                                     "#define SURFACE\n", &s->program, err) &&
                cgp_compute_program(s, "voxelize/resolve.comp", "#define SURFACE\n", &s->resolve, err);
     }
-    s->format = fg_resource(pass, "radiance")->format;
+    s->format = fg_slot_resource(pass, s->radiance)->format;
     char defines[64];
     snprintf(defines, sizeof defines, "#define FORMAT %s\n", s->format == GL_RGBA8 ? "rgba8" : "rgba16f");
     return cgp_graphics_program(s, "voxelize/voxelize.vert", "voxelize/voxelize.geom", "voxelize/voxelize.frag", NULL,
@@ -726,9 +734,9 @@ resolve_surface(fg_pass *pass, voxelize_state *s, const voxel_region *region, co
     glUniform4f(4, (float)unit_fixed, (float)emission_fixed, (float)radiance_scale, 0.0f);
     glUniform3i(5, box->lo[0], box->lo[1], box->lo[2]);
     glUniform3i(6, box->hi[0], box->hi[1], box->hi[2]);
-    glBindImageTexture(0, fg_texture(pass, "accumulation"), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
+    glBindImageTexture(0, fg_slot_texture(pass, s->accumulation), 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
     for (int i = 0; i < 5; i++)
-        glBindImageTexture(1 + (GLuint)i, fg_texture(pass, geometry_names[i]), 0, GL_TRUE, 0, GL_WRITE_ONLY,
+        glBindImageTexture(1 + (GLuint)i, fg_slot_texture(pass, s->geometry[i]), 0, GL_TRUE, 0, GL_WRITE_ONLY,
                            geometry_formats[i]);
     glDispatchCompute((GLuint)(box->hi[0] - box->lo[0] + 3) / 4, (GLuint)(box->hi[1] - box->lo[1] + 3) / 4,
                       (GLuint)(box->hi[2] - box->lo[2] + 3) / 4);
@@ -743,7 +751,7 @@ voxelize_execute(fg_pass *pass, voxelize_state *s, cg_error *err)
     cg_mesh_filter filter = (cg_mesh_filter)fg_param_enum(pass, "meshes");
     int resolution = fg_param_int(pass, "resolution");
     /* The sides declared at compile: the volume's textures are of them. */
-    const fg_resource_desc *accumulation = fg_resource(pass, "accumulation");
+    const fg_resource_desc *accumulation = fg_slot_resource(pass, s->accumulation);
     const int declared[3] = {accumulation->width / (s->surface ? CG_SURFACE_SLAB_GRID_X : 1),
                              accumulation->height / (s->surface ? CG_SURFACE_SLAB_GRID_Y : 1),
                              accumulation->depth / (s->surface ? CG_SURFACE_SLAB_GRID_Z : 4)};
@@ -786,7 +794,7 @@ voxelize_execute(fg_pass *pass, voxelize_state *s, cg_error *err)
                  (float)radiance_scale, 0.0f},
         .dims = {(float)region.dims[0], (float)region.dims[1], (float)region.dims[2], 0.0f},
     };
-    GLuint region_buffer = fg_buffer(pass, "region");
+    GLuint region_buffer = fg_slot_buffer(pass, s->block);
     glNamedBufferSubData(region_buffer, 0, sizeof block, &block);
 
     const char *why = NULL;
@@ -856,7 +864,7 @@ voxelize_execute(fg_pass *pass, voxelize_state *s, cg_error *err)
         !build_chunks(s, frame, err))
         return false;
 
-    GLuint accum = fg_texture(pass, "accumulation");
+    GLuint accum = fg_slot_texture(pass, s->accumulation);
     const GLuint zero = 0;
     if (!partial) {
         glClearTexImage(accum, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
@@ -957,7 +965,7 @@ voxelize_execute(fg_pass *pass, voxelize_state *s, cg_error *err)
         return true;
     }
     GLuint groups = (GLuint)((resolution + 3) / 4);
-    GLuint radiance = fg_texture(pass, "radiance");
+    GLuint radiance = fg_slot_texture(pass, s->radiance);
     bool from_max = s->format == GL_RGBA8;
     glBindImageTexture(0, accum, 0, GL_TRUE, 0, GL_READ_ONLY, GL_R32UI);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_RESOLVE_MAX, s->max_buffer);
