@@ -399,6 +399,83 @@ unit_scenes(void **state)
     cg_scene_free(&s);
 }
 
+/* Height range and the buildings' extent along x and their triangles of an openworld. */
+typedef struct world_shape {
+    float lo[3], hi[3];
+    double town_x0, town_x1;
+    size_t building_triangles;
+} world_shape;
+
+static world_shape
+load_world(const char *source)
+{
+    cg_scene s;
+    cg_error err = { 0 };
+    assert_cg_ok(cg_scene_load(source, &s, &err), &err);
+    world_shape w = { .town_x0 = INFINITY, .town_x1 = -INFINITY };
+    memcpy(w.lo, s.bounds_min, sizeof w.lo);
+    memcpy(w.hi, s.bounds_max, sizeof w.hi);
+    for (int m = 0; m < s.mesh_count; m++) {
+        if (strncmp(s.meshes[m].name, "buildings_", 10))
+            continue;
+        w.building_triangles += s.meshes[m].index_count / 3;
+        for (uint32_t v = 0; v < s.meshes[m].vertex_count; v++) {
+            double x = s.meshes[m].positions[3 * v];
+            w.town_x0 = fmin(w.town_x0, x);
+            w.town_x1 = fmax(w.town_x1, x);
+        }
+    }
+    printf("# %s: bounds [%g %g %g] .. [%g %g %g], buildings x %g .. %g, %zu wall triangles\n", source,
+           w.lo[0], w.lo[1], w.lo[2], w.hi[0], w.hi[1], w.hi[2], w.town_x0, w.town_x1, w.building_triangles);
+    cg_scene_free(&s);
+    return w;
+}
+
+/* size scales the world: the terrain's extent exactly, its height range about as sqrt(size / 400),
+ * the town spread over the map with more buildings, not bigger ones; the default is today's world
+ * (its numbers as before the parameter existed) and size=400 is the default. */
+static void
+openworld_size_scales_world(void **state)
+{
+    (void)state;
+    world_shape d = load_world("builtin:openworld");
+    const float lo[3] = { -200, -25.8873f, -200 }, hi[3] = { 200, 29.8561f, 200 };
+    for (int a = 0; a < 3; a++) {
+        assert_float_equal(d.lo[a], lo[a], 1e-3);
+        assert_float_equal(d.hi[a], hi[a], 1e-3);
+    }
+    assert_int_equal(d.building_triangles, 800);
+    world_shape same = load_world("builtin:openworld?size=400");
+    assert_memory_equal(&same, &d, sizeof d);
+    const double sizes[] = { 100, 1000, 4000 };
+    for (int i = 0; i < 3; i++) {
+        char source[64];
+        snprintf(source, sizeof source, "builtin:openworld?size=%g", sizes[i]);
+        world_shape w = load_world(source);
+        double k = sizes[i] / 400;
+        assert_float_equal(w.lo[0], -sizes[i] / 2, 1e-3);
+        assert_float_equal(w.hi[0], sizes[i] / 2, 1e-3);
+        assert_float_equal(w.lo[2], -sizes[i] / 2, 1e-3);
+        assert_float_equal(w.hi[2], sizes[i] / 2, 1e-3);
+        double relief = (w.hi[1] - w.lo[1]) / (d.hi[1] - d.lo[1]) / sqrt(k);
+        assert_true(relief > 0.5 && relief < 1.5);
+        /* A larger town, not larger buildings: k^2 times the buildings within half, over 80% of the
+         * scaled width the default's cover; a smaller world has fewer. */
+        if (k > 1) {
+            assert_true(w.town_x1 - w.town_x0 > 0.8 * k * (d.town_x1 - d.town_x0));
+            assert_true(w.building_triangles > 0.5 * k * k * (double)d.building_triangles);
+        } else {
+            assert_true(w.building_triangles < d.building_triangles);
+        }
+    }
+    check_count("builtin:openworld?size=4000", 200000);
+    check_count("builtin:openworld?size=16000&triangles=2000000", 2000000);
+    cg_scene s;
+    cg_error err = { 0 };
+    assert_cg_status(cg_scene_load("builtin:openworld?size=99", &s, &err), &err, CG_ERR_SCENE_PARAM);
+    assert_non_null(strstr(err.message, "size=99"));
+}
+
 static void
 bad_names_and_parameters(void **state)
 {
@@ -425,6 +502,9 @@ bad_names_and_parameters(void **state)
         "builtin:thinwall?back=2",           "builtin:thinwall?view=2",
         "builtin:boxplane?L=1",              "builtin:terrain?n=1",
         "builtin:terrain?tilt=91",           "builtin:plates?albedo=1.1",
+        "builtin:openworld?size=0",          "builtin:openworld?size=64001",
+        "builtin:openworld?size=-400",       "builtin:openworld?size=nan",
+        "builtin:openworld?size=1km",
     };
     for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
         cg_error_clear(&err);
@@ -555,6 +635,7 @@ CG_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(openworld_triangles_follow_parameter),
              cmocka_unit_test(same_seed_same_scene),
              cmocka_unit_test(openworld_has_heightfield_complex_and_space_under),
+             cmocka_unit_test(openworld_size_scales_world),
              cmocka_unit_test(cornell_box),
              cmocka_unit_test(cornell_scales),
              cmocka_unit_test(furnace_scales),

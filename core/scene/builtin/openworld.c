@@ -1,6 +1,13 @@
 /* builtin:openworld: height-field terrain (most of the triangles), coloured buildings standing on it,
  * a bridge over a valley and a stone arch (space under them: no height field can hold them), a
- * sun and a camera. ?triangles=N&seed=S&motion=none|sun|one|all&period=P.
+ * sun and a camera. ?triangles=N&seed=S&motion=none|sun|one|all&period=P&size=METRES.
+ *
+ * size (default 400) scales the world, not the things in it: the terrain's features and the
+ * town's extent grow with k = size / 400 (the relief with sqrt(k): larger landscapes have gentler
+ * slopes), while the buildings, the bridge's deck and the arch keep their real sizes; the town
+ * keeps today's density (k^2 times the buildings, at most one per 32 triangles of N) and the
+ * bridge gets piers along its longer span. The camera and the sun frame the world as at 400 m.
+ * At the default every number is computed as before, so the scene is bit for bit what it was.
  *
  * The motions are the dynamic cases the papers' methods must serve, as a glTF animation of
  * one period P (seconds, default 20), after which the scene holds its last pose:
@@ -19,6 +26,8 @@
 #include "builtin_internal.h"
 #include "../scene_internal.h"
 
+/* Lengths of the default 400 m world; positions and terrain lengths are multiplied by k = size / 400,
+ * heights of the terrain by sqrt(k). */
 #define OW_SIZE 400.0        /* terrain side, metres; x and z in [-200, 200] */
 #define OW_RELIEF 14.0       /* fbm amplitude, metres */
 #define OW_VALLEY_Z 60.0     /* the valley runs along x at this z */
@@ -27,9 +36,12 @@
 #define OW_BRIDGE_X 20.0
 #define OW_ARCH_X -70.0      /* a gate in front of the town, facing the camera */
 #define OW_ARCH_Z 24.0
+#define OW_CELL 32.0         /* placement grid: wider than the farthest two buildings can overlap (27.1 m) */
 
 typedef struct terrain {
     uint64_t seed;
+    double size;            /* side, metres */
+    double k, rise;         /* size / OW_SIZE, and sqrt(k): how lengths and heights scale */
     int gx, gz;             /* cells along x and z */
     double dx, dz;          /* cell size */
     float *height;          /* (gx+1) x (gz+1) vertex heights, row-major in z */
@@ -38,11 +50,11 @@ typedef struct terrain {
 static double
 terrain_height_analytic(const terrain *t, double x, double z)
 {
-    double h = OW_RELIEF * bs_fbm(x / 90.0, z / 90.0, t->seed);
+    double h = OW_RELIEF * t->rise * bs_fbm(x / (90.0 * t->k), z / (90.0 * t->k), t->seed);
     /* Hills rise towards the far edge so the camera sees a skyline. */
-    h += 10.0 * (1.0 - z / (OW_SIZE / 2)) * 0.5 - 5.0;
-    double dv = (z - OW_VALLEY_Z) / OW_VALLEY_WIDTH;
-    return h - OW_VALLEY_DEPTH * exp(-dv * dv);
+    h += 10.0 * t->rise * (1.0 - z / (t->size / 2)) * 0.5 - 5.0 * t->rise;
+    double dv = (z - OW_VALLEY_Z * t->k) / (OW_VALLEY_WIDTH * t->k);
+    return h - OW_VALLEY_DEPTH * t->rise * exp(-dv * dv);
 }
 
 /* Height of the triangulated terrain (not the noise): what the mesh really has at (x, z).
@@ -50,7 +62,7 @@ terrain_height_analytic(const terrain *t, double x, double z)
 static double
 terrain_mesh_height(const terrain *t, double x, double z)
 {
-    double fx = (x + OW_SIZE / 2) / t->dx, fz = (z + OW_SIZE / 2) / t->dz;
+    double fx = (x + t->size / 2) / t->dx, fz = (z + t->size / 2) / t->dz;
     if (fx < 0) fx = 0;
     if (fz < 0) fz = 0;
     if (fx > t->gx) fx = t->gx;
@@ -102,7 +114,7 @@ build_terrain(cg_scene *scene, terrain *t, int material, cg_error *err)
         for (int j = 0; j < d; j++)
             for (int i = 0; i < w; i++) {
                 size_t v = (size_t)j * w + i;
-                double x = -OW_SIZE / 2 + i * t->dx, z = -OW_SIZE / 2 + j * t->dz;
+                double x = -t->size / 2 + i * t->dx, z = -t->size / 2 + j * t->dz;
                 b.positions[3 * v + 0] = (float)x;
                 b.positions[3 * v + 1] = t->height[v];
                 b.positions[3 * v + 2] = (float)z;
@@ -139,16 +151,50 @@ typedef struct building {
     int roof;
 } building;
 
-static bool
-overlaps(const building *all, int count, double x, double z, double r)
+/* Buildings placed so far, bucketed by OW_CELL cells so that a town of tens of thousands is placed
+ * in linear time; the answer is the one a test against every building would give. */
+typedef struct town_grid {
+    double x0, z0;
+    int nx, nz;
+    int *head;  /* nx * nz: first building in the cell, -1: none */
+    int *next;  /* per building: the next in its cell */
+} town_grid;
+
+static void
+grid_cell(const town_grid *g, double x, double z, int *cx, int *cz)
 {
-    for (int i = 0; i < count; i++) {
-        double rx = x - all[i].x, rz = z - all[i].z;
-        double ri = sqrt(all[i].hx * all[i].hx + all[i].hz * all[i].hz);
-        if (rx * rx + rz * rz < (r + ri + 3) * (r + ri + 3))
-            return true;
-    }
+    *cx = (int)floor((x - g->x0) / OW_CELL);
+    *cz = (int)floor((z - g->z0) / OW_CELL);
+    *cx = *cx < 0 ? 0 : *cx >= g->nx ? g->nx - 1 : *cx;
+    *cz = *cz < 0 ? 0 : *cz >= g->nz ? g->nz - 1 : *cz;
+}
+
+static bool
+overlaps(const town_grid *g, const building *all, double x, double z, double r)
+{
+    int cx, cz;
+    grid_cell(g, x, z, &cx, &cz);
+    for (int b = cz - 1; b <= cz + 1; b++)
+        for (int a = cx - 1; a <= cx + 1; a++) {
+            if (a < 0 || b < 0 || a >= g->nx || b >= g->nz)
+                continue;
+            for (int i = g->head[b * g->nx + a]; i >= 0; i = g->next[i]) {
+                double rx = x - all[i].x, rz = z - all[i].z;
+                double ri = sqrt(all[i].hx * all[i].hx + all[i].hz * all[i].hz);
+                if (rx * rx + rz * rz < (r + ri + 3) * (r + ri + 3))
+                    return true;
+            }
+        }
     return false;
+}
+
+static void
+grid_add(town_grid *g, const building *all, int index)
+{
+    int cx, cz;
+    grid_cell(g, all[index].x, all[index].z, &cx, &cz);
+    g->next[index] = g->head[cz * g->nx + cx];
+    g->head[cz * g->nx + cx] = index;
 }
 
 /* Triangles of a building: 5 box faces (the buried underside left out); a gable roof
@@ -194,33 +240,43 @@ build_building(mesh_builder *walls, mesh_builder *roofs, const building *bd, dou
     mb_flat_triangle(roofs, p[0], p[3], p[4]); /* gable -x */
 }
 
-/* A road bridge across the valley along z at x = OW_BRIDGE_X: a deck, two parapets and
- * three piers down into the ground. The deck spans the valley with metres of air below. */
+/* A road bridge across the valley along z at x = OW_BRIDGE_X k: a deck, two parapets and
+ * 2 m + 1 piers down into the ground (m = round(k), at least 1: about 25 m apart at any size).
+ * The deck spans the valley with metres of air below. */
 static int
-bridge_triangles(void)
+bridge_piers_half(double k)
 {
-    return 12 + 2 * 12 + 3 * 10;
+    long m = lround(k);
+    return m < 1 ? 1 : (int)m;
+}
+
+static int
+bridge_triangles(double k)
+{
+    return 12 + 2 * 12 + (2 * bridge_piers_half(k) + 1) * 10;
 }
 
 static void
 build_bridge(mesh_builder *b, const terrain *t)
 {
-    double z0 = OW_VALLEY_Z - 2.6 * OW_VALLEY_WIDTH, z1 = OW_VALLEY_Z + 2.6 * OW_VALLEY_WIDTH;
-    double bank = terrain_mesh_height(t, OW_BRIDGE_X, z0);
-    double bank1 = terrain_mesh_height(t, OW_BRIDGE_X, z1);
+    double vz = OW_VALLEY_Z * t->k, vw = OW_VALLEY_WIDTH * t->k, bx = OW_BRIDGE_X * t->k;
+    double z0 = vz - 2.6 * vw, z1 = vz + 2.6 * vw;
+    double bank = terrain_mesh_height(t, bx, z0);
+    double bank1 = terrain_mesh_height(t, bx, z1);
     double deck = (bank > bank1 ? bank : bank1) + 1.0;
     double len = (z1 - z0) * 0.5 + 4;
-    double deck_c[3] = { OW_BRIDGE_X, deck, OW_VALLEY_Z }, deck_h[3] = { 4, 0.6, len };
+    double deck_c[3] = { bx, deck, vz }, deck_h[3] = { 4, 0.6, len };
     mb_box(b, deck_c, deck_h, 0, true);
     for (int s = -1; s <= 1; s += 2) {
-        double pc[3] = { OW_BRIDGE_X + s * 3.8, deck + 1.1, OW_VALLEY_Z }, ph[3] = { 0.2, 0.5, len };
+        double pc[3] = { bx + s * 3.8, deck + 1.1, vz }, ph[3] = { 0.2, 0.5, len };
         mb_box(b, pc, ph, 0, true);
     }
-    for (int k = -1; k <= 1; k++) {
-        double pz = OW_VALLEY_Z + k * (z1 - z0) * 0.3;
-        double ground = terrain_min_under(t, OW_BRIDGE_X - 1.5, pz - 1.5, OW_BRIDGE_X + 1.5, pz + 1.5) - 1.0;
+    int m = bridge_piers_half(t->k);
+    for (int k = -m; k <= m; k++) {
+        double pz = vz + k * (z1 - z0) * 0.3 / m;
+        double ground = terrain_min_under(t, bx - 1.5, pz - 1.5, bx + 1.5, pz + 1.5) - 1.0;
         double top = deck - 0.6;
-        double pc[3] = { OW_BRIDGE_X, (ground + top) * 0.5, pz }, ph[3] = { 1.5, (top - ground) * 0.5, 1.5 };
+        double pc[3] = { bx, (ground + top) * 0.5, pz }, ph[3] = { 1.5, (top - ground) * 0.5, 1.5 };
         mb_box(b, pc, ph, 0, false);
     }
 }
@@ -383,13 +439,15 @@ build_openworld(cg_scene *scene, const char *query, cg_error *err)
         { "seed", 0, 18446744073709551615.0, 1, true, 1, false, NULL },
         { "motion", 0, 3, 0, false, 0, false, motions },
         { "period", 0.1, 100000, 20, false, 0, false, NULL },
+        { "size", 100, 64000, OW_SIZE, false, 0, false, NULL },
     };
-    if (!bs_parse_params("openworld", query, p, 4, err))
+    if (!bs_parse_params("openworld", query, p, 5, err))
         return false;
     uint64_t seed = p[1].count; /* exact: a double holds integers only below 2^53 */
     long target = (long)p[0].count;
     int motion = (int)p[2].count;
     double period = p[3].value;
+    double size = p[4].value, k = size / OW_SIZE;
     if (p[3].seen && motion == MOTION_NONE)
         return cg_fail(err, CG_ERR_SCENE_PARAM, "builtin:openworld: period=%g is given without a motion "
                        "(motion=sun, one or all)", period);
@@ -409,46 +467,70 @@ build_openworld(cg_scene *scene, const char *query, cg_error *err)
         return false;
 
     /* Buildings first (their count sets how many triangles are left for the terrain),
-     * more of them in larger scenes: from 12 at 10k triangles to 400 from 1M on. */
-    int nb = (int)(target / 2500);
-    if (nb < 12) nb = 12;
-    if (nb > 400) nb = 400;
+     * more of them in larger scenes: from 12 at 10k triangles to 400 from 1M on, on 400 m; a world
+     * k times wider keeps the town's density (k^2 times as many), buildings taking at most half of
+     * the triangles (16 each at most). */
+    long nb0 = target / 2500;
+    if (nb0 < 12) nb0 = 12;
+    if (nb0 > 400) nb0 = 400;
+    long nbl = lround((double)nb0 * k * k);
+    if (nbl > target / 32) nbl = target / 32;
+    if (nbl < 1) nbl = 1;
+    int nb = (int)nbl;
+    double arch_x = OW_ARCH_X * k, arch_z = OW_ARCH_Z * k;
+    /* The town lies south of the valley (z < 15 k), leaving the valley and the bridge clear; its
+     * buildings (12.1 m from centre to corner at most) stay on the terrain in a world under 400 m. */
+    double town_x1 = fmin(170 * k, size / 2 - 13), town_x0 = -town_x1;
+    double town_z0 = fmax(-175 * k, 13 - size / 2), town_z1 = 15 * k;
+    town_grid grid = { .x0 = town_x0, .z0 = town_z0 };
+    grid.nx = (int)ceil((town_x1 - town_x0) / OW_CELL) + 1;
+    grid.nz = (int)ceil((town_z1 - town_z0) / OW_CELL) + 1;
     building *bs = calloc((size_t)nb, sizeof *bs);
-    if (!bs)
+    grid.head = malloc(sizeof *grid.head * (size_t)grid.nx * (size_t)grid.nz);
+    grid.next = malloc(sizeof *grid.next * (size_t)nb);
+    if (!bs || !grid.head || !grid.next) {
+        free(bs);
+        free(grid.head);
+        free(grid.next);
         return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "builtin:openworld: out of memory");
+    }
+    for (size_t c = 0; c < (size_t)grid.nx * (size_t)grid.nz; c++)
+        grid.head[c] = -1;
     int placed = 0;
-    long other = bridge_triangles() + arch_triangles();
-    for (int tries = 0; placed < nb && tries < nb * 50; tries++) {
+    long other = bridge_triangles(k) + arch_triangles();
+    for (long tries = 0; placed < nb && tries < (long)nb * 50; tries++) {
         building bd;
-        /* The town lies south of the valley (z < 20), leaving the valley and the bridge clear. */
         bd.hx = bs_rng_range(&r, 3, 9);
         bd.hz = bs_rng_range(&r, 3, 8);
-        bd.x = bs_rng_range(&r, -170, 170);
-        bd.z = bs_rng_range(&r, -175, 15);
+        bd.x = bs_rng_range(&r, town_x0, town_x1);
+        bd.z = bs_rng_range(&r, town_z0, town_z1);
         bd.yaw = bs_rng_range(&r, -0.4, 0.4);
         bd.height = bs_rng_range(&r, 5, 22); /* above the ground, fixed below */
         bd.colour = (int)(bs_rng_next(&r) % 4);
         bd.roof = bs_rng_next(&r) % 2 ? ROOF_GABLE : ROOF_FLAT;
         double rad = sqrt(bd.hx * bd.hx + bd.hz * bd.hz);
         /* Keep the arch's square free. */
-        if (fabs(bd.x - OW_ARCH_X) < 14 + rad && fabs(bd.z - OW_ARCH_Z) < 8 + rad)
+        if (fabs(bd.x - arch_x) < 14 + rad && fabs(bd.z - arch_z) < 8 + rad)
             continue;
-        if (overlaps(bs, placed, bd.x, bd.z, rad))
+        if (overlaps(&grid, bs, bd.x, bd.z, rad))
             continue;
-        bs[placed++] = bd;
+        bs[placed] = bd;
+        grid_add(&grid, bs, placed++);
         other += building_triangles(&bd);
     }
+    free(grid.head);
+    free(grid.next);
 
     /* Terrain grid: gx * gz cells, two triangles each, as close to what is left as the
      * integer grid allows (within 2 * gx triangles). */
     long left = target - other;
-    terrain t = { .seed = seed };
+    terrain t = { .seed = seed, .size = size, .k = k, .rise = sqrt(k) };
     t.gx = (int)lround(sqrt(left / 2.0));
     if (t.gx < 2) t.gx = 2;
     t.gz = (int)lround(left / (2.0 * t.gx));
     if (t.gz < 2) t.gz = 2;
-    t.dx = OW_SIZE / t.gx;
-    t.dz = OW_SIZE / t.gz;
+    t.dx = size / t.gx;
+    t.dz = size / t.gz;
     t.height = malloc((size_t)(t.gx + 1) * (t.gz + 1) * sizeof(float));
     if (!t.height) {
         free(bs);
@@ -457,14 +539,15 @@ build_openworld(cg_scene *scene, const char *query, cg_error *err)
     for (int j = 0; j <= t.gz; j++)
         for (int i = 0; i <= t.gx; i++)
             t.height[(size_t)j * (t.gx + 1) + i] =
-                (float)terrain_height_analytic(&t, -OW_SIZE / 2 + i * t.dx, -OW_SIZE / 2 + j * t.dz);
+                (float)terrain_height_analytic(&t, -size / 2 + i * t.dx, -size / 2 + j * t.dz);
 
     bool ok = build_terrain(scene, &t, m_grass, err);
     mesh_builder walls[4] = { { 0 } }, roofs = { 0 }, bridge = { 0 }, arch = { 0 };
-    /* motion=one moves the building nearest to the view's centre (the camera looks at (0, 0, -20)). */
+    /* motion=one moves the building nearest to the view's centre (the camera looks at (0, 0, -20 k)). */
     int moving = -1;
     for (int i = 0; motion == MOTION_ONE && i < placed; i++) {
-        double d = hypot(bs[i].x, bs[i].z + 20), best = moving < 0 ? INFINITY : hypot(bs[moving].x, bs[moving].z + 20);
+        double d = hypot(bs[i].x, bs[i].z + 20 * k),
+               best = moving < 0 ? INFINITY : hypot(bs[moving].x, bs[moving].z + 20 * k);
         if (d < best)
             moving = i;
     }
@@ -481,7 +564,7 @@ build_openworld(cg_scene *scene, const char *query, cg_error *err)
             build_building(&walls[bd->colour], &roofs, bd, bases[i]);
     }
     build_bridge(&bridge, &t);
-    build_arch(&arch, &t, OW_ARCH_X, OW_ARCH_Z);
+    build_arch(&arch, &t, arch_x, arch_z);
     static const char *const wall_names[4] = { "buildings_red", "buildings_blue", "buildings_yellow",
                                                "buildings_white" };
     for (int c = 0; c < 4; c++) {
@@ -558,16 +641,17 @@ build_openworld(cg_scene *scene, const char *query, cg_error *err)
         ok = node >= 0 && cg_scene_attach(scene, CG_ATTACH_LIGHT, light, node, err) >= 0 &&
              add_turn(&anim, node, rest, 1, period, err);
     }
+    /* The camera frames the whole world as at 400 m: every length times k. */
+    double eye[3] = { -150 * k, 75 * k, 175 * k }, at[3] = { 0, 0, -20 * k };
+    float znear = (float)(0.5 * k), zfar = (float)(1500.0 * k);
     /* The scene owns the channels once added (and frees them itself if adding fails). */
     if (ok && anim.channel_count > 0)
         return cg_scene_add_animation(scene, &anim, err) >= 0 &&
-               bs_add_perspective_camera(scene, "overview", (const double[3]){ -150, 75, 175 },
-                                         (const double[3]){ 0, 0, -20 }, 0.9f, 0.5f, 1500.0f, err);
+               bs_add_perspective_camera(scene, "overview", eye, at, 0.9f, znear, zfar, err);
     free_animation(&anim);
     if (!ok)
         return false;
-    double eye[3] = { -150, 75, 175 }, at[3] = { 0, 0, -20 };
-    return bs_add_perspective_camera(scene, "overview", eye, at, 0.9f, 0.5f, 1500.0f, err);
+    return bs_add_perspective_camera(scene, "overview", eye, at, 0.9f, znear, zfar, err);
 }
 
 const cg_builtin_scene cg_builtin_openworld = {
@@ -576,6 +660,7 @@ const cg_builtin_scene cg_builtin_openworld = {
     "?triangles=N (5000..8000000, default 200000: the total follows N within 1%)&seed=S "
     "(unsigned integer, default 1)&motion=none|sun|one|all (default none: the sun turns about the vertical, "
     "one building sinks and rises, or every complex object moves)&period=P (seconds, 0.1..100000, default 20: "
-    "the animation's length)",
+    "the animation's length)&size=METRES (100..64000, default 400: the world's side; the terrain and the "
+    "town's extent scale with it, buildings keep their size and the town its density)",
     .build = build_openworld,
 };
