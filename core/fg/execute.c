@@ -8,22 +8,6 @@
 
 /* ---------------------------------------------------------------- resource lookup */
 
-const fg_storage *
-fg_resource_storage(const fg_graph *graph, int resource, bool previous)
-{
-    if (resource < 0 || resource >= graph->resource_count)
-        return NULL;
-    const fg_res *r = &graph->resources[resource];
-    if (r->info.storage < 0)
-        return NULL;
-    if (!r->double_buffered)
-        return &graph->storage[r->info.storage];
-    /* Even frames write the first storage and read last frame's value from the second;
-     * odd frames the other way round. */
-    bool second = (graph->frame_parity != 0) != previous;
-    return &graph->storage[second ? r->storage2 : r->info.storage];
-}
-
 GLuint
 fg_graph_texture(const fg_graph *graph, const char *source)
 {
