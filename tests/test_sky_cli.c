@@ -99,16 +99,19 @@ box_under_the_sky(void **state)
         assert_int_equal(cg_test_run_conegraph(args, false, out, sizeof out), 0);
         assert_true(cg_test_json_number(out, "\"full\"", "rmse") == 0.0);
         assert_true(cg_test_json_number(out, "\"full\"", "mean_luminance_ref") > 0.1);
-        /* Measured at 64x36, 256 spp, 26 cones: vct.json 0.946, hybrid.json 0.944 (no height field
-         * here: the hybrid's march is cone_gather's on the same surface voxels, in a box at 128
-         * where vct.json's cube is 128^3: the same voxels; its start offset 0.75 voxel against 1).
-         * The sky enters through the open front only; the 5% short are the cones that pass the
-         * opening's edges. Against direct_sky alone, as this test read it until the gathers at the
-         * voxels saw the sky, the figures were 1.15-1.18: the twice-reflected sky light counted
-         * as an excess. The bounds hold the measured figures with a margin of 0.1 for the noise of
-         * the truth and the platform, and fail for a sky left out (0), for voxels that do not see
-         * it (`light.bounces=0`: 0.75 at 160x90) or for a sky gathered through the walls. */
-        const double measured = g == 0 ? 0.946 : 0.944;
+        /* Measured at 64x36, 256 spp, 26 cones, the diffuse cones at one pixel in 4x4 (downsample 4,
+         * as shipped): vct.json 0.920, hybrid.json 0.920; at every pixel (downsample 1) 0.946 and
+         * 0.944 (no height field here: the hybrid's march is cone_gather's on the same surface
+         * voxels, in a box at 128 where vct.json's cube is 128^3: the same voxels; its start offset
+         * 0.75 voxel against 1). The sky enters through the open front only; at every pixel the 5%
+         * short are the cones that pass the opening's edges; the 4x4 blocks (16x9 of them at this
+         * size) lose 3% more. Against direct_sky alone, as this test read it until the gathers at
+         * the voxels saw the sky, the figures were 1.15-1.18: the twice-reflected sky light counted
+         * as an excess.
+         * The bounds hold the measured figures with a margin of 0.1 for the noise of the truth and
+         * the platform, and fail for a sky left out (0), for voxels that do not see it
+         * (`light.bounces=0`: 0.75 at 160x90) or for a sky gathered through the walls. */
+        const double measured = 0.920;
         if (fabs(f.gi_energy - measured) > 0.1)
             fail_msg("%s: GI energy %.4f, measured %.3f (0.1 allowed)", graphs[g], f.gi_energy, measured);
     }
