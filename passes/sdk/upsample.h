@@ -28,7 +28,7 @@
 /* The parameter, one entry of a gather's table. */
 #define CGP_DOWNSAMPLE_PARAM                                                                          \
     { .name = "downsample", .type = FG_PARAM_INT, .default_value = 1, .min = 1, .max = 4,             \
-      .allowed = FG_PARAM_VALUES(1, 2, 4),                                                            \
+      .allowed = FG_PARAM_VALUES(1, 2, 4), .stage = FG_STAGE_PREPARE,                                 \
       .doc = "diffuse cones traced at one pixel of each downsample x downsample block, the full "    \
              "resolution rebuilt by joint bilateral upsampling with the G-buffer's position and "    \
              "normal (a pixel no block agrees with traces its own); 1: every pixel; the specular "   \
