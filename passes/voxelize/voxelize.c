@@ -148,6 +148,11 @@ static const fg_param_desc voxelize_params[] = {
              "again only the voxels they covered and cover (the whole volume when the region or the scales "
              "changed, or the changed voxels are over half of it); false: voxelize every frame (the VCT "
              "paper's rebuild)" },
+    { .name = "transmissive", .type = FG_PARAM_BOOL, .active_when = "model=surface",
+      .doc = "a transmissive material's voxels cover only what its interface reflects, 1 - tau (1 - F), F "
+             "the hemispherical Fresnel: cones pass through glass (untinted), as path_trace with "
+             "caustics = true sees the sky through it (the lights stop at glass either way: shadow map, "
+             "light sampling); false: glass is opaque, as path_trace with caustics = false has it" },
 };
 
 /* Where the volume lies: dims voxels along x, y, z (all resolution for a cube), each a cube of
@@ -184,6 +189,7 @@ typedef struct surface_build {
 typedef struct voxelize_state {
     bool surface;
     bool cache;             /* surface model only */
+    bool transmissive;      /* surface model: the parameter (surface_sums.glsl) */
     GLuint program;
     GLuint resolve;
     GLuint tri_program;     /* voxelizer=compute */
@@ -392,6 +398,7 @@ voxelize_prepare(fg_pass *pass, voxelize_state *s, cg_error *err)
     cgp_no_shadow_create(s, pass, &s->no_shadow);
     if (s->surface) {
         s->cache = fg_param_bool(pass, "cache");
+        s->transmissive = fg_param_bool(pass, "transmissive");
         s->format = GL_RGBA16F;
         s->compute = fg_param_enum(pass, "voxelizer") == 1;
         s->specular_hemispherical = cgp_brdf_hemispherical_texture(s);
@@ -701,7 +708,7 @@ dispatch_triangles(voxelize_state *s, const fg_frame *frame, cg_mesh_filter filt
     glUseProgram(s->tri_program);
     glUniform4f(8, (float)region->origin[0], (float)region->origin[1], (float)region->origin[2], (float)region->voxel);
     glUniform3i(11, region->dims[0], region->dims[1], region->dims[2]);
-    glUniform4f(13, (float)unit_fixed, (float)emission_fixed, 0.0f, 0.0f);
+    glUniform4f(13, (float)unit_fixed, (float)emission_fixed, 0.0f, s->transmissive ? 1.0f : 0.0f);
     glUniform3i(14, box->lo[0], box->lo[1], box->lo[2]);
     glUniform3i(15, box->hi[0], box->hi[1], box->hi[2]);
     for (int i = 0; i < scene->instance_count; i++) {
@@ -909,7 +916,7 @@ voxelize_execute(fg_pass *pass, voxelize_state *s, cg_error *err)
         glUniform1i(12, fg_param_bool(pass, "conservative") ? 1 : 0);
         if (s->surface) {
             glUniform3i(11, region.dims[0], region.dims[1], region.dims[2]);
-            glUniform4f(13, (float)unit_fixed, (float)emission_fixed, 0.0f, 0.0f);
+            glUniform4f(13, (float)unit_fixed, (float)emission_fixed, 0.0f, s->transmissive ? 1.0f : 0.0f);
             glUniform3i(14, box->lo[0], box->lo[1], box->lo[2]);
             glUniform3i(15, box->hi[0], box->hi[1], box->hi[2]);
         } else {

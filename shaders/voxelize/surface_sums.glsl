@@ -6,7 +6,8 @@
 // The includer includes common/scene.glsl (the materials) and declares u_accum (the R32UI
 // accumulation volume), u_dims (the volume's voxels along x, y, z: one slab's size),
 // u_surface_fixed (x: fixed-point units per unit of albedo, normal, offset in voxels and coverage;
-// y: per unit of emitted radiance) and u_origin_voxel (xyz: the volume's origin, w: a voxel's size).
+// y: per unit of emitted radiance; w: 1 where transmissive materials cover only what they reflect,
+// voxelize's `transmissive`) and u_origin_voxel (xyz: the volume's origin, w: a voxel's size).
 #ifndef VOXELIZE_SURFACE_SUMS_GLSL
 #define VOXELIZE_SURFACE_SUMS_GLSL
 
@@ -64,6 +65,17 @@ surface_sums(int material, vec2 uv, vec3 normal, vec3 share)
     vec3 albedo = clamp(cg_material_diffuse(material, uv), 0.0, 1.0);
     vec3 emission = max(cg_material_emissive(material, uv), vec3(0.0));
     vec3 specular = clamp(surface_specular(material, uv), 0.0, 1.0);
+    if (u_surface_fixed.w > 0.0) {
+        // What a transmissive interface lets through of light from every side: tau (1 - F), F the
+        // Fresnel term averaged over the hemisphere (cosine-weighted, as cg_bsdf_diffuse_hemispherical):
+        // the cones crossing its voxels see that share of what lies behind (untinted: coverage is one
+        // number; a departure), as path_trace with caustics sees the sky through glass.
+        CgBsdf b = cg_material_bsdf(material, uv);
+        float fresnel = dot(b.f0, vec3(0.2126, 0.7152, 0.0722)) * CG_BSDF_DIFFUSE_HEMISPHERICAL_A +
+                        b.f90 * CG_BSDF_DIFFUSE_HEMISPHERICAL_B;
+        float through = dot(b.transmission, vec3(0.2126, 0.7152, 0.0722)) * (1.0 - fresnel);
+        share *= clamp(1.0 - through, 0.0, 1.0);
+    }
     float alpha = dot(specular, vec3(0.2126, 0.7152, 0.0722)) * cg_material_bsdf(material, uv).alpha;
     SurfaceSums s;
     s.albedo = uvec3(albedo * u_surface_fixed.x + 0.5);

@@ -639,6 +639,64 @@ test_lobes_read_glossy(void **state)
     }
 }
 
+/* voxelize's `transmissive`: a Lambertian floor under a thin glass pane (transmission 1, ior 1.5)
+ * that covers its whole sky (20 m each way, 1.5 m up) under a uniform sky L, seen from under the
+ * pane, through vct.json at 0 bounces (the floor's light is its gather alone). With the option the
+ * cones see the sky through the pane: the floor's image / its albedo is L (1 - F), F the
+ * hemispherical Fresnel of ior 1.5 (1 - 0.956), as path_trace with caustics sees it; without it
+ * the pane is opaque and black, as with caustics off. */
+static void
+test_transmissive_voxels(void **state)
+{
+    cg_context *ctx = cg_test_gl_context(state);
+    const double radiance = 2.0, albedo = 0.5;
+    double seen[2] = {0.0, 0.0};
+    for (int on = 0; on < 2; on++) {
+        hf_scene s;
+        hf_init(&s);
+        hf_grid(&s, 8, -20.0, -20.0, 40.0, flat_ground, NULL);
+        const double corner[3] = {-20, 1.5, 20}, e1[3] = {40, 0, 0}, e2[3] = {0, 0, -40};
+        hf_quad(&s, corner, e1, e2);    /* material 2 */
+        hf_material(&s, 1, (float)albedo, 0.0f);
+        const double eye[3] = {0, 0.8, 2}, forward[3] = {0, -1, -1.2}, up[3] = {0, 1, 0};
+        hf_camera_looking(&s, eye, forward, up, 0.8f);
+        hf_finish(&s);
+        set_material(&s.materials[2], 1.0f, 0.0f, 0.0f);
+        s.materials[2].transmission = 1.0f;
+        cg_sky sky = {.type = CG_SKY_UNIFORM, .radiance = {radiance, radiance, radiance}};
+        cg_error err = {0};
+        assert_cg_ok(cg_scene_set_sky(&s.scene, &sky, &err), &err);
+        const char *const set[] = {"light.bounces=0", "gather.downsample=1",
+                                   on ? "vox.transmissive=true" : "vox.transmissive=false", NULL};
+        vf_runner r;
+        vf_start_file(&r, &s.scene, SIZE, SIZE, "vct.json", set);
+        vf_frame(&r);
+        float *hdr = read_2d(&r, "final.hdr"), *position = read_2d(&r, "gbuf.position");
+        int pixels = 0;
+        for (int i = 0; i < SIZE * SIZE; i++) {
+            const float *p = &position[4 * i];
+            if (p[3] <= 0.0f || fabsf(p[1]) > 1e-3f || fabsf(p[0]) > 6.0f || fabsf(p[2]) > 6.0f)
+                continue;
+            seen[on] += (hdr[4 * i] + hdr[4 * i + 1] + hdr[4 * i + 2]) / (3.0 * albedo * radiance);
+            pixels++;
+        }
+        assert_true(pixels > SIZE * SIZE / 4);
+        seen[on] /= pixels;
+        free(hdr);
+        free(position);
+        assert_no_gl_errors(ctx);
+        vf_stop(&r);
+        hf_free(&s);
+    }
+    const double through = 0.956;   /* 1 - F, common/bsdf.glsl's CG_BSDF_DIFFUSE_HEMISPHERICAL_* */
+    fprintf(stderr, "# floor under a glass pane, image / (albedo L): transmissive voxels %.4f (1 - F %.3f), "
+            "opaque %.4f\n", seen[1], through, seen[0]);
+    if (fabs(seen[1] / through - 1.0) > 0.03)
+        fail_msg("through transmissive voxels the floor sees %.4f of the sky, 1 - F = %.3f", seen[1], through);
+    if (seen[0] > 0.1)
+        fail_msg("an opaque pane lets %.4f of the sky through", seen[0]);
+}
+
 /* voxel_light's `glossy` holds a metal's light (voxelize's `specular`): two coplanar plates under a
  * uniform sky L and a sun, a Lambertian one (albedo a) and a white metal (base F0, roughness r). In
  * glossy the metal's voxels return rho_s (alpha S + L), rho_s = F0 Abar(r) + Bbar(r) (the lobe's
@@ -749,6 +807,7 @@ main(void)
         cmocka_unit_test(test_glossy_is_one_bounce_more),
         cmocka_unit_test(test_lobes_read_glossy),
         cmocka_unit_test(test_metal_voxels_in_glossy),
+        cmocka_unit_test(test_transmissive_voxels),
     };
     return cmocka_run_group_tests(tests, cg_test_gl_setup, cg_test_gl_teardown);
 }
