@@ -235,3 +235,13 @@ hf_read_2d(const vf_runner *r, const char *source, int level, int *w, int *h)
     assert_non_null(data);
     return data;
 }
+
+float *
+hf_read_2d_sized(const vf_runner *r, const char *source, int width, int height)
+{
+    int w = 0, h = 0;
+    float *data = hf_read_2d(r, source, 0, &w, &h);
+    assert_int_equal(w, width);
+    assert_int_equal(h, height);
+    return data;
+}

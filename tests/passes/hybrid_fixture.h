@@ -2,7 +2,7 @@
  * (terrain) and a complex quad, with materials, an optional sun and an optional camera.
  *
  * Declares: hf_scene, hf_height_fn, hf_init, hf_grid, hf_quad, hf_sun, hf_camera_looking,
- *           hf_turn_sun, hf_finish, hf_free, hf_read_2d.
+ *           hf_turn_sun, hf_finish, hf_free, hf_read_2d, hf_read_2d_sized.
  */
 #ifndef CG_TEST_HYBRID_FIXTURE_H
 #define CG_TEST_HYBRID_FIXTURE_H
@@ -47,5 +47,7 @@ void hf_free(hf_scene *s);
 
 /* Level `level` of a graph's 2D resource as RGBA floats; sizes to w, h. */
 float *hf_read_2d(const vf_runner *r, const char *source, int level, int *w, int *h);
+/* Level 0 of a graph's 2D resource, which must be width x height. */
+float *hf_read_2d_sized(const vf_runner *r, const char *source, int width, int height);
 
 #endif

@@ -54,15 +54,6 @@ plate_shadow_scene(hf_scene *s, float angular_diameter)
     hf_finish(s);
 }
 
-static float *
-read_2d(const vf_runner *r, const char *source)
-{
-    int w = 0, h = 0;
-    float *data = hf_read_2d(r, source, 0, &w, &h);
-    assert_int_equal(w, SIZE);
-    assert_int_equal(h, SIZE);
-    return data;
-}
 
 /* The ground's pixels away from the plate's far ends, where its unshadowed direct radiance is
  * rho E cos / pi. */
@@ -100,8 +91,10 @@ test_visibility_applied(void **state)
     for (int light = 0; light <= 1; light++) {
         vf_runner r;
         vf_run_format(&r, &s.scene, SIZE, SIZE, applied_graph, light);
-        float *cone = read_2d(&r, "cone.radiance"), *plain = read_2d(&r, "plain.radiance");
-        float *vis = read_2d(&r, "gather.visibility"), *pos = read_2d(&r, "gbuf.position");
+        float *cone = hf_read_2d_sized(&r, "cone.radiance", SIZE, SIZE);
+        float *plain = hf_read_2d_sized(&r, "plain.radiance", SIZE, SIZE);
+        float *vis = hf_read_2d_sized(&r, "gather.visibility", SIZE, SIZE);
+        float *pos = hf_read_2d_sized(&r, "gbuf.position", SIZE, SIZE);
         double worst = 0.0, e0 = unshadowed(&s);
         int n = 0, dark = 0, lit = 0;
         for (int i = 0; i < SIZE * SIZE; i++) {
@@ -139,8 +132,9 @@ test_vct_paper_wires_it(void **state)
     vf_runner r;
     vf_start_file(&r, &s.scene, SIZE, SIZE, "vct-paper.json", NULL);
     vf_frame(&r);
-    float *direct = read_2d(&r, "direct.radiance"), *vis = read_2d(&r, "gather.visibility");
-    float *pos = read_2d(&r, "gbuf.position");
+    float *direct = hf_read_2d_sized(&r, "direct.radiance", SIZE, SIZE);
+    float *vis = hf_read_2d_sized(&r, "gather.visibility", SIZE, SIZE);
+    float *pos = hf_read_2d_sized(&r, "gbuf.position", SIZE, SIZE);
     double worst = 0.0, e0 = unshadowed(&s);
     int n = 0, dark = 0;
     for (int i = 0; i < SIZE * SIZE; i++) {
@@ -213,9 +207,11 @@ test_measured_against_path_tracer(void **state)
         vf_frame(&vct);
         vf_start_file(&paper, &s.scene, SIZE, SIZE, "vct-paper.json", NULL);
         vf_frame(&paper);
-        float *pt = read_2d(&truth, "trace.radiance"), *pos = read_2d(&truth, "gbuf.position");
-        float *map = read_2d(&vct, "direct.radiance"), *cone = read_2d(&vct, "gather.visibility");
-        float *paper_cone = read_2d(&paper, "gather.visibility");
+        float *pt = hf_read_2d_sized(&truth, "trace.radiance", SIZE, SIZE);
+        float *pos = hf_read_2d_sized(&truth, "gbuf.position", SIZE, SIZE);
+        float *map = hf_read_2d_sized(&vct, "direct.radiance", SIZE, SIZE);
+        float *cone = hf_read_2d_sized(&vct, "gather.visibility", SIZE, SIZE);
+        float *paper_cone = hf_read_2d_sized(&paper, "gather.visibility", SIZE, SIZE);
         int n_pen = 0;
         shadow_error e_map = error_against(map + 1, 4, 1.0 / e0, pt, pos, e0, &n_pen);
         shadow_error e_cone = error_against(cone, 4, 1.0, pt, pos, e0, &n_pen);
@@ -272,7 +268,8 @@ test_point_light_under_ceiling(void **state)
     vf_runner r;
     vf_start_file(&r, &s.scene, SIZE, SIZE, "vct-paper.json", NULL);
     vf_frame(&r);
-    float *vis = read_2d(&r, "gather.visibility"), *pos = read_2d(&r, "gbuf.position");
+    float *vis = hf_read_2d_sized(&r, "gather.visibility", SIZE, SIZE);
+    float *pos = hf_read_2d_sized(&r, "gbuf.position", SIZE, SIZE);
     double sum = 0.0, least = 1.0;
     int n = 0;
     for (int i = 0; i < SIZE * SIZE; i++) {

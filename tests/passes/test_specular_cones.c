@@ -49,15 +49,6 @@ typedef struct furnace_result {
     double worst;       /* largest |ratio - 1| */
 } furnace_result;
 
-static float *
-read_2d(const vf_runner *r, const char *source)
-{
-    int w = 0, h = 0;
-    float *data = hf_read_2d(r, source, 0, &w, &h);
-    assert_int_equal(w, SIZE);
-    assert_int_equal(h, SIZE);
-    return data;
-}
 
 /* Runs `graph` on s (no lights: direct is 0) and compares each covered pixel's hdr - emissive with
  * L x (diffuse + glossy directional albedo of the material at its n.v). */
@@ -70,8 +61,10 @@ furnace(cg_context *ctx, hf_scene *s, int material, const char *graph, const cha
     vf_runner r;
     vf_start_file(&r, &s->scene, SIZE, SIZE, graph, overrides);
     vf_frame(&r);
-    float *hdr = read_2d(&r, "final.hdr"), *emissive = read_2d(&r, "gbuf.emissive");
-    float *position = read_2d(&r, "gbuf.position"), *normal = read_2d(&r, "gbuf.normal");
+    float *hdr = hf_read_2d_sized(&r, "final.hdr", SIZE, SIZE);
+    float *emissive = hf_read_2d_sized(&r, "gbuf.emissive", SIZE, SIZE);
+    float *position = hf_read_2d_sized(&r, "gbuf.position", SIZE, SIZE);
+    float *normal = hf_read_2d_sized(&r, "gbuf.normal", SIZE, SIZE);
     const float *eye = r.frame.view.position;
     furnace_result f = {0};
     for (int i = 0; i < SIZE * SIZE; i++) {
@@ -241,7 +234,8 @@ test_mirror(void **state)
     static const char *const no_bounce[] = {"light.bounces=0", NULL};
     vf_start_file(&r, &s.scene, SIZE, SIZE, "vct.json", no_bounce);
     vf_frame(&r);
-    float *hdr = read_2d(&r, "final.hdr"), *position = read_2d(&r, "gbuf.position");
+    float *hdr = hf_read_2d_sized(&r, "final.hdr", SIZE, SIZE);
+    float *position = hf_read_2d_sized(&r, "gbuf.position", SIZE, SIZE);
     double worst = 0.0;
     int pixels = 0;
     for (int i = 0; i < SIZE * SIZE; i++)
@@ -296,8 +290,10 @@ test_glass_slab(void **state)
     static const char *const no_bounce[] = {"light.bounces=0", NULL};
     vf_start_file(&r, &s.scene, SIZE, SIZE, "vct.json", no_bounce);
     vf_frame(&r);
-    float *refraction = read_2d(&r, "gather.refraction"), *reflection = read_2d(&r, "gather.reflection");
-    float *hdr = read_2d(&r, "final.hdr"), *position = read_2d(&r, "gbuf.position");
+    float *refraction = hf_read_2d_sized(&r, "gather.refraction", SIZE, SIZE);
+    float *reflection = hf_read_2d_sized(&r, "gather.reflection", SIZE, SIZE);
+    float *hdr = hf_read_2d_sized(&r, "final.hdr", SIZE, SIZE);
+    float *position = hf_read_2d_sized(&r, "gbuf.position", SIZE, SIZE);
     const double f0 = 0.04;
     const double through = (1.0 - f0) * (1.0 - f0) * exp(-sigma * d) * radiance, back_out = f0 * radiance;
     double worst_t = 0.0, worst_r = 0.0, worst_sum = 0.0, mean_t = 0.0;
@@ -347,8 +343,9 @@ test_lambertian_unchanged(void **state)
     vf_runner r;
     vf_start_file(&r, &s.scene, SIZE, SIZE, "vct.json", NULL);
     vf_frame(&r);
-    float *reflection = read_2d(&r, "gather.reflection"), *refraction = read_2d(&r, "gather.refraction");
-    float *position = read_2d(&r, "gbuf.position");
+    float *reflection = hf_read_2d_sized(&r, "gather.reflection", SIZE, SIZE);
+    float *refraction = hf_read_2d_sized(&r, "gather.refraction", SIZE, SIZE);
+    float *position = hf_read_2d_sized(&r, "gbuf.position", SIZE, SIZE);
     int pixels = 0;
     for (int i = 0; i < SIZE * SIZE; i++) {
         pixels += position[4 * i + 3] > 0.0f;
@@ -410,8 +407,9 @@ test_shadow_cone_sun_disc(void **state)
     vf_runner r;
     vf_start(&r, &s.scene, SIZE, SIZE, shadow_cone_graph, NULL);
     vf_frame(&r);
-    float *vis = read_2d(&r, "gather.visibility"), *pt = read_2d(&r, "trace.radiance");
-    float *pos = read_2d(&r, "gbuf.position");
+    float *vis = hf_read_2d_sized(&r, "gather.visibility", SIZE, SIZE);
+    float *pt = hf_read_2d_sized(&r, "trace.radiance", SIZE, SIZE);
+    float *pos = hf_read_2d_sized(&r, "gbuf.position", SIZE, SIZE);
     double cos_sun = -s.light.direction[1], unshadowed = 0.5 * irradiance * cos_sun / M_PI;
     double sum = 0.0, sum_pen = 0.0, mean_pt = 0.0, mean_cone = 0.0;
     int n = 0, n_pen = 0;
@@ -576,9 +574,9 @@ mirror_reflection(const hf_scene *s, const char *file, int bounces, bool glossy,
     vf_start(&r, &s->scene, SIZE, SIZE, json, sets);
     free(json);
     vf_frame(&r);
-    float *reflection = read_2d(&r, "gather.reflection");
+    float *reflection = hf_read_2d_sized(&r, "gather.reflection", SIZE, SIZE);
     if (position)
-        *position = read_2d(&r, "gbuf.position");
+        *position = hf_read_2d_sized(&r, "gbuf.position", SIZE, SIZE);
     vf_stop(&r);
     return reflection;
 }
@@ -671,7 +669,8 @@ test_transmissive_voxels(void **state)
         vf_runner r;
         vf_start_file(&r, &s.scene, SIZE, SIZE, "vct.json", set);
         vf_frame(&r);
-        float *hdr = read_2d(&r, "final.hdr"), *position = read_2d(&r, "gbuf.position");
+        float *hdr = hf_read_2d_sized(&r, "final.hdr", SIZE, SIZE);
+        float *position = hf_read_2d_sized(&r, "gbuf.position", SIZE, SIZE);
         int pixels = 0;
         for (int i = 0; i < SIZE * SIZE; i++) {
             const float *p = &position[4 * i];
