@@ -349,6 +349,21 @@ cgp_brdf_hemispherical_fill(int size, float *rg)
     free(table);
 }
 
+/* A table as a linearly filtered, edge-clamped float texture owned by `state`. */
+static GLuint
+table_texture(void *state, GLenum internal, GLenum format, int width, int height, const float *texels)
+{
+    GLuint tex = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &tex);
+    glTextureStorage2D(tex, 1, internal, width, height);
+    glTextureSubImage2D(tex, 0, 0, 0, width, height, format, GL_FLOAT, texels);
+    glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(tex, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    return cgp_own(state, CGP_GL_TEXTURE, tex);
+}
+
 GLuint
 cgp_brdf_hemispherical_texture(void *state)
 {
@@ -358,15 +373,7 @@ cgp_brdf_hemispherical_texture(void *state)
         cgp_brdf_hemispherical_fill(CGP_BRDF_TABLE_SIZE, table);
         made = true;
     }
-    GLuint tex = 0;
-    glCreateTextures(GL_TEXTURE_2D, 1, &tex);
-    glTextureStorage2D(tex, 1, GL_RG32F, CGP_BRDF_TABLE_SIZE, 1);
-    glTextureSubImage2D(tex, 0, 0, 0, CGP_BRDF_TABLE_SIZE, 1, GL_RG, GL_FLOAT, table);
-    glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTextureParameteri(tex, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    return cgp_own(state, CGP_GL_TEXTURE, tex);
+    return table_texture(state, GL_RG32F, GL_RG, CGP_BRDF_TABLE_SIZE, 1, table);
 }
 
 GLuint
@@ -378,15 +385,7 @@ cgp_brdf_table_texture(void *state)
         cgp_brdf_table_fill(CGP_BRDF_TABLE_SIZE, table);
         made = true;
     }
-    GLuint tex = 0;
-    glCreateTextures(GL_TEXTURE_2D, 1, &tex);
-    glTextureStorage2D(tex, 1, GL_RGBA32F, CGP_BRDF_TABLE_SIZE, CGP_BRDF_TABLE_SIZE);
-    glTextureSubImage2D(tex, 0, 0, 0, CGP_BRDF_TABLE_SIZE, CGP_BRDF_TABLE_SIZE, GL_RGBA, GL_FLOAT, table);
-    glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTextureParameteri(tex, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    return cgp_own(state, CGP_GL_TEXTURE, tex);
+    return table_texture(state, GL_RGBA32F, GL_RGBA, CGP_BRDF_TABLE_SIZE, CGP_BRDF_TABLE_SIZE, table);
 }
 
 void
