@@ -245,3 +245,10 @@ hf_read_2d_sized(const vf_runner *r, const char *source, int width, int height)
     assert_int_equal(h, height);
     return data;
 }
+
+double
+hf_flat(double x, double z, const void *user)
+{
+    (void)x, (void)z, (void)user;
+    return 0.0;
+}

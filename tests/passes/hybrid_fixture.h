@@ -2,7 +2,7 @@
  * (terrain) and a complex quad, with materials, an optional sun and an optional camera.
  *
  * Declares: hf_scene, hf_height_fn, hf_init, hf_grid, hf_quad, hf_sun, hf_camera_looking,
- *           hf_turn_sun, hf_finish, hf_free, hf_read_2d, hf_read_2d_sized.
+ *           hf_turn_sun, hf_finish, hf_free, hf_read_2d, hf_read_2d_sized, hf_flat.
  */
 #ifndef CG_TEST_HYBRID_FIXTURE_H
 #define CG_TEST_HYBRID_FIXTURE_H
@@ -11,6 +11,8 @@
 #include "vct_fixture.h"
 
 typedef double (*hf_height_fn)(double x, double z, const void *user);
+/* The flat ground y = 0, a height function for hf_grid. */
+double hf_flat(double x, double z, const void *user);
 
 typedef struct hf_scene {
     cg_scene scene;

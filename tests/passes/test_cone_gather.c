@@ -366,13 +366,6 @@ test_step_independence(void **state)
  * tracer's. Flat and tilted by 30 degrees (normal off the axes: the support bound uses
  * |n|_1), 1 cone (60 degrees half-angle, the widest) and 6. */
 static double
-flat(double x, double z, const void *user)
-{
-    (void)x, (void)z, (void)user;
-    return 0.0;
-}
-
-static double
 tilted(double x, double z, const void *user)
 {
     (void)z, (void)user;
@@ -384,7 +377,7 @@ test_no_self_illumination(void **state)
 {
     cg_context *ctx = cg_test_gl_context(state);
     const float radiance = 3.0f;
-    hf_height_fn shapes[2] = {flat, tilted};
+    hf_height_fn shapes[2] = {hf_flat, tilted};
     for (int shape = 0; shape < 2; shape++) {
         hf_scene s;
         hf_init(&s);
@@ -429,7 +422,7 @@ test_shadow_cone(void **state)
     hf_init(&s);
     hf_material(&s, 1, 0.5f, 0.0f);
     hf_material(&s, 2, 0.5f, 0.0f);
-    hf_grid(&s, 8, -50.0, -50.0, 100.0, flat, NULL);
+    hf_grid(&s, 8, -50.0, -50.0, 100.0, hf_flat, NULL);
     /* The plate over x in [-40, 0], 10 m up, facing up. */
     const double corner[3] = {-40, 10, 40}, e1[3] = {40, 0, 0}, e2[3] = {0, 0, -80};
     hf_quad(&s, corner, e1, e2);

@@ -19,13 +19,6 @@ static const char graph[] =
     " \"hm\": { \"type\": \"heightmap_raster\", \"params\": { \"resolution\": %d, \"cache\": %s } } },"
     " \"outputs\": [ \"hm.lightmap\" ] }";
 
-static double
-flat(double x, double z, const void *user)
-{
-    (void)x, (void)z, (void)user;
-    return 0.0;
-}
-
 static void
 make_scene(hf_scene *s)
 {
@@ -33,7 +26,7 @@ make_scene(hf_scene *s)
     hf_material(s, 1, 0.2f, 0.0f);
     hf_material(s, 2, 0.8f, 0.0f);
     hf_material(s, 3, 0.8f, 0.0f);
-    hf_grid(s, 8, -4.0, -4.0, 8.0, flat, NULL);
+    hf_grid(s, 8, -4.0, -4.0, 8.0, hf_flat, NULL);
     const double masked[3] = {-3, 2, 1}, opaque[3] = {1, 2, 1}, e1[3] = {2, 0, 0}, e2[3] = {0, 0, -2};
     hf_quad(s, masked, e1, e2); /* material 2 */
     hf_quad(s, opaque, e1, e2); /* material 3 */

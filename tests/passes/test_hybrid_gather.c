@@ -27,13 +27,6 @@
 #include "hybrid_fixture.h"
 #include "test_support.h"
 
-static double
-flat(double x, double z, const void *user)
-{
-    (void)x, (void)z, (void)user;
-    return 0.0;
-}
-
 static const char furnace_graph[] =
     "{ \"version\": 1, \"passes\": {"
     " \"gbuf\": { \"type\": \"gbuffer\" },"
@@ -111,7 +104,7 @@ test_flat_emissive_terrain(void **state)
     hf_init(&s);
     hf_material(&s, 1, 0.5f, radiance);
     hf_material(&s, 2, albedo, 0.0f);
-    hf_grid(&s, 8, -50.0, -50.0, 100.0, flat, NULL);
+    hf_grid(&s, 8, -50.0, -50.0, 100.0, hf_flat, NULL);
     const double corner[3] = {-0.5, 1.0, -0.5}, e1[3] = {1, 0, 0}, e2[3] = {0, 0, 1};
     hf_quad(&s, corner, e1, e2);    /* normal e1 x e2 = -y: facing the terrain */
     const double eye[3] = {0, 0.3, 0}, up_dir[3] = {0, 1, 0}, up[3] = {0, 0, 1};
@@ -156,7 +149,7 @@ test_flat_emissive_terrain(void **state)
         hf_init(&s);
         hf_material(&s, 1, 0.5f, radiance);
         hf_material(&s, 2, albedo, 0.0f);
-        hf_grid(&s, 8, -50.0 * k, -50.0 * k, 100.0 * k, flat, NULL);
+        hf_grid(&s, 8, -50.0 * k, -50.0 * k, 100.0 * k, hf_flat, NULL);
         const double c[3] = {-0.5 * k, k, -0.5 * k}, a[3] = {k, 0, 0}, b[3] = {0, 0, k};
         hf_quad(&s, c, a, b);
         const double at[3] = {0, 0.3 * k, 0};
@@ -180,7 +173,7 @@ test_flat_emissive_terrain(void **state)
      * must not light it. */
     hf_init(&s);
     hf_material(&s, 1, 0.5f, radiance);
-    hf_grid(&s, 8, -50.0, -50.0, 100.0, flat, NULL);
+    hf_grid(&s, 8, -50.0, -50.0, 100.0, hf_flat, NULL);
     const double high[3] = {0, 20, 0}, down[3] = {0, -1, 0.3}, north[3] = {0, 1, 0};
     hf_camera_looking(&s, high, down, north, 0.8f);
     hf_finish(&s);

@@ -30,20 +30,13 @@
 
 static const float irradiance = 3.0f;
 
-static double
-flat_ground(double x, double z, const void *user)
-{
-    (void)x, (void)z, (void)user;
-    return 0.0;
-}
-
 static void
 plate_shadow_scene(hf_scene *s, float angular_diameter)
 {
     hf_init(s);
     hf_material(s, 1, 0.5f, 0.0f);
     hf_material(s, 2, 0.5f, 0.0f);
-    hf_grid(s, 8, -50.0, -50.0, 100.0, flat_ground, NULL);
+    hf_grid(s, 8, -50.0, -50.0, 100.0, hf_flat, NULL);
     const double corner[3] = {-40, 10, 40}, e1[3] = {40, 0, 0}, e2[3] = {0, 0, -80};
     hf_quad(s, corner, e1, e2);
     const double down[3] = {0.05, -1, 0.02};
@@ -255,7 +248,7 @@ test_point_light_under_ceiling(void **state)
     hf_init(&s);
     hf_material(&s, 1, 0.5f, 0.0f);
     hf_material(&s, 2, 0.5f, 0.0f);
-    hf_grid(&s, 8, -10.0, -10.0, 20.0, flat_ground, NULL);
+    hf_grid(&s, 8, -10.0, -10.0, 20.0, hf_flat, NULL);
     const double corner[3] = {-10, 2, -10}, e1[3] = {20, 0, 0}, e2[3] = {0, 0, 20};
     hf_quad(&s, corner, e1, e2); /* facing down */
     const double down[3] = {0, -1, 0};

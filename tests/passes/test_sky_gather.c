@@ -21,20 +21,13 @@
 
 #define PI 3.14159265358979323846
 
-static double
-flat(double x, double z, const void *user)
-{
-    (void)x, (void)z, (void)user;
-    return 0.0;
-}
-
 static void
 test_bake(void **state)
 {
     (void)state;
     hf_scene s;
     hf_init(&s);
-    hf_grid(&s, 1, -1, -1, 2, flat, NULL);
+    hf_grid(&s, 1, -1, -1, 2, hf_flat, NULL);
     hf_finish(&s);
     cg_error err = {0};
     float *t = malloc(CGP_SKY_BYTES);
@@ -101,7 +94,7 @@ test_bakes_once_per_change(void **state)
     cg_context *ctx = cg_test_gl_context(state);
     hf_scene s;
     hf_init(&s);
-    hf_grid(&s, 1, -1, -1, 2, flat, NULL);
+    hf_grid(&s, 1, -1, -1, 2, hf_flat, NULL);
     const double down[3] = {0.3, -1, 0.2};
     hf_sun(&s, down, 1.0f);
     hf_finish(&s);
@@ -146,7 +139,7 @@ plane_scene(hf_scene *s, float albedo)
 {
     hf_init(s);
     hf_material(s, 1, albedo, 0.0f);
-    hf_grid(s, 4, -20, -20, 40, flat, NULL);
+    hf_grid(s, 4, -20, -20, 40, hf_flat, NULL);
     const double eye[3] = {0, 3, 6}, forward[3] = {0, -0.25, -1}, up[3] = {0, 1, 0};
     hf_camera_looking(s, eye, forward, up, 1.0f);
 }

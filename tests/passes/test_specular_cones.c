@@ -143,13 +143,6 @@ test_furnace_ggx(void **state)
 }
 
 static double
-flat(double x, double z, const void *user)
-{
-    (void)x, (void)z, (void)user;
-    return 0.0;
-}
-
-static double
 dome(double x, double z, const void *user)
 {
     (void)user;
@@ -201,7 +194,7 @@ test_furnace_hybrid(void **state)
     for (size_t i = 0; i < sizeof materials / sizeof materials[0]; i++) {
         hf_scene s;
         hf_init(&s);
-        hf_grid(&s, 8, -10.0, -10.0, 20.0, flat, NULL);
+        hf_grid(&s, 8, -10.0, -10.0, 20.0, hf_flat, NULL);
         const double eye[3] = {0, 6, 6}, forward[3] = {0, -1, -0.85}, up[3] = {0, 1, 0};
         hf_camera_looking(&s, eye, forward, up, 0.6f);
         hf_finish(&s);
@@ -379,13 +372,6 @@ static const char shadow_cone_graph[] =
     "   \"inputs\": { \"position\": \"gbuf\", \"normal\": \"gbuf\", \"volume\": \"mip.volume\", \"region\": \"vox.region\" } } },"
     " \"outputs\": [ \"gather.visibility\", \"trace.radiance\", \"gbuf.position\" ] }";
 
-static double
-flat_ground(double x, double z, const void *user)
-{
-    (void)x, (void)z, (void)user;
-    return 0.0;
-}
-
 static void
 test_shadow_cone_sun_disc(void **state)
 {
@@ -394,7 +380,7 @@ test_shadow_cone_sun_disc(void **state)
     hf_init(&s);
     hf_material(&s, 1, 0.5f, 0.0f);
     hf_material(&s, 2, 0.5f, 0.0f);
-    hf_grid(&s, 8, -50.0, -50.0, 100.0, flat_ground, NULL);
+    hf_grid(&s, 8, -50.0, -50.0, 100.0, hf_flat, NULL);
     const double corner[3] = {-40, 10, 40}, e1[3] = {40, 0, 0}, e2[3] = {0, 0, -80};
     hf_quad(&s, corner, e1, e2);
     const double down[3] = {0.05, -1, 0.02};
@@ -589,7 +575,7 @@ test_lobes_read_glossy(void **state)
     for (int g = 0; g < 2; g++) {
         hf_scene s;
         hf_init(&s);
-        hf_grid(&s, 8, -4.0, -4.0, 8.0, flat_ground, NULL);
+        hf_grid(&s, 8, -4.0, -4.0, 8.0, hf_flat, NULL);
         const double back[3] = {-4, 0, -2}, back_u[3] = {8, 0, 0}, back_v[3] = {0, 3, 0};
         const double side[3] = {3, 0, -2}, side_u[3] = {0, 0, 5}, side_v[3] = {0, 3, 0};
         hf_quad(&s, back, back_u, back_v);   /* faces +z */
@@ -652,7 +638,7 @@ test_transmissive_voxels(void **state)
     for (int on = 0; on < 2; on++) {
         hf_scene s;
         hf_init(&s);
-        hf_grid(&s, 8, -20.0, -20.0, 40.0, flat_ground, NULL);
+        hf_grid(&s, 8, -20.0, -20.0, 40.0, hf_flat, NULL);
         const double corner[3] = {-20, 1.5, 20}, e1[3] = {40, 0, 0}, e2[3] = {0, 0, -40};
         hf_quad(&s, corner, e1, e2);    /* material 2 */
         hf_material(&s, 1, (float)albedo, 0.0f);
