@@ -1465,8 +1465,12 @@ pt_render_parts(const pt_scene *pts, const cg_view *view, const pt_settings *set
     worker(&args[0]);
     for (int t = 1; t <= started; t++)
         pthread_join(ids[t], NULL);
-    if (job.progress)
+    /* The main thread updates only after its own tiles: where the others took every tile (a small
+     * image), it never did, and the end would print nothing (test_progress_into_a_file, flaky). */
+    if (job.progress) {
+        cg_progress_update(job.progress, job.tile_count);
         cg_progress_end(job.progress);
+    }
     if (rays_traced)
         *rays_traced = atomic_load(&job.rays);
     return true;
