@@ -71,11 +71,9 @@ composite_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
 static bool
 composite_prepare(fg_pass *pass, composite_state *st, cg_error *err)
 {
-    st->direct = fg_pass_slot(pass, "direct");
+    CGP_SLOTS(pass, st, direct, hdr, ldr);
     for (int i = 0; i < OPTIONAL_INPUTS; i++)
         st->optional[i] = fg_pass_slot(pass, optional_names[i]);
-    st->hdr = fg_pass_slot(pass, "hdr");
-    st->ldr = fg_pass_slot(pass, "ldr");
     return cgp_compute_program(st, "composite/composite.comp", NULL, &st->program, err);
 }
 
@@ -83,30 +81,24 @@ static bool
 composite_execute(fg_pass *pass, composite_state *st, cg_error *err)
 {
     (void)err;
-    const fg_resource_desc *out = fg_slot_resource(pass, st->hdr);
     GLuint direct = fg_slot_texture(pass, st->direct);
-    bool has_indirect = fg_slot_present(pass, st->optional[INDIRECT]);
-    bool has_emissive = fg_slot_present(pass, st->optional[EMISSIVE]);
-    bool has_reflection = fg_slot_present(pass, st->optional[REFLECTION]);
-    bool has_refraction = fg_slot_present(pass, st->optional[REFRACTION]);
 
     glUseProgram(st->program);
-    /* Absent inputs are never read (the flags say so); a valid texture stays bound anyway. */
+    /* Absent inputs are never read (the flags say so); the direct image stands in at their units,
+     * input i at unit i + 1. */
     glBindTextureUnit(0, direct);
-    glBindTextureUnit(1, has_indirect ? fg_slot_texture(pass, st->optional[INDIRECT]) : direct);
-    glBindTextureUnit(2, has_indirect ? fg_slot_texture(pass, st->optional[ALBEDO]) : direct);
-    glBindTextureUnit(3, has_emissive ? fg_slot_texture(pass, st->optional[EMISSIVE]) : direct);
-    glBindTextureUnit(4, has_reflection ? fg_slot_texture(pass, st->optional[REFLECTION]) : direct);
-    glBindTextureUnit(5, has_refraction ? fg_slot_texture(pass, st->optional[REFRACTION]) : direct);
-    glUniform1i(0, has_indirect);
-    glUniform1i(1, has_emissive);
-    glUniform1i(4, has_reflection);
-    glUniform1i(5, has_refraction);
+    bool present[OPTIONAL_INPUTS];
+    for (int i = 0; i < OPTIONAL_INPUTS; i++)
+        present[i] = cgp_bind_optional(pass, (GLuint)i + 1, st->optional[i], direct);
+    glUniform1i(0, present[INDIRECT]);
+    glUniform1i(1, present[EMISSIVE]);
+    glUniform1i(4, present[REFLECTION]);
+    glUniform1i(5, present[REFRACTION]);
     glUniform1f(2, exp2f(fg_param_float(pass, "exposure")));
     glUniform1i(3, fg_param_enum(pass, "tonemap"));
     glBindImageTexture(0, fg_slot_texture(pass, st->hdr), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     glBindImageTexture(1, fg_slot_texture(pass, st->ldr), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA8);
-    cgp_dispatch_2d(out->width, out->height);
+    cgp_dispatch_over(pass, st->hdr);
     glUseProgram(0);
     return true;
 }

@@ -63,7 +63,7 @@ typedef struct cone_gather_state {
     cgp_gather gather;      /* its block: CG_CONE_GATHER_BLOCK */
     cgp_gather_blocks blocks; /* downsample > 1: the diffuse cones of one pixel a block */
     bool specular, refraction, shadow_cone, count_reads;
-    fg_slot reflection_out, refraction_out, visibility, reads; /* declared with their parameters */
+    fg_slot visibility, reads; /* declared with their parameters */
 } cone_gather_state;
 
 static bool
@@ -88,12 +88,7 @@ cone_gather_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
                        "transmission, attenuation: a gbuffer pass's outputs)", fg_pass_name(pass));
     if (!position)
         return true;
-    fg_resource_desc out = cgp_image_like(pass, position, GL_RGBA32F);
-    fg_declare_output(decl, "radiance", &out, FG_ACCESS_IMAGE_STORE);
-    if (fg_param_bool(pass, "specular"))
-        fg_declare_output(decl, "reflection", &out, FG_ACCESS_IMAGE_STORE);
-    if (fg_param_bool(pass, "refraction"))
-        fg_declare_output(decl, "refraction", &out, FG_ACCESS_IMAGE_STORE);
+    fg_resource_desc out = cgp_gather_declare_outputs(pass, decl, position);
     if (fg_param_bool(pass, "shadow_cone")) {
         out.format = GL_R16F;
         fg_declare_output(decl, "visibility", &out, FG_ACCESS_IMAGE_STORE);
@@ -112,8 +107,6 @@ cone_gather_prepare(fg_pass *pass, cone_gather_state *s, cg_error *err)
     s->refraction = fg_param_bool(pass, "refraction");
     s->shadow_cone = fg_param_bool(pass, "shadow_cone");
     s->count_reads = fg_param_bool(pass, "count_reads");
-    s->reflection_out = s->specular ? fg_pass_slot(pass, "reflection") : FG_NO_SLOT;
-    s->refraction_out = s->refraction ? fg_pass_slot(pass, "refraction") : FG_NO_SLOT;
     s->visibility = s->shadow_cone ? fg_pass_slot(pass, "visibility") : FG_NO_SLOT;
     s->reads = s->count_reads ? fg_pass_slot(pass, "reads") : FG_NO_SLOT;
     const cgp_gather_io io = {fg_pass_slot(pass, "position"), fg_pass_slot(pass, "normal"),
@@ -157,10 +150,6 @@ cone_gather_execute(fg_pass *pass, cone_gather_state *s, cg_error *err)
         return false;
     if (frame->gpu_scene)
         cg_gpu_scene_bind_lights(frame->gpu_scene);
-    if (s->specular)
-        glBindImageTexture(1, fg_slot_texture(pass, s->reflection_out), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-    if (s->refraction)
-        glBindImageTexture(4, fg_slot_texture(pass, s->refraction_out), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     if (s->shadow_cone)
         glBindImageTexture(2, fg_slot_texture(pass, s->visibility), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R16F);
     if (s->count_reads)

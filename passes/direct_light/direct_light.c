@@ -72,14 +72,7 @@ direct_light_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
 static bool
 direct_light_prepare(fg_pass *pass, direct_light_state *st, cg_error *err)
 {
-    st->position = fg_pass_slot(pass, "position");
-    st->normal = fg_pass_slot(pass, "normal");
-    st->albedo = fg_pass_slot(pass, "albedo");
-    st->specular = fg_pass_slot(pass, "specular");
-    st->material = fg_pass_slot(pass, "material");
-    st->transmission = fg_pass_slot(pass, "transmission");
-    st->visibility = fg_pass_slot(pass, "visibility");
-    st->radiance = fg_pass_slot(pass, "radiance");
+    CGP_SLOTS(pass, st, position, normal, albedo, specular, material, transmission, visibility, radiance);
     cgp_no_shadow_create(st, pass, &st->no_shadow);
     return cgp_compute_program(st, "direct_light/direct.comp", NULL, &st->program, err);
 }
@@ -89,7 +82,6 @@ direct_light_execute(fg_pass *pass, direct_light_state *st, cg_error *err)
 {
     (void)err;
     const fg_frame *frame = fg_pass_frame(pass);
-    const fg_resource_desc *out = fg_slot_resource(pass, st->radiance);
     GLuint albedo = fg_slot_texture(pass, st->albedo);
 
     glUseProgram(st->program);
@@ -98,12 +90,10 @@ direct_light_execute(fg_pass *pass, direct_light_state *st, cg_error *err)
     glBindTextureUnit(2, fg_slot_texture(pass, st->position));
     glBindTextureUnit(3, fg_slot_texture(pass, st->normal));
     glBindTextureUnit(4, albedo);
-    bool glossy = fg_slot_present(pass, st->specular) && fg_slot_present(pass, st->material);
-    bool transmission = glossy && fg_slot_present(pass, st->transmission);
     /* Absent inputs: the albedo stands in at their units, never read (u_glossy false). */
-    glBindTextureUnit(6, glossy ? fg_slot_texture(pass, st->specular) : albedo);
-    glBindTextureUnit(7, glossy ? fg_slot_texture(pass, st->material) : albedo);
-    glBindTextureUnit(8, transmission ? fg_slot_texture(pass, st->transmission) : albedo);
+    bool specular = cgp_bind_optional(pass, 6, st->specular, albedo);
+    bool glossy = cgp_bind_optional(pass, 7, st->material, albedo) && specular;
+    bool transmission = cgp_bind_optional(pass, 8, st->transmission, albedo) && glossy;
     glUniform1i(0, glossy);
     glUniform1i(1, transmission);
     /* v: towards the camera's position, or along its backward axis for an orthographic view. */
@@ -111,11 +101,10 @@ direct_light_execute(fg_pass *pass, direct_light_state *st, cg_error *err)
     glUniform3f(3, frame->view.inv_view[8], frame->view.inv_view[9], frame->view.inv_view[10]);
     glUniform1i(4, frame->view.orthographic);
     /* Without the input no light index matches (-1), and the albedo stands in at unit 9, never read. */
-    bool cone = fg_slot_present(pass, st->visibility);
-    glBindTextureUnit(9, cone ? fg_slot_texture(pass, st->visibility) : albedo);
+    bool cone = cgp_bind_optional(pass, 9, st->visibility, albedo);
     glUniform1i(5, cone ? fg_param_int(pass, "visibility_light") : -1);
     glBindImageTexture(0, fg_slot_texture(pass, st->radiance), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-    cgp_dispatch_2d(out->width, out->height);
+    cgp_dispatch_over(pass, st->radiance);
     glUseProgram(0);
     return true;
 }

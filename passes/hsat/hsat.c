@@ -83,10 +83,7 @@ static bool
 hsat_prepare(fg_pass *pass, hsat_state *s, cg_error *err)
 {
     s->mode = fg_param_enum(pass, "mode");
-    s->lightmap = fg_pass_slot(pass, "lightmap");
-    s->region = fg_pass_slot(pass, "region");
-    s->table = fg_pass_slot(pass, "table");
-    s->info = fg_pass_slot(pass, "info");
+    CGP_SLOTS(pass, s, lightmap, region, table, info);
     s->lightmap_format = fg_slot_resource(pass, s->lightmap)->format;
     const char *format = s->lightmap_format == GL_RGBA16F ? "rgba16f" : "rgba32f";
     char defines[128];

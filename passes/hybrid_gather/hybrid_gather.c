@@ -122,7 +122,6 @@ typedef struct hybrid_gather_state {
     GLuint empty_block;     /* bound where a map is absent, so no block is left unbound */
     bool has_2d, has_3d, specular, refraction;
     fg_slot lightmap2d, region2d, hsat, hsat_info;
-    fg_slot reflection_out, refraction_out;   /* declared with their parameters */
     cg_hybrid_gather_block block;   /* 5.5 KiB: kept here rather than on the stack */
 } hybrid_gather_state;
 
@@ -180,12 +179,7 @@ hybrid_gather_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
                        "transmission, attenuation: a gbuffer pass's outputs)", fg_pass_name(pass));
     if (!position)
         return true;
-    fg_resource_desc out = cgp_image_like(pass, position, GL_RGBA32F);
-    fg_declare_output(decl, "radiance", &out, FG_ACCESS_IMAGE_STORE);
-    if (fg_param_bool(pass, "specular"))
-        fg_declare_output(decl, "reflection", &out, FG_ACCESS_IMAGE_STORE);
-    if (fg_param_bool(pass, "refraction"))
-        fg_declare_output(decl, "refraction", &out, FG_ACCESS_IMAGE_STORE);
+    cgp_gather_declare_outputs(pass, decl, position);
     return true;
 }
 
@@ -224,10 +218,7 @@ cell_points(const cgp_cone_set *set, cg_hybrid_gather_block *b)
 static bool
 hybrid_gather_prepare(fg_pass *pass, hybrid_gather_state *s, cg_error *err)
 {
-    s->lightmap2d = fg_pass_slot(pass, "lightmap2d");
-    s->region2d = fg_pass_slot(pass, "region2d");
-    s->hsat = fg_pass_slot(pass, "hsat");
-    s->hsat_info = fg_pass_slot(pass, "hsat_info");
+    CGP_SLOTS(pass, s, lightmap2d, region2d, hsat, hsat_info);
     s->has_2d = fg_slot_present(pass, s->lightmap2d);
     /* The cube-centre sample (dda = false) reads the 2D lightmap filtered; the DDA and HSAT fetch. */
     s->map_sampler = cgp_sampler_lightmap2d(s);
@@ -236,8 +227,6 @@ hybrid_gather_prepare(fg_pass *pass, hybrid_gather_state *s, cg_error *err)
     s->empty_block = cgp_buffer(s, sizeof zero, &zero, 0);
     s->specular = fg_param_bool(pass, "specular");
     s->refraction = fg_param_bool(pass, "refraction");
-    s->reflection_out = s->specular ? fg_pass_slot(pass, "reflection") : FG_NO_SLOT;
-    s->refraction_out = s->refraction ? fg_pass_slot(pass, "refraction") : FG_NO_SLOT;
     const cgp_gather_io io = {fg_pass_slot(pass, "position"), fg_pass_slot(pass, "normal"),
                               fg_pass_slot(pass, "radiance")};
     const char *maps = !s->has_2d ? ""
@@ -296,10 +285,6 @@ hybrid_gather_execute(fg_pass *pass, hybrid_gather_state *s, cg_error *err)
     glBindSampler(CG_UNIT_LIGHTMAP2D, s->map_sampler);
     glBindTextureUnit(CG_UNIT_HSAT, s->has_2d ? fg_slot_texture(pass, s->hsat) : 0);
     glBindSampler(CG_UNIT_HSAT, s->table_sampler);
-    if (s->specular)
-        glBindImageTexture(1, fg_slot_texture(pass, s->reflection_out), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-    if (s->refraction)
-        glBindImageTexture(4, fg_slot_texture(pass, s->refraction_out), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     cgp_gather_blocks_trace(pass, &s->gather, &s->blocks);
     cgp_gather_end(pass, &s->gather);
     cgp_gather_blocks_end(&s->blocks);

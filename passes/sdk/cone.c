@@ -203,6 +203,7 @@ cgp_cone_upload(const fg_pass *pass, const cgp_cone_set *set, GLuint buffer)
 /* The inputs the SDK declares for a gather, by these names in declare and found by them in
  * cgp_gather_prepare (cgp_gather_slots). */
 static const char *const volume_name = "volume", *const region_name = "region", *const glossy_name = "glossy";
+static const char *const reflection_name = "reflection", *const refraction_name = "refraction";
 static const char *const direction_names[6] = {"px", "nx", "py", "ny", "pz", "nz"};
 static const char *const surface_names[2] = {"sides", "normals"};
 
@@ -304,6 +305,18 @@ cgp_gather_declare_material(fg_pass *pass, fg_declare *decl, bool *present, cg_e
     return true;
 }
 
+fg_resource_desc
+cgp_gather_declare_outputs(fg_pass *pass, fg_declare *decl, const fg_resource_desc *position)
+{
+    fg_resource_desc out = cgp_image_like(pass, position, GL_RGBA32F);
+    fg_declare_output(decl, "radiance", &out, FG_ACCESS_IMAGE_STORE);
+    if (fg_param_bool(pass, "specular"))
+        fg_declare_output(decl, reflection_name, &out, FG_ACCESS_IMAGE_STORE);
+    if (fg_param_bool(pass, "refraction"))
+        fg_declare_output(decl, refraction_name, &out, FG_ACCESS_IMAGE_STORE);
+    return out;
+}
+
 /* ---- the split-sum table (cgp_brdf_table_fill) */
 
 void
@@ -392,6 +405,8 @@ void
 cgp_gather_find_slots(const fg_pass *pass, cgp_gather_io io, cgp_gather_slots *out)
 {
     *out = (cgp_gather_slots){.position = io.position, .normal = io.normal, .radiance = io.radiance};
+    out->reflection = fg_pass_slot_if_declared(pass, reflection_name);
+    out->refraction = fg_pass_slot_if_declared(pass, refraction_name);
     out->volume = fg_pass_slot(pass, volume_name);
     out->region = fg_pass_slot(pass, region_name);
     out->glossy = fg_pass_slot(pass, glossy_name);
@@ -459,14 +474,18 @@ cgp_gather_begin(const fg_pass *pass, cgp_gather *g, const void *block, size_t g
         glBindTextureUnit(CG_UNIT_BRDF_TABLE, g->brdf_table);
     }
     glBindImageTexture(0, fg_slot_texture(pass, g->slots.radiance), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    /* The specular and refracted cones' outputs, at image units 1 and 4 in both gathers' shaders. */
+    if (fg_slot_present(pass, g->slots.reflection))
+        glBindImageTexture(1, fg_slot_texture(pass, g->slots.reflection), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    if (fg_slot_present(pass, g->slots.refraction))
+        glBindImageTexture(4, fg_slot_texture(pass, g->slots.refraction), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     return true;
 }
 
 void
 cgp_gather_end(const fg_pass *pass, const cgp_gather *g)
 {
-    const fg_resource_desc *out = fg_slot_resource(pass, g->slots.radiance);
-    cgp_dispatch_2d(out->width, out->height);
+    cgp_dispatch_over(pass, g->slots.radiance);
     glBindSampler(CG_UNIT_VOLUME, 0);
     glBindSampler(CG_UNIT_OCCUPANCY, 0);
     glBindTextureUnit(CG_UNIT_OCCUPANCY, 0);

@@ -137,6 +137,7 @@ typedef struct cgp_gather_io {
 } cgp_gather_io;
 typedef struct cgp_gather_slots {
     fg_slot position, normal, radiance;
+    fg_slot reflection, refraction; /* with parameters specular and refraction (cgp_gather_declare_outputs) */
     fg_slot volume, region, glossy;
     fg_slot directions[6];      /* px nx py ny pz nz */
     fg_slot surface[2];         /* sides, normals */
@@ -191,6 +192,11 @@ void cgp_gather_bind_volume(const fg_pass *pass, const cgp_gather *g, GLuint sam
  * otherwise); with them the program gets CG_GATHER_MATERIAL and cgp_gather_begin binds them and the
  * split-sum table. Returns whether they are connected. */
 bool cgp_gather_declare_material(fg_pass *pass, fg_declare *decl, bool *present, cg_error *err);
+
+/* In declare(), once the G-buffer's `position` is known: the outputs both gathers write at its size,
+ * RGBA32F: 'radiance', 'reflection' with parameter specular, 'refraction' with parameter refraction.
+ * Returns their descriptor, for a pass's further outputs of the same size. */
+fg_resource_desc cgp_gather_declare_outputs(fg_pass *pass, fg_declare *decl, const fg_resource_desc *position);
 
 /* The split-sum table (Karis 2013, "Real Shading in Unreal Engine 4", eq. 8 and its environment BRDF)
  * of the GGX lobe with height-correlated Smith visibility and Schlick Fresnel (the glTF spec's

@@ -192,10 +192,25 @@ cgp_declare_in_place_chain(fg_declare *decl, const char *name, const fg_resource
         fg_declare_output(decl, name, in, FG_ACCESS_IMAGE_STORE);
 }
 
+bool
+cgp_bind_optional(const fg_pass *pass, GLuint unit, fg_slot slot, GLuint stand_in)
+{
+    bool present = fg_slot_present(pass, slot);
+    glBindTextureUnit(unit, present ? fg_slot_texture(pass, slot) : stand_in);
+    return present;
+}
+
 void
 cgp_dispatch_2d(int width, int height)
 {
     glDispatchCompute((GLuint)(width + 7) / 8, (GLuint)(height + 7) / 8, 1);
+}
+
+void
+cgp_dispatch_over(const fg_pass *pass, fg_slot slot)
+{
+    const fg_resource_desc *image = fg_slot_resource(pass, slot);
+    cgp_dispatch_2d(image->width, image->height);
 }
 
 void

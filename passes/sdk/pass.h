@@ -1,11 +1,11 @@
 /* sdk/pass.h (pass SDK): what every pass needs beside cg/fg.h: its registration, its state,
  * the descriptors of its usual outputs and its compute dispatch.
  *
- * Declares: CGP_PARAMS, CGP_NO_PARAMS, CGP_PASS, CGP_REGISTER_PASS, CGP_PLUGIN, cgp_register_passes,
+ * Declares: CGP_PARAMS, CGP_NO_PARAMS, CGP_SLOTS, CGP_PASS, CGP_REGISTER_PASS, CGP_PLUGIN, cgp_register_passes,
  *           cgp_gl_kind, cgp_state_new, cgp_state_on_destroy, cgp_state_destroy, cgp_prepared, cgp_own,
  *           cgp_compute_program,
  *           cgp_graphics_program, cgp_framebuffer, cgp_buffer, cgp_image_2d, cgp_image_like, cgp_buffer_desc,
- *           cgp_declare_in_place_chain, cgp_dispatch_2d, cgp_compute_end, cgp_depth_draw_begin,
+ *           cgp_declare_in_place_chain, cgp_bind_optional, cgp_dispatch_2d, cgp_dispatch_over, cgp_compute_end, cgp_depth_draw_begin,
  *           cgp_depth_draw_end.
  *
  * A built-in pass is defined by
@@ -33,6 +33,25 @@
 /* The `params` and `param_count` of an fg_pass_type from a static table, or none. */
 #define CGP_PARAMS(table) .params = (table), .param_count = (int)(sizeof(table) / sizeof((table)[0]))
 #define CGP_NO_PARAMS .params = NULL, .param_count = 0
+
+/* Sets each named member of the state `st` to the handle of the pass's slot of the same name:
+ *     CGP_SLOTS(pass, st, position, normal, radiance);
+ * is st->position = fg_pass_slot(pass, "position"), and so for normal and radiance, so that a
+ * member and the slot it holds cannot be spelt apart. Up to 8 names; a prepare() with more calls
+ * it twice. A misspelt name fails in fg_pass_slot as any lookup does. */
+#define CGP_SLOTS(pass, st, ...)                                                                   \
+    CGP_SLOTS_PICK_(__VA_ARGS__, CGP_SLOTS8_, CGP_SLOTS7_, CGP_SLOTS6_, CGP_SLOTS5_, CGP_SLOTS4_,  \
+                    CGP_SLOTS3_, CGP_SLOTS2_, CGP_SLOTS1_, ~)((pass), (st), __VA_ARGS__)
+#define CGP_SLOTS_PICK_(a, b, c, d, e, f, g, h, chosen, ...) chosen
+#define CGP_SLOT_(p, s, m) ((s)->m = fg_pass_slot(p, #m))
+#define CGP_SLOTS1_(p, s, m) CGP_SLOT_(p, s, m)
+#define CGP_SLOTS2_(p, s, m, ...) (CGP_SLOT_(p, s, m), CGP_SLOTS1_(p, s, __VA_ARGS__))
+#define CGP_SLOTS3_(p, s, m, ...) (CGP_SLOT_(p, s, m), CGP_SLOTS2_(p, s, __VA_ARGS__))
+#define CGP_SLOTS4_(p, s, m, ...) (CGP_SLOT_(p, s, m), CGP_SLOTS3_(p, s, __VA_ARGS__))
+#define CGP_SLOTS5_(p, s, m, ...) (CGP_SLOT_(p, s, m), CGP_SLOTS4_(p, s, __VA_ARGS__))
+#define CGP_SLOTS6_(p, s, m, ...) (CGP_SLOT_(p, s, m), CGP_SLOTS5_(p, s, __VA_ARGS__))
+#define CGP_SLOTS7_(p, s, m, ...) (CGP_SLOT_(p, s, m), CGP_SLOTS6_(p, s, __VA_ARGS__))
+#define CGP_SLOTS8_(p, s, m, ...) (CGP_SLOT_(p, s, m), CGP_SLOTS7_(p, s, __VA_ARGS__))
 
 /* Registers `count` pass types. Each type's abi_version is the FG_ABI_VERSION of the headers
  * it was compiled against; it must equal host_abi (CG_ERR_PLUGIN_ABI otherwise, naming the
@@ -147,8 +166,15 @@ int cgp_volume_levels(int width, int height, int depth);
 void cgp_declare_in_place_chain(fg_declare *decl, const char *name, const fg_resource_desc *in,
                                 const char *single_level);
 
+/* Binds the texture of the optional input `slot` at texture `unit`, or, where it is absent,
+ * `stand_in` (a texture the pass has, so that the unit holds something valid that the shader
+ * is told not to read). Returns whether the input is present. */
+bool cgp_bind_optional(const fg_pass *pass, GLuint unit, fg_slot slot, GLuint stand_in);
+
 /* glDispatchCompute over width x height invocations in groups of 8 x 8 (local_size 8 x 8). */
 void cgp_dispatch_2d(int width, int height);
+/* cgp_dispatch_2d over the size of the pass's image `slot` (the output it writes a texel an invocation). */
+void cgp_dispatch_over(const fg_pass *pass, fg_slot slot);
 /* What a compute pass leaves behind it: image units 0 .. image_units - 1 and the `storage_count`
  * shader storage binding points `storage` unbound, no program in use; so that no later pass finds
  * this one's textures and buffers bound where it binds nothing of its own. */

@@ -114,8 +114,7 @@ shadow_map_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
 static bool
 shadow_map_prepare(fg_pass *pass, shadow_map_state *st, cg_error *err)
 {
-    st->depth = fg_pass_slot(pass, "depth");
-    st->matrix = fg_pass_slot(pass, "matrix");
+    CGP_SLOTS(pass, st, depth, matrix);
     st->fbo = cgp_framebuffer(st);
     glNamedFramebufferDrawBuffer(st->fbo, GL_NONE);
     glNamedFramebufferReadBuffer(st->fbo, GL_NONE);

@@ -260,8 +260,7 @@ voxel_light_prepare(fg_pass *pass, voxel_light_state *s, cg_error *err)
         s->geometry[i] = fg_pass_slot(pass, geometry_names[i]);
     for (int i = 0; i < 3; i++)
         s->light[i] = fg_pass_slot(pass, light_names[i]);
-    s->region = fg_pass_slot(pass, "region");
-    s->voxels = fg_pass_slot(pass, "voxels");
+    CGP_SLOTS(pass, s, region, voxels);
     s->glossy_slot = fg_pass_slot_if_declared(pass, glossy_name);
     for (int i = 0; i < 2; i++) {
         s->gathered[i] = fg_pass_slot_if_declared(pass, gathered_names[i]);
