@@ -158,6 +158,20 @@ town_terrain(double x, double z, const void *user)
 }
 
 void
+hf_plate_under_sun(hf_scene *s, float irradiance, float angular_diameter)
+{
+    hf_init(s);
+    hf_material(s, 1, 0.5f, 0.0f);
+    hf_material(s, 2, 0.5f, 0.0f);
+    hf_grid(s, 8, -50.0, -50.0, 100.0, hf_flat, NULL);
+    const double corner[3] = {-40, 10, 40}, e1[3] = {40, 0, 0}, e2[3] = {0, 0, -80};
+    hf_quad(s, corner, e1, e2);
+    const double down[3] = {0.05, -1, 0.02};
+    hf_sun(s, down, irradiance);
+    s->light.angular_diameter = angular_diameter;
+}
+
+void
 hf_town(hf_scene *s, int n, float wall_emission)
 {
     hf_init(s);

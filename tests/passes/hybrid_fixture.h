@@ -2,7 +2,7 @@
  * (terrain) and a complex quad, with materials, an optional sun and an optional camera.
  *
  * Declares: hf_scene, hf_height_fn, hf_init, hf_grid, hf_quad, hf_sun, hf_camera_looking,
- *           hf_turn_sun, hf_finish, hf_free, hf_read_2d, hf_read_2d_sized, hf_flat.
+ *           hf_turn_sun, hf_plate_under_sun, hf_finish, hf_free, hf_read_2d, hf_read_2d_sized, hf_flat.
  */
 #ifndef CG_TEST_HYBRID_FIXTURE_H
 #define CG_TEST_HYBRID_FIXTURE_H
@@ -40,6 +40,11 @@ void hf_camera_looking(hf_scene *s, const double eye[3], const double forward[3]
  * tilted roof-like quad (albedo 0.6), about 2.6 m high in all; not finished (add lights, then
  * hf_finish). */
 void hf_town(hf_scene *s, int n, float wall_emission);
+/* The shadow cones' scene: a flat ground 100 m square at y = 0 (material 1, albedo 0.5), a plate of
+ * 40 x 80 m facing up 10 m above it over x in [-40, 0] (material 2, albedo 0.5), and a sun of
+ * `irradiance` (W/m^2) and `angular_diameter` (radians) from nearly overhead, direction
+ * (0.05, -1, 0.02); no camera, not finished. */
+void hf_plate_under_sun(hf_scene *s, float irradiance, float angular_diameter);
 /* Turns the sun about +y by `degrees` and uploads the scene's lights to the runner's GPU scene
  * again, as an app does when only the lighting changed. */
 void hf_turn_sun(vf_runner *r, hf_scene *s, double degrees);

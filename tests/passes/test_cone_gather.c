@@ -419,15 +419,7 @@ test_shadow_cone(void **state)
 {
     cg_context *ctx = cg_test_gl_context(state);
     hf_scene s;
-    hf_init(&s);
-    hf_material(&s, 1, 0.5f, 0.0f);
-    hf_material(&s, 2, 0.5f, 0.0f);
-    hf_grid(&s, 8, -50.0, -50.0, 100.0, hf_flat, NULL);
-    /* The plate over x in [-40, 0], 10 m up, facing up. */
-    const double corner[3] = {-40, 10, 40}, e1[3] = {40, 0, 0}, e2[3] = {0, 0, -80};
-    hf_quad(&s, corner, e1, e2);
-    const double down[3] = {0.05, -1, 0.02};
-    hf_sun(&s, down, 3.0f);
+    hf_plate_under_sun(&s, 3.0f, 0.0f);   /* the plate over x in [-40, 0], 10 m up */
     /* Low, from the open side: under the plate's edge to the shadowed ground, and over its top. */
     const double eye[3] = {60, 15, 0}, forward[3] = {-1, -0.18, 0}, north[3] = {0, 1, 0};
     hf_camera_looking(&s, eye, forward, north, 0.9f);

@@ -15,6 +15,7 @@
 #include "cg/scene.h"
 #include "cg/pt_render.h"
 #include "test_support.h"
+#include "vct_fixture.h"
 
 enum { W = 96, H = 96 };
 
@@ -30,26 +31,12 @@ direct_graph_matches_path_tracer_at_zero_bounces(void **state)
 {
     cg_context *ctx = cg_test_gl_context(state);
     cg_error err = { 0 };
-    cg_scene scene;
-    assert_cg_ok(cg_scene_load("builtin:cornell", &scene, &err), &err);
-    int camera;
-    assert_cg_ok(cg_camera_select(&scene, NULL, &camera, &err), &err);
-    fg_frame frame = { .scene = &scene, .width = W, .height = H };
-    cg_view_from_scene(&scene, camera, W, H, &frame.view);
-
-    fg_registry *registry = fg_registry_create();
-    assert_cg_ok(cg_builtin_passes_register(registry, &err), &err);
-    fg_graph *graph = fg_graph_create(registry);
-    assert_cg_ok(fg_graph_load_file(graph, cg_test_graph_path("direct.json"), &err), &err);
-    cg_gpu_scene gpu;
-    assert_cg_ok(cg_gpu_scene_upload(&scene, &gpu, &err), &err);
-    frame.gpu_scene = &gpu;
-    fg_compile_options options = { 0 };
-    assert_cg_ok(fg_graph_compile(graph, &frame, &options, &err), &err);
-    assert_cg_ok(fg_graph_prepare(graph, &err), &err);
-    assert_cg_ok(fg_graph_execute(graph, &frame, FG_TIMING_NONE, &err), &err);
-    glMemoryBarrier(GL_ALL_BARRIER_BITS);
-    float *gl_rows = cg_test_read_texture(fg_graph_texture(graph, "final.hdr"), 0, NULL, NULL, NULL);
+    cg_scene scene = cg_test_load_scene("builtin:cornell");
+    vf_runner r;
+    vf_start_file(&r, &scene, W, H, "direct.json", NULL);
+    vf_frame(&r);
+    const fg_frame frame = r.frame;
+    float *gl_rows = cg_test_read_texture(fg_graph_texture(r.graph, "final.hdr"), 0, NULL, NULL, NULL);
     assert_no_gl_errors(ctx);
 
     /* Through pixel centres with 0 bounces the path tracer is deterministic: 1 sample is exact. */
@@ -105,9 +92,7 @@ direct_graph_matches_path_tracer_at_zero_bounces(void **state)
     cg_image_free(&test);
     free(gl_rows);
     pt_scene_destroy(pts);
-    fg_graph_destroy(graph);
-    fg_registry_destroy(registry);
-    cg_gpu_scene_destroy(&gpu);
+    vf_stop(&r);
     cg_scene_free(&scene);
 }
 

@@ -13,6 +13,7 @@
 #include "cg/graphfile.h"
 #include "cg/scene.h"
 #include "test_support.h"
+#include "vct_fixture.h"
 
 #define SIZE 64
 
@@ -20,32 +21,14 @@ static void
 test_cornell_direct(void **state)
 {
     cg_context *ctx = cg_test_gl_context(state);
-    cg_error err = { 0 };
-    cg_scene scene;
-    assert_cg_ok(cg_scene_load("builtin:cornell", &scene, &err), &err);
-    int camera;
-    assert_cg_ok(cg_camera_select(&scene, NULL, &camera, &err), &err);
-    fg_frame frame = { .scene = &scene, .width = SIZE, .height = SIZE };
-    cg_view_from_scene(&scene, camera, SIZE, SIZE, &frame.view);
-
-    fg_registry *registry = fg_registry_create();
-    assert_cg_ok(cg_builtin_passes_register(registry, &err), &err);
-    fg_graph *graph = fg_graph_create(registry);
-    assert_cg_ok(fg_graph_load_file(graph, cg_test_graph_path("direct.json"), &err), &err);
+    cg_scene scene = cg_test_load_scene("builtin:cornell");
     /* The command-line override path, as `--set shadow.resolution=512` would take it. */
-    assert_cg_ok(fg_graph_apply_override(graph, "shadow.resolution=512", &err), &err);
-
-    cg_gpu_scene gpu;
-    assert_cg_ok(cg_gpu_scene_upload(&scene, &gpu, &err), &err);
-    frame.gpu_scene = &gpu;
-    fg_compile_options options = { 0 };
-    assert_cg_ok(fg_graph_compile(graph, &frame, &options, &err), &err);
-    assert_cg_ok(fg_graph_prepare(graph, &err), &err);
-    for (int f = 0; f < 2; f++) {
-        frame.index = (uint64_t)f;
-        assert_cg_ok(fg_graph_execute(graph, &frame, FG_TIMING_SYNC, &err), &err);
-    }
-    glMemoryBarrier(GL_ALL_BARRIER_BITS);
+    static const char *const overrides[] = { "shadow.resolution=512", NULL };
+    vf_runner r;
+    vf_start_file(&r, &scene, SIZE, SIZE, "direct.json", overrides);
+    vf_frame(&r);
+    vf_next_frame(&r);
+    fg_graph *graph = r.graph;
     /* The box is lit by a light a shadow map can serve: the shadow pass must be live. */
     for (int i = 0; i < fg_graph_pass_count(graph); i++)
         if (!strcmp(fg_pass_type_of(fg_graph_pass_at(graph, i))->name, "shadow_map"))
@@ -79,9 +62,7 @@ test_cornell_direct(void **state)
     assert_true(sum / (SIZE * SIZE) > 1e-3);
     free(hdr);
     free(ldr);
-    fg_graph_destroy(graph);
-    cg_gpu_scene_destroy(&gpu);
-    fg_registry_destroy(registry);
+    vf_stop(&r);
     cg_scene_free(&scene);
     assert_no_gl_errors(ctx);
 }

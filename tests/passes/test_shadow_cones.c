@@ -33,15 +33,7 @@ static const float irradiance = 3.0f;
 static void
 plate_shadow_scene(hf_scene *s, float angular_diameter)
 {
-    hf_init(s);
-    hf_material(s, 1, 0.5f, 0.0f);
-    hf_material(s, 2, 0.5f, 0.0f);
-    hf_grid(s, 8, -50.0, -50.0, 100.0, hf_flat, NULL);
-    const double corner[3] = {-40, 10, 40}, e1[3] = {40, 0, 0}, e2[3] = {0, 0, -80};
-    hf_quad(s, corner, e1, e2);
-    const double down[3] = {0.05, -1, 0.02};
-    hf_sun(s, down, irradiance);
-    s->light.angular_diameter = angular_diameter;
+    hf_plate_under_sun(s, irradiance, angular_diameter);
     const double eye[3] = {30, 25, 0}, forward[3] = {-1, -1.2, 0}, up[3] = {0, 1, 0};
     hf_camera_looking(s, eye, forward, up, 0.9f);
     hf_finish(s);
@@ -287,14 +279,8 @@ test_point_light_under_ceiling(void **state)
     hf_free(&s);
 }
 
-int
-main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_visibility_applied),
-        cmocka_unit_test(test_vct_paper_wires_it),
-        cmocka_unit_test(test_measured_against_path_tracer),
-        cmocka_unit_test(test_point_light_under_ceiling),
-    };
-    return cmocka_run_group_tests(tests, cg_test_gl_setup, cg_test_gl_teardown);
-}
+CG_TEST_MAIN(cg_test_gl_setup, cg_test_gl_teardown,
+             cmocka_unit_test(test_visibility_applied),
+             cmocka_unit_test(test_vct_paper_wires_it),
+             cmocka_unit_test(test_measured_against_path_tracer),
+             cmocka_unit_test(test_point_light_under_ceiling))

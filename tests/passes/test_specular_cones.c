@@ -377,16 +377,8 @@ test_shadow_cone_sun_disc(void **state)
 {
     cg_context *ctx = cg_test_gl_context(state);
     hf_scene s;
-    hf_init(&s);
-    hf_material(&s, 1, 0.5f, 0.0f);
-    hf_material(&s, 2, 0.5f, 0.0f);
-    hf_grid(&s, 8, -50.0, -50.0, 100.0, hf_flat, NULL);
-    const double corner[3] = {-40, 10, 40}, e1[3] = {40, 0, 0}, e2[3] = {0, 0, -80};
-    hf_quad(&s, corner, e1, e2);
-    const double down[3] = {0.05, -1, 0.02};
     const float irradiance = 3.0f;
-    hf_sun(&s, down, irradiance);
-    s.light.angular_diameter = 0.2f;
+    hf_plate_under_sun(&s, irradiance, 0.2f);
     const double eye[3] = {30, 25, 0}, forward[3] = {-1, -1.2, 0}, up[3] = {0, 1, 0};
     hf_camera_looking(&s, eye, forward, up, 0.9f);
     hf_finish(&s);
@@ -778,21 +770,15 @@ test_metal_voxels_in_glossy(void **state)
     hf_free(&s);
 }
 
-int
-main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_furnace_ggx),
-        cmocka_unit_test(test_furnace_hybrid),
-        cmocka_unit_test(test_furnace_rough_dome),
-        cmocka_unit_test(test_mirror),
-        cmocka_unit_test(test_glass_slab),
-        cmocka_unit_test(test_lambertian_unchanged),
-        cmocka_unit_test(test_shadow_cone_sun_disc),
-        cmocka_unit_test(test_glossy_is_one_bounce_more),
-        cmocka_unit_test(test_lobes_read_glossy),
-        cmocka_unit_test(test_metal_voxels_in_glossy),
-        cmocka_unit_test(test_transmissive_voxels),
-    };
-    return cmocka_run_group_tests(tests, cg_test_gl_setup, cg_test_gl_teardown);
-}
+CG_TEST_MAIN(cg_test_gl_setup, cg_test_gl_teardown,
+             cmocka_unit_test(test_furnace_ggx),
+             cmocka_unit_test(test_furnace_hybrid),
+             cmocka_unit_test(test_furnace_rough_dome),
+             cmocka_unit_test(test_mirror),
+             cmocka_unit_test(test_glass_slab),
+             cmocka_unit_test(test_lambertian_unchanged),
+             cmocka_unit_test(test_shadow_cone_sun_disc),
+             cmocka_unit_test(test_glossy_is_one_bounce_more),
+             cmocka_unit_test(test_lobes_read_glossy),
+             cmocka_unit_test(test_metal_voxels_in_glossy),
+             cmocka_unit_test(test_transmissive_voxels))
