@@ -23,10 +23,12 @@
  * Both models:
  *   region        std140 block CG_VOLUME_BLOCK (common/blocks.h) for common/volume.glsl: where
  *                 the volume lies and how its values decode (consumers bind it at CG_BINDING_VOLUME).
- *   accumulation  3D R32UI, resolution^2 x 4 resolution (surface model: 3 x 2 x 3 slabs of the
- *                 volume's size, 17 of its 18 used, common/blocks.h): the fixed-point sums and counts
- *                 of the fragments (shaders/voxelize/voxelize.frag), transient working memory,
- *                 declared so that the memory report counts it.
+ *   accumulation  3D R32UI, resolution^2 x 4 resolution (surface model: 3 x 2 x 3 slabs of one
+ *                 slice of the volume, its x and y sides by depth / slices, common/blocks.h): the
+ *                 fixed-point sums and counts of the fragments (shaders/voxelize/voxelize.frag),
+ *                 transient working memory, declared so that the memory report counts it. The
+ *                 surface model voxelizes and resolves one slice of z after the other, so that this
+ *                 transient is 1/slices of the whole volume's 72 bytes a voxel.
  * Inputs (optional, together, model = radiance): shadow (depth) and shadow_matrix (buffer) of a
  * shadow_map pass.
  *
@@ -148,6 +150,11 @@ static const fg_param_desc voxelize_params[] = {
              "again only the voxels they covered and cover (the whole volume when the region or the scales "
              "changed, or the changed voxels are over half of it); false: voxelize every frame (the VCT "
              "paper's rebuild)" },
+    { .name = "slices", .type = FG_PARAM_INT, .default_value = 8, .min = 1, .max = 64,
+      .active_when = "model=surface",
+      .doc = "the volume is voxelized in this many slices along z, one after the other, and the accumulation "
+             "(the fragments' fixed-point sums, 18 x 4 bytes a voxel) holds one slice: 1/slices of the volume's "
+             "(at 128^3: 144 MiB whole, 18 MiB at 8); each slice draws the meshes that reach it again" },
     { .name = "transmissive", .type = FG_PARAM_BOOL, .active_when = "model=surface",
       .doc = "a transmissive material's voxels cover only what its interface reflects, 1 - tau (1 - F), F "
              "the hemispherical Fresnel: cones pass through glass (untinted), as path_trace with "
@@ -219,6 +226,7 @@ typedef struct voxelize_state {
     GLsizeiptr *range_firsts;
     int range_cap;
     fg_slot block, accumulation;
+    int slice_depth;        /* the surface model: voxels along z that the accumulation holds (slices) */
     fg_slot radiance;       /* the radiance model */
     fg_slot geometry[5];    /* the surface model: geometry_names */
 } voxelize_state;
@@ -300,6 +308,16 @@ voxelize_region(const fg_pass *pass, const cg_scene *scene, const int *dims, vox
     return true;
 }
 
+/* The surface model's slices (parameter slices): voxels along z of each, the last one thinner
+ * where they do not divide the depth (and fewer slices where the depth is short of them); the
+ * accumulation holds one. */
+static int
+slice_depth(const fg_pass *pass, int depth)
+{
+    int slices = fg_param_int(pass, "slices");
+    return (depth + slices - 1) / slices;
+}
+
 static bool
 voxelize_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
 {
@@ -342,7 +360,7 @@ voxelize_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
         .kind = FG_TEXTURE_3D, .format = GL_R32UI,
         .width = (surface ? CG_SURFACE_SLAB_GRID_X : 1) * region.dims[0],
         .height = (surface ? CG_SURFACE_SLAB_GRID_Y : 1) * region.dims[1],
-        .depth = (surface ? CG_SURFACE_SLAB_GRID_Z : 4) * region.dims[2],
+        .depth = surface ? CG_SURFACE_SLAB_GRID_Z * slice_depth(pass, region.dims[2]) : 4 * region.dims[2],
         .levels = 1,
         .gi = true,
     };
@@ -390,6 +408,7 @@ voxelize_prepare(fg_pass *pass, voxelize_state *s, cg_error *err)
     s->surface = fg_param_enum(pass, "model") == MODEL_SURFACE;
     s->block = fg_pass_slot(pass, "region");
     s->accumulation = fg_pass_slot(pass, "accumulation");
+    s->slice_depth = fg_slot_resource(pass, s->accumulation)->depth / CG_SURFACE_SLAB_GRID_Z;
     for (int i = 0; i < 5 && s->surface; i++)
         s->geometry[i] = fg_pass_slot(pass, geometry_names[i]);
     s->radiance = s->surface ? FG_NO_SLOT : fg_pass_slot(pass, "radiance");
@@ -707,7 +726,7 @@ dispatch_triangles(voxelize_state *s, const fg_frame *frame, cg_mesh_filter filt
     size_t triangles = 0;
     glUseProgram(s->tri_program);
     glUniform4f(8, (float)region->origin[0], (float)region->origin[1], (float)region->origin[2], (float)region->voxel);
-    glUniform3i(11, region->dims[0], region->dims[1], region->dims[2]);
+    glUniform3i(11, region->dims[0], region->dims[1], s->slice_depth);
     glUniform4f(13, (float)unit_fixed, (float)emission_fixed, 0.0f, s->transmissive ? 1.0f : 0.0f);
     glUniform3i(14, box->lo[0], box->lo[1], box->lo[2]);
     glUniform3i(15, box->hi[0], box->hi[1], box->hi[2]);
@@ -737,7 +756,7 @@ resolve_surface(fg_pass *pass, voxelize_state *s, const voxel_region *region, co
                 double emission_fixed, double radiance_scale)
 {
     glUseProgram(s->resolve);
-    glUniform3i(7, region->dims[0], region->dims[1], region->dims[2]);
+    glUniform3i(7, region->dims[0], region->dims[1], s->slice_depth);
     glUniform4f(4, (float)unit_fixed, (float)emission_fixed, (float)radiance_scale, 0.0f);
     glUniform3i(5, box->lo[0], box->lo[1], box->lo[2]);
     glUniform3i(6, box->hi[0], box->hi[1], box->hi[2]);
@@ -758,10 +777,8 @@ voxelize_execute(fg_pass *pass, voxelize_state *s, cg_error *err)
     cg_mesh_filter filter = (cg_mesh_filter)fg_param_enum(pass, "meshes");
     int resolution = fg_param_int(pass, "resolution");
     /* The sides declared at compile: the volume's textures are of them. */
-    const fg_resource_desc *accumulation = fg_slot_resource(pass, s->accumulation);
-    const int declared[3] = {accumulation->width / (s->surface ? CG_SURFACE_SLAB_GRID_X : 1),
-                             accumulation->height / (s->surface ? CG_SURFACE_SLAB_GRID_Y : 1),
-                             accumulation->depth / (s->surface ? CG_SURFACE_SLAB_GRID_Z : 4)};
+    const fg_resource_desc *output = fg_slot_resource(pass, s->surface ? s->geometry[0] : s->radiance);
+    const int declared[3] = {output->width, output->height, output->depth};
     voxel_region region;
     if (!voxelize_region(pass, scene, declared, &region))
         return cg_fail(err, CG_ERR_PASS, "pass '%s': the voxelized meshes vanished since compile", fg_pass_name(pass));
@@ -873,7 +890,7 @@ voxelize_execute(fg_pass *pass, voxelize_state *s, cg_error *err)
 
     GLuint accum = fg_slot_texture(pass, s->accumulation);
     const GLuint zero = 0;
-    if (!partial) {
+    if (!s->surface) {
         glClearTexImage(accum, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     }
@@ -896,47 +913,62 @@ voxelize_execute(fg_pass *pass, voxelize_state *s, cg_error *err)
     size_t triangles = 0;
     double voxels = 0.0;
     for (int b = 0; b < (partial ? box_count : 1); b++) {
-        const voxel_box *box = partial ? &s->boxes[b] : &volume;
-        if (partial) {
-            /* The region's sums start from zero in each slab (surface_sums.glsl's surface_slab);
-             * what the accumulation holds elsewhere is never read. */
-            for (int k = 0; k < CG_SURFACE_SLABS; k++)
-                glClearTexSubImage(accum, 0, box->lo[0] + CG_SURFACE_SLAB_X(k) * region.dims[0],
-                                   box->lo[1] + CG_SURFACE_SLAB_Y(k) * region.dims[1],
-                                   box->lo[2] + CG_SURFACE_SLAB_Z(k) * region.dims[2],
-                                   box->hi[0] - box->lo[0], box->hi[1] - box->lo[1],
-                                   box->hi[2] - box->lo[2], GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-            glMemoryBarrier(GL_ALL_BARRIER_BITS);
-            voxels += box_voxel_count(box);
-        }
-        glUseProgram(s->program);
-        glUniform4f(8, (float)region.origin[0], (float)region.origin[1], (float)region.origin[2],
-                    (float)region.voxel);
-        glUniform1i(9, resolution);
-        glUniform1i(12, fg_param_bool(pass, "conservative") ? 1 : 0);
-        if (s->surface) {
-            glUniform3i(11, region.dims[0], region.dims[1], region.dims[2]);
-            glUniform4f(13, (float)unit_fixed, (float)emission_fixed, 0.0f, s->transmissive ? 1.0f : 0.0f);
-            glUniform3i(14, box->lo[0], box->lo[1], box->lo[2]);
-            glUniform3i(15, box->hi[0], box->hi[1], box->hi[2]);
-        } else {
-            glUniform1f(10, (float)fixed_scale);
-        }
-        glBindImageTexture(0, accum, 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
-        if (s->surface && s->compute) {
-            /* Whole meshes, the shader clamping each triangle's voxels to the region. */
-            triangles += dispatch_triangles(s, frame, filter, &region, box, unit_fixed, emission_fixed);
-        } else if (partial) {
-            if (!draw_box(s, frame, filter, &region, box, &triangles, err))
-                return false;
-        } else {
-            triangles += cg_gpu_scene_draw(frame->gpu_scene, filter);
-        }
-        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-        if (s->surface) {
-            resolve_surface(pass, s, &region, box, unit_fixed, emission_fixed, radiance_scale);
-            /* The next region clears the accumulation this resolve read. */
-            glMemoryBarrier(GL_ALL_BARRIER_BITS);
+        const voxel_box *whole = partial ? &s->boxes[b] : &volume;
+        if (partial)
+            voxels += box_voxel_count(whole);
+        /* The surface model's accumulation holds slice_depth voxels along z (parameter slices):
+         * a box deeper than that is voxelized and resolved a slice at a time, each slice's sums
+         * starting at the accumulation's z = 0 (surface_sums.glsl). The sums are integers, and a
+         * slice receives every fragment that falls in it, so the volumes do not depend on the
+         * slicing. */
+        int step = s->surface ? s->slice_depth : whole->hi[2] - whole->lo[2];
+        for (int z = whole->lo[2]; z < whole->hi[2]; z += step) {
+            voxel_box slice = *whole;
+            slice.lo[2] = z;
+            slice.hi[2] = z + step < whole->hi[2] ? z + step : whole->hi[2];
+            const voxel_box *box = &slice;
+            if (s->surface) {
+                /* The slice's sums start from zero in each slab (surface_sums.glsl's surface_slab);
+                 * what the accumulation holds elsewhere is never read. */
+                for (int k = 0; k < CG_SURFACE_SLABS; k++)
+                    glClearTexSubImage(accum, 0, box->lo[0] + CG_SURFACE_SLAB_X(k) * region.dims[0],
+                                       box->lo[1] + CG_SURFACE_SLAB_Y(k) * region.dims[1],
+                                       CG_SURFACE_SLAB_Z(k) * s->slice_depth, box->hi[0] - box->lo[0],
+                                       box->hi[1] - box->lo[1], box->hi[2] - box->lo[2], GL_RED_INTEGER,
+                                       GL_UNSIGNED_INT, &zero);
+                glMemoryBarrier(GL_ALL_BARRIER_BITS);
+            }
+            glUseProgram(s->program);
+            glUniform4f(8, (float)region.origin[0], (float)region.origin[1], (float)region.origin[2],
+                        (float)region.voxel);
+            glUniform1i(9, resolution);
+            glUniform1i(12, fg_param_bool(pass, "conservative") ? 1 : 0);
+            if (s->surface) {
+                glUniform3i(11, region.dims[0], region.dims[1], s->slice_depth);
+                glUniform4f(13, (float)unit_fixed, (float)emission_fixed, 0.0f, s->transmissive ? 1.0f : 0.0f);
+                glUniform3i(14, box->lo[0], box->lo[1], box->lo[2]);
+                glUniform3i(15, box->hi[0], box->hi[1], box->hi[2]);
+            } else {
+                glUniform1f(10, (float)fixed_scale);
+            }
+            glBindImageTexture(0, accum, 0, GL_TRUE, 0, GL_READ_WRITE, GL_R32UI);
+            if (s->surface && s->compute) {
+                /* Whole meshes, the shader clamping each triangle's voxels to the slice. */
+                triangles += dispatch_triangles(s, frame, filter, &region, box, unit_fixed, emission_fixed);
+            } else if (partial || (s->cache && box->hi[2] - box->lo[2] < region.dims[2])) {
+                /* The chunks of a sorted mesh that reach the slice (build_chunks ran: cache). */
+                if (!draw_box(s, frame, filter, &region, box, &triangles, err))
+                    return false;
+            } else {
+                /* The geometry shader drops the triangles that miss the slice (voxelize.geom). */
+                triangles += cg_gpu_scene_draw(frame->gpu_scene, filter);
+            }
+            glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+            if (s->surface) {
+                resolve_surface(pass, s, &region, box, unit_fixed, emission_fixed, radiance_scale);
+                /* The next slice clears the accumulation this resolve read. */
+                glMemoryBarrier(GL_ALL_BARRIER_BITS);
+            }
         }
     }
     glBindFramebuffer(GL_FRAMEBUFFER, 0);

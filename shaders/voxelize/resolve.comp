@@ -23,8 +23,8 @@ layout(rgba8, binding = 2) writeonly uniform image3D u_coverage;
 layout(rgba8_snorm, binding = 3) writeonly uniform image3D u_normal;
 layout(rgba16f, binding = 4) writeonly uniform image3D u_emission;
 layout(rgba8, binding = 5) writeonly uniform image3D u_specular;
-// The volume's voxels along x, y, z: the size of one slab.
-layout(location = 7) uniform ivec3 u_dims;
+// One accumulation slab's voxels: the volume's x and y, a slice's depth (surface_sums.glsl).
+layout(location = 7) uniform ivec3 u_slab_size;
 // x: fixed-point units per unit of albedo, normal, offset and coverage; y: per unit of emission;
 // z: the region's radiance scale (pre-exposure, sdk/radiance.h): emission is stored divided by it.
 layout(location = 4) uniform vec4 u_surface_fixed;
@@ -37,7 +37,8 @@ uint
 slab(ivec3 v, int k)
 {
     // surface_sums.glsl's surface_slab
-    return imageLoad(u_accum, v + ivec3(CG_SURFACE_SLAB_X(k), CG_SURFACE_SLAB_Y(k), CG_SURFACE_SLAB_Z(k)) * u_dims).r;
+    return imageLoad(u_accum, v - ivec3(0, 0, u_box_lo.z) +
+                     ivec3(CG_SURFACE_SLAB_X(k), CG_SURFACE_SLAB_Y(k), CG_SURFACE_SLAB_Z(k)) * u_slab_size).r;
 }
 
 void

@@ -4,7 +4,9 @@
 // that both fill the same slabs with the same fixed-point rounding.
 //
 // The includer includes common/scene.glsl (the materials) and declares u_accum (the R32UI
-// accumulation volume), u_dims (the volume's voxels along x, y, z: one slab's size),
+// accumulation volume), u_slab_size (one slab's voxels along x, y, z: the volume's x and y, the
+// depth of one of voxelize's slices along z), u_box_lo (the voxels written start at z = u_box_lo.z,
+// the first of the slice the accumulation holds now),
 // u_surface_fixed (x: fixed-point units per unit of albedo, normal, offset in voxels and coverage;
 // y: per unit of emitted radiance; w: 1 where transmissive materials cover only what they reflect,
 // voxelize's `transmissive`) and u_origin_voxel (xyz: the volume's origin, w: a voxel's size).
@@ -23,7 +25,7 @@ layout(binding = CG_UNIT_SPECULAR_HEMISPHERICAL) uniform sampler2D u_specular_he
 ivec3
 surface_slab(int k)
 {
-    return ivec3(CG_SURFACE_SLAB_X(k), CG_SURFACE_SLAB_Y(k), CG_SURFACE_SLAB_Z(k)) * u_dims;
+    return ivec3(CG_SURFACE_SLAB_X(k), CG_SURFACE_SLAB_Y(k), CG_SURFACE_SLAB_Z(k)) * u_slab_size;
 }
 
 // What one surface point adds, in fixed point: the same for every voxel it reaches but the
@@ -98,8 +100,10 @@ surface_offset(vec3 normal, vec3 world, ivec3 v)
 
 // Adds the point to voxel v: integer sums and maxima, so the order of the points does not matter.
 void
-surface_add(ivec3 v, SurfaceSums s, uint offset)
+surface_add(ivec3 voxel, SurfaceSums s, uint offset)
 {
+    // The accumulation holds the slice that starts at z = u_box_lo.z (voxelize's `slices`).
+    ivec3 v = voxel - ivec3(0, 0, u_box_lo.z);
     imageAtomicAdd(u_accum, v, 1u);
     imageAtomicAdd(u_accum, v + surface_slab(1), s.albedo.r);
     imageAtomicAdd(u_accum, v + surface_slab(2), s.albedo.g);

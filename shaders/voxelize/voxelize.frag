@@ -49,8 +49,8 @@ layout(location = 13) uniform vec4 u_surface_fixed;
 // while the voxels outside it keep what they hold.
 layout(location = 14) uniform ivec3 u_box_lo;
 layout(location = 15) uniform ivec3 u_box_hi;
-// The volume's voxels along x, y, z (a box; resolution^3 for a cube): the size of one slab.
-layout(location = 11) uniform ivec3 u_dims;
+// One accumulation slab's voxels: the volume's x and y, a slice's depth (surface_sums.glsl).
+layout(location = 11) uniform ivec3 u_slab_size;
 #endif
 
 layout(binding = 2) uniform sampler2D u_shadow_map;

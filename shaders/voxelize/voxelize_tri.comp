@@ -15,8 +15,8 @@ layout(std430, binding = 11) readonly buffer CgVoxVertices { float cg_vertices[]
 layout(std430, binding = 12) readonly buffer CgVoxIndices { uint cg_indices[]; };
 layout(r32ui, binding = 0) uniform coherent uimage3D u_accum;
 layout(location = 8) uniform vec4 u_origin_voxel;
-// The volume's voxels along x, y, z: the size of one accumulation slab (voxelize.frag's).
-layout(location = 11) uniform ivec3 u_dims;
+// One accumulation slab's voxels: the volume's x and y, a slice's depth (surface_sums.glsl).
+layout(location = 11) uniform ivec3 u_slab_size;
 layout(location = 13) uniform vec4 u_surface_fixed;
 layout(location = 16) uniform uint u_triangles;
 // The voxels this dispatch may write, [lo, hi): the whole volume or a partial region (as in

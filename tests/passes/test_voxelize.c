@@ -349,8 +349,65 @@ test_mesh_filter(void **state)
     cg_scene_free(&scene);
 }
 
+/* voxelize's `slices`: the volume voxelized a slice of z at a time, the accumulation holding one.
+ * The sums are integers and each slice receives every fragment that falls in it, so the geometry
+ * volumes equal a whole voxelization's bit for bit: slices that do not divide the depth (3: 22,
+ * 22 and 20 voxels), one voxel each (64), and the compute voxelizer. */
+static void
+test_slices_equal_whole(void **state)
+{
+    cg_context *ctx = cg_test_gl_context(state);
+    cg_scene scene = cg_test_load_scene("builtin:openworld?triangles=5000");
+    static const char *const names[5] = {"vox.albedo", "vox.coverage", "vox.normal", "vox.emission", "vox.specular"};
+    static const char *const cases[][4] = {
+        {"vox.resolution=64", "vox.slices=1", NULL, NULL},
+        {"vox.resolution=64", "vox.slices=3", NULL, NULL},
+        {"vox.resolution=64", "vox.slices=64", NULL, NULL},
+        {"vox.resolution=64", "vox.slices=1", "vox.voxelizer=compute", NULL},
+        {"vox.resolution=64", "vox.slices=3", "vox.voxelizer=compute", NULL},
+    };
+    const int expected_depth[] = {64, 22, 1, 64, 22};
+    float *whole[2][5] = {{NULL}};
+    for (int c = 0; c < 5; c++) {
+        vf_runner r;
+        vf_start_file(&r, &scene, 16, 16, "vct.json", cases[c]);
+        vf_frame(&r);
+        const fg_resource_info *accumulation = fg_graph_find_resource(r.graph, "vox.accumulation");
+        assert_non_null(accumulation);
+        int w = accumulation->desc.width, h = accumulation->desc.height, d = accumulation->desc.depth;
+        /* 3 x 2 x 3 slabs of one slice (common/blocks.h). */
+        assert_int_equal(w, 3 * 64);
+        assert_int_equal(h, 2 * 64);
+        assert_int_equal(d, 3 * expected_depth[c]);
+        int compute = c >= 3, equal = 0;
+        for (int i = 0; i < 5; i++) {
+            int size = 0;
+            float *v = vf_read_volume(&r, names[i], 0, &size);
+            assert_int_equal(size, 64);
+            if (!whole[compute][i]) {
+                whole[compute][i] = v;
+                continue;
+            }
+            if (memcmp(v, whole[compute][i], sizeof(float) * 4 * 64 * 64 * 64))
+                fail_msg("%s, %s: %s differs from the whole voxelization's", cases[c][1],
+                         compute ? "compute" : "geometry", names[i]);
+            equal++;
+            free(v);
+        }
+        fprintf(stderr, "# %s %s: accumulation %dx%dx%d, %d of 5 volumes equal to slices=1's\n", cases[c][1],
+                compute ? "compute" : "geometry", w, h, d, equal);
+        assert_no_gl_errors(ctx);
+        vf_stop(&r);
+    }
+    for (int k = 0; k < 2; k++)
+        for (int i = 0; i < 5; i++)
+            free(whole[k][i]);
+    cg_scene_free(&scene);
+}
+
 CG_TEST_MAIN(cg_test_gl_setup, cg_test_gl_teardown,
              cmocka_unit_test(test_coverage_exact),
              cmocka_unit_test(test_plain_rasterization_leaves_holes),
              cmocka_unit_test(test_lit_surface_radiance),
-             cmocka_unit_test(test_mesh_filter))
+             cmocka_unit_test(test_mesh_filter),
+             cmocka_unit_test(test_slices_equal_whole))
