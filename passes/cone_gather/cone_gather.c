@@ -57,6 +57,7 @@ static const fg_param_desc cone_gather_params[] = {
       .doc = "also output 'reads': the volume reads of each pixel's diffuse cones (a cost measure that does "
              "not depend on the machine's load); with downsample, a block's at its representative pixel" },
     CGP_DOWNSAMPLE_PARAM,
+    CGP_TEMPORAL_PARAM,
 };
 
 typedef struct cone_gather_state {

@@ -113,6 +113,7 @@ static const fg_param_desc hybrid_gather_params[] = {
     { .name = "refraction", .type = FG_PARAM_BOOL,
       .doc = "also trace a refracted cone where the material transmits (output 'refraction'), as cone_gather's" },
     CGP_DOWNSAMPLE_PARAM,
+    CGP_TEMPORAL_PARAM,
 };
 
 typedef struct hybrid_gather_state {

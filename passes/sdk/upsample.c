@@ -21,13 +21,16 @@ bool
 cgp_gather_blocks_prepare(void *state, const fg_pass *pass, const cgp_gather *g, cgp_gather_blocks *b,
                           const char *shader, const char *defines, cg_error *err)
 {
-    *b = (cgp_gather_blocks){.downsample = fg_param_int(pass, "downsample")};
+    *b = (cgp_gather_blocks){.downsample = fg_param_int(pass, "downsample"), .temporal = 1};
     const fg_resource_desc *out = fg_slot_resource(pass, g->slots.radiance);
     if (b->downsample <= 1 || !out)
         return true;
-    char all[1024];
-    snprintf(all, sizeof all, "%s%s%s#define CG_GATHER_LOWRES\n", defines ? defines : "",
-             cgp_gather_volume_define(g->model), g->material ? "#define CG_GATHER_MATERIAL\n" : "");
+    b->temporal = fg_param_int(pass, "temporal");
+    char all[1024], temporal[64] = "";
+    if (b->temporal > 1)
+        snprintf(temporal, sizeof temporal, "#define CG_GATHER_TEMPORAL %d\n", b->temporal);
+    snprintf(all, sizeof all, "%s%s%s%s#define CG_GATHER_LOWRES\n", defines ? defines : "",
+             cgp_gather_volume_define(g->model), g->material ? "#define CG_GATHER_MATERIAL\n" : "", temporal);
     if (!cgp_compute_program(state, shader, all, &b->program, err))
         return false;
     b->width = (out->width + b->downsample - 1) / b->downsample;
@@ -39,17 +42,36 @@ cgp_gather_blocks_prepare(void *state, const fg_pass *pass, const cgp_gather *g,
     glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     b->texture = cgp_own(state, CGP_GL_TEXTURE, tex);
+    for (int i = 0; i < 2 && b->temporal > 1; i++) {
+        glCreateTextures(GL_TEXTURE_2D, 1, &tex);
+        glTextureStorage2D(tex, 1, GL_RGBA32F, b->width, b->height);
+        b->history[i] = cgp_own(state, CGP_GL_TEXTURE, tex);
+    }
     return true;
 }
 
 void
-cgp_gather_blocks_trace(const fg_pass *pass, const cgp_gather *g, const cgp_gather_blocks *b)
+cgp_gather_blocks_trace(const fg_pass *pass, const cgp_gather *g, cgp_gather_blocks *b)
 {
     if (b->downsample <= 1 || !b->program)
         return;
     glUseProgram(b->program);
     glBindImageTexture(0, b->texture, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    if (b->temporal > 1) {
+        /* common/upsample.glsl's cg_upsample_keep: this frame's turn, and whether the blocks and
+         * their surfaces hold a traced frame. A block kept writes nothing, so the texture keeps
+         * its light: it is the state's, not a graph resource that another pass could reuse. */
+        for (int i = 0; i < 2; i++)
+            glBindImageTexture(CG_IMAGE_BLOCK_HISTORY + (GLuint)i, b->history[i], 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+        glUniform2i(CG_UPSAMPLE_TEMPORAL_LOCATION, (int)(fg_pass_frame(pass)->index % (uint64_t)b->temporal),
+                    b->traced ? 1 : 0);
+    }
     cgp_dispatch_2d(b->width, b->height);
+    if (b->temporal > 1) {
+        b->traced = true;
+        for (int i = 0; i < 2; i++)
+            glBindImageTexture(CG_IMAGE_BLOCK_HISTORY + (GLuint)i, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
+    }
     /* The full-resolution dispatch reads the blocks by texelFetch, and a pass's cost image written
      * at the representatives by the blocks' dispatch is written by it at the other pixels. */
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);

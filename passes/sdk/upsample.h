@@ -3,7 +3,7 @@
  * the G-buffer's position and normal (shaders/common/upsample.glsl says how, and why no light
  * crosses a depth or normal edge).
  *
- * Declares: CGP_DOWNSAMPLE_PARAM, cgp_gather_blocks, cgp_gather_blocks_define,
+ * Declares: CGP_DOWNSAMPLE_PARAM, CGP_TEMPORAL_PARAM, cgp_gather_blocks, cgp_gather_blocks_define,
  *           cgp_gather_blocks_prepare, cgp_gather_blocks_trace, cgp_gather_blocks_end.
  *
  * Shared by cone_gather and hybrid_gather (and a plugin gather that wants the same). A gather's
@@ -14,6 +14,11 @@
  *   otherwise         every pixel as before, its diffuse light from cg_upsample_diffuse, its own
  *                     cones where that fails; the specular and refracted cones at every pixel.
  * With downsample = 1 neither is compiled in and the shader is the gather it always was.
+ *
+ * With temporal = N > 1 (CG_GATHER_TEMPORAL in the block program) the blocks of one turn in N trace
+ * each frame and the others keep their light where their pixel still sees the surface they traced
+ * (cg_upsample_block_kept): the image of blocks and two images of the surfaces traced are the
+ * state's, kept from frame to frame until the next prepare, whose first frame traces every block.
  */
 #ifndef CGP_UPSAMPLE_H
 #define CGP_UPSAMPLE_H
@@ -34,11 +39,25 @@
              "normal (a pixel no block agrees with traces its own); 1: every pixel; the specular "   \
              "and refracted cones always at every pixel (docs/results/gi-resolution.md)" }
 
+/* The second parameter, the entry after CGP_DOWNSAMPLE_PARAM. */
+#define CGP_TEMPORAL_PARAM                                                                            \
+    { .name = "temporal", .type = FG_PARAM_INT, .default_value = 1, .min = 1, .max = 4,               \
+      .allowed = FG_PARAM_VALUES(1, 2, 4), .stage = FG_STAGE_PREPARE, .active_when = "downsample=2|4", \
+      .doc = "blocks traced a frame: 1 in `temporal` (2: a checkerboard, 4: one of each 2 x 2), the "  \
+             "others keeping the light they traced where their pixel's surface is the one they traced " \
+             "(normal and plane as the upsampling compares them, and within a block's reach); a block " \
+             "whose surface changed traces again. A block's light is at most temporal - 1 frames old; "  \
+             "the first frame after prepare traces every block, so a single frame is downsample's own; " \
+             "1: every block every frame (docs/results/gi-resolution.md)" }
 typedef struct cgp_gather_blocks {
     int downsample;         /* the parameter; 1: nothing here is made or used */
     GLuint program;         /* the gather's shader with CG_GATHER_LOWRES */
     GLuint texture;         /* RGBA32F, one texel a block: what the program writes */
     int width, height;      /* blocks across and down: the image's size / downsample, rounded up */
+    int temporal;           /* the parameter; 1: every block every frame */
+    GLuint history[2];      /* temporal > 1: each block's traced surface, position (w: 1 for a surface)
+                             * and normal, RGBA32F */
+    bool traced;            /* temporal > 1: the blocks hold a frame's light (not before the first) */
 } cgp_gather_blocks;
 
 /* The define the gather's full-resolution program needs ("#define CG_GATHER_DOWNSAMPLE D\n"),
@@ -54,7 +73,7 @@ bool cgp_gather_blocks_prepare(void *state, const fg_pass *pass, const cgp_gathe
  * the block program over the blocks (everything cgp_gather_begin bound is its too), then binds
  * the blocks at CG_UNIT_GATHER_BLOCKS and the full-resolution program and `radiance` again.
  * Nothing for downsample 1. */
-void cgp_gather_blocks_trace(const fg_pass *pass, const cgp_gather *g, const cgp_gather_blocks *b);
+void cgp_gather_blocks_trace(const fg_pass *pass, const cgp_gather *g, cgp_gather_blocks *b);
 /* After cgp_gather_end: unbinds the blocks. */
 void cgp_gather_blocks_end(const cgp_gather_blocks *b);
 

@@ -66,6 +66,10 @@
 #define CG_UNIT_BRDF_TABLE 20           /* the GGX directional-albedo table (cgp_brdf_table_fill) */
 #define CG_UNIT_GLOSSY 22               /* voxel_light's glossy: its light one diffuse bounce further */
 #define CG_UNIT_GATHER_BLOCKS 21        /* a gather's diffuse light of one pixel per block (sdk/upsample.h) */
+/* A gather's blocks with temporal > 1 (sdk/upsample.h, common/upsample.glsl): image units of each
+ * block's traced surface (position, then normal at the next unit) and the uniform of the frame's turn. */
+#define CG_IMAGE_BLOCK_HISTORY 5
+#define CG_UPSAMPLE_TEMPORAL_LOCATION 20
 /* ---- texture units of voxelize's surface model beside the scene's (common/scene.glsl: 0, 1, 24..27) */
 #define CG_UNIT_SPECULAR_HEMISPHERICAL 28 /* the specular lobe's (Abar, Bbar) per roughness (cgp_brdf_hemispherical_fill) */
 

@@ -20,7 +20,8 @@
 // centres fell on the background), the pixel traces its own cones: the answer there is the
 // full-resolution gather's, never a neighbour's light.
 //
-// Provides: cg_upsample_representative(), cg_upsample_is_representative(), cg_upsample_diffuse().
+// Provides: cg_upsample_agreement(), cg_upsample_tolerance(), cg_upsample_block_kept(),
+//           cg_upsample_representative(), cg_upsample_is_representative(), cg_upsample_diffuse().
 #ifndef CG_COMMON_UPSAMPLE_GLSL
 #define CG_COMMON_UPSAMPLE_GLSL
 
@@ -42,6 +43,70 @@ layout(binding = CG_UNIT_GATHER_BLOCKS) uniform sampler2D cg_upsample_blocks;
 #define CG_UPSAMPLE_NORMAL_POWER 32.0
 #define CG_UPSAMPLE_PLANE_PER_BLOCK 0.004
 #define CG_UPSAMPLE_MIN_AGREEMENT 0.25
+
+// How well a surface point q with unit normal m agrees with the pixel's (a point `position` with
+// unit normal `n`) for the range filter: cos^CG_UPSAMPLE_NORMAL_POWER of the angle between the
+// normals times the fall of q's distance from the pixel's tangent plane to 0 at `tolerance`; 0
+// below CG_UPSAMPLE_MIN_AGREEMENT (another surface).
+float
+cg_upsample_agreement(vec3 q, vec3 m, vec3 position, vec3 n, float tolerance)
+{
+    float plane = abs(dot(n, q - position));
+    float agreement = pow(max(dot(n, m), 0.0), CG_UPSAMPLE_NORMAL_POWER) * max(1.0 - plane / tolerance, 0.0);
+    return agreement < CG_UPSAMPLE_MIN_AGREEMENT ? 0.0 : agreement;
+}
+
+// The plane distance at which a block's agreement with a pixel `position` seen from `camera`
+// falls to 0: it follows the spacing of the blocks on the screen.
+float
+cg_upsample_tolerance(vec3 position, vec3 camera)
+{
+    return CG_UPSAMPLE_PLANE_PER_BLOCK * float(CG_GATHER_DOWNSAMPLE) * distance(position, camera);
+}
+
+#ifdef CG_GATHER_TEMPORAL
+// Temporal reuse (sdk/upsample.h's `temporal` = N): each frame the blocks of one turn in N trace
+// (N = 2: a checkerboard; 4: one block of each 2 x 2); the others keep the light they hold where
+// their representative pixel still sees the surface they traced: the normal and the plane as the
+// upsampling compares a block with a pixel, and the point no farther from the traced one than the
+// plane tolerance (about a block's spacing), so that a kept block's light is what a neighbour's
+// would be to the upsampling. A block whose pixel sees another surface (the camera or an object
+// moved) traces whatever the turn. Each block keeps the surface it traced, position (w: 1 where it
+// saw a surface) and normal.
+layout(binding = CG_IMAGE_BLOCK_HISTORY, rgba32f) uniform image2D cg_upsample_history_position;
+layout(binding = CG_IMAGE_BLOCK_HISTORY + 1, rgba32f) uniform image2D cg_upsample_history_normal;
+// x: this frame's turn (the frame's index mod N); y: 1 when the blocks hold a traced frame.
+layout(location = CG_UPSAMPLE_TEMPORAL_LOCATION) uniform ivec2 cg_upsample_temporal;
+#endif
+
+// Whether block `b`, whose representative pixel sees (`surface`) the point `position` with unit
+// normal `n` from `camera`, keeps the light it holds this frame instead of tracing; where it
+// traces, the surface it traces is remembered. Without CG_GATHER_TEMPORAL every block traces.
+bool
+cg_upsample_block_kept(ivec2 b, bool surface, vec3 position, vec3 n, vec3 camera)
+{
+#ifdef CG_GATHER_TEMPORAL
+#if CG_GATHER_TEMPORAL == 2
+    int turn = (b.x + b.y) & 1;
+#else
+    int turn = (b.x & 1) + 2 * (b.y & 1);
+#endif
+    if (cg_upsample_temporal.y != 0 && turn != cg_upsample_temporal.x) {
+        vec4 q = imageLoad(cg_upsample_history_position, b);
+        if (!surface && q.w == 0.0)
+            return true;    // the background then and now: no light to keep but none to trace
+        if (surface && q.w != 0.0) {
+            vec3 m = imageLoad(cg_upsample_history_normal, b).xyz;
+            float tolerance = cg_upsample_tolerance(position, camera);
+            if (cg_upsample_agreement(q.xyz, m, position, n, tolerance) > 0.0 && distance(q.xyz, position) < tolerance)
+                return true;
+        }
+    }
+    imageStore(cg_upsample_history_position, b, vec4(position, surface ? 1.0 : 0.0));
+    imageStore(cg_upsample_history_normal, b, vec4(n, 0.0));
+#endif
+    return false;
+}
 
 // The pixel that block `b` traces: its centre (for an even D the lower right of the four central
 // pixels), clamped to the image for a last block that the image cuts.
@@ -76,7 +141,7 @@ cg_upsample_diffuse(ivec2 pixel, vec3 position, vec3 n, vec3 camera, out vec4 di
     diffuse = vec4(0.0);
     vec2 t = f - vec2(b0);
     ivec2 blocks = textureSize(cg_upsample_blocks, 0);
-    float tolerance = CG_UPSAMPLE_PLANE_PER_BLOCK * float(CG_GATHER_DOWNSAMPLE) * distance(position, camera);
+    float tolerance = cg_upsample_tolerance(position, camera);
     vec4 sum = vec4(0.0);
     float weight = 0.0;
     for (int j = 0; j < 2; j++)
@@ -87,10 +152,8 @@ cg_upsample_diffuse(ivec2 pixel, vec3 position, vec3 n, vec3 camera, out vec4 di
             vec3 q, m;
             if (!cg_gather_surface(cg_upsample_representative(b), q, m))
                 continue;
-            float plane = abs(dot(n, q - position));
-            float agreement = pow(max(dot(n, m), 0.0), CG_UPSAMPLE_NORMAL_POWER) *
-                              max(1.0 - plane / tolerance, 0.0);
-            if (agreement < CG_UPSAMPLE_MIN_AGREEMENT)
+            float agreement = cg_upsample_agreement(q, m, position, n, tolerance);
+            if (agreement == 0.0)
                 continue;   // another surface: none of its light, however near its block
             float w = (i == 0 ? 1.0 - t.x : t.x) * (j == 0 ? 1.0 - t.y : t.y) * agreement;
             sum += w * texelFetch(cg_upsample_blocks, b, 0);

@@ -88,11 +88,14 @@ main()
     ivec2 pixel = cg_upsample_representative(block);
     vec3 position, n;
     vec4 diffuse = vec4(0.0, 0.0, 0.0, 1.0);
-    if (cg_gather_surface(pixel, position, n))
-        diffuse = trace_diffuse(position, n);
-    imageStore(cg_gather_radiance, block, diffuse);
+    bool surface = cg_gather_surface(pixel, position, n);
+    if (!cg_upsample_block_kept(block, surface, position, n, cg_cone_gather_block.camera.xyz)) {
+        if (surface)
+            diffuse = trace_diffuse(position, n);
+        imageStore(cg_gather_radiance, block, diffuse);
+    }
 #ifdef CG_CONE_COUNT_READS
-    imageStore(u_reads, pixel, vec4(cg_cone_reads));
+    imageStore(u_reads, pixel, vec4(cg_cone_reads));    // 0 for a block kept
 #endif
 }
 #else

@@ -857,7 +857,10 @@ main()
     ivec2 pixel = cg_upsample_representative(block);
     vec3 position, n;
     vec4 diffuse = vec4(0.0, 0.0, 0.0, 1.0);
-    if (cg_gather_surface(pixel, position, n))
+    bool surface = cg_gather_surface(pixel, position, n);
+    if (cg_upsample_block_kept(block, surface, position, n, cg_hybrid_gather_block.camera.xyz))
+        return;
+    if (surface)
         diffuse = trace_diffuse(position, n, gather_reach(position, n));
     imageStore(cg_gather_radiance, block, diffuse);
 }

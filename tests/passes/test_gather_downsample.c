@@ -22,6 +22,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cg/camera.h"
 #include "cg/gl.h"
 #include "cg/graphfile.h"
 #include "cg/image.h"
@@ -303,8 +304,110 @@ test_downsample_1_unchanged(void **state)
         }
 }
 
+/* The sum of a reads image (count_reads), of the gather's volume reads in a frame. */
+static double
+reads_sum(const vf_runner *r, int w, int h)
+{
+    float *reads = vf_read_image(r, "gather.reads", w, h);
+    double sum = 0.0;
+    for (int i = 0; i < w * h; i++)
+        sum += reads[4 * i];
+    free(reads);
+    return sum;
+}
+
+/* relMSE of `a` against `b` (w x h RGBA): mean squared difference over the mean square of b. */
+static double
+rel_mse(const float *a, const float *b, int n)
+{
+    double d = 0.0, m = 0.0;
+    for (int i = 0; i < 4 * n; i++)
+        if (i % 4 != 3) {
+            d += ((double)a[i] - b[i]) * ((double)a[i] - b[i]);
+            m += (double)b[i] * b[i];
+        }
+    return m > 0.0 ? d / m : d;
+}
+
+/* `temporal` (sdk/upsample.h) in graphs/vct.json and hybrid.json on builtin:cornell:
+ *   - the first frame traces every block: its image equals temporal = 1's bit for bit, so a
+ *     single-frame render does not depend on the parameter;
+ *   - on a still scene the later frames equal it too (a kept block holds what tracing again would
+ *     give), while cone_gather's volume reads fall to about 1/temporal;
+ *   - after the camera moves, the image is near a fresh render from there, the blocks whose pixel
+ *     sees another surface tracing again (more reads than a turn's). */
+static void
+test_temporal(void **state)
+{
+    cg_context *ctx = cg_test_gl_context(state);
+    enum { W = 96, H = 64 };
+    cg_scene scene = cg_test_load_scene("builtin:cornell");
+    const char *graphs[2] = {"vct.json", "hybrid.json"};
+    for (int g = 0; g < 2; g++) {
+        bool counted = g == 0;  /* count_reads is cone_gather's */
+        const char *plain[] = {counted ? "gather.count_reads=true" : NULL, NULL};
+        const char *reuse[] = {"gather.temporal=4", counted ? "gather.count_reads=true" : NULL, NULL};
+        vf_runner a, b;
+        vf_start_file(&a, &scene, W, H, graphs[g], plain);
+        vf_start_file(&b, &scene, W, H, graphs[g], reuse);
+        vf_frame(&a);
+        vf_frame(&b);
+        float *fresh = vf_read_image(&a, "gather.radiance", W, H);
+        double traced = counted ? reads_sum(&a, W, H) : 0.0;
+        for (int frame = 0; frame < 5; frame++) {
+            if (frame > 0)
+                vf_next_frame(&b);
+            float *kept = vf_read_image(&b, "gather.radiance", W, H);
+            if (memcmp(kept, fresh, sizeof(float) * 4 * W * H))
+                fail_msg("%s, temporal 4, frame %d of a still scene: not temporal 1's image", graphs[g], frame);
+            if (counted && frame > 0) {
+                double ratio = reads_sum(&b, W, H) / traced;
+                fprintf(stderr, "# %s temporal 4, still, frame %d: %.3f of the volume reads of temporal 1\n",
+                        graphs[g], frame, ratio);
+                if (ratio < 0.15 || ratio > 0.4)
+                    fail_msg("frame %d of a still scene read %.3f of temporal 1's volume reads", frame, ratio);
+            }
+            free(kept);
+        }
+        free(fresh);
+
+        /* The camera steps 0.25 m to its right and turns to keep the box's centre in view. */
+        const float *right = &a.frame.view.inv_view[0];
+        cg_view_spec spec = {.camera = 0, .from_given = true, .look_at_given = true};
+        for (int k = 0; k < 3; k++) {
+            spec.from[k] = a.frame.view.position[k] + 0.25f * right[k];
+            spec.look_at[k] = 0.5f * (scene.bounds_min[k] + scene.bounds_max[k]);
+        }
+        cg_view moved;
+        cg_view_from_spec(&scene, &spec, W, H, &moved);
+        vf_stop(&a);
+        vf_start_file(&a, &scene, W, H, graphs[g], plain);
+        a.frame.view = moved;
+        b.frame.view = moved;
+        vf_frame(&a);
+        vf_next_frame(&b);
+        fresh = vf_read_image(&a, "gather.radiance", W, H);
+        float *kept = vf_read_image(&b, "gather.radiance", W, H);
+        double error = rel_mse(kept, fresh, W * H);
+        double ratio = counted ? reads_sum(&b, W, H) / reads_sum(&a, W, H) : 0.0;
+        fprintf(stderr, "# %s temporal 4, the camera moved: relMSE %.2e against a fresh render, %.3f of its "
+                "volume reads\n", graphs[g], error, ratio);
+        if (error > 2e-3)
+            fail_msg("%s, temporal 4 after a camera move: relMSE %.2e against a fresh render", graphs[g], error);
+        if (counted && ratio < 0.3)
+            fail_msg("after a camera move the blocks read %.3f of a fresh render's: too few traced again", ratio);
+        free(fresh);
+        free(kept);
+        assert_no_gl_errors(ctx);
+        vf_stop(&a);
+        vf_stop(&b);
+    }
+    cg_scene_free(&scene);
+}
+
 CG_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_downsample_values),
              cmocka_unit_test(test_downsample_1_unchanged),
              cmocka_unit_test_setup_teardown(test_cone_gather_downsample, cg_test_gl_setup, cg_test_gl_teardown),
-             cmocka_unit_test_setup_teardown(test_hybrid_gather_downsample, cg_test_gl_setup, cg_test_gl_teardown))
+             cmocka_unit_test_setup_teardown(test_hybrid_gather_downsample, cg_test_gl_setup, cg_test_gl_teardown),
+             cmocka_unit_test_setup_teardown(test_temporal, cg_test_gl_setup, cg_test_gl_teardown))
