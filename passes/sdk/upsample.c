@@ -6,10 +6,19 @@
 #include "sdk/blocks.h"
 #include "sdk/pass.h"
 
+int
+cgp_gather_downsample(const fg_pass *pass)
+{
+    int d = fg_param_int(pass, "downsample");
+    if (d == 0)
+        d = fg_pass_frame(pass)->height >= CGP_DOWNSAMPLE_AUTO_ROWS ? 8 : 4;
+    return d;
+}
+
 const char *
 cgp_gather_blocks_define(const fg_pass *pass, char *out, size_t size)
 {
-    int d = fg_param_int(pass, "downsample");
+    int d = cgp_gather_downsample(pass);
     if (d > 1)
         snprintf(out, size, "#define CG_GATHER_DOWNSAMPLE %d\n", d);
     else if (size > 0)
@@ -21,7 +30,7 @@ bool
 cgp_gather_blocks_prepare(void *state, const fg_pass *pass, const cgp_gather *g, cgp_gather_blocks *b,
                           const char *shader, const char *defines, cg_error *err)
 {
-    *b = (cgp_gather_blocks){.downsample = fg_param_int(pass, "downsample"), .temporal = 1};
+    *b = (cgp_gather_blocks){.downsample = cgp_gather_downsample(pass), .temporal = 1};
     const fg_resource_desc *out = fg_slot_resource(pass, g->slots.radiance);
     if (b->downsample <= 1 || !out)
         return true;

@@ -3,7 +3,8 @@
  * the G-buffer's position and normal (shaders/common/upsample.glsl says how, and why no light
  * crosses a depth or normal edge).
  *
- * Declares: CGP_DOWNSAMPLE_PARAM, CGP_TEMPORAL_PARAM, cgp_gather_blocks, cgp_gather_blocks_define,
+ * Declares: CGP_DOWNSAMPLE_PARAM, CGP_TEMPORAL_PARAM, CGP_DOWNSAMPLE_AUTO_ROWS, cgp_gather_downsample,
+ *           cgp_gather_blocks, cgp_gather_blocks_define,
  *           cgp_gather_blocks_prepare, cgp_gather_blocks_trace, cgp_gather_blocks_end.
  *
  * Shared by cone_gather and hybrid_gather (and a plugin gather that wants the same). A gather's
@@ -32,17 +33,24 @@
 
 /* The parameter, one entry of a gather's table. */
 #define CGP_DOWNSAMPLE_PARAM                                                                          \
-    { .name = "downsample", .type = FG_PARAM_INT, .default_value = 1, .min = 1, .max = 4,             \
-      .allowed = FG_PARAM_VALUES(1, 2, 4), .stage = FG_STAGE_PREPARE,                                 \
+    { .name = "downsample", .type = FG_PARAM_INT, .default_value = 1, .min = 0, .max = 8,             \
+      .allowed = FG_PARAM_VALUES(0, 1, 2, 4, 8), .stage = FG_STAGE_PREPARE,                           \
       .doc = "diffuse cones traced at one pixel of each downsample x downsample block, the full "    \
              "resolution rebuilt by joint bilateral upsampling with the G-buffer's position and "    \
-             "normal (a pixel no block agrees with traces its own); 1: every pixel; the specular "   \
-             "and refracted cones always at every pixel (docs/results/gi-resolution.md)" }
+             "normal (a pixel no block agrees with traces its own); 1: every pixel; 0: by the "       \
+             "image's height, 4 below 540 rows and 8 from 540 up (blocks as many as 4 gives at "      \
+             "640x360 or fewer); the specular and refracted cones always at every pixel "              \
+             "(docs/results/gi-resolution.md)" }
+/* The block size the parameter `downsample` gives for the frame's image: the parameter, or for 0
+ * (auto) 4 below CGP_DOWNSAMPLE_AUTO_ROWS rows and 8 from them up. */
+#define CGP_DOWNSAMPLE_AUTO_ROWS 540
+int cgp_gather_downsample(const fg_pass *pass);
 
 /* The second parameter, the entry after CGP_DOWNSAMPLE_PARAM. */
 #define CGP_TEMPORAL_PARAM                                                                            \
     { .name = "temporal", .type = FG_PARAM_INT, .default_value = 1, .min = 1, .max = 4,               \
-      .allowed = FG_PARAM_VALUES(1, 2, 4), .stage = FG_STAGE_PREPARE, .active_when = "downsample=2|4", \
+      .allowed = FG_PARAM_VALUES(1, 2, 4), .stage = FG_STAGE_PREPARE,                                 \
+      .active_when = "downsample=0|2|4|8",                                                            \
       .doc = "blocks traced a frame: 1 in `temporal` (2: a checkerboard, 4: one of each 2 x 2), the "  \
              "others keeping the light they traced where their pixel's surface is the one they traced " \
              "(normal and plane as the upsampling compares them, and within a block's reach); a block " \

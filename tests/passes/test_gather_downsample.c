@@ -12,7 +12,9 @@
  *     contrast against bilinear's 0.098 and 0.081 for 2 and 4; the shader made plain bilinear
  *     fails here);
  *   - the image's mean stays within 3% of downsample = 1's;
- *   - 3 is refused (CG_ERR_GRAPH_PARAM_RANGE, naming 1, 2 and 4), for both passes;
+ *   - 3 is refused (CG_ERR_GRAPH_PARAM_RANGE, naming 0, 1, 2, 4 and 8), for both passes; 0 (auto) is
+ *     4 below 540 rows and 8 from 540 up, bit for bit;
+ *   - temporal (test_temporal, below);
  *   - graphs/vct.json and hybrid.json with downsample = 1 render builtin:cornell and builtin:openworld
  *     (`conegraph render` at 64x36) bit for bit as before the parameter existed: the images of
  *     tests/data/gather_downsample/ are tests/data/regression/'s of that time (commit 4e0c56d),
@@ -238,7 +240,7 @@ test_hybrid_gather_downsample(void **state)
     cg_scene_free(&scene);
 }
 
-/* 3 is refused with the values offered; 1, 2 and 4 are taken. */
+/* 3 is refused with the values offered; 0 (auto), 1, 2, 4 and 8 are taken. */
 static void
 test_downsample_values(void **state)
 {
@@ -252,10 +254,10 @@ test_downsample_values(void **state)
         fg_graph *graph = fg_graph_create(registry);
         assert_non_null(graph);
         assert_cg_ok(fg_graph_add_pass(graph, "gather", types[t], NULL, &err), &err);
-        const char *good[3] = {"1", "2", "4"};
-        for (int i = 0; i < 3; i++)
+        const char *good[5] = {"0", "1", "2", "4", "8"};
+        for (int i = 0; i < 5; i++)
             assert_cg_ok(fg_graph_set_param(graph, "gather", "downsample", good[i], NULL, &err), &err);
-        const char *bad[4] = {"3", "0", "8", "2.5"};
+        const char *bad[4] = {"3", "16", "-1", "2.5"};
         for (int i = 0; i < 4; i++) {
             cg_error e = {0};
             assert_false(fg_graph_set_param(graph, "gather", "downsample", bad[i], NULL, &e));
@@ -264,7 +266,7 @@ test_downsample_values(void **state)
         cg_error e = {0};
         assert_false(fg_graph_set_param(graph, "gather", "downsample", "3", NULL, &e));
         assert_int_equal(e.status, CG_ERR_GRAPH_PARAM_RANGE);
-        assert_non_null(strstr(e.message, "1, 2, 4"));
+        assert_non_null(strstr(e.message, "0, 1, 2, 4, 8"));
         fg_graph_destroy(graph);
     }
     fg_registry_destroy(registry);
@@ -302,6 +304,34 @@ test_downsample_1_unchanged(void **state)
             cg_image_free(&a);
             cg_image_free(&b);
         }
+}
+
+/* downsample 0 (auto) is 4 below CGP_DOWNSAMPLE_AUTO_ROWS (540) rows of image and 8 from them
+ * up: its image equals the explicit value's bit for bit on either side of the bound. */
+static void
+test_downsample_auto(void **state)
+{
+    cg_context *ctx = cg_test_gl_context(state);
+    cg_scene scene = cg_test_load_scene("builtin:cornell");
+    const int heights[2] = {536, 544};
+    const char *explicit_value[2] = {"gather.downsample=4", "gather.downsample=8"};
+    for (int k = 0; k < 2; k++) {
+        float *image[2];
+        const char *values[2][2] = {{"gather.downsample=0", NULL}, {explicit_value[k], NULL}};
+        for (int v = 0; v < 2; v++) {
+            vf_runner r;
+            vf_start_file(&r, &scene, 32, heights[k], "vct.json", values[v]);
+            vf_frame(&r);
+            image[v] = vf_read_image(&r, "gather.radiance", 32, heights[k]);
+            assert_no_gl_errors(ctx);
+            vf_stop(&r);
+        }
+        if (memcmp(image[0], image[1], sizeof(float) * 4 * 32 * (size_t)heights[k]))
+            fail_msg("downsample 0 at %d rows is not %s", heights[k], explicit_value[k]);
+        free(image[0]);
+        free(image[1]);
+    }
+    cg_scene_free(&scene);
 }
 
 /* The sum of a reads image (count_reads), of the gather's volume reads in a frame. */
@@ -410,4 +440,5 @@ CG_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_downsample_1_unchanged),
              cmocka_unit_test_setup_teardown(test_cone_gather_downsample, cg_test_gl_setup, cg_test_gl_teardown),
              cmocka_unit_test_setup_teardown(test_hybrid_gather_downsample, cg_test_gl_setup, cg_test_gl_teardown),
-             cmocka_unit_test_setup_teardown(test_temporal, cg_test_gl_setup, cg_test_gl_teardown))
+             cmocka_unit_test_setup_teardown(test_temporal, cg_test_gl_setup, cg_test_gl_teardown),
+             cmocka_unit_test_setup_teardown(test_downsample_auto, cg_test_gl_setup, cg_test_gl_teardown))
