@@ -311,10 +311,10 @@ test_downsample_1_unchanged(void **state)
 static void
 test_downsample_auto(void **state)
 {
-    cg_context *ctx = cg_test_gl_context(state);
-    cg_scene scene = cg_test_load_scene("builtin:cornell");
     const int heights[2] = {536, 544};
     const char *explicit_value[2] = {"gather.downsample=4", "gather.downsample=8"};
+    cg_context *ctx = cg_test_gl_context(state);
+    cg_scene scene = cg_test_load_scene("builtin:cornell");
     for (int k = 0; k < 2; k++) {
         float *image[2];
         const char *values[2][2] = {{"gather.downsample=0", NULL}, {explicit_value[k], NULL}};

@@ -356,9 +356,9 @@ test_mesh_filter(void **state)
 static void
 test_slices_equal_whole(void **state)
 {
+    static const char *const names[5] = {"vox.albedo", "vox.coverage", "vox.normal", "vox.emission", "vox.specular"};
     cg_context *ctx = cg_test_gl_context(state);
     cg_scene scene = cg_test_load_scene("builtin:openworld?triangles=5000");
-    static const char *const names[5] = {"vox.albedo", "vox.coverage", "vox.normal", "vox.emission", "vox.specular"};
     static const char *const cases[][4] = {
         {"vox.resolution=64", "vox.slices=1", NULL, NULL},
         {"vox.resolution=64", "vox.slices=3", NULL, NULL},
