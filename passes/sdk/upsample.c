@@ -67,7 +67,7 @@ cgp_gather_blocks_trace(const fg_pass *pass, const cgp_gather *g, cgp_gather_blo
     glUseProgram(b->program);
     glBindImageTexture(0, b->texture, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     if (b->temporal > 1) {
-        /* common/upsample.glsl's cg_upsample_keep: this frame's turn, and whether the blocks and
+        /* common/upsample.glsl's cg_upsample_block_kept: this frame's turn, and whether the blocks and
          * their surfaces hold a traced frame. A block kept writes nothing, so the texture keeps
          * its light: it is the state's, not a graph resource that another pass could reuse. */
         for (int i = 0; i < 2; i++)

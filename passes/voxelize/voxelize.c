@@ -408,7 +408,8 @@ voxelize_prepare(fg_pass *pass, voxelize_state *s, cg_error *err)
     s->surface = fg_param_enum(pass, "model") == MODEL_SURFACE;
     s->block = fg_pass_slot(pass, "region");
     s->accumulation = fg_pass_slot(pass, "accumulation");
-    s->slice_depth = fg_slot_resource(pass, s->accumulation)->depth / CG_SURFACE_SLAB_GRID_Z;
+    if (s->surface)
+        s->slice_depth = fg_slot_resource(pass, s->accumulation)->depth / CG_SURFACE_SLAB_GRID_Z;
     for (int i = 0; i < 5 && s->surface; i++)
         s->geometry[i] = fg_pass_slot(pass, geometry_names[i]);
     s->radiance = s->surface ? FG_NO_SLOT : fg_pass_slot(pass, "radiance");
