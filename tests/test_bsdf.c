@@ -246,7 +246,7 @@ no_lobe_reflects_more_than_it_receives(void **state)
                 }
             }
         }
-    print_message("largest albedo of a white dielectric with its diffuse lobe: %.3f\n", (double)worst);
+    print_message("# largest albedo of a white dielectric with its diffuse lobe: %.3f\n", (double)worst);
     assert_true(worst < 1.6f);
 }
 

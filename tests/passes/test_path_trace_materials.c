@@ -98,7 +98,7 @@ furnace_returns_the_directional_albedo(void **state)
         cg_bsdf_albedo(&b, 1.0f, ad, ag, at);
         for (int c = 0; c < 3; c++) {
             double want = 2.0 * (ad[c] + ag[c] + at[c]), got = image_mean(img, c);
-            print_message("furnace %s channel %d: %.4f, albedo x L %.4f\n", cases[k].name, c, got, want);
+            print_message("# furnace %s channel %d: %.4f, albedo x L %.4f\n", cases[k].name, c, got, want);
             if (fabs(got - want) > 0.01 * want + 1e-4)
                 fail_msg("furnace %s channel %d: %.4f, want %.4f", cases[k].name, c, got, want);
         }
@@ -135,7 +135,7 @@ glass_slab_transmits_its_fresnel_and_beer_lambert(void **state)
         st.spp = 4096;
         float *img = ptf_render(&s, &v, st);
         double got = image_mean(img, 0);
-        print_message("glass %s: %.4f, closed form %.4f\n", thick ? "slab" : "sheet", got, want);
+        print_message("# glass %s: %.4f, closed form %.4f\n", thick ? "slab" : "sheet", got, want);
         /* The two internal reflections (F0^2 = 0.0016 of it) are left out of the closed form. */
         if (fabs(got - want) > 0.01 * want)
             fail_msg("glass %s: %.4f, want %.4f", thick ? "slab" : "sheet", got, want);
@@ -227,7 +227,7 @@ mask_holes_and_blend_let_light_through(void **state)
         double lit = 0.6 / PTF_PI * 3.0;
         double want = mode == 0 ? lit : 0.75 * 0.75 * lit;
         double got = image_mean(img, 0);
-        print_message("%s cover: %.4f, closed form %.4f\n", mode == 0 ? "MASK" : "BLEND", got, want);
+        print_message("# %s cover: %.4f, closed form %.4f\n", mode == 0 ? "MASK" : "BLEND", got, want);
         if (fabs(got - want) > (mode == 0 ? 1e-5 : 0.02) * want)
             fail_msg("%s: %.4f, want %.4f", mode == 0 ? "MASK" : "BLEND", got, want);
         free(img);
@@ -262,7 +262,7 @@ caustics_false_keeps_light_through_glass_off_a_diffuse_floor(void **state)
      * Bernoulli draw of probability F0: 0.008 of noise), and a black floor. With caustics the
      * floor under an infinite lamp of L through the sheet twice adds about 0.8 L (1 - F)^2,
      * less what the sheet's Fresnel turns away at grazing angles. */
-    print_message("floor under glass: caustics off %.4f, on %.4f (0.8 L (1-F0)^2 = %.4f)\n", got[0], got[1],
+    print_message("# floor under glass: caustics off %.4f, on %.4f (0.8 L (1-F0)^2 = %.4f)\n", got[0], got[1],
                   0.8 * 4.0 * 0.96 * 0.96);
     assert_true(fabs(got[0] - 0.16) < 0.03);
     assert_true(got[1] - got[0] > 0.5 * 0.8 * 4.0 * 0.96 * 0.96 && got[1] - got[0] < 0.8 * 4.0 * 0.96 * 0.96 * 1.02);
