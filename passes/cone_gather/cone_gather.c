@@ -17,8 +17,9 @@
  *   (fp32, as direct_light's: radiance of any brightness, no clipping at 65504.)
  *   visibility  R16F (param shadow_cone): transmittance of a cone towards one light.
  *   reads       R32F (param count_reads): volume reads (textureLod calls) of the pixel's diffuse cones.
- * With downsample = 2 or 4 the diffuse cones are traced at one pixel of each block and `radiance`
- * is upsampled from them by the G-buffer's position and normal (sdk/upsample.h); the other outputs
+ * With downsample = 2, 4 or 8 (0: 4 or 8 by the image's height) the diffuse cones are traced at one
+ * pixel of each block, with temporal > 1 only a turn of the blocks a frame, and `radiance` is
+ * upsampled from them by the G-buffer's position and normal (sdk/upsample.h); the other outputs
  * stay per pixel.
  */
 #include <math.h>

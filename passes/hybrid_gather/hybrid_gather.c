@@ -20,8 +20,9 @@
  * albedo), a = ambient visibility. The same convention as cone_gather, the material's diffuse
  * share included; with `specular` and `refraction` (and the material) also cone_gather's
  * `reflection` and `refraction`, the same cones (common/gather.glsl) through this gather's march.
- * With downsample = 2 or 4, cone_gather's decoupled resolution (sdk/upsample.h): the diffuse cones
- * at one pixel a block, `radiance` upsampled by the G-buffer's position and normal.
+ * With downsample = 2, 4 or 8 (0: 4 or 8 by the image's height) and temporal, cone_gather's decoupled
+ * resolution (sdk/upsample.h): the diffuse cones at one pixel a block, `radiance` upsampled by the
+ * G-buffer's position and normal.
  */
 #include <math.h>
 #include <stdio.h>
