@@ -54,8 +54,17 @@
  * changed: a turning sun under a uniform sky costs one inject and its mips. cache = false relights
  * every frame. A relight's cost follows the occupied voxels, not the volume: they are listed (one read
  * per voxel of the volume, again only where the geometry may have changed), level 0 is cleared and the
- * inject runs over the list (over the whole volume only when the list overflows). The pass reports what it did through fg_pass_report_rebuilt, with the compute
- * dispatches it made, so that a test can see a static frame do nothing.
+ * inject runs over the list (over the whole volume only when the list overflows). The pass reports what it
+ * did through fg_pass_report_rebuilt, with the compute dispatches it made, so that a test can see a
+ * static frame do nothing.
+ *
+ * The gathers at the voxels, one hemisphere of cones on each side of every occupied voxel, are most of
+ * a relight's cost where they run (16 cones, 128^3: 3.6 s a gather on Debian's 12-triangle BoxTextured,
+ * 190 150 voxels, on llvmpipe). bounce_spacing S > 1 traces them at one voxel of each S^3 block and
+ * mixes the light of the others from the blocks around them where their surfaces agree, as the
+ * screen's gathers do with `downsample` (shaders/voxel_light/spacing.glsl says how; the voxels that
+ * no block agrees with trace their own). Its `spacing` buffer holds the sorted voxels and each block's
+ * representative; they are sorted again only when the voxels are listed again.
  */
 #include <math.h>
 #include <stdio.h>
@@ -88,6 +97,10 @@ static const fg_param_desc voxel_light_params[] = {
     { .name = "bounce_cones", .type = FG_PARAM_INT, .default_value = 16, .min = 1, .max = 26,
       .allowed = FG_PARAM_VALUES(CGP_CONE_SET_SIZES),
       .doc = "diffuse cones of the gathers at the voxels: 1, 6, 9, 16 or 26" },
+    { .name = "bounce_spacing", .type = FG_PARAM_INT, .default_value = 1, .min = 1, .max = 8, .power_of_two = true,
+      .doc = "voxels between the points that trace a gather at the voxels: 1 traces at every occupied voxel; S "
+             "traces at one voxel of each S^3 block and mixes the others' light from the blocks around them "
+             "where their surfaces agree (normal and plane), tracing where none does (docs/vct.md)" },
     { .name = "cache", .type = FG_PARAM_BOOL, .default_value = 1,
       .doc = "keep the light volumes across frames and relight them only when the geometry, the lights, "
              "the shadow map's matrix, the sky or the parameters changed (a static frame dispatches "
@@ -110,6 +123,7 @@ static const char *const source_names[2] = {"source_front", "source_back"};
 
 typedef struct voxel_light_state {
     GLuint inject, inject_listed, list, mip, gather;
+    GLuint pick, planes, sort, fill;    /* bounce_spacing > 1: spacing.glsl's programs (0 otherwise) */
     GLuint sampler;         /* the volumes, for the gathers at the voxels */
     GLuint one_level;       /* the radiance again at CG_UNIT_OCCUPANCY (cgp_sampler_volume_one_level) */
     GLuint cone_block;
@@ -119,6 +133,9 @@ typedef struct voxel_light_state {
     bool gathers;           /* the bounce resources exist */
     bool source;            /* source_front and source_back exist (glossy, with a specular input) */
     bool cache;             /* the light volumes (and gathered_*, when kept) are persistent */
+    int spacing;            /* bounce_spacing where the `spacing` buffer exists, else 1 */
+    bool spaced;            /* `spacing` sorts the listed voxels of the geometry (sort_voxels) */
+    GLuint traced, mixed;   /* how many voxels trace and how many are mixed (sort_voxels) */
     /* What the last relight read (cache = true), to tell whether a frame must relight. */
     bool lit;               /* the volumes hold the light of `key` */
     bool first_gather_kept; /* gathered_* hold G(V_0) of `key` (the only gather of that relight) */
@@ -129,7 +146,7 @@ typedef struct voxel_light_state {
         GLuint textures[7];         /* the geometry volumes, the shadow map, the shadow matrix buffer */
         cg_volume_block region;     /* voxelize's region block as it was read back */
         unsigned char shadow[256];  /* the shadow_map's matrix block as read back (its first bytes) */
-        int bounces, bounce_cones;
+        int bounces, bounce_cones, bounce_spacing;
         bool glossy, lobes;     /* the parameter; whether a material has a lobe (glossy is lit then) */
         cg_sky sky;
     } key;
@@ -139,15 +156,60 @@ typedef struct voxel_light_state {
     int dispatches;         /* compute dispatches of this frame's execute */
     fg_slot geometry[5];    /* geometry_names */
     fg_slot region, light[3], voxels;   /* light: light_names */
+    fg_slot spacing_slot;   /* FG_NO_SLOT when not declared (bounce_spacing 1, or no gather) */
     fg_slot glossy_slot, gathered[2], source_slots[2]; /* FG_NO_SLOT when not declared */
 } voxel_light_state;
 
 /* Entries of the list of occupied voxels: a quarter of the volume, far beyond what surfaces
- * occupy (a plane across a 128^3 volume takes 1 to 3 percent of it). */
+ * occupy in a large one (a plane across a 128^3 volume takes 1 to 3 percent of it), and at least the
+ * volume's whole boundary two voxels thick, a closed box that fills the volume: at 32^3 that is 37%
+ * of it (10 725 voxels against 8 192 entries before: the gathers at the voxels, which run over the
+ * list, missed the rest). From 64^3 up (and for the open world's 128 x 32 x 128 box) the quarter is
+ * more. */
 static GLuint
 list_capacity(const fg_resource_desc *volume)
 {
-    return (GLuint)((size_t)volume->width * (size_t)volume->height * (size_t)volume->depth / 4);
+    size_t w = (size_t)volume->width, h = (size_t)volume->height, d = (size_t)volume->depth;
+    size_t voxels = w * h * d, shell = 4 * (w * h + h * d + d * w);
+    if (shell > voxels)
+        shell = voxels;
+    return (GLuint)(voxels / 4 > shell ? voxels / 4 : shell);
+}
+
+/* The `spacing` buffer (bounce_spacing S > 1, shaders/voxel_light/spacing.glsl): the list of the voxels
+ * that trace and that of those mixed, each a cg_voxel_list_block and list_capacity entries, then one
+ * key per block of S^3 voxels and one plane (4 floats) per block. Each part starts on a multiple of
+ * SPACING_ALIGN bytes, so that it binds as a range of its own (GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT
+ * is at most 256 on the GL 4.5 implementations this runs on: llvmpipe's is 16). */
+#define SPACING_ALIGN 256
+
+static size_t
+spacing_list_bytes(const fg_resource_desc *volume)
+{
+    size_t bytes = sizeof(cg_voxel_list_block) + sizeof(GLuint) * list_capacity(volume);
+    return (bytes + SPACING_ALIGN - 1) / SPACING_ALIGN * SPACING_ALIGN;
+}
+
+static size_t
+spacing_blocks(const fg_resource_desc *volume, int spacing)
+{
+    size_t sp = (size_t)spacing;
+    return ((size_t)volume->width + sp - 1) / sp * (((size_t)volume->height + sp - 1) / sp) *
+           (((size_t)volume->depth + sp - 1) / sp);
+}
+
+static size_t
+spacing_keys_bytes(const fg_resource_desc *volume, int spacing)
+{
+    size_t bytes = sizeof(GLuint) * spacing_blocks(volume, spacing);
+    return (bytes + SPACING_ALIGN - 1) / SPACING_ALIGN * SPACING_ALIGN;
+}
+
+static size_t
+spacing_bytes(const fg_resource_desc *volume, int spacing)
+{
+    return 2 * spacing_list_bytes(volume) + spacing_keys_bytes(volume, spacing) +
+           4 * sizeof(float) * spacing_blocks(volume, spacing);
 }
 
 /* Whether any mesh that a voxelize pass may have voxelized emits (emission in the volume), or a
@@ -241,6 +303,14 @@ voxel_light_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
     list.gi = true;
     list.persistent = light.persistent;     /* kept while the geometry is */
     fg_declare_output(decl, "voxels", &list, FG_ACCESS_STORAGE | FG_ACCESS_TRANSFER);
+    /* Only where a gather runs: the bounces' own, or glossy's where a material has a lobe (execute). */
+    int spacing = fg_param_int(pass, "bounce_spacing");
+    if ((gathers(pass) > 0 || (glossy && frame && frame->scene && cg_scene_has_lobes(frame->scene))) && spacing > 1) {
+        fg_resource_desc lists = cgp_buffer_desc(spacing_bytes(g, spacing));
+        lists.gi = true;
+        lists.persistent = light.persistent;    /* kept while the geometry is, as `voxels` */
+        fg_declare_output(decl, "spacing", &lists, FG_ACCESS_STORAGE | FG_ACCESS_TRANSFER);
+    }
     return true;
 }
 
@@ -267,6 +337,8 @@ voxel_light_prepare(fg_pass *pass, voxel_light_state *s, cg_error *err)
         s->source_slots[i] = fg_pass_slot_if_declared(pass, source_names[i]);
     }
     s->gathers = fg_slot_present(pass, s->gathered[0]);
+    s->spacing_slot = fg_pass_slot_if_declared(pass, "spacing");
+    s->spacing = fg_slot_present(pass, s->spacing_slot) ? fg_param_int(pass, "bounce_spacing") : 1;
     s->source = fg_slot_present(pass, s->source_slots[0]);
     s->cache = fg_param_bool(pass, "cache");
     cgp_no_shadow_create(s, pass, &s->no_shadow);
@@ -276,6 +348,15 @@ voxel_light_prepare(fg_pass *pass, voxel_light_state *s, cg_error *err)
     s->cone_block = cgp_uniform_buffer(s, sizeof(cg_cone_set_block));
     if (!cgp_cone_set_of_param(pass, "bounce_cones", &s->set, err))
         return false;
+    if (s->spacing > 1) {
+        char defines[64];
+        snprintf(defines, sizeof defines, "#define VOXEL_LIGHT_SPACING %d\n", s->spacing);
+        if (!cgp_compute_program(s, "voxel_light/pick.comp", defines, &s->pick, err) ||
+            !cgp_compute_program(s, "voxel_light/planes.comp", defines, &s->planes, err) ||
+            !cgp_compute_program(s, "voxel_light/sort.comp", defines, &s->sort, err) ||
+            !cgp_compute_program(s, "voxel_light/fill.comp", defines, &s->fill, err))
+            return false;
+    }
     return cgp_compute_program(s, "voxel_light/inject.comp", NULL, &s->inject, err) &&
            cgp_compute_program(s, "voxel_light/inject.comp", "#define VOXEL_LIGHT_LISTED\n", &s->inject_listed, err) &&
            cgp_compute_program(s, "voxel_light/list.comp", NULL, &s->list, err) &&
@@ -303,6 +384,69 @@ list_voxels(const fg_pass *pass, voxel_light_state *s)
     cg_voxel_list_block header;
     glGetNamedBufferSubData(voxels, 0, sizeof header, &header);
     return header.dispatch[3];
+}
+
+/* Binds the parts of the `spacing` buffer (spacing_list_bytes) at their storage bindings. */
+static void
+bind_spacing(const fg_pass *pass, const voxel_light_state *s)
+{
+    const fg_resource_desc *volume = fg_slot_resource(pass, s->light[0]);
+    GLuint buffer = fg_slot_buffer(pass, s->spacing_slot);
+    GLintptr part = (GLintptr)spacing_list_bytes(volume);
+    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, CG_BINDING_VOXEL_TRACED, buffer, 0, part);
+    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, CG_BINDING_VOXEL_MIXED, buffer, part, part);
+    GLintptr keys = (GLintptr)spacing_keys_bytes(volume, s->spacing);
+    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, CG_BINDING_VOXEL_KEYS, buffer, 2 * part, keys);
+    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, CG_BINDING_VOXEL_PLANES, buffer, 2 * part + keys,
+                      (GLsizeiptr)(4 * sizeof(float) * spacing_blocks(volume, s->spacing)));
+}
+
+static void
+unbind_spacing(void)
+{
+    for (GLuint b = CG_BINDING_VOXEL_TRACED; b <= CG_BINDING_VOXEL_PLANES; b++)
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0);
+}
+
+/* bounce_spacing > 1 (shaders/voxel_light/spacing.glsl): each block's representative among the listed
+ * voxels (pick.comp) and its plane (planes.comp), then each listed voxel into the list of those that
+ * trace or of those mixed (sort.comp); their counts into s->traced and s->mixed. Run after list_voxels,
+ * with the list whole. */
+static void
+sort_voxels(const fg_pass *pass, voxel_light_state *s)
+{
+    const fg_resource_desc *volume = fg_slot_resource(pass, s->light[0]);
+    GLuint buffer = fg_slot_buffer(pass, s->spacing_slot);
+    GLintptr part = (GLintptr)spacing_list_bytes(volume);
+    const cg_voxel_list_block empty = {.dispatch = {0, 1, 1, 0}};
+    glNamedBufferSubData(buffer, 0, sizeof empty, &empty);
+    glNamedBufferSubData(buffer, part, sizeof empty, &empty);
+    const GLuint no_key = 0xffffffffu;
+    glClearNamedBufferSubData(buffer, GL_R32UI, 2 * part, (GLsizeiptr)spacing_keys_bytes(volume, s->spacing),
+                              GL_RED_INTEGER, GL_UNSIGNED_INT, &no_key);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_VOXEL_LIST, fg_slot_buffer(pass, s->voxels));
+    bind_spacing(pass, s);
+    glBindTextureUnit(2, fg_slot_texture(pass, s->geometry[2]));
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, fg_slot_buffer(pass, s->voxels));
+    glUseProgram(s->pick);
+    glUniform1ui(3, list_capacity(volume));
+    glDispatchComputeIndirect(0);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glUseProgram(s->planes);
+    glDispatchCompute((GLuint)((spacing_blocks(volume, s->spacing) + 63) / 64), 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glUseProgram(s->sort);
+    glUniform1ui(3, list_capacity(volume));
+    glDispatchComputeIndirect(0);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+    s->dispatches += 3;
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+    unbind_spacing();
+    cg_voxel_list_block header;
+    glGetNamedBufferSubData(buffer, 0, sizeof header, &header);
+    s->traced = header.dispatch[3];
+    glGetNamedBufferSubData(buffer, part, sizeof header, &header);
+    s->mixed = header.dispatch[3];
 }
 
 /* Level 0 of the three volumes over the listed voxels alone (inject.comp with VOXEL_LIGHT_LISTED), the
@@ -459,11 +603,29 @@ gather(const fg_pass *pass, voxel_light_state *s, bool of_v0)
     glBindTextureUnit(2, fg_slot_texture(pass, s->geometry[2]));
     glBindImageTexture(0, fg_slot_texture(pass, s->gathered[0]), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glBindImageTexture(1, fg_slot_texture(pass, s->gathered[1]), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, fg_slot_buffer(pass, s->voxels));
+    /* Spaced: the voxels that trace (the list's first part, bound as the list), then the mix of the others. */
+    const fg_resource_desc *volume = fg_slot_resource(pass, s->light[0]);
+    GLuint list = s->spaced ? fg_slot_buffer(pass, s->spacing_slot) : fg_slot_buffer(pass, s->voxels);
+    if (s->spaced)
+        glBindBufferRange(GL_SHADER_STORAGE_BUFFER, CG_BINDING_VOXEL_LIST, list, 0, (GLsizeiptr)spacing_list_bytes(volume));
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, list);
     glDispatchComputeIndirect(0);
     s->dispatches++;
-    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+    if (s->spaced) {
+        glUseProgram(s->fill);
+        glUniform1ui(3, list_capacity(volume));
+        glUniform1i(4, source);
+        bind_spacing(pass, s);
+        glBindImageTexture(0, fg_slot_texture(pass, s->gathered[0]), 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA16F);
+        glBindImageTexture(1, fg_slot_texture(pass, s->gathered[1]), 0, GL_TRUE, 0, GL_READ_WRITE, GL_RGBA16F);
+        glDispatchComputeIndirect((GLintptr)spacing_list_bytes(volume));
+        s->dispatches++;
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+        unbind_spacing();
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_VOXEL_LIST, fg_slot_buffer(pass, s->voxels));
+    }
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
     glBindSampler(CG_UNIT_VOLUME, 0);
     glBindSampler(CG_UNIT_SIDES, 0);
     glBindSampler(CG_UNIT_NORMALS, 0);
@@ -513,6 +675,7 @@ read_key(const fg_pass *pass, const voxel_light_state *s, struct light_key *key)
     }
     key->bounces = fg_param_int(pass, "bounces");
     key->bounce_cones = fg_param_int(pass, "bounce_cones");
+    key->bounce_spacing = fg_param_int(pass, "bounce_spacing");
     key->glossy = fg_param_bool(pass, "glossy");
     key->lobes = key_lobes(fg_pass_frame(pass));
     key->sky = fg_pass_frame(pass)->scene->sky;
@@ -535,7 +698,8 @@ what_changed(const fg_pass *pass, const voxel_light_state *s, const struct light
     if (memcmp(key->textures, s->key.textures, 5 * sizeof key->textures[0]) ||
         memcmp(&key->region, &s->key.region, sizeof key->region))
         return "geometry volumes or region changed";
-    if (key->bounces != s->key.bounces || key->bounce_cones != s->key.bounce_cones || key->glossy != s->key.glossy ||
+    if (key->bounces != s->key.bounces || key->bounce_cones != s->key.bounce_cones ||
+        key->bounce_spacing != s->key.bounce_spacing || key->glossy != s->key.glossy ||
         key->lobes != s->key.lobes)
         return "parameters changed";
     if (!cg_sky_equal(&key->sky, &s->key.sky) || key->sky.type != s->key.sky.type)
@@ -611,8 +775,13 @@ voxel_light_execute(fg_pass *pass, voxel_light_state *s, cg_error *err)
     /* The occupied voxels, listed again unless only the lights changed since they were. Level 0 is
      * cleared before the first listed inject of every relight all the same: what it held outside the
      * list is then never a question. */
-    if (!(s->cache && lights_only && s->list_kept))
+    if (!(s->cache && lights_only && s->list_kept)) {
         s->listed = list_voxels(pass, s);
+        /* Spaced where the list holds every occupied voxel; else each listed voxel traces, as with 1. */
+        s->spaced = s->spacing > 1 && s->listed <= list_capacity(fg_slot_resource(pass, s->light[0]));
+        if (s->spaced)
+            sort_voxels(pass, s);
+    }
     bool clear = true;
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_VOXEL_LIST, fg_slot_buffer(pass, s->voxels));
     if (s->gathers && !reuse_first) {
@@ -666,6 +835,10 @@ voxel_light_execute(fg_pass *pass, voxel_light_state *s, cg_error *err)
     s->relights++;
     if (reuse_first)
         fg_pass_report_rebuilt(pass, "volumes relit (%s; first gather kept): %d dispatches", why, s->dispatches);
+    else if (count > 0 && s->spaced)
+        fg_pass_report_rebuilt(pass, "volumes relit (%s): %d dispatches, %d gather%s of %u voxels (%u more mixed: "
+                               "bounce_spacing %d)", why, s->dispatches, count, count == 1 ? "" : "s", s->traced,
+                               s->mixed, s->spacing);
     else if (count > 0)
         fg_pass_report_rebuilt(pass, "volumes relit (%s): %d dispatches, %d gather%s of %u voxels", why, s->dispatches,
                                count, count == 1 ? "" : "s", s->listed);

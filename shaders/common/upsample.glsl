@@ -20,11 +20,12 @@
 // centres fell on the background), the pixel traces its own cones: the answer there is the
 // full-resolution gather's, never a neighbour's light.
 //
-// Provides: cg_upsample_agreement(), cg_upsample_tolerance(), cg_upsample_block_kept(),
+// Provides: cg_upsample_tolerance(), cg_upsample_block_kept(),
 //           cg_upsample_representative(), cg_upsample_is_representative(), cg_upsample_diffuse().
 #ifndef CG_COMMON_UPSAMPLE_GLSL
 #define CG_COMMON_UPSAMPLE_GLSL
 
+#include "common/agreement.glsl"
 #include "common/gather.glsl"
 
 #ifndef CG_GATHER_DOWNSAMPLE
@@ -34,27 +35,6 @@
 // The blocks' diffuse light: rgb the incident radiance integral E_i/pi before the material's
 // diffuse share, a the ambient visibility, one texel a block (cgp_gather_blocks_trace).
 layout(binding = CG_UNIT_GATHER_BLOCKS) uniform sampler2D cg_upsample_blocks;
-
-// The range filter's widths (docs/results/gi-resolution.md measures them): the normal's power, the
-// plane distance at which a block's agreement falls to 0, per block of spacing and metre of
-// distance from the camera, and the least agreement for which a block counts at all (below it
-// its weight is 0, so that a near block of another surface cannot outweigh a far one of the
-// pixel's own).
-#define CG_UPSAMPLE_NORMAL_POWER 32.0
-#define CG_UPSAMPLE_PLANE_PER_BLOCK 0.004
-#define CG_UPSAMPLE_MIN_AGREEMENT 0.25
-
-// How well a surface point q with unit normal m agrees with the pixel's (a point `position` with
-// unit normal `n`) for the range filter: cos^CG_UPSAMPLE_NORMAL_POWER of the angle between the
-// normals times the fall of q's distance from the pixel's tangent plane to 0 at `tolerance`; 0
-// below CG_UPSAMPLE_MIN_AGREEMENT (another surface).
-float
-cg_upsample_agreement(vec3 q, vec3 m, vec3 position, vec3 n, float tolerance)
-{
-    float plane = abs(dot(n, q - position));
-    float agreement = pow(max(dot(n, m), 0.0), CG_UPSAMPLE_NORMAL_POWER) * max(1.0 - plane / tolerance, 0.0);
-    return agreement < CG_UPSAMPLE_MIN_AGREEMENT ? 0.0 : agreement;
-}
 
 // The plane distance at which a block's agreement with a pixel `position` seen from `camera`
 // falls to 0: it follows the spacing of the blocks on the screen.

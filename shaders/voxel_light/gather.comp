@@ -27,10 +27,7 @@ layout(r11f_g11f_b10f, binding = 3) writeonly uniform image3D u_source_back;
 void
 main()
 {
-    uint index = gl_GlobalInvocationID.x;
-    if (index >= min(voxel_light_list.dispatch.w, u_list_capacity))
-        return;
-    ivec3 v = voxel_light_unpack(voxel_light_list.voxels[index]);
+    VOXEL_LIGHT_LISTED_VOXEL(voxel_light_list, u_list_capacity, v);
     CgVolume vol = cg_volume();
     vec4 nd = texelFetch(u_normal, v, 0);
     float coherence = length(nd.xyz);

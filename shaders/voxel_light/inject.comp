@@ -100,10 +100,7 @@ main()
     CgVolume vol = cg_volume();
 #ifdef VOXEL_LIGHT_LISTED
     // The listed voxels alone (list.comp), the level cleared before: no empty voxel, no list to build.
-    uint index = gl_GlobalInvocationID.x;
-    if (index >= min(voxel_light_list.dispatch.w, u_list_capacity))
-        return;
-    ivec3 v = voxel_light_unpack(voxel_light_list.voxels[index]);
+    VOXEL_LIGHT_LISTED_VOXEL(voxel_light_list, u_list_capacity, v);
     vec4 albedo = texelFetch(u_albedo, v, 0);
 #else
     ivec3 v = ivec3(gl_GlobalInvocationID);
@@ -119,11 +116,7 @@ main()
         return;
     }
     if (u_build_list) {
-        uint i = atomicAdd(voxel_light_list.dispatch.w, 1u);
-        if (i < u_list_capacity)
-            voxel_light_list.voxels[i] = voxel_light_pack(v);
-        if (i % 64u == 0u)
-            atomicAdd(voxel_light_list.dispatch.x, 1u);
+        VOXEL_LIGHT_APPEND(voxel_light_list, u_list_capacity, v);
     }
 #endif
     vec3 alpha = texelFetch(u_coverage, v, 0).xyz;

@@ -18,9 +18,5 @@ main()
     ivec3 v = ivec3(gl_GlobalInvocationID);
     if (any(greaterThanEqual(v, ivec3(vol.dims))) || texelFetch(u_albedo, v, 0).a <= 0.0)
         return;
-    uint i = atomicAdd(voxel_light_list.dispatch.w, 1u);
-    if (i < u_list_capacity)
-        voxel_light_list.voxels[i] = voxel_light_pack(v);
-    if (i % 64u == 0u)
-        atomicAdd(voxel_light_list.dispatch.x, 1u);
+    VOXEL_LIGHT_APPEND(voxel_light_list, u_list_capacity, v);
 }

@@ -7,7 +7,7 @@
 // edge, |N|^2 = 1/2) it is the point of their common edge nearest c.
 //
 // Provides: voxel_light_list (the occupied voxels, CG_VOXEL_LIST_BLOCK), voxel_light_pack(),
-//           voxel_light_unpack(), voxel_light_point().
+//           voxel_light_unpack(), voxel_light_point(), VOXEL_LIGHT_APPEND, VOXEL_LIGHT_LISTED_VOXEL.
 #ifndef CG_VOXEL_LIGHT_SURFACE_GLSL
 #define CG_VOXEL_LIGHT_SURFACE_GLSL
 
@@ -30,6 +30,24 @@ voxel_light_unpack(uint p)
 {
     return ivec3(p & 1023u, (p >> 10) & 1023u, (p >> 20) & 1023u);
 }
+
+// Appends voxel v to `list`, a buffer of CG_VOXEL_LIST_BLOCK and `voxels[]` with room for `capacity`:
+// its header counts every voxel offered (w) and the groups of 64 an indirect dispatch over them takes (x).
+#define VOXEL_LIGHT_APPEND(list, capacity, v)                                                      \
+    do {                                                                                           \
+        uint appended_ = atomicAdd(list.dispatch.w, 1u);                                          \
+        if (appended_ < (capacity))                                                                \
+            list.voxels[appended_] = voxel_light_pack(v);                                         \
+        if (appended_ % 64u == 0u)                                                                 \
+            atomicAdd(list.dispatch.x, 1u);                                                        \
+    } while (false)
+
+// Declares `v`, the voxel of `list` this invocation of an indirect dispatch over it runs for (one a
+// voxel, in order), and returns from main where the list holds fewer (at most `capacity`).
+#define VOXEL_LIGHT_LISTED_VOXEL(list, capacity, v)                                               \
+    if (gl_GlobalInvocationID.x >= min(list.dispatch.w, (capacity)))                              \
+        return;                                                                                    \
+    ivec3 v = voxel_light_unpack(list.voxels[gl_GlobalInvocationID.x])
 
 // The surface point of voxel v whose mean normal is n (|n| > 0) and plane offset delta (voxels).
 vec3

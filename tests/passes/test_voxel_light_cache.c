@@ -7,7 +7,8 @@
  *     is kept from the last relight, and the volumes still equal cache=false's;
  *   - the wall moves (its world matrix, by hand): relit with the gather; equal;
  *   - the sky changes: relit; equal;
- *   - a graph with bounces = 2 never keeps a gather (its last one reads the lights): equal.
+ *   - a graph with bounces = 2 never keeps a gather (its last one reads the lights): equal;
+ *   - with bounce_spacing 2 (the representatives' sort kept with the list of voxels): the same.
  * Frames after the first run fg_graph_execute directly (vf_next_frame), as the apps animate. */
 #include <math.h>
 #include <stdio.h>
@@ -22,7 +23,8 @@ static const char graph[] =
     "{ \"version\": 1, \"passes\": {"
     " \"shadow\": { \"type\": \"shadow_map\", \"params\": { \"resolution\": 256 } },"
     " \"vox\": { \"type\": \"voxelize\", \"params\": { \"model\": \"surface\", \"resolution\": 32 } },"
-    " \"light\": { \"type\": \"voxel_light\", \"params\": { \"bounces\": %d, \"bounce_cones\": 6, \"cache\": %s },"
+    " \"light\": { \"type\": \"voxel_light\", \"params\": { \"bounces\": %d, \"bounce_cones\": 6, \"cache\": %s,"
+    "   \"bounce_spacing\": %d },"
     "   \"inputs\": { \"albedo\": \"vox.albedo\", \"coverage\": \"vox.coverage\", \"normal\": \"vox.normal\","
     "     \"emission\": \"vox.emission\", \"region\": \"vox.region\","
     "     \"shadow\": \"shadow.depth\", \"shadow_matrix\": \"shadow.matrix\" } } },"
@@ -45,9 +47,9 @@ make_scene(hf_scene *s, float sky)
 }
 
 static void
-start(vf_runner *r, hf_scene *s, int bounces, bool cache)
+start(vf_runner *r, hf_scene *s, int bounces, bool cache, int spacing)
 {
-    vf_run_format(r, &s->scene, 16, 16, graph, bounces, cache ? "true" : "false");
+    vf_run_format(r, &s->scene, 16, 16, graph, bounces, cache ? "true" : "false", spacing);
 }
 
 static void
@@ -106,14 +108,14 @@ both_next(vf_runner *a, vf_runner *b)
 }
 
 static void
-check(float sky, int bounces)
+check(float sky, int bounces, int spacing)
 {
     hf_scene cached_scene, fresh_scene;
     make_scene(&cached_scene, sky);
     make_scene(&fresh_scene, sky);
     vf_runner cached, fresh;
-    start(&cached, &cached_scene, bounces, true);
-    start(&fresh, &fresh_scene, bounces, false);
+    start(&cached, &cached_scene, bounces, true, spacing);
+    start(&fresh, &fresh_scene, bounces, false, spacing);
     assert_rebuilt(&cached, "volumes relit (first frame)");
     assert_rebuilt(&fresh, "volumes relit (cache=false)");
     assert_rebuilt(&cached, sky > 0.0f ? (bounces == 1 ? "1 gather of" : "2 gathers of") : "dispatches");
@@ -158,8 +160,8 @@ check(float sky, int bounces)
     vf_next_frame(&cached);
     assert_rebuilt(&cached, "volumes kept (0 dispatches; 4 relights since prepare)");
 
-    printf("# voxel_light sky %.2f bounces %d: cache=true equals cache=false bit for bit over 8 frames "
-           "(static, sun turning, wall moved by hand, sky changed)\n", sky, bounces);
+    printf("# voxel_light sky %.2f bounces %d bounce_spacing %d: cache=true equals cache=false bit for bit over "
+           "8 frames (static, sun turning, wall moved by hand, sky changed)\n", sky, bounces, spacing);
     vf_stop(&cached);
     vf_stop(&fresh);
     hf_free(&cached_scene);
@@ -170,9 +172,11 @@ static void
 test_relights_what_changed(void **state)
 {
     (void)state;
-    check(0.4f, 1);     /* the sky's gather, kept while the sun turns */
-    check(0.0f, 1);     /* no sky, no emitter: no gather */
-    check(0.4f, 2);     /* two gathers, none kept */
+    check(0.4f, 1, 1);  /* the sky's gather, kept while the sun turns */
+    check(0.0f, 1, 1);  /* no sky, no emitter: no gather */
+    check(0.4f, 2, 1);  /* two gathers, none kept */
+    check(0.4f, 1, 2);  /* spaced: the sorted voxels kept with the list while only the lights change */
+    check(0.4f, 2, 2);
 }
 
 CG_TEST_MAIN(cg_test_gl_setup, cg_test_gl_teardown,
