@@ -37,8 +37,7 @@
 #define CG_BINDING_VOXEL_LIST 4         /* voxel_light: the occupied voxels (CG_VOXEL_LIST_BLOCK) */
 #define CG_BINDING_VOXEL_TRACED 5       /* voxel_light, bounce_spacing > 1: the voxels that trace */
 #define CG_BINDING_VOXEL_MIXED 6        /* voxel_light, bounce_spacing > 1: the voxels mixed from them */
-#define CG_BINDING_VOXEL_KEYS 7         /* voxel_light, bounce_spacing > 1: each block's representative */
-#define CG_BINDING_VOXEL_PLANES 8       /* voxel_light, bounce_spacing > 1: its tangent plane */
+#define CG_BINDING_VOXEL_BLOCKS 7       /* voxel_light, bounce_spacing > 1: each block's representative */
 
 /* ---- uniform blocks (UBO bindings) */
 #define CG_BINDING_SHADOW 2             /* CG_SHADOW_BLOCK, a shadow_map pass's `matrix` */
