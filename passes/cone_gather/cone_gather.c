@@ -157,6 +157,8 @@ cone_gather_execute(fg_pass *pass, cone_gather_state *s, cg_error *err)
     if (s->count_reads)
         glBindImageTexture(3, fg_slot_texture(pass, s->reads), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
     cgp_gather_blocks_trace(pass, &s->gather, &s->blocks);
+    cgp_gather_dispatch(pass, &s->gather);
+    cgp_gather_blocks_deferred(pass, &s->gather, &s->blocks);
     cgp_gather_end(pass, &s->gather);
     cgp_gather_blocks_end(&s->blocks);
     return true;

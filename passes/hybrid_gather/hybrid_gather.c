@@ -288,6 +288,8 @@ hybrid_gather_execute(fg_pass *pass, hybrid_gather_state *s, cg_error *err)
     glBindTextureUnit(CG_UNIT_HSAT, s->has_2d ? fg_slot_texture(pass, s->hsat) : 0);
     glBindSampler(CG_UNIT_HSAT, s->table_sampler);
     cgp_gather_blocks_trace(pass, &s->gather, &s->blocks);
+    cgp_gather_dispatch(pass, &s->gather);
+    cgp_gather_blocks_deferred(pass, &s->gather, &s->blocks);
     cgp_gather_end(pass, &s->gather);
     cgp_gather_blocks_end(&s->blocks);
     glBindSampler(CG_UNIT_LIGHTMAP2D, 0);

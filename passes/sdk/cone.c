@@ -483,9 +483,14 @@ cgp_gather_begin(const fg_pass *pass, cgp_gather *g, const void *block, size_t g
 }
 
 void
-cgp_gather_end(const fg_pass *pass, const cgp_gather *g)
+cgp_gather_dispatch(const fg_pass *pass, const cgp_gather *g)
 {
     cgp_dispatch_over(pass, g->slots.radiance);
+}
+
+void
+cgp_gather_end(const fg_pass *pass, const cgp_gather *g)
+{
     glBindSampler(CG_UNIT_VOLUME, 0);
     glBindSampler(CG_UNIT_OCCUPANCY, 0);
     glBindTextureUnit(CG_UNIT_OCCUPANCY, 0);

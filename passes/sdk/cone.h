@@ -6,7 +6,8 @@
  *           cgp_cone_block_fill, cgp_cone_block_fill_march, cgp_cone_upload, cgp_volume_model,
  *           cgp_gather_io, cgp_gather_slots, cgp_gather_find_slots,
  *           cgp_gather_declare_volume, cgp_gather_volume_model, cgp_gather_volume_define, cgp_gather,
- *           cgp_gather_prepare, cgp_gather_begin, cgp_gather_bind_volume, cgp_gather_end.
+ *           cgp_gather_prepare, cgp_gather_begin, cgp_gather_bind_volume, cgp_gather_dispatch,
+ *           cgp_gather_end.
  *
  * Shared by every cone tracer (the VCT gather and the hybrid tracer), so it lives in the
  * pass SDK; core knows nothing of cones.
@@ -231,7 +232,10 @@ void cgp_brdf_hemispherical_fill(int size, float *rg);
 /* That table at CGP_BRDF_TABLE_SIZE as a size x 1 RG32F texture owned by `state` (linear, clamped). */
 GLuint cgp_brdf_hemispherical_texture(void *state);
 
-/* Dispatches over `radiance` and unbinds what cgp_gather_begin bound. */
+/* The gather's program over `radiance`, a pixel an invocation (after cgp_gather_begin and the pass's
+ * own bindings; with sdk/upsample.h's blocks, after cgp_gather_blocks_trace). */
+void cgp_gather_dispatch(const fg_pass *pass, const cgp_gather *g);
+/* Unbinds what cgp_gather_begin bound (after the dispatches). */
 void cgp_gather_end(const fg_pass *pass, const cgp_gather *g);
 
 #endif

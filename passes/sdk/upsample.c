@@ -42,6 +42,16 @@ cgp_gather_blocks_prepare(void *state, const fg_pass *pass, const cgp_gather *g,
              cgp_gather_volume_define(g->model), g->material ? "#define CG_GATHER_MATERIAL\n" : "", temporal);
     if (!cgp_compute_program(state, shader, all, &b->program, err))
         return false;
+    snprintf(all, sizeof all, "%s%s%s#define CG_GATHER_DEFERRED\n", defines ? defines : "",
+             cgp_gather_volume_define(g->model), g->material ? "#define CG_GATHER_MATERIAL\n" : "");
+    if (!cgp_compute_program(state, shader, all, &b->deferred_program, err))
+        return false;
+    GLuint list = 0;
+    glCreateBuffers(1, &list);
+    glNamedBufferStorage(list, (GLsizeiptr)(sizeof(cg_gather_deferred_block) + sizeof(GLuint) * (size_t)out->width *
+                                            (size_t)out->height),
+                         NULL, GL_DYNAMIC_STORAGE_BIT);
+    b->deferred = cgp_own(state, CGP_GL_BUFFER, list);
     b->width = (out->width + b->downsample - 1) / b->downsample;
     b->height = (out->height + b->downsample - 1) / b->downsample;
     GLuint tex = 0;
@@ -86,13 +96,33 @@ cgp_gather_blocks_trace(const fg_pass *pass, const cgp_gather *g, cgp_gather_blo
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     glBindTextureUnit(CG_UNIT_GATHER_BLOCKS, b->texture);
     glBindSampler(CG_UNIT_GATHER_BLOCKS, 0);
+    const cg_gather_deferred_block empty = {.dispatch = {0, 1, 1, 0}};
+    glNamedBufferSubData(b->deferred, 0, sizeof empty, &empty);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_GATHER_DEFERRED, b->deferred);
     glUseProgram(g->program);
     glBindImageTexture(0, fg_slot_texture(pass, g->slots.radiance), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
 }
 
 void
+cgp_gather_blocks_deferred(const fg_pass *pass, const cgp_gather *g, const cgp_gather_blocks *b)
+{
+    (void)pass;
+    if (b->downsample <= 1 || !b->deferred_program)
+        return;
+    /* The list and its count (the indirect dispatch) and the pixels' other outputs written. */
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    glUseProgram(b->deferred_program);
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, b->deferred);
+    glDispatchComputeIndirect(0);
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+    glUseProgram(g->program);
+}
+
+void
 cgp_gather_blocks_end(const cgp_gather_blocks *b)
 {
-    if (b->downsample > 1)
+    if (b->downsample > 1) {
         glBindTextureUnit(CG_UNIT_GATHER_BLOCKS, 0);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_GATHER_DEFERRED, 0);
+    }
 }

@@ -5,16 +5,22 @@
  *
  * Declares: CGP_DOWNSAMPLE_PARAM, CGP_TEMPORAL_PARAM, CGP_DOWNSAMPLE_AUTO_ROWS, cgp_gather_downsample,
  *           cgp_gather_blocks, cgp_gather_blocks_define,
- *           cgp_gather_blocks_prepare, cgp_gather_blocks_trace, cgp_gather_blocks_end.
+ *           cgp_gather_blocks_prepare, cgp_gather_blocks_trace, cgp_gather_blocks_deferred,
+ *           cgp_gather_blocks_end.
  *
  * Shared by cone_gather and hybrid_gather (and a plugin gather that wants the same). A gather's
- * shader that takes part includes common/upsample.glsl and has two entry points by define:
- *   CG_GATHER_LOWRES  one invocation per block (cg_gather_pixel over the image of blocks, bound as
- *                     `radiance` at image unit 0): the diffuse cones of the block's representative
- *                     pixel (cg_upsample_representative), before the material's diffuse share;
- *   otherwise         every pixel as before, its diffuse light from cg_upsample_diffuse, its own
- *                     cones where that fails; the specular and refracted cones at every pixel.
- * With downsample = 1 neither is compiled in and the shader is the gather it always was.
+ * shader that takes part includes common/upsample.glsl and has three entry points by define:
+ *   CG_GATHER_LOWRES    one invocation per block (cg_gather_pixel over the image of blocks, bound as
+ *                       `radiance` at image unit 0): the diffuse cones of the block's representative
+ *                       pixel (cg_upsample_representative), before the material's diffuse share;
+ *   otherwise           every pixel as before, its diffuse light from cg_upsample_diffuse; where that
+ *                       fails the pixel is listed (cg_upsample_defer) and its diffuse light left 0;
+ *                       the specular and refracted cones at every pixel;
+ *   CG_GATHER_DEFERRED  one invocation per listed pixel (common/upsample.glsl's main, which calls the
+ *                       shader's cg_upsample_trace and cg_upsample_camera): its own diffuse cones.
+ * With downsample = 1 none is compiled in and the shader is the gather it always was. A pass runs
+ * them as: cgp_gather_begin, cgp_gather_blocks_trace, cgp_gather_dispatch, cgp_gather_blocks_deferred,
+ * cgp_gather_end, cgp_gather_blocks_end.
  *
  * With temporal = N > 1 (CG_GATHER_TEMPORAL in the block program) the blocks of one turn in N trace
  * each frame and the others keep their light where their pixel still sees the surface they traced
@@ -66,6 +72,9 @@ typedef struct cgp_gather_blocks {
     GLuint history[2];      /* temporal > 1: each block's traced surface, position (w: 1 for a surface)
                              * and normal, RGBA32F */
     bool traced;            /* temporal > 1: the blocks hold a frame's light (not before the first) */
+    GLuint deferred_program; /* the gather's shader with CG_GATHER_DEFERRED */
+    GLuint deferred;        /* the pixels no block agrees with (CG_GATHER_DEFERRED_BLOCK, a pixel of the
+                             * image each at most): 4 bytes a pixel, the state's */
 } cgp_gather_blocks;
 
 /* The define the gather's full-resolution program needs ("#define CG_GATHER_DOWNSAMPLE D\n"),
@@ -77,11 +86,14 @@ const char *cgp_gather_blocks_define(const fg_pass *pass, char *out, size_t size
  * for the pass's output `radiance`. Owned by `state`. */
 bool cgp_gather_blocks_prepare(void *state, const fg_pass *pass, const cgp_gather *g, cgp_gather_blocks *b,
                                const char *shader, const char *defines, cg_error *err);
-/* In execute(), after cgp_gather_begin and the pass's own bindings, before cgp_gather_end: runs
+/* In execute(), after cgp_gather_begin and the pass's own bindings, before cgp_gather_dispatch: runs
  * the block program over the blocks (everything cgp_gather_begin bound is its too), then binds
- * the blocks at CG_UNIT_GATHER_BLOCKS and the full-resolution program and `radiance` again.
- * Nothing for downsample 1. */
+ * the blocks at CG_UNIT_GATHER_BLOCKS, the emptied list of deferred pixels, and the full-resolution
+ * program and `radiance` again. Nothing for downsample 1. */
 void cgp_gather_blocks_trace(const fg_pass *pass, const cgp_gather *g, cgp_gather_blocks *b);
+/* After cgp_gather_dispatch: the deferred pixels' own cones (CG_GATHER_DEFERRED), over the list the
+ * full-resolution dispatch made. Nothing for downsample 1. */
+void cgp_gather_blocks_deferred(const fg_pass *pass, const cgp_gather *g, const cgp_gather_blocks *b);
 /* After cgp_gather_end: unbinds the blocks. */
 void cgp_gather_blocks_end(const cgp_gather_blocks *b);
 

@@ -177,11 +177,13 @@ list_capacity(const fg_resource_desc *volume)
 }
 
 /* The `spacing` buffer (bounce_spacing S > 1, shaders/voxel_light/spacing.glsl): the list of the voxels
- * that trace and that of those mixed, each a cg_voxel_list_block and list_capacity entries, then one
- * key per block of S^3 voxels and one plane (4 floats) per block. Each part starts on a multiple of
- * SPACING_ALIGN bytes, so that it binds as a range of its own (GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT
- * is at most 256 on the GL 4.5 implementations this runs on: llvmpipe's is 16). */
+ * that trace and that of those mixed, each a cg_voxel_list_block and list_capacity entries, then per
+ * block of S^3 voxels its representative's plane and key (SPACING_BLOCK_BYTES, std430's VoxelLightBlock).
+ * Each part starts on a multiple of SPACING_ALIGN bytes, so that it binds as a range of its own
+ * (GL_SHADER_STORAGE_BUFFER_OFFSET_ALIGNMENT is at most 256 on the GL 4.5 implementations this runs
+ * on: llvmpipe's is 16). */
 #define SPACING_ALIGN 256
+#define SPACING_BLOCK_BYTES 32     /* vec4 plane, uint key, padded to the struct's 16-byte alignment */
 
 static size_t
 spacing_list_bytes(const fg_resource_desc *volume)
@@ -199,17 +201,9 @@ spacing_blocks(const fg_resource_desc *volume, int spacing)
 }
 
 static size_t
-spacing_keys_bytes(const fg_resource_desc *volume, int spacing)
-{
-    size_t bytes = sizeof(GLuint) * spacing_blocks(volume, spacing);
-    return (bytes + SPACING_ALIGN - 1) / SPACING_ALIGN * SPACING_ALIGN;
-}
-
-static size_t
 spacing_bytes(const fg_resource_desc *volume, int spacing)
 {
-    return 2 * spacing_list_bytes(volume) + spacing_keys_bytes(volume, spacing) +
-           4 * sizeof(float) * spacing_blocks(volume, spacing);
+    return 2 * spacing_list_bytes(volume) + SPACING_BLOCK_BYTES * spacing_blocks(volume, spacing);
 }
 
 /* Whether any mesh that a voxelize pass may have voxelized emits (emission in the volume), or a
@@ -395,16 +389,14 @@ bind_spacing(const fg_pass *pass, const voxel_light_state *s)
     GLintptr part = (GLintptr)spacing_list_bytes(volume);
     glBindBufferRange(GL_SHADER_STORAGE_BUFFER, CG_BINDING_VOXEL_TRACED, buffer, 0, part);
     glBindBufferRange(GL_SHADER_STORAGE_BUFFER, CG_BINDING_VOXEL_MIXED, buffer, part, part);
-    GLintptr keys = (GLintptr)spacing_keys_bytes(volume, s->spacing);
-    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, CG_BINDING_VOXEL_KEYS, buffer, 2 * part, keys);
-    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, CG_BINDING_VOXEL_PLANES, buffer, 2 * part + keys,
-                      (GLsizeiptr)(4 * sizeof(float) * spacing_blocks(volume, s->spacing)));
+    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, CG_BINDING_VOXEL_BLOCKS, buffer, 2 * part,
+                      (GLsizeiptr)(SPACING_BLOCK_BYTES * spacing_blocks(volume, s->spacing)));
 }
 
 static void
 unbind_spacing(void)
 {
-    for (GLuint b = CG_BINDING_VOXEL_TRACED; b <= CG_BINDING_VOXEL_PLANES; b++)
+    for (GLuint b = CG_BINDING_VOXEL_TRACED; b <= CG_BINDING_VOXEL_BLOCKS; b++)
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, 0);
 }
 
@@ -421,8 +413,9 @@ sort_voxels(const fg_pass *pass, voxel_light_state *s)
     const cg_voxel_list_block empty = {.dispatch = {0, 1, 1, 0}};
     glNamedBufferSubData(buffer, 0, sizeof empty, &empty);
     glNamedBufferSubData(buffer, part, sizeof empty, &empty);
+    /* Every byte of the blocks to all ones: each key VOXEL_LIGHT_NO_KEY (the planes are written where a key is). */
     const GLuint no_key = 0xffffffffu;
-    glClearNamedBufferSubData(buffer, GL_R32UI, 2 * part, (GLsizeiptr)spacing_keys_bytes(volume, s->spacing),
+    glClearNamedBufferSubData(buffer, GL_R32UI, 2 * part, (GLsizeiptr)(SPACING_BLOCK_BYTES * spacing_blocks(volume, s->spacing)),
                               GL_RED_INTEGER, GL_UNSIGNED_INT, &no_key);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_VOXEL_LIST, fg_slot_buffer(pass, s->voxels));
     bind_spacing(pass, s);

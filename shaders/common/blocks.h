@@ -5,7 +5,7 @@
  * Provides: CG_BINDING_* and CG_UNIT_* numbers; the member lists CG_*_BLOCK(M, A); in C the
  *           structs cg_shadow_block, cg_volume_block, cg_heightmap_block, cg_hsat_info_block,
  *           cg_cone_set_block, cg_cone_gather_block, cg_hybrid_gather_block, cg_sky_block,
- *           cg_voxel_list_block; in GLSL the
+ *           cg_voxel_list_block, cg_gather_deferred_block; in GLSL the
  *           declarations CG_UNIFORM_BLOCK() and CG_STORAGE_BLOCK() that consumers write once.
  *
  * A block is a member list, CG_NAME_BLOCK(M, A), that calls M(type, name) for each member and
@@ -37,8 +37,7 @@
 #define CG_BINDING_VOXEL_LIST 4         /* voxel_light: the occupied voxels (CG_VOXEL_LIST_BLOCK) */
 #define CG_BINDING_VOXEL_TRACED 5       /* voxel_light, bounce_spacing > 1: the voxels that trace */
 #define CG_BINDING_VOXEL_MIXED 6        /* voxel_light, bounce_spacing > 1: the voxels mixed from them */
-#define CG_BINDING_VOXEL_KEYS 7         /* voxel_light, bounce_spacing > 1: each block's representative */
-#define CG_BINDING_VOXEL_PLANES 8       /* voxel_light, bounce_spacing > 1: its tangent plane */
+#define CG_BINDING_VOXEL_BLOCKS 7       /* voxel_light, bounce_spacing > 1: each block's representative */
 
 /* ---- uniform blocks (UBO bindings) */
 #define CG_BINDING_SHADOW 2             /* CG_SHADOW_BLOCK, a shadow_map pass's `matrix` */
@@ -74,6 +73,8 @@
  * block's traced surface (position, then normal at the next unit) and the uniform of the frame's turn. */
 #define CG_IMAGE_BLOCK_HISTORY 5
 #define CG_UPSAMPLE_TEMPORAL_LOCATION 20
+/* A gather's pixels that no block agrees with (sdk/upsample.h): SSBO, CG_GATHER_DEFERRED_BLOCK. */
+#define CG_BINDING_GATHER_DEFERRED 3
 /* ---- texture units of voxelize's surface model beside the scene's (common/scene.glsl: 0, 1, 24..27) */
 #define CG_UNIT_SPECULAR_HEMISPHERICAL 28 /* the specular lobe's (Abar, Bbar) per roughness (cgp_brdf_hemispherical_fill) */
 
@@ -145,6 +146,12 @@
 #define CG_VOXEL_LIST_BLOCK(M, A)                                                                 \
     M(uvec4, dispatch)    /* x groups of 64 voxels, y = z = 1, w voxels listed */
 
+/* A gather's pixels that trace their own diffuse cones (common/upsample.glsl), std430: this header,
+ * then one uint per pixel (x | y << 16); the header is an indirect dispatch (x groups of 64 pixels,
+ * y = z = 1) and w the pixels listed. */
+#define CG_GATHER_DEFERRED_BLOCK(M, A)                                                             \
+    M(uvec4, dispatch)    /* x groups of 64 pixels, y = z = 1, w pixels listed */
+
 /* Quadrature points per cone cell in hybrid_gather's horizon method. */
 #define CG_HYBRID_CELL_POINTS 6
 
@@ -214,6 +221,7 @@ CG_C_BLOCK(cg_cone_gather_block, CG_CONE_GATHER_BLOCK, 48);
 CG_C_BLOCK(cg_hybrid_gather_block, CG_HYBRID_GATHER_BLOCK, 2944);
 CG_C_BLOCK(cg_sky_block, CG_SKY_BLOCK, 16);
 CG_C_BLOCK(cg_voxel_list_block, CG_VOXEL_LIST_BLOCK, 16);
+CG_C_BLOCK(cg_gather_deferred_block, CG_GATHER_DEFERRED_BLOCK, 16);
 
 #else
 /* ---- GLSL: the declaration of a block, written once by its consumer */

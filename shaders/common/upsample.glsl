@@ -18,9 +18,15 @@
 // so this keeps the light of one surface from reaching another across a depth or normal edge.
 // Where no block agrees well enough (a thin object between blocks, a silhouette whose block
 // centres fell on the background), the pixel traces its own cones: the answer there is the
-// full-resolution gather's, never a neighbour's light.
+// full-resolution gather's, never a neighbour's light. It traces them in a dispatch of its own
+// (CG_GATHER_DEFERRED, the third entry point, over the list the full-resolution dispatch made:
+// cg_upsample_defer), not in the full-resolution dispatch: a lockstep group of pixels waits for its
+// slowest lane, so each such pixel held up its whole group for a trace (0.55% of the open world's
+// pixels at 640x360 cost about 70 ms of a 480 ms gather on llvmpipe; docs/results/gi-resolution.md).
 //
-// Provides: cg_upsample_tolerance(), cg_upsample_block_kept(),
+// Provides: cg_upsample_tolerance(), cg_upsample_block_kept(), cg_upsample_defer(), with
+//           CG_GATHER_DEFERRED the entry point main() (which calls the gather's cg_upsample_trace()
+//           and cg_upsample_camera(), declared here),
 //           cg_upsample_representative(), cg_upsample_is_representative(), cg_upsample_diffuse().
 #ifndef CG_COMMON_UPSAMPLE_GLSL
 #define CG_COMMON_UPSAMPLE_GLSL
@@ -35,6 +41,22 @@
 // The blocks' diffuse light: rgb the incident radiance integral E_i/pi before the material's
 // diffuse share, a the ambient visibility, one texel a block (cgp_gather_blocks_trace).
 layout(binding = CG_UNIT_GATHER_BLOCKS) uniform sampler2D cg_upsample_blocks;
+
+// The pixels no block agrees with, which trace their own cones in the CG_GATHER_DEFERRED dispatch.
+layout(std430, binding = CG_BINDING_GATHER_DEFERRED) buffer CgUpsampleDeferred {
+    CG_GATHER_DEFERRED_BLOCK(CG_GLSL_MEMBER, CG_GLSL_ARRAY)
+    uint pixels[];
+} cg_upsample_deferred;
+
+// Lists `pixel` for the CG_GATHER_DEFERRED dispatch (the list holds a pixel of the image each).
+void
+cg_upsample_defer(ivec2 pixel)
+{
+    uint i = atomicAdd(cg_upsample_deferred.dispatch.w, 1u);
+    cg_upsample_deferred.pixels[i] = uint(pixel.x) | (uint(pixel.y) << 16);
+    if (i % 64u == 0u)
+        atomicAdd(cg_upsample_deferred.dispatch.x, 1u);
+}
 
 // The plane distance at which a block's agreement with a pixel `position` seen from `camera`
 // falls to 0: it follows the spacing of the blocks on the screen.
@@ -144,5 +166,35 @@ cg_upsample_diffuse(ivec2 pixel, vec3 position, vec3 n, vec3 camera, out vec4 di
     diffuse = sum / weight;
     return true;
 }
+
+#ifdef CG_GATHER_DEFERRED
+// Defined by the gather after this file: the diffuse cones of the surface point `position` with
+// unit normal `n` seen at `pixel` (before the material's diffuse share: rgb E_i / pi, a the ambient
+// visibility), and the camera's position.
+vec4 cg_upsample_trace(ivec2 pixel, vec3 position, vec3 n);
+vec3 cg_upsample_camera();
+
+// The third entry point: each listed pixel's diffuse light, its own cones times the material's
+// diffuse share, as the full-resolution dispatch would have written it (which wrote the pixel's other
+// outputs already, and its diffuse light 0).
+void
+main()
+{
+    uint i = gl_WorkGroupID.x * 64u + gl_LocalInvocationIndex;
+    if (i >= cg_upsample_deferred.dispatch.w)
+        return;
+    uint listed = cg_upsample_deferred.pixels[i];
+    ivec2 pixel = ivec2(listed & 0xffffu, listed >> 16);
+    vec3 position, n;
+    cg_gather_surface(pixel, position, n);  // a surface: only those are listed
+    vec4 diffuse = cg_upsample_trace(pixel, position, n);
+#ifdef CG_GATHER_MATERIAL
+    CgGatherMaterial m = cg_gather_material(pixel);
+    vec3 view = normalize(position - cg_upsample_camera());
+    diffuse.rgb *= cg_gather_diffuse_share(m, cg_gather_brdf(max(dot(n, -view), 0.0), m.roughness));
+#endif
+    imageStore(cg_gather_radiance, pixel, diffuse);
+}
+#endif
 
 #endif

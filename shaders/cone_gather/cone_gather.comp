@@ -19,7 +19,8 @@
 // transmittance 1 - a is a soft visibility.
 // Decoupled resolution (CG_GATHER_DOWNSAMPLE, common/upsample.glsl): the diffuse cones at one pixel
 // of each block (the CG_GATHER_LOWRES entry point), every pixel's diffuse light upsampled from them
-// or, where no block's surface agrees with the pixel's, traced; the other cones at every pixel.
+// or, where no block's surface agrees with the pixel's, traced in a dispatch of those pixels alone
+// (the CG_GATHER_DEFERRED entry point); the other cones at every pixel.
 #version 450 core
 #include "common/cone_trace.glsl"
 #include "common/gather.glsl"
@@ -76,6 +77,25 @@ trace_diffuse(vec3 position, vec3 n)
     return cg_cone_gather_diffuse(cg_gather_volume, v, origin, cg_tangent_frame(n), t_max, offset);
 }
 
+#ifdef CG_GATHER_DOWNSAMPLE
+// The deferred pixels' cones (common/upsample.glsl's CG_GATHER_DEFERRED entry point), their reads counted.
+vec4
+cg_upsample_trace(ivec2 pixel, vec3 position, vec3 n)
+{
+    vec4 diffuse = trace_diffuse(position, n);
+#ifdef CG_CONE_COUNT_READS
+    imageStore(u_reads, pixel, vec4(cg_cone_reads));
+#endif
+    return diffuse;
+}
+
+vec3
+cg_upsample_camera()
+{
+    return cg_cone_gather_block.camera.xyz;
+}
+#endif
+
 #ifdef CG_GATHER_LOWRES
 // One block: the diffuse cones of its representative pixel, for every surface (a block's light
 // serves the pixels around it, whatever its own material), into the image of blocks.
@@ -98,7 +118,7 @@ main()
     imageStore(u_reads, pixel, vec4(cg_cone_reads));    // 0 for a block kept
 #endif
 }
-#else
+#elif !defined(CG_GATHER_DEFERRED)
 void
 main()
 {
@@ -128,11 +148,13 @@ main()
         bool diffuse_lobe = true;
 #endif
 #ifdef CG_GATHER_DOWNSAMPLE
+        // No block agrees: its own cones, in the deferred dispatch (common/upsample.glsl).
         if (diffuse_lobe && !cg_upsample_diffuse(pixel, position, n, cg_cone_gather_block.camera.xyz, diffuse))
+            cg_upsample_defer(pixel);
 #else
         if (diffuse_lobe)
-#endif
             diffuse = trace_diffuse(position, n);
+#endif
 #ifdef CG_CONE_COUNT_READS
         diffuse_reads = cg_cone_reads;    // the diffuse cones' alone
 #endif

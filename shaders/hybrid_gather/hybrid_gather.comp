@@ -34,7 +34,8 @@
 //
 // Decoupled resolution (CG_GATHER_DOWNSAMPLE, common/upsample.glsl), as cone_gather's: the diffuse
 // cones at one pixel of each block (the CG_GATHER_LOWRES entry point), every pixel's diffuse light
-// upsampled from them or traced where no block agrees; the material cones at every pixel.
+// upsampled from them or, where no block agrees, traced in a dispatch of those pixels alone (the
+// CG_GATHER_DEFERRED entry point); the material cones at every pixel.
 #version 450 core
 #include "common/cone_trace.glsl"
 #include "common/gather.glsl"
@@ -845,6 +846,21 @@ trace_diffuse(vec3 position, vec3 n, Reach r)
     return diffuse;
 }
 
+#ifdef CG_GATHER_DOWNSAMPLE
+// The deferred pixels' cones (common/upsample.glsl's CG_GATHER_DEFERRED entry point).
+vec4
+cg_upsample_trace(ivec2 pixel, vec3 position, vec3 n)
+{
+    return trace_diffuse(position, n, gather_reach(position, n));
+}
+
+vec3
+cg_upsample_camera()
+{
+    return cg_hybrid_gather_block.camera.xyz;
+}
+#endif
+
 #ifdef CG_GATHER_LOWRES
 // One block: the diffuse cones of its representative pixel, for every surface (a block's light
 // serves the pixels around it, whatever its own material), into the image of blocks.
@@ -864,7 +880,7 @@ main()
         diffuse = trace_diffuse(position, n, gather_reach(position, n));
     imageStore(cg_gather_radiance, block, diffuse);
 }
-#else
+#elif !defined(CG_GATHER_DEFERRED)
 void
 main()
 {
@@ -885,11 +901,13 @@ main()
 #endif
         Reach reach = gather_reach(position, n);
 #ifdef CG_GATHER_DOWNSAMPLE
+        // No block agrees: its own cones, in the deferred dispatch (common/upsample.glsl).
         if (diffuse_lobe && !cg_upsample_diffuse(pixel, position, n, cg_hybrid_gather_block.camera.xyz, diffuse))
+            cg_upsample_defer(pixel);
 #else
         if (diffuse_lobe)
-#endif
             diffuse = trace_diffuse(position, n, reach);
+#endif
 #ifdef CG_GATHER_MATERIAL
         diffuse.rgb *= cg_gather_diffuse_share(mat, cg_gather_brdf(max(dot(n, -view), 0.0), mat.roughness));
         float offset = cg_cone_march().start_offset * reach.xel;

@@ -16,5 +16,6 @@ main()
     if (length(texelFetch(u_normal, v, 0).xyz) < VOXEL_LIGHT_MIN_COHERENCE)
         return;
     CgVolume vol = cg_volume();
-    atomicMin(voxel_light_spacing.keys[voxel_light_block_index(vol, v / VOXEL_LIGHT_SPACING)], voxel_light_block_key(v));
+    atomicMin(voxel_light_spacing.blocks[voxel_light_block_index(vol, v / VOXEL_LIGHT_SPACING)].key,
+              voxel_light_block_key(v));
 }

@@ -27,7 +27,7 @@ main()
         return;
     }
     ivec3 b = v / VOXEL_LIGHT_SPACING;
-    if (voxel_light_spacing.keys[voxel_light_block_index(vol, b)] == voxel_light_block_key(v)) {
+    if (voxel_light_spacing.blocks[voxel_light_block_index(vol, b)].key == voxel_light_block_key(v)) {
         append_traced(v);
         return;
     }

@@ -11,7 +11,7 @@
 // that trace (`traced`: the representatives and those) and the others (`mixed`), gather.comp traces
 // the first list and fill.comp mixes the second.
 //
-// Provides: voxel_light_spacing (the block keys), voxel_light_planes, voxel_light_traced,
+// Provides: voxel_light_spacing (each block's key and plane), voxel_light_traced,
 //           voxel_light_mixed (lists of CG_VOXEL_LIST_BLOCK), voxel_light_blocks(),
 //           voxel_light_block_index(), voxel_light_block_key(), voxel_light_key_voxel(),
 //           voxel_light_agreement(), voxel_light_mix_blocks(), voxel_light_mix().
@@ -30,17 +30,18 @@
 // A block with no representative.
 #define VOXEL_LIGHT_NO_KEY 0xffffffffu
 
-// Per block (x + bx (y + by z), bx = ceil(dims.x / S)), the least key of its occupied voxels.
-layout(std430, binding = CG_BINDING_VOXEL_KEYS) buffer VoxelLightSpacing {
-    uint keys[];
+// Per block (x + bx (y + by z), bx = ceil(dims.x / S)): the least key of its occupied voxels
+// (pick.comp), and its representative's tangent plane (planes.comp): unit normal m and m . q (q its
+// surface point), which every voxel that mixes from the block compares with its own (voxel_light_mix);
+// kept here, not read from the volumes, as the blocks around each voxel would read them again and again.
+// One buffer, so that voxel_light's storage bindings stay within GL's guaranteed 8.
+struct VoxelLightBlock {
+    vec4 plane;
+    uint key;
+};
+layout(std430, binding = CG_BINDING_VOXEL_BLOCKS) buffer VoxelLightSpacing {
+    VoxelLightBlock blocks[];
 } voxel_light_spacing;
-
-// Per block, its representative's tangent plane (planes.comp): unit normal m and m . q (q its surface
-// point), which every voxel that mixes from the block compares with its own (voxel_light_mix); read
-// here, not from the volumes, as the 27 blocks of each voxel would read them again and again.
-layout(std430, binding = CG_BINDING_VOXEL_PLANES) buffer VoxelLightPlanes {
-    vec4 planes[];
-} voxel_light_planes;
 
 layout(std430, binding = CG_BINDING_VOXEL_TRACED) buffer VoxelLightTraced {
     CG_VOXEL_LIST_BLOCK(CG_GLSL_MEMBER, CG_GLSL_ARRAY)
@@ -131,11 +132,11 @@ voxel_light_mix_blocks(CgVolume vol, vec3 f, ivec3 first, int count, float reach
         if (any(lessThan(b, ivec3(0))) || any(greaterThanEqual(b, blocks)))
             continue;
         uint index = voxel_light_block_index(vol, b);
-        uint key = voxel_light_spacing.keys[index];
+        uint key = voxel_light_spacing.blocks[index].key;
         if (key == VOXEL_LIGHT_NO_KEY)
             continue;
         vec3 tent = max(vec3(1.0) - abs(f - vec3(b)) / reach, vec3(0.0));
-        float w = tent.x * tent.y * tent.z * voxel_light_agreement(voxel_light_planes.planes[index], x, n, tolerance);
+        float w = tent.x * tent.y * tent.z * voxel_light_agreement(voxel_light_spacing.blocks[index].plane, x, n, tolerance);
         if (w == 0.0)
             continue;
         sum += w;
