@@ -100,7 +100,8 @@ box_under_the_sky(void **state)
         assert_true(cg_test_json_number(out, "\"full\"", "rmse") == 0.0);
         assert_true(cg_test_json_number(out, "\"full\"", "mean_luminance_ref") > 0.1);
         /* Measured at 64x36, 256 spp, 26 cones, the diffuse cones at one pixel in 4x4 (downsample 4,
-         * as shipped): vct.json 0.920, hybrid.json 0.920; at every pixel (downsample 1) 0.946 and
+         * as shipped) and voxel_light's gathers at one voxel in 4^3 (bounce_spacing 4, as shipped):
+         * vct.json 0.916, hybrid.json 0.916 (0.920 with bounce_spacing 1); at every pixel (downsample 1) 0.946 and
          * 0.944 (no height field here: the hybrid's march is cone_gather's on the same surface
          * voxels, in a box at 128 where vct.json's cube is 128^3: the same voxels; its start offset
          * 0.75 voxel against 1). The sky enters through the open front only; at every pixel the 5%
@@ -111,7 +112,7 @@ box_under_the_sky(void **state)
          * The bounds hold the measured figures with a margin of 0.1 for the noise of the truth and
          * the platform, and fail for a sky left out (0), for voxels that do not see it
          * (`light.bounces=0`: 0.75 at 160x90) or for a sky gathered through the walls. */
-        const double measured = 0.920;
+        const double measured = 0.916;
         if (fabs(f.gi_energy - measured) > 0.1)
             fail_msg("%s: GI energy %.4f, measured %.3f (0.1 allowed)", graphs[g], f.gi_energy, measured);
     }
@@ -131,7 +132,7 @@ open_world_under_the_sky(void **state)
         /* Issue 11's bar: within 7% of the path tracer's mean luminance (measured 0.988 and 0.986). */
         assert_true(fabs(f.full_lum_ratio - 1.0) < 0.07);
         /* GI energy against the reference's bounces plus its once-reflected sky light, measured
-         * 0.947 (vct.json) and 0.936 (hybrid.json): the cone tracers miss the sky light
+         * 0.949 (vct.json) and 0.938 (hybrid.json): the cone tracers miss the sky light
          * reflected twice; 0.1 allowed around 0.93. */
         assert_true(fabs(f.gi_energy - 0.93) < 0.1);
     }
