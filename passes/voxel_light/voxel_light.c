@@ -123,6 +123,7 @@ static const char *const source_names[2] = {"source_front", "source_back"};
 
 typedef struct voxel_light_state {
     GLuint inject, inject_listed, list, mip, gather;
+    GLuint gather_whole;    /* gather.comp over the whole volume, for a list that overflowed */
     GLuint pick, planes, sort, fill;    /* bounce_spacing > 1: spacing.glsl's programs (0 otherwise) */
     GLuint sampler;         /* the volumes, for the gathers at the voxels */
     GLuint one_level;       /* the radiance again at CG_UNIT_OCCUPANCY (cgp_sampler_volume_one_level) */
@@ -356,7 +357,9 @@ voxel_light_prepare(fg_pass *pass, voxel_light_state *s, cg_error *err)
            cgp_compute_program(s, "voxel_light/list.comp", NULL, &s->list, err) &&
            cgp_compute_program(s, "voxel_light/mip.comp", NULL, &s->mip, err) &&
            (!s->gathers ||
-            cgp_compute_program(s, "voxel_light/gather.comp", "#define CG_CONE_SURFACE\n", &s->gather, err));
+            (cgp_compute_program(s, "voxel_light/gather.comp", "#define CG_CONE_SURFACE\n", &s->gather, err) &&
+             cgp_compute_program(s, "voxel_light/gather.comp", "#define CG_CONE_SURFACE\n#define VOXEL_LIGHT_WHOLE\n",
+                                 &s->gather_whole, err)));
 }
 
 /* Lists the occupied voxels (list.comp) into `voxels`; returns how many there are (the list holds
@@ -576,7 +579,9 @@ mip(const fg_pass *pass, voxel_light_state *s)
 static void
 gather(const fg_pass *pass, voxel_light_state *s, bool of_v0)
 {
-    glUseProgram(s->gather);
+    /* A list that overflowed misses voxels: then every voxel of the volume gathers (empty ones write 0). */
+    bool whole = s->listed > list_capacity(fg_slot_resource(pass, s->light[0]));
+    glUseProgram(whole ? s->gather_whole : s->gather);
     glUniform1ui(3, list_capacity(fg_slot_resource(pass, s->light[0])));
     bool source = of_v0 && s->source;
     glUniform1i(4, source);
@@ -601,8 +606,12 @@ gather(const fg_pass *pass, voxel_light_state *s, bool of_v0)
     GLuint list = s->spaced ? fg_slot_buffer(pass, s->spacing_slot) : fg_slot_buffer(pass, s->voxels);
     if (s->spaced)
         glBindBufferRange(GL_SHADER_STORAGE_BUFFER, CG_BINDING_VOXEL_LIST, list, 0, (GLsizeiptr)spacing_list_bytes(volume));
-    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, list);
-    glDispatchComputeIndirect(0);
+    if (whole) {
+        glDispatchCompute((GLuint)(volume->width + 3) / 4, (GLuint)(volume->height + 3) / 4, (GLuint)(volume->depth + 3) / 4);
+    } else {
+        glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, list);
+        glDispatchComputeIndirect(0);
+    }
     s->dispatches++;
     glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
     if (s->spaced) {

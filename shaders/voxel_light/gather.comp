@@ -8,7 +8,14 @@
 // u_source: the volumes hold V_0 (the emitters' light); the result, G(V_0), is also written to
 // u_source_front and u_source_back, which inject.comp reads for the glossy volume's specular albedo
 // (passes/voxel_light's header).
+// VOXEL_LIGHT_WHOLE: one invocation per voxel of the volume instead of the list, for a list that
+// overflowed (more occupied voxels than it holds): an empty voxel has no side to gather on and writes
+// 0, as inject.comp's whole-volume fallback does.
+#ifdef VOXEL_LIGHT_WHOLE
+layout(local_size_x = 4, local_size_y = 4, local_size_z = 4) in;
+#else
 layout(local_size_x = 64) in;
+#endif
 
 #include "common/cone_trace.glsl"
 #include "voxel_light/surface.glsl"
@@ -27,8 +34,15 @@ layout(r11f_g11f_b10f, binding = 3) writeonly uniform image3D u_source_back;
 void
 main()
 {
+#ifdef VOXEL_LIGHT_WHOLE
+    CgVolume vol = cg_volume();
+    ivec3 v = ivec3(gl_GlobalInvocationID);
+    if (any(greaterThanEqual(v, ivec3(vol.dims))))
+        return;
+#else
     VOXEL_LIGHT_LISTED_VOXEL(voxel_light_list, u_list_capacity, v);
     CgVolume vol = cg_volume();
+#endif
     vec4 nd = texelFetch(u_normal, v, 0);
     float coherence = length(nd.xyz);
     vec4 gathered[2] = vec4[2](vec4(0.0), vec4(0.0));
