@@ -54,9 +54,9 @@
  * changed: a turning sun under a uniform sky costs one inject and its mips. cache = false relights
  * every frame. A relight's cost follows the occupied voxels, not the volume: they are listed (one read
  * per voxel of the volume, again only where the geometry may have changed), level 0 is cleared and the
- * inject runs over the list (over the whole volume only when the list overflows). The pass reports what it
- * did through fg_pass_report_rebuilt, with the compute dispatches it made, so that a test can see a
- * static frame do nothing.
+ * inject and the gathers run over the list (over the whole volume only when it overflows). The pass
+ * reports what it did through fg_pass_report_rebuilt, with the compute dispatches it made, so that a
+ * test can see a static frame do nothing.
  *
  * The gathers at the voxels, one hemisphere of cones on each side of every occupied voxel, are most of
  * a relight's cost where they run (16 cones, 128^3: 3.6 s a gather on Debian's 12-triangle BoxTextured,
