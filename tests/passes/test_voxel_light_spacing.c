@@ -31,6 +31,15 @@ static const char graph[] =
     "     \"shadow\": \"shadow.depth\", \"shadow_matrix\": \"shadow.matrix\" } } },"
     " \"outputs\": [ \"light.radiance\", \"light.sides\", \"light.normals\" ] }";
 
+/* A uniform sky of radiance (r, g, b) over the scene. */
+static void
+set_sky(cg_scene *scene, float r, float g, float b)
+{
+    cg_error err = {0};
+    cg_sky sky = {.type = CG_SKY_UNIFORM, .radiance = {r, g, b}};
+    assert_cg_ok(cg_scene_set_sky(scene, &sky, &err), &err);
+}
+
 /* The number in voxel_light's report "N gather(s) of M voxels": M, the voxels that traced. */
 static unsigned
 traced_voxels(const vf_runner *r)
@@ -158,9 +167,7 @@ test_closed_box_under_sky(void **state)
     add_quad(&box, o, z, y);
     add_quad(&box, ox, y, z);
     vf_finish(&box);
-    cg_error err = {0};
-    cg_sky sky = {.type = CG_SKY_UNIFORM, .radiance = {0.5f, 0.5f, 0.5f}};
-    assert_cg_ok(cg_scene_set_sky(&box.scene, &sky, &err), &err);
+    set_sky(&box.scene, 0.5f, 0.5f, 0.5f);
     vf_runner every, spaced;
     vf_run_format(&every, &box.scene, 16, 16, graph, 32, 1, 1);
     vf_run_format(&spaced, &box.scene, 16, 16, graph, 32, 1, 4);
@@ -187,9 +194,7 @@ test_town_close_to_every_voxel(void **state)
     const double sun[3] = {0.4, -1.0, 0.3};
     hf_sun(&town, sun, 3.0f);
     hf_finish(&town);
-    cg_error err = {0};
-    cg_sky sky = {.type = CG_SKY_UNIFORM, .radiance = {0.3f, 0.35f, 0.4f}};
-    assert_cg_ok(cg_scene_set_sky(&town.scene, &sky, &err), &err);
+    set_sky(&town.scene, 0.3f, 0.35f, 0.4f);
     vf_runner every;
     vf_run_format(&every, &town.scene, 16, 16, graph, 64, 2, 1);
     unsigned all = traced_voxels(&every);
@@ -228,9 +233,7 @@ test_shelf_over_floor(void **state)
     const double shelf[3] = {-2.0, 0.75, -2.0}, e1[3] = {4.0, 0.0, 0.0}, e2[3] = {0.0, 0.0, 4.0};
     hf_quad(&s, shelf, e2, e1);
     hf_finish(&s);
-    cg_error err = {0};
-    cg_sky sky = {.type = CG_SKY_UNIFORM, .radiance = {0.5f, 0.5f, 0.5f}};
-    assert_cg_ok(cg_scene_set_sky(&s.scene, &sky, &err), &err);
+    set_sky(&s.scene, 0.5f, 0.5f, 0.5f);
     vf_runner every, spaced;
     vf_run_format(&every, &s.scene, 16, 16, graph, 32, 1, 1);
     vf_run_format(&spaced, &s.scene, 16, 16, graph, 32, 1, 4);
@@ -300,9 +303,7 @@ test_list_overflow(void **state)
     hf_material(&s, 1, 0.5f, 0.0f);
     hf_grid(&s, 96, -3.9, -3.9, 7.8, folds, NULL);
     hf_finish(&s);
-    cg_error err = {0};
-    cg_sky sky = {.type = CG_SKY_UNIFORM, .radiance = {0.5f, 0.5f, 0.5f}};
-    assert_cg_ok(cg_scene_set_sky(&s.scene, &sky, &err), &err);
+    set_sky(&s.scene, 0.5f, 0.5f, 0.5f);
     for (int spacing = 1; spacing <= 4; spacing *= 4) {
         vf_runner r;
         vf_run_format(&r, &s.scene, 16, 16, graph, 32, 1, spacing);
