@@ -100,25 +100,39 @@ compare(const char *test, const char *ref, double *max_difference)
 }
 
 /* render --pass-costs: a header, then per frame a row per live pass (hybrid.json on openworld:
- * 10), with heightmap_raster's words: rasterized in the first frame, kept in the others. */
+ * 10), with heightmap_raster's words: rasterized in the first frame, kept in the others, and the
+ * gather's texture reads: a count, of pixels; none for the terrain's raster, which counts none. */
 static void
 check_costs(const char *path)
 {
     char *text = NULL;
     cg_error err = {0};
     assert_cg_ok(cg_read_file(path, &text, NULL, &err), &err);
-    assert_memory_equal(text, "frame,time,pass,type,ms,rebuilt\n", 32);
-    int rows = 0, terrain = 0;
+    const char *header = "frame,time,pass,type,ms,reads,items,item,rebuilt\n";
+    assert_memory_equal(text, header, strlen(header));
+    int rows = 0, terrain = 0, gathers = 0;
     for (char *line = strtok(strchr(text, '\n') + 1, "\n"); line; line = strtok(NULL, "\n")) {
         rows++;
         int frame = atoi(line);
         if (strstr(line, ",terrain,heightmap_raster,")) {
             terrain++;
             assert_non_null(strstr(line, frame == 0 ? "\"geometry rasterized (first frame);" : "\"geometry kept;"));
+            assert_non_null(strstr(line, ",,,\""));     /* no reads counted */
+        }
+        const char *gather = strstr(line, ",gather,hybrid_gather,");
+        if (gather) {
+            gathers++;
+            double ms = 0.0, reads = 0.0, items = 0.0;
+            char item[16] = "";
+            assert_int_equal(sscanf(gather + strlen(",gather,hybrid_gather,"), "%lf,%lf,%lf,%15[a-z],", &ms, &reads,
+                                    &items, item), 4);
+            assert_true(reads > items && items > 0.0);
+            assert_string_equal(item, "pixel");
         }
     }
     assert_int_equal(rows, 5 * 10);
     assert_int_equal(terrain, 5);
+    assert_int_equal(gathers, 5);
     free(text);
 }
 

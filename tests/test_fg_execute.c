@@ -1,6 +1,7 @@
 /* Frame-graph prepare and execute on a headless GL context: storage of every kind made
  * from descriptors, passes writing known values, previous-frame resources alternating,
- * timings in both modes, the JSON report, and no GL error anywhere. */
+ * timings in both modes, a pass's texture reads read back as its time is, the JSON report,
+ * and no GL error anywhere. */
 #include "test_support.h"
 
 #include <jansson.h>
@@ -150,5 +151,137 @@ graph_runs_and_is_timed(void **state)
     assert_no_gl_errors(ctx);
 }
 
+/* A pass that reports texture reads (fg_pass_report_reads): its counter holds, after frame k,
+ * reads 2^32 + 100 + k (the high word's carry) for 7 items; every third frame it reports none. */
+static bool
+counting_prepare(fg_pass *pass, void **state, cg_error *err)
+{
+    (void)pass;
+    GLuint *buffer = calloc(1, sizeof *buffer);
+    if (!buffer)
+        return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "out of memory");
+    glCreateBuffers(1, buffer);
+    glNamedBufferStorage(*buffer, FG_READS_COUNTER, NULL, GL_DYNAMIC_STORAGE_BIT);
+    *state = buffer;
+    return true;
+}
+
+static bool
+counting_execute(fg_pass *pass, void *state, cg_error *err)
+{
+    (void)err;
+    GLuint buffer = *(GLuint *)state;
+    uint64_t k = fg_pass_frame(pass)->index;
+    if (k % 3 == 2)
+        return true;
+    const GLuint counter[4] = { 100u + (GLuint)k, 1u, 7u, 0u };
+    glNamedBufferSubData(buffer, 0, sizeof counter, counter);
+    fg_pass_report_reads(pass, buffer, "texel");
+    return true;
+}
+
+static void
+counting_destroy(void *state)
+{
+    glDeleteBuffers(1, (GLuint *)state);
+    free(state);
+}
+
+static bool
+counting_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
+{
+    (void)pass;
+    (void)err;
+    const fg_resource_desc out = { .kind = FG_TEXTURE_2D, .format = GL_R32F, .width = 4, .height = 4, .depth = 1,
+                                   .levels = 1 };
+    fg_declare_output(decl, "out", &out, FG_ACCESS_IMAGE_STORE);
+    return true;
+}
+
+static const fg_pass_type counting_type = {
+    .abi_version = FG_ABI_VERSION,
+    .name = "counting",
+    .doc = "Reports known texture reads.",
+    .declare = counting_declare,
+    .prepare = counting_prepare,
+    .execute = counting_execute,
+    .destroy = counting_destroy,
+};
+
+static void
+expect_reads(fg_graph *graph, bool known, double reads)
+{
+    const fg_pass *pass = fg_graph_find_pass(graph, "count");
+    double r = -1.0, items = -1.0;
+    const char *item = "";
+    assert_int_equal(fg_pass_reads(pass, &r, &items, &item), known);
+    if (!known) {
+        assert_null(item);
+        return;
+    }
+    assert_true(r == reads);
+    assert_true(items == 7.0);
+    assert_string_equal(item, "texel");
+}
+
+/* The counts of a frame: at once with sync timing and none, a frame late with queries (read with
+ * the timestamps), none for a frame the pass did not count; in the report, the JSON report and
+ * fg_graph_reads_text. */
+static void
+reads_are_read_back(void **state)
+{
+    cg_context *ctx = cg_test_gl_context(state);
+    cg_error err = { 0 };
+    fg_registry *registry = fg_registry_create();
+    assert_cg_ok(fg_registry_add(registry, &counting_type, &err), &err);
+    fg_graph *graph = fg_graph_create(registry);
+    assert_cg_ok(fg_graph_add_pass(graph, "count", "counting", NULL, &err), &err);
+    assert_cg_ok(fg_graph_mark_output(graph, "count.out", NULL, &err), &err);
+    fg_frame frame = { .width = 4, .height = 4 };
+    assert_cg_ok(fg_graph_compile(graph, &frame, NULL, &err), &err);
+    assert_cg_ok(fg_graph_prepare(graph, &err), &err);
+    expect_reads(graph, false, 0);
+    const double high = 4294967296.0;
+    fg_timing_mode modes[2] = { FG_TIMING_SYNC, FG_TIMING_NONE };
+    for (int m = 0; m < 2; m++)
+        for (uint64_t k = 0; k < 3; k++) {
+            frame.index = k;
+            assert_cg_ok(fg_graph_execute(graph, &frame, modes[m], &err), &err);
+            expect_reads(graph, k != 2, high + 100.0 + (double)k);
+        }
+    char text[256];
+    frame.index = 1;
+    assert_cg_ok(fg_graph_execute(graph, &frame, FG_TIMING_SYNC, &err), &err);
+    assert_string_equal(fg_graph_reads_text(graph, text, sizeof text), "count 4295 M, 6.136e+08 a texel");
+    char path[4200];
+    snprintf(path, sizeof path, "%s/reads.json", cg_test_tmpdir());
+    assert_cg_ok(fg_graph_write_report_json(graph, path, &err), &err);
+    json_error_t jerr;
+    json_t *report = json_load_file(path, 0, &jerr);
+    assert_non_null(report);
+    json_t *counted = json_object_get(json_array_get(json_object_get(report, "passes"), 0), "texture_reads");
+    assert_true(json_real_value(json_object_get(counted, "reads")) == high + 101.0);
+    assert_true(json_real_value(json_object_get(counted, "items")) == 7.0);
+    assert_string_equal(json_string_value(json_object_get(counted, "item")), "texel");
+    json_decref(report);
+
+    /* Queries: frame k's counts arrive with frame k + 1. */
+    assert_cg_ok(fg_graph_prepare(graph, &err), &err);
+    expect_reads(graph, false, 0);
+    for (uint64_t k = 0; k < 4; k++) {
+        frame.index = k;
+        assert_cg_ok(fg_graph_execute(graph, &frame, FG_TIMING_QUERIES, &err), &err);
+        if (k == 0)
+            expect_reads(graph, false, 0);
+        else
+            expect_reads(graph, k - 1 != 2, high + 100.0 + (double)(k - 1));
+    }
+    assert_no_gl_errors(ctx);
+    fg_graph_destroy(graph);
+    fg_registry_destroy(registry);
+    assert_no_gl_errors(ctx);
+}
+
 CG_TEST_MAIN(cg_test_gl_setup, cg_test_gl_teardown,
-             cmocka_unit_test(graph_runs_and_is_timed))
+             cmocka_unit_test(graph_runs_and_is_timed),
+             cmocka_unit_test(reads_are_read_back))

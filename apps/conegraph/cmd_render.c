@@ -62,8 +62,10 @@ cmd_render_usage(FILE *out)
         "  --fps F                 frames per second of animation time (default 30; above 0,\n"
         "                          at most 1e6): frame k is posed at T + k / F\n"
         "  --report FILE           per-pass times and resource bytes as JSON (written atomically)\n"
-        "  --pass-costs FILE.csv   every frame's per-pass times and what each pass rebuilt\n"
-        "                          (frame,time,pass,type,ms,rebuilt; written atomically)\n"
+        "  --pass-costs FILE.csv   every frame's per-pass times, texture reads and what each pass rebuilt\n"
+        "                          (frame,time,pass,type,ms,reads,items,item,rebuilt; written\n"
+        "                          atomically; reads: a pass's counted texture reads, empty\n"
+        "                          for a pass that counts none)\n"
         "  --dump PASS.OUT=FILE.exr  also write that resource of the last frame (2D: as is;\n"
         "                          3D and arrays: slices stacked top to bottom); repeatable\n"
         "  --set PASS.PARAM=VALUE  override a parameter, validated like the file; repeatable\n"
@@ -262,6 +264,13 @@ on_frame(void *user, int frame, int frames, double ms, cg_error *err)
             continue;
         fprintf(p->costs_fp, "%d,%.17g,%s,%s,%.6f,", frame, p->s->scene.time, fg_pass_name(pass),
                 fg_pass_type_of(pass)->name, fg_pass_milliseconds(pass));
+        /* The texture reads, empty where the pass counts none (fg_pass_reads). */
+        double reads, items;
+        const char *item;
+        if (fg_pass_reads(pass, &reads, &items, &item))
+            fprintf(p->costs_fp, "%.0f,%.0f,%s,", reads, items, item);
+        else
+            fputs(",,,", p->costs_fp);
         app_csv_field(p->costs_fp, fg_pass_rebuilt(pass));
         fputc('\n', p->costs_fp);
     }
@@ -276,7 +285,7 @@ write_pass_costs(const char *path, render_progress *p, cg_error *err)
     cg_atomic_file f;
     if (!cg_atomic_open(&f, path, err))
         return false;
-    fputs("frame,time,pass,type,ms,rebuilt\n", f.fp);
+    fputs("frame,time,pass,type,ms,reads,items,item,rebuilt\n", f.fp);
     fwrite(p->costs, 1, p->costs_size, f.fp);
     return cg_atomic_commit(&f, err);
 }

@@ -980,8 +980,13 @@ report_status(demo *d, bool force)
         memcpy(when, " | ", 4);
         format_time(d, when + 3, sizeof when - 3);
     }
-    snprintf(d->status, sizeof d->status, "frame %.1f ms | %s ms | GI %.1f MiB | %dx%d | %s%s",
-             frame, passes, (double)mem.gi_bytes / (1024.0 * 1024.0), d->s.frame.width,
+    /* The texture reads of the passes that count them (fg_pass_reads): a cost the machine's load
+     * does not change. */
+    char reads[480], reads_part[512] = "";
+    if (fg_graph_reads_text(d->graph, reads, sizeof reads)[0])
+        snprintf(reads_part, sizeof reads_part, " | reads %s", reads);
+    snprintf(d->status, sizeof d->status, "frame %.1f ms | %s ms%s | GI %.1f MiB | %dx%d | %s%s",
+             frame, passes, reads_part, (double)mem.gi_bytes / (1024.0 * 1024.0), d->s.frame.width,
              d->s.frame.height, d->shown[d->shown_index], when);
     printf("%s\n", d->status);
     fflush(stdout);

@@ -72,8 +72,11 @@ passes(demo *d, bool small)
     for (int k = 0; k < live; k++) {
         const fg_pass *pass = fg_graph_pass_at(d->graph, order[k]);
         double ms = fg_pass_milliseconds(pass);
-        char label[192];
-        if (ms >= 0)
+        char label[192], reads[64];
+        if (ms >= 0 && fg_pass_reads(pass, NULL, NULL, NULL))
+            snprintf(label, sizeof label, "%s  %.1f ms, reads %s", fg_pass_name(pass), ms,
+                     fg_pass_reads_text(pass, reads, sizeof reads));
+        else if (ms >= 0)
             snprintf(label, sizeof label, "%s  %.1f ms", fg_pass_name(pass), ms);
         else
             snprintf(label, sizeof label, "%s  (not measured yet)", fg_pass_name(pass));

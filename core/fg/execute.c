@@ -121,7 +121,12 @@ fg_graph_release_gl(fg_graph *graph)
                 glDeleteQueries(2, pass->queries[slot]);
             pass->queries[slot][0] = pass->queries[slot][1] = 0;
             pass->query_issued[slot] = false;
+            if (pass->reads_copy[slot])
+                glDeleteBuffers(1, &pass->reads_copy[slot]);
+            pass->reads_copy[slot] = 0;
+            pass->reads_copy_item[slot] = NULL;
         }
+        pass->reads_known = false;
     }
     for (int i = 0; i < graph->storage_count; i++) {
         fg_storage *s = &graph->storage[i];
@@ -219,6 +224,38 @@ now_ms(void)
     return (double)ts.tv_sec * 1e3 + (double)ts.tv_nsec * 1e-6;
 }
 
+/* Reads the counts of ring slot `slot` (a frame's fg_pass_report_reads) into the pass. */
+static void
+read_reads(fg_pass *pass, int slot)
+{
+    pass->reads_known = pass->reads_copy_item[slot] != NULL;
+    if (!pass->reads_known)
+        return;
+    GLuint counter[FG_READS_COUNTER / 4] = { 0 };
+    glGetNamedBufferSubData(pass->reads_copy[slot], 0, FG_READS_COUNTER, counter);
+    pass->reads = (double)counter[0] + 4294967296.0 * (double)counter[1];
+    pass->reads_items = (double)counter[2];
+    pass->reads_item = pass->reads_copy_item[slot];
+    pass->reads_copy_item[slot] = NULL;
+}
+
+/* After the pass's execute: copies the counter it reported, if any, into ring slot `slot`
+ * (the copy waits for its dispatches on the GPU, not on the CPU). */
+static void
+copy_reads(fg_pass *pass, int slot)
+{
+    pass->reads_copy_item[slot] = NULL;
+    if (!pass->reads_source)
+        return;
+    if (!pass->reads_copy[slot]) {
+        glCreateBuffers(1, &pass->reads_copy[slot]);
+        glNamedBufferStorage(pass->reads_copy[slot], FG_READS_COUNTER, NULL, 0);
+    }
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);  /* the shaders' atomics, before the copy */
+    glCopyNamedBufferSubData(pass->reads_source, pass->reads_copy[slot], 0, 0, FG_READS_COUNTER);
+    pass->reads_copy_item[slot] = pass->reads_source_item;
+}
+
 /* Reads the timestamps of ring slot `slot`; waits for them only when `wait`. */
 static void
 read_queries(fg_graph *graph, int slot, bool wait)
@@ -237,6 +274,7 @@ read_queries(fg_graph *graph, int slot, bool wait)
         glGetQueryObjectui64v(pass->queries[slot][1], GL_QUERY_RESULT, &t1);
         pass->ms = t1 >= t0 ? (double)(t1 - t0) * 1e-6 : 0.0;
         pass->query_issued[slot] = false;
+        read_reads(pass, slot);
     }
 }
 
@@ -271,6 +309,7 @@ fg_graph_execute(fg_graph *graph, const fg_frame *frame, fg_timing_mode timing, 
         cg_error local = { 0 };
         pass->rebuilt[0] = '\0';
         pass->undeclared_slot[0] = '\0';
+        pass->reads_source = 0;
         bool executed = pass->type->execute(pass, pass->state, &local);
         if (!fg_pass_slots_check(pass, err))
             return false;
@@ -288,6 +327,9 @@ fg_graph_execute(fg_graph *graph, const fg_frame *frame, fg_timing_mode timing, 
             glQueryCounter(pass->queries[slot][1], GL_TIMESTAMP);
             pass->query_issued[slot] = true;
         }
+        copy_reads(pass, slot);
+        if (timing != FG_TIMING_QUERIES)
+            read_reads(pass, slot);
     }
     /* Timestamps of the frame before are ready by now on any sane driver: read them without
      * stalling (a result not available yet is read when its slot comes round again). */

@@ -178,6 +178,15 @@ struct fg_pass {
     char undeclared_slot[64];
     GLuint queries[FG_QUERY_RING][2];
     bool query_issued[FG_QUERY_RING];
+    /* Texture reads (fg_pass_report_reads): the pass's counter during this execute (0: none), the
+     * graph's copies of it, a ring slot a frame as the queries, and the last counts read back. */
+    GLuint reads_source;
+    const char *reads_source_item;
+    GLuint reads_copy[FG_QUERY_RING];
+    const char *reads_copy_item[FG_QUERY_RING];   /* NULL: the slot's frame reported none */
+    bool reads_known;
+    double reads, reads_items;
+    const char *reads_item;
 };
 
 typedef struct fg_res {

@@ -324,6 +324,25 @@ fg_pass_rebuilt(const fg_pass *pass)
     return pass->rebuilt;
 }
 
+void
+fg_pass_report_reads(fg_pass *pass, GLuint buffer, const char *item)
+{
+    pass->reads_source = buffer;
+    pass->reads_source_item = item ? item : "item";
+}
+
+bool
+fg_pass_reads(const fg_pass *pass, double *reads, double *items, const char **item)
+{
+    if (reads)
+        *reads = pass->reads_known ? pass->reads : 0.0;
+    if (items)
+        *items = pass->reads_known ? pass->reads_items : 0.0;
+    if (item)
+        *item = pass->reads_known ? pass->reads_item : NULL;
+    return pass->reads_known;
+}
+
 static const char *
 param_type_name(fg_param_type type)
 {

@@ -82,11 +82,44 @@ describe_size(const fg_resource_desc *d, char *buf, size_t size)
     }
 }
 
+const char *
+fg_pass_reads_text(const fg_pass *pass, char *buf, size_t size)
+{
+    double reads, items;
+    const char *item;
+    if (!fg_pass_reads(pass, &reads, &items, &item))
+        snprintf(buf, size, "-");
+    else if (items > 0)
+        snprintf(buf, size, "%.4g M, %.4g a %s", reads * 1e-6, reads / items, item);
+    else
+        snprintf(buf, size, "%.4g M, no %s", reads * 1e-6, item);
+    return buf;
+}
+
+const char *
+fg_graph_reads_text(const fg_graph *graph, char *buf, size_t size)
+{
+    size_t len = 0;
+    buf[0] = '\0';
+    for (int k = 0; k < graph->order_count && len < size; k++) {
+        const fg_pass *pass = graph->passes[graph->order[k]];
+        char text[64];
+        if (!fg_pass_reads(pass, NULL, NULL, NULL))
+            continue;
+        int n = snprintf(buf + len, size - len, "%s%s %s", len ? "; " : "", pass->name,
+                         fg_pass_reads_text(pass, text, sizeof text));
+        if (n < 0)
+            break;
+        len += (size_t)n;
+    }
+    return buf;
+}
+
 void
 fg_graph_print_report(const fg_graph *graph, FILE *out)
 {
-    char a[64], b[64], c[64], d[64];
-    fprintf(out, "%-4s %-20s %-16s %10s  %s\n", "#", "pass", "type", "ms", "barrier bits");
+    char a[64], b[64], c[64], d[64], e[64];
+    fprintf(out, "%-4s %-20s %-16s %10s  %-26s %s\n", "#", "pass", "type", "ms", "texture reads", "barrier bits");
     double total = 0;
     bool timed = false;
     for (int k = 0; k < graph->order_count; k++) {
@@ -98,7 +131,8 @@ fg_graph_print_report(const fg_graph *graph, FILE *out)
         } else {
             snprintf(a, sizeof a, "-");
         }
-        fprintf(out, "%-4d %-20s %-16s %10s  0x%x%s%s\n", k, pass->name, pass->type->name, a,
+        fg_pass_reads_text(pass, e, sizeof e);
+        fprintf(out, "%-4d %-20s %-16s %10s  %-26s 0x%x%s%s\n", k, pass->name, pass->type->name, a, e,
                 (unsigned)pass->barrier_bits, pass->rebuilt[0] ? "  rebuilt: " : "", pass->rebuilt);
     }
     if (timed)
@@ -150,6 +184,17 @@ report_json(const fg_graph *graph)
         json_object_set_new(j, "ms", pass->ms >= 0 ? json_real(pass->ms) : json_null());
         json_object_set_new(j, "barrier_bits", json_integer((json_int_t)pass->barrier_bits));
         json_object_set_new(j, "rebuilt", pass->rebuilt[0] ? json_string(pass->rebuilt) : json_null());
+        double reads, items;
+        const char *item;
+        if (fg_pass_reads(pass, &reads, &items, &item)) {
+            json_t *r = json_object();
+            json_object_set_new(r, "reads", json_real(reads));
+            json_object_set_new(r, "items", json_real(items));
+            json_object_set_new(r, "item", json_string(item));
+            json_object_set_new(j, "texture_reads", r);
+        } else {
+            json_object_set_new(j, "texture_reads", json_null());
+        }
         json_array_append_new(passes, j);
     }
     json_object_set_new(root, "passes", passes);

@@ -439,6 +439,7 @@ cgp_gather_prepare(void *state, const fg_pass *pass, cgp_gather *g, cgp_gather_i
     if (g->material)
         g->brdf_table = cgp_brdf_table_texture(state);
     cgp_sky_prepare(state, &g->sky);
+    g->reads = cgp_reads_counter(state);
     return true;
 }
 
@@ -449,6 +450,7 @@ cgp_gather_begin(const fg_pass *pass, cgp_gather *g, const void *block, size_t g
     if (!cgp_sky_update(g->state, &g->sky, fg_pass_frame(pass)->scene, err))
         return false;
     cgp_sky_bind(&g->sky);
+    cgp_reads_begin(g->reads);
     glUseProgram(g->program);
     cgp_cone_upload(pass, &g->set, g->cone_block);
     cgp_uniform_upload(g->gather_block, CG_BINDING_GATHER, block, gather_bytes);
@@ -489,8 +491,9 @@ cgp_gather_dispatch(const fg_pass *pass, const cgp_gather *g)
 }
 
 void
-cgp_gather_end(const fg_pass *pass, const cgp_gather *g)
+cgp_gather_end(fg_pass *pass, const cgp_gather *g)
 {
+    cgp_reads_end(pass, g->reads, "pixel");
     glBindSampler(CG_UNIT_VOLUME, 0);
     glBindSampler(CG_UNIT_OCCUPANCY, 0);
     glBindTextureUnit(CG_UNIT_OCCUPANCY, 0);

@@ -169,6 +169,8 @@ typedef struct cgp_gather {
     void *state;            /* the pass state that owns these objects */
     cgp_sky sky;            /* baked once per change of the frame's scene's sky */
     cgp_gather_slots slots; /* found by cgp_gather_prepare */
+    GLuint reads;           /* the cone marches' texture reads (cgp_reads_counter), of the pixels
+                             * whose own diffuse cones were traced */
 } cgp_gather;
 
 /* In prepare(): the slots (the pass's `io` and the SDK's), the cone set of the parameter `cones`,
@@ -235,7 +237,8 @@ GLuint cgp_brdf_hemispherical_texture(void *state);
 /* The gather's program over `radiance`, a pixel an invocation (after cgp_gather_begin and the pass's
  * own bindings; with sdk/upsample.h's blocks, after cgp_gather_blocks_trace). */
 void cgp_gather_dispatch(const fg_pass *pass, const cgp_gather *g);
-/* Unbinds what cgp_gather_begin bound (after the dispatches). */
-void cgp_gather_end(const fg_pass *pass, const cgp_gather *g);
+/* Unbinds what cgp_gather_begin bound (after the dispatches) and hands the frame's texture reads
+ * to the graph (fg_pass_report_reads). */
+void cgp_gather_end(fg_pass *pass, const cgp_gather *g);
 
 #endif

@@ -6,6 +6,7 @@
 #include <stdlib.h>
 
 #include "cg/shader.h"
+#include "common/blocks.h"
 
 static void
 cgp_state_destroy_object(cgp_gl_kind kind, GLuint name)
@@ -149,6 +150,27 @@ cgp_buffer(void *state, size_t bytes, const void *data, GLbitfield flags)
     glCreateBuffers(1, &buffer);
     glNamedBufferStorage(buffer, (GLsizeiptr)bytes, data, flags);
     return cgp_own(state, CGP_GL_BUFFER, buffer);
+}
+
+GLuint
+cgp_reads_counter(void *state)
+{
+    return cgp_buffer(state, FG_READS_COUNTER, NULL, GL_DYNAMIC_STORAGE_BIT);
+}
+
+void
+cgp_reads_begin(GLuint counter)
+{
+    const GLuint zero = 0;
+    glClearNamedBufferData(counter, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_READS, counter);
+}
+
+void
+cgp_reads_end(fg_pass *pass, GLuint counter, const char *item)
+{
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_READS, 0);
+    fg_pass_report_reads(pass, counter, item);
 }
 
 fg_resource_desc

@@ -4,7 +4,8 @@
  * Declares: CGP_PARAMS, CGP_NO_PARAMS, CGP_SLOTS, CGP_PASS, CGP_REGISTER_PASS, CGP_PLUGIN, cgp_register_passes,
  *           cgp_gl_kind, cgp_state_new, cgp_state_on_destroy, cgp_state_destroy, cgp_prepared, cgp_own,
  *           cgp_compute_program,
- *           cgp_graphics_program, cgp_framebuffer, cgp_buffer, cgp_image_2d, cgp_image_like, cgp_buffer_desc,
+ *           cgp_graphics_program, cgp_framebuffer, cgp_buffer, cgp_reads_counter, cgp_reads_begin,
+ *           cgp_reads_end, cgp_image_2d, cgp_image_like, cgp_buffer_desc,
  *           cgp_declare_in_place_chain, cgp_bind_optional, cgp_dispatch_2d, cgp_dispatch_over, cgp_compute_end, cgp_depth_draw_begin,
  *           cgp_depth_draw_end.
  *
@@ -146,6 +147,14 @@ bool cgp_graphics_program(void *state, const char *vertex, const char *geometry,
 GLuint cgp_framebuffer(void *state);
 /* A buffer of `bytes` (glNamedBufferStorage with `data` and `flags`) owned by the state. */
 GLuint cgp_buffer(void *state, size_t bytes, const void *data, GLbitfield flags);
+
+/* The texture reads of a pass's shaders (fg_pass_report_reads; common/reads.glsl counts them):
+ * a counter of FG_READS_COUNTER bytes owned by the state; cgp_reads_begin, before the pass's
+ * dispatches, zeroes it and binds it at CG_BINDING_READS; cgp_reads_end, after them, hands it to
+ * the graph, the reads made for `item`s (a string that outlives the graph: "pixel", "voxel"). */
+GLuint cgp_reads_counter(void *state);
+void cgp_reads_begin(GLuint counter);
+void cgp_reads_end(fg_pass *pass, GLuint counter, const char *item);
 
 /* A single-level 2D texture. */
 fg_resource_desc cgp_image_2d(GLenum format, int width, int height);

@@ -124,6 +124,7 @@ static const char *const source_names[2] = {"source_front", "source_back"};
 typedef struct voxel_light_state {
     GLuint inject, inject_listed, list, mip, gather;
     GLuint gather_whole;    /* gather.comp over the whole volume, for a list that overflowed */
+    GLuint reads;           /* the gathers' cone reads (cgp_reads_counter), of the voxels that traced */
     GLuint pick, planes, sort, fill;    /* bounce_spacing > 1: spacing.glsl's programs (0 otherwise) */
     GLuint sampler;         /* the volumes, for the gathers at the voxels */
     GLuint one_level;       /* the radiance again at CG_UNIT_OCCUPANCY (cgp_sampler_volume_one_level) */
@@ -341,6 +342,7 @@ voxel_light_prepare(fg_pass *pass, voxel_light_state *s, cg_error *err)
     s->sampler = cgp_sampler_volume(s);
     s->one_level = cgp_sampler_volume_one_level(s);
     s->cone_block = cgp_uniform_buffer(s, sizeof(cg_cone_set_block));
+    s->reads = cgp_reads_counter(s);
     if (!cgp_cone_set_of_param(pass, "bounce_cones", &s->set, err))
         return false;
     if (s->spacing > 1) {
@@ -752,6 +754,8 @@ voxel_light_execute(fg_pass *pass, voxel_light_state *s, cg_error *err)
     const fg_frame *frame = fg_pass_frame(pass);
     int bounces = fg_param_int(pass, "bounces");
     s->dispatches = 0;
+    /* The gathers' cone reads (common/reads.glsl): 0 on a frame that relights nothing. */
+    cgp_reads_begin(s->reads);
     glBindBufferBase(GL_UNIFORM_BUFFER, CG_BINDING_VOLUME, fg_slot_buffer(pass, s->region));
     struct light_key key;
     bool lights_only = false;
@@ -762,6 +766,7 @@ voxel_light_execute(fg_pass *pass, voxel_light_state *s, cg_error *err)
         if (!why) {
             fg_pass_report_rebuilt(pass, "volumes kept (0 dispatches; %llu relight%s since prepare)",
                                    (unsigned long long)s->relights, s->relights == 1 ? "" : "s");
+            cgp_reads_end(pass, s->reads, "voxel");
             return true;
         }
     }
@@ -834,6 +839,7 @@ voxel_light_execute(fg_pass *pass, voxel_light_state *s, cg_error *err)
         glBindTextureUnit(unit, 0);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_VOXEL_LIST, 0);
     glUseProgram(0);
+    cgp_reads_end(pass, s->reads, "voxel");
     s->relights++;
     if (reuse_first)
         fg_pass_report_rebuilt(pass, "volumes relit (%s; first gather kept): %d dispatches", why, s->dispatches);

@@ -28,6 +28,9 @@
 /* 0 and 1 are core's (cg/gpu_scene.h, common/scene.glsl, common/lights.glsl). */
 #define CG_BINDING_MATERIALS 0
 #define CG_BINDING_LIGHTS 1
+/* A pass's counter of its cone marches' texture reads (common/reads.glsl; FG_READS_COUNTER bytes:
+ * reads low and high word, the invocations that traced, 0). */
+#define CG_BINDING_READS 2
 /* hsat's `info` (CG_HSAT_INFO_BLOCK): written by hsat/sat.comp, read by common/hsat.glsl. */
 #define CG_BINDING_HSAT 5
 /* Private to one pass's programs. */

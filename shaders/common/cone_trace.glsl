@@ -26,13 +26,14 @@
 //                  surface crossing, read centred on the surface's plane (CgConeState,
 //                  cg_cone_surface_recentre). Three reads per occupied sample (four at a crossing's
 //                  first), one per empty one.
-// CG_CONE_COUNT_READS counts the volume reads of every march in cg_cone_reads (a cost measure).
+// Every volume read of a march is counted (CG_READ, common/reads.glsl: the pass's texture reads).
 #ifndef CG_COMMON_CONE_TRACE_GLSL
 #define CG_COMMON_CONE_TRACE_GLSL
 
 #include "common/blocks.h"
 #include "common/volume.glsl"
 #include "common/sky.glsl"
+#include "common/reads.glsl"
 
 #define CG_CONE_OPAQUE 0.999
 
@@ -120,12 +121,6 @@ cg_cone_composite(inout vec4 acc, vec4 s)
     acc.a += (1.0 - acc.a) * alpha;
 }
 
-#ifdef CG_CONE_COUNT_READS
-float cg_cone_reads = 0.0;  // volume reads (textureLod calls) of this invocation's marches
-#define CG_CONE_READ(n) cg_cone_reads += float(n)
-#else
-#define CG_CONE_READ(n)
-#endif
 
 // What a march carries from one step to the next (cg_cone_step). With CG_CONE_SURFACE: the level
 // a surface crossing is held at, and the span of the previous step (the midpoint weights).
@@ -204,7 +199,7 @@ cg_cone_sample_surface_from(vec4 a, vec3 uvw, float lod, float cell, float voxel
         return vec4(0.0);   // empty: one read
     vec4 b = textureLod(cg_surface_sides, uvw, lod);
     vec4 c = textureLod(cg_surface_normals, uvw, lod);
-    CG_CONE_READ(2);
+    CG_READ(2);
     float w = a.a;
     vec3 alpha = vec3(max(w - b.a - c.a, 0.0), b.a, c.a);
     float cover = dot(abs(d), alpha);
@@ -233,7 +228,7 @@ vec4
 cg_cone_sample_surface_as(sampler3D radiance, vec3 uvw, float lod, vec2 profile)
 {
     vec4 a = textureLod(radiance, uvw, lod);
-    CG_CONE_READ(1);
+    CG_READ(1);
     return vec4(a.rgb * (profile.y * profile.x), a.a * profile.x);
 }
 
@@ -295,19 +290,19 @@ cg_cone_sample(sampler3D volume, vec3 uvw, float lod, vec3 d)
     vec4 s = vec4(0.0);
     if (lod > 0.0) {
         float k = max(lod - 1.0, 0.0);
-        CG_CONE_READ(3);
+        CG_READ(3);
         vec3 w = abs(d);
         s = w.x * (d.x >= 0.0 ? textureLod(cg_aniso_px, uvw, k) : textureLod(cg_aniso_nx, uvw, k)) +
             w.y * (d.y >= 0.0 ? textureLod(cg_aniso_py, uvw, k) : textureLod(cg_aniso_ny, uvw, k)) +
             w.z * (d.z >= 0.0 ? textureLod(cg_aniso_pz, uvw, k) : textureLod(cg_aniso_nz, uvw, k));
     }
     if (lod < 1.0) {
-        CG_CONE_READ(1);
+        CG_READ(1);
         s = mix(textureLod(volume, uvw, 0.0), s, lod);
     }
     return s;
 #else
-    CG_CONE_READ(1);
+    CG_READ(1);
     return textureLod(volume, uvw, lod);
 #endif
 }
@@ -472,7 +467,7 @@ cg_cone_step(sampler3D volume, CgVolume v, CgCone c, vec4 surface, CgConeSample 
     vec3 centre = v.origin + 0.5 * cg_volume_extent(v);
     vec2 profile;
     vec4 a = textureLod(volume, cg_volume_uvw(v, cg_cone_read_position(state, at.position)), lod);
-    CG_CONE_READ(1);
+    CG_READ(1);
     vec4 s = cg_cone_surface_sample_at(volume, v, c, surface, at, lod, cell, centre, a, state, profile);
     return s.a > 0.0 ? cg_cone_surface_cover(volume, v, c, at, lod, cell, span, s, profile, scale, state, acc)
                      : cg_cone_surface_gap(state, span);
@@ -539,7 +534,7 @@ cg_cone_trace_surface(sampler3D volume, CgVolume v, CgCone c, vec4 surface)
             // 2x2x2 texels that a read there touches hold, as their children, every texel of the
             // finer level's read (dyadic, aligned grids), and a mip texel has coverage wherever a
             // child has (voxel_light's mip rule). So the test reads one level, 8 texels, not 16.
-            CG_CONE_READ(1);
+            CG_READ(1);
             if (textureLod(cg_surface_occupancy, uvw, ceil(lod)).a > 0.0)
                 break;
             t += cg_cone_surface_gap(state, span);
@@ -548,7 +543,7 @@ cg_cone_trace_surface(sampler3D volume, CgVolume v, CgCone c, vec4 surface)
             break;
         vec2 profile;
         a = textureLod(volume, uvw, lod);
-        CG_CONE_READ(1);
+        CG_READ(1);
         vec4 s = cg_cone_surface_sample_at(volume, v, c, surface, at, lod, cell, centre, a, state, profile);
         t += s.a > 0.0 ? cg_cone_surface_cover(volume, v, c, at, lod, cell, span, s, profile, 1.0, state, acc)
                        : cg_cone_surface_gap(state, span);

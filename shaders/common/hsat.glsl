@@ -27,6 +27,7 @@
 #define CG_COMMON_HSAT_GLSL
 
 #include "common/blocks.h"
+#include "common/reads.glsl"
 
 #define CG_HSAT_PYRAMID 0
 #define CG_HSAT_PNORM 1
@@ -62,6 +63,7 @@ cg_hsat_fetch(usampler2D table, ivec2 p, int level)
 {
     if (any(lessThan(p, ivec2(0))))
         return dvec3(0.0);
+    CG_READ(2);
     uvec4 a = texelFetch(table, ivec2(2 * p.x, p.y), level);
     uvec4 b = texelFetch(table, ivec2(2 * p.x + 1, p.y), level);
     return dvec3(packDouble2x32(a.xy), packDouble2x32(a.zw), packDouble2x32(b.xy));
@@ -101,6 +103,7 @@ cg_hsat_range(usampler2D table, CgHeightmap m, vec2 lo, vec2 hi, int level)
         int top = int(cg_hsat_info.params.z) - 1;
         int L = min(span > 1 ? findMSB(span - 1) + 1 : 0, top);
         ivec4 q = r >> L;
+        CG_READ(4);
         vec2 t00 = uintBitsToFloat(texelFetch(table, q.xy, L).rg), t10 = uintBitsToFloat(texelFetch(table, q.zy, L).rg);
         vec2 t01 = uintBitsToFloat(texelFetch(table, q.xw, L).rg), t11 = uintBitsToFloat(texelFetch(table, q.zw, L).rg);
         return vec2(min(min(t00.x, t10.x), min(t01.x, t11.x)), max(max(t00.y, t10.y), max(t01.y, t11.y)));

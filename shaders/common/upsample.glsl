@@ -33,6 +33,7 @@
 
 #include "common/agreement.glsl"
 #include "common/gather.glsl"
+#include "common/reads.glsl"
 
 #ifndef CG_GATHER_DOWNSAMPLE
 #error "common/upsample.glsl needs CG_GATHER_DOWNSAMPLE (passes/sdk/upsample.h defines it)"
@@ -194,6 +195,7 @@ main()
     diffuse.rgb *= cg_gather_diffuse_share(m, cg_gather_brdf(max(dot(n, -view), 0.0), m.roughness));
 #endif
     imageStore(cg_gather_radiance, pixel, diffuse);
+    cg_reads_commit(true);
 }
 #endif
 

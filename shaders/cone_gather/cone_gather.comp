@@ -84,7 +84,7 @@ cg_upsample_trace(ivec2 pixel, vec3 position, vec3 n)
 {
     vec4 diffuse = trace_diffuse(position, n);
 #ifdef CG_CONE_COUNT_READS
-    imageStore(u_reads, pixel, vec4(cg_cone_reads));
+    imageStore(u_reads, pixel, vec4(float(cg_reads)));
 #endif
     return diffuse;
 }
@@ -108,15 +108,17 @@ main()
     ivec2 pixel = cg_upsample_representative(block);
     vec3 position, n;
     vec4 diffuse = vec4(0.0, 0.0, 0.0, 1.0);
-    bool surface = cg_gather_surface(pixel, position, n);
+    bool surface = cg_gather_surface(pixel, position, n), traced = false;
     if (!cg_upsample_block_kept(block, surface, position, n, cg_cone_gather_block.camera.xyz)) {
         if (surface)
             diffuse = trace_diffuse(position, n);
+        traced = surface;
         imageStore(cg_gather_radiance, block, diffuse);
     }
 #ifdef CG_CONE_COUNT_READS
-    imageStore(u_reads, pixel, vec4(cg_cone_reads));    // 0 for a block kept
+    imageStore(u_reads, pixel, vec4(float(cg_reads)));    // 0 for a block kept
 #endif
+    cg_reads_commit(traced);
 }
 #elif !defined(CG_GATHER_DEFERRED)
 void
@@ -132,6 +134,7 @@ main()
 #endif
     vec4 reflection = vec4(0.0), refraction = vec4(0.0);
     float visibility = 1.0;
+    bool traced = false;    // the pixel's own diffuse cones, here (downsample 1)
     if (cg_gather_surface(pixel, position, n)) {
         CgVolume v = cg_volume();
         CgMarch march = cg_cone_march();
@@ -154,9 +157,10 @@ main()
 #else
         if (diffuse_lobe)
             diffuse = trace_diffuse(position, n);
+        traced = diffuse_lobe;
 #endif
 #ifdef CG_CONE_COUNT_READS
-        diffuse_reads = cg_cone_reads;    // the diffuse cones' alone
+        diffuse_reads = float(cg_reads);    // the diffuse cones' alone
 #endif
 #ifdef CG_GATHER_MATERIAL
         diffuse.rgb *= cg_gather_diffuse_share(m, cg_gather_brdf(max(dot(n, -view), 0.0), m.roughness));
@@ -217,5 +221,6 @@ main()
 #endif
     imageStore(u_reads, pixel, vec4(diffuse_reads));
 #endif
+    cg_reads_commit(traced);
 }
 #endif

@@ -141,6 +141,7 @@ sub_mesh(ivec2 cell, int level, int n)
 {
     if (any(lessThan(cell, ivec2(0))) || any(greaterThanEqual(cell, ivec2(n))))
         return vec4(0.0, 0.0, 0.0, -1e30);
+    CG_READ(1);
     return texelFetch(u_lightmap, cell, level);
 }
 
@@ -229,6 +230,7 @@ morphology_search(CgHeightmap m, vec3 dir, CgFittingCube cube, float lod, vec3 p
 Search
 centre_sample(CgHeightmap m, CgFittingCube cube, float lod)
 {
+    CG_READ(1);
     vec4 t = textureLod(u_lightmap, cg_heightmap_uv(m, cube.centre.xz), lod);
     float y0 = cube.centre.y - 0.5 * cube.side;
     float column = clamp(t.a - y0, 0.0, cube.side);
@@ -305,6 +307,7 @@ trace_paper(sampler3D volume, vec3 origin, vec3 dir, float tan_half, float t_sta
             if (range.x > range.y || c_lo.y > range.y) {
                 in2 = false;
             } else if (abandon && c_hi.y < range.x) {
+                CG_READ(1);
                 vec3 radiance = m.radiance_scale * textureLod(u_lightmap, cg_heightmap_uv(m, cube.centre.xz), lod2).rgb;
                 acc.rgb += (1.0 - acc.a) * radiance;
                 acc.a = 1.0;
@@ -401,6 +404,7 @@ cell_below(Cell c, float sin_horizon)
 float
 block_max(ivec2 cell, int level)
 {
+    CG_READ(1);
     return uintBitsToFloat(texelFetch(u_hsat, cell, level).g);
 }
 
@@ -429,6 +433,7 @@ on_height_field(CgHeightmap m, vec3 p, vec3 n)
     if (!inside_map(uv) || n.y <= 0.0)
         return false;
     vec2 du = vec2(1.0 / m.resolution, 0.0);
+    CG_READ(5);
     float h = textureLod(u_lightmap, uv, 0.0).a;
     float hx = textureLod(u_lightmap, uv + du.xy, 0.0).a - textureLod(u_lightmap, uv - du.xy, 0.0).a;
     float hz = textureLod(u_lightmap, uv + du.yx, 0.0).a - textureLod(u_lightmap, uv - du.yx, 0.0).a;
@@ -531,6 +536,7 @@ terrain_sample(CgHeightmap m, vec3 p, vec3 dir, float t, vec3 x, float d, Cell c
         // The texel under the axis, unfiltered: the horizon takes the highest of the samples, so a
         // filter would only flatten them, and one fetch is a sixteenth of the 3D step's trilinear one.
         int n = max(int(m.resolution) >> level, 1);
+        CG_READ(1);
         vec4 texel = texelFetch(u_lightmap, clamp(ivec2(floor(uv * float(n))), ivec2(0), ivec2(n - 1)), level);
         if (texel.a - p.y > s * h.slope) {
             // Every direction of the cell below the new horizon meets the terrain here: the newly
@@ -657,7 +663,7 @@ trace_horizon(sampler3D volume, vec3 p, vec3 origin, vec3 dir, float tan_half, f
 #ifdef CG_CONE_SURFACE
                     float cell3, span3;
                     float lod3 = cg_cone_surface_level(v, cone, at, state, cell3, span3);
-                    CG_CONE_READ(1);
+                    CG_READ(1);
                     occupied = textureLod(cg_surface_occupancy, cg_volume_uvw(v, cg_cone_read_position(state, x3)),
                                            ceil(lod3)).a > 0.0;
                     if (!occupied) {
@@ -879,6 +885,7 @@ main()
     if (surface)
         diffuse = trace_diffuse(position, n, gather_reach(position, n));
     imageStore(cg_gather_radiance, block, diffuse);
+    cg_reads_commit(surface);
 }
 #elif !defined(CG_GATHER_DEFERRED)
 void
@@ -890,6 +897,7 @@ main()
     vec3 position, n;
     vec4 diffuse = vec4(0.0, 0.0, 0.0, 1.0);
     vec4 reflection = vec4(0.0), refraction = vec4(0.0);
+    bool traced = false;    // the pixel's own diffuse cones, here (downsample 1)
     if (cg_gather_surface(pixel, position, n)) {
         // The material (common/gather.glsl): no diffuse cones where rho = 0, composite's factor.
 #ifdef CG_GATHER_MATERIAL
@@ -907,6 +915,7 @@ main()
 #else
         if (diffuse_lobe)
             diffuse = trace_diffuse(position, n, reach);
+        traced = diffuse_lobe;
 #endif
 #ifdef CG_GATHER_MATERIAL
         diffuse.rgb *= cg_gather_diffuse_share(mat, cg_gather_brdf(max(dot(n, -view), 0.0), mat.roughness));
@@ -931,5 +940,6 @@ main()
 #ifdef REFRACTION
     imageStore(u_refraction, pixel, refraction);
 #endif
+    cg_reads_commit(traced);
 }
 #endif

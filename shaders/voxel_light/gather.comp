@@ -65,4 +65,5 @@ main()
         imageStore(u_source_front, v, gathered[0]);
         imageStore(u_source_back, v, gathered[1]);
     }
+    cg_reads_commit(coherence >= 0.1);
 }

@@ -346,6 +346,81 @@ reads_sum(const vf_runner *r, int w, int h)
     return sum;
 }
 
+/* The texture reads the gather counted (fg_pass_reads), and the pixels they were for. */
+static double
+counted_reads(const vf_runner *r, double *items)
+{
+    double reads = -1.0;
+    const char *item = NULL;
+    assert_true(fg_pass_reads(fg_graph_find_pass(r->graph, "gather"), &reads, items, &item));
+    assert_string_equal(item, "pixel");
+    return reads;
+}
+
+/* The gathers' counted texture reads (common/reads.glsl, fg_pass_report_reads) on builtin:cornell,
+ * through the graphs whose gathers trace diffuse cones alone (vct-aniso.json, hybrid-paper.json):
+ *   - cone_gather's equal the sum of its per-pixel `reads` image, at downsample 1 and 4, and its
+ *     pixels the image's pixels that read (the blocks' representatives and the deferred pixels);
+ *   - both gathers' counts are the same in two runs (a count, not a time);
+ *   - with temporal 4 on a still scene both gathers read about a quarter of temporal 1's. */
+static void
+test_reads_counted(void **state)
+{
+    cg_context *ctx = cg_test_gl_context(state);
+    enum { W = 96, H = 64 };
+    cg_scene scene = cg_test_load_scene("builtin:cornell");
+    const char *graphs[2] = {"vct-aniso.json", "hybrid-paper.json"};
+    const char *downsample[2] = {"gather.downsample=1", "gather.downsample=4"};
+    for (int g = 0; g < 2; g++) {
+        for (int d = 0; d < 2; d++) {
+            const char *sets[] = {downsample[d], g == 0 ? "gather.count_reads=true" : NULL, NULL};
+            vf_runner a, b;
+            vf_start_file(&a, &scene, W, H, graphs[g], sets);
+            vf_start_file(&b, &scene, W, H, graphs[g], sets);
+            vf_frame(&a);
+            vf_frame(&b);
+            double items = 0.0, items_b = 0.0;
+            double reads = counted_reads(&a, &items), reads_b = counted_reads(&b, &items_b);
+            fprintf(stderr, "# %s %s: %.0f reads for %.0f pixels (%.1f a pixel)\n", graphs[g], downsample[d], reads,
+                    items, reads / items);
+            assert_true(reads > items && items > 0.0);
+            assert_true(reads == reads_b && items == items_b);
+            if (g == 0) {
+                float *image = vf_read_image(&a, "gather.reads", W, H);
+                double sum = 0.0;
+                int reading = 0;
+                for (int i = 0; i < W * H; i++) {
+                    sum += image[4 * i];
+                    reading += image[4 * i] > 0.0f;
+                }
+                free(image);
+                if (sum != reads || (double)reading != items)
+                    fail_msg("%s: counted %.0f reads for %.0f pixels; the reads image holds %.0f for %d", downsample[d],
+                             reads, items, sum, reading);
+            }
+            vf_stop(&a);
+            vf_stop(&b);
+        }
+        const char *plain[] = {"gather.downsample=4", NULL};
+        const char *reuse[] = {"gather.downsample=4", "gather.temporal=4", NULL};
+        vf_runner a, b;
+        vf_start_file(&a, &scene, W, H, graphs[g], plain);
+        vf_start_file(&b, &scene, W, H, graphs[g], reuse);
+        vf_frame(&a);
+        vf_frame(&b);
+        vf_next_frame(&b);
+        double items, traced = counted_reads(&a, &items), ratio = counted_reads(&b, &items) / traced;
+        fprintf(stderr, "# %s temporal 4, the second frame of a still scene: %.3f of temporal 1's reads\n", graphs[g],
+                ratio);
+        if (ratio < 0.15 || ratio > 0.4)
+            fail_msg("%s: the second frame with temporal 4 read %.3f of temporal 1's reads", graphs[g], ratio);
+        vf_stop(&a);
+        vf_stop(&b);
+        assert_no_gl_errors(ctx);
+    }
+    cg_scene_free(&scene);
+}
+
 /* relMSE of `a` against `b` (w x h RGBA): mean squared difference over the mean square of b. */
 static double
 rel_mse(const float *a, const float *b, int n)
@@ -441,4 +516,5 @@ CG_TEST_MAIN(NULL, NULL,
              cmocka_unit_test_setup_teardown(test_cone_gather_downsample, cg_test_gl_setup, cg_test_gl_teardown),
              cmocka_unit_test_setup_teardown(test_hybrid_gather_downsample, cg_test_gl_setup, cg_test_gl_teardown),
              cmocka_unit_test_setup_teardown(test_temporal, cg_test_gl_setup, cg_test_gl_teardown),
+             cmocka_unit_test_setup_teardown(test_reads_counted, cg_test_gl_setup, cg_test_gl_teardown),
              cmocka_unit_test_setup_teardown(test_downsample_auto, cg_test_gl_setup, cg_test_gl_teardown))

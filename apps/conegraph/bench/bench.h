@@ -151,6 +151,8 @@ typedef struct bench_row {
     char params[1024];
     char label[256];
     char pass_ms[1024];
+    char pass_reads[512];   /* the passes that count texture reads (fg_pass_reads): "gather 1.75 M, 1082 a
+                             * pixel", of the last frame measured */
     double ms;              /* median over frames of the sum of the passes' times, or path tracer wall time */
     size_t gi_bytes, peak_bytes;
     cg_metrics full, indirect;      /* indirect: TEST - REF_DIRECT against REF - REF_DIRECT */

@@ -138,6 +138,7 @@ bench_measure_run(const bench_config *c, bench_scene *bs, int scene_index, const
         snprintf(row->label, sizeof row->label, "%s", run->label);
         row->ms = stats.median_pass_sum_ms;
         format_pass_times(s->graph, &stats, row->pass_ms, sizeof row->pass_ms);
+        fg_graph_reads_text(s->graph, row->pass_reads, sizeof row->pass_reads);
         row->gi_bytes = mem.gi_bytes;
         row->peak_bytes = mem.peak_bytes;
         ok = app_session_read_image(s, s->image_source, false, &image, err) &&

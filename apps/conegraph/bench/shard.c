@@ -13,7 +13,7 @@
 
 #define TOOL "conegraph bench"
 /* 2: rows carry the GI and direct parts, scenes the reference's parts. */
-#define SHARD_FORMAT "conegraph-bench-2"
+#define SHARD_FORMAT "conegraph-bench-3"
 
 bool
 bench_in_shard(const bench_config *c, int run_count, int scene, int run)
@@ -125,10 +125,10 @@ part_json(const cg_part_metrics *m)
 static json_t *
 row_json(const bench_row *r)
 {
-    return json_pack("{s:i, s:b, s:i, s:i, s:i, s:i, s:s, s:s, s:s, s:s, s:o, s:I, s:I, s:o, s:o, s:b, s:o, s:o}",
+    return json_pack("{s:i, s:b, s:i, s:i, s:i, s:i, s:s, s:s, s:s, s:s, s:s, s:o, s:I, s:I, s:o, s:o, s:b, s:o, s:o}",
                      "scene", r->scene, "is_pt", r->is_pt, "spp", r->spp, "run", r->run, "setting", r->setting,
                      "combo", r->combo, "graph", r->graph, "params", r->params, "label", r->label, "pass_ms",
-                     r->pass_ms, "ms", number(r->ms), "gi_bytes", (json_int_t)r->gi_bytes, "peak_bytes",
+                     r->pass_ms, "pass_reads", r->pass_reads, "ms", number(r->ms), "gi_bytes", (json_int_t)r->gi_bytes, "peak_bytes",
                      (json_int_t)r->peak_bytes, "full", metrics_json(&r->full), "indirect", metrics_json(&r->indirect),
                      "split", r->split, "gi", part_json(&r->gi), "direct", part_json(&r->direct));
 }
@@ -234,14 +234,15 @@ copy_field(char *dst, size_t size, const char *src)
 static bool
 read_row(const json_t *j, const bench_config *c, int run_count, bench_row *r)
 {
-    const char *graph, *params, *label, *pass_ms;
+    const char *graph, *params, *label, *pass_ms, *pass_reads;
     json_t *ms, *full, *indirect, *gi_part, *direct_part;
     json_int_t gi, peak;
     int is_pt, split;
     memset(r, 0, sizeof *r);
-    if (json_unpack((json_t *)j, "{s:i, s:b, s:i, s:i, s:i, s:i, s:s, s:s, s:s, s:s, s:o, s:I, s:I, s:o, s:o, s:b, s:o, s:o}",
+    if (json_unpack((json_t *)j, "{s:i, s:b, s:i, s:i, s:i, s:i, s:s, s:s, s:s, s:s, s:s, s:o, s:I, s:I, s:o, s:o, s:b, s:o, s:o}",
                     "scene", &r->scene, "is_pt", &is_pt, "spp", &r->spp, "run", &r->run, "setting", &r->setting,
-                    "combo", &r->combo, "graph", &graph, "params", &params, "label", &label, "pass_ms", &pass_ms, "ms",
+                    "combo", &r->combo, "graph", &graph, "params", &params, "label", &label, "pass_ms", &pass_ms,
+                    "pass_reads", &pass_reads, "ms",
                     &ms, "gi_bytes", &gi, "peak_bytes", &peak, "full", &full, "indirect", &indirect, "split", &split,
                     "gi", &gi_part, "direct", &direct_part) != 0)
         return false;
@@ -255,6 +256,7 @@ read_row(const json_t *j, const bench_config *c, int run_count, bench_row *r)
            (r->is_pt || (r->setting >= 0 && r->setting < c->setting_count)) &&
            copy_field(r->graph, sizeof r->graph, graph) && copy_field(r->params, sizeof r->params, params) &&
            copy_field(r->label, sizeof r->label, label) && copy_field(r->pass_ms, sizeof r->pass_ms, pass_ms) &&
+           copy_field(r->pass_reads, sizeof r->pass_reads, pass_reads) &&
            read_metrics(full, &r->full) && read_metrics(indirect, &r->indirect) && read_part(gi_part, &r->gi) &&
            read_part(direct_part, &r->direct);
 }

@@ -32,7 +32,7 @@ write_csv(const bench_config *c, const bench_rows *rows, const bench_scene *scen
     fprintf(f.fp, "scene,width,height,method,params,ms,pass_ms,gi_bytes,peak_bytes,rmse,relmse,ssim,max_error,"
                   "lum_ratio,nonfinite,indirect_rmse,indirect_relmse,indirect_ssim,indirect_lum_ratio,"
                   "pt_equal_error_ms,speedup,pareto_time,pareto_memory,gi_energy,gi_nrmse,direct_energy,"
-                  "direct_nrmse,error_metric\n");
+                  "direct_nrmse,error_metric,pass_reads\n");
     for (int i = 0; i < rows->count; i++) {
         const bench_row *r = &rows->rows[i];
         app_csv_field(f.fp, scenes[r->scene].source);
@@ -42,12 +42,14 @@ write_csv(const bench_config *c, const bench_rows *rows, const bench_scene *scen
         app_csv_field(f.fp, r->params);
         fprintf(f.fp, ",%.3f,", r->ms);
         app_csv_field(f.fp, r->pass_ms);
-        fprintf(f.fp, ",%zu,%zu,%.6g,%.6g,%.6f,%.6g,%.6f,%zu,%.6g,%.6g,%.6f,%.6f,%.3f,%.3f,%d,%d,%.6g,%.6g,%.6g,%.6g,%s\n",
+        fprintf(f.fp, ",%zu,%zu,%.6g,%.6g,%.6f,%.6g,%.6f,%zu,%.6g,%.6g,%.6f,%.6f,%.3f,%.3f,%d,%d,%.6g,%.6g,%.6g,%.6g,%s,",
                 r->gi_bytes, r->peak_bytes, r->full.rmse, r->full.rel_mse, r->full.ssim, r->full.max_error,
                 r->full.mean_luminance_ratio, r->full.nonfinite_pixels, r->indirect.rmse, r->indirect.rel_mse,
                 r->indirect.ssim, r->indirect.mean_luminance_ratio, r->pt_equal_ms, r->speedup,
                 !r->is_pt && r->pareto_time, !r->is_pt && r->pareto_memory, r->gi.energy, r->gi.nrmse,
                 r->direct.energy, r->direct.nrmse, c->error == BENCH_ERROR_GI_NRMSE ? "gi-nrmse" : "relmse");
+        app_csv_field(f.fp, r->pass_reads);
+        fputc('\n', f.fp);
     }
     return cg_atomic_commit(&f, err);
 }
@@ -95,8 +97,8 @@ write_markdown_table(FILE *fp, const bench_config *c, const bench_rows *rows, co
     write_reference_parts(fp, &scenes[s]);
     fprintf(fp, "| method | parameters | ms | GI MiB | relMSE | RMSE | SSIM | lum. ratio | indirect relMSE | "
                 "indirect lum. ratio | GI energy | GI nRMSE | direct energy | direct nRMSE | PT ms at equal %s | "
-                "speed-up | P | per pass (ms) |\n", error);
-    fprintf(fp, "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|\n");
+                "speed-up | P | per pass (ms) | texture reads |\n", error);
+    fprintf(fp, "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|---|\n");
     for (int i = 0; i < rows->count; i++) {
         const bench_row *r = &rows->rows[i];
         if (r->scene != s)
@@ -111,12 +113,13 @@ write_markdown_table(FILE *fp, const bench_config *c, const bench_rows *rows, co
         }
         char ge[32], gn[32], de[32], dn[32];
         fprintf(fp, "| %s | %s | %.1f | %.1f | %.5f | %.5f | %.4f | %.3f | %.5f | %.3f | %s | %s | %s | %s | %s | %s | "
-                    "%s | %s |\n",
+                    "%s | %s | %s |\n",
                 r->graph, r->params[0] ? r->params : "-", r->ms, (double)r->gi_bytes / 1048576.0, r->full.rel_mse,
                 r->full.rmse, r->full.ssim, r->full.mean_luminance_ratio, r->indirect.rel_mse,
                 r->indirect.mean_luminance_ratio, cell(ge, sizeof ge, "%.3f", r->gi.energy),
                 cell(gn, sizeof gn, "%.4f", r->gi.nrmse), cell(de, sizeof de, "%.3f", r->direct.energy),
-                cell(dn, sizeof dn, "%.4f", r->direct.nrmse), equal, speed, pareto, r->pass_ms);
+                cell(dn, sizeof dn, "%.4f", r->direct.nrmse), equal, speed, pareto, r->pass_ms,
+                r->pass_reads[0] ? r->pass_reads : "-");
     }
     fprintf(fp, "\n");
 }

@@ -14,7 +14,8 @@
  *                fg_param_active, fg_pass_check_params, fg_slot, FG_NO_SLOT, fg_pass_slot,
  *                fg_pass_slot_if_declared, fg_slot_present, fg_slot_texture, fg_slot_buffer,
  *                fg_slot_resource, fg_input_present, fg_texture, fg_buffer, fg_resource,
- *                fg_pass_report_rebuilt, fg_pass_rebuilt
+ *                fg_pass_report_rebuilt, fg_pass_rebuilt, FG_READS_COUNTER, fg_pass_report_reads,
+ *                fg_pass_reads, fg_pass_reads_text
  *   graph        fg_graph, fg_source_loc, fg_graph_create, fg_graph_destroy, fg_graph_add_pass,
  *                fg_graph_set_param, fg_graph_connect, fg_graph_mark_output, fg_graph_compile,
  *                fg_graph_prepare, fg_graph_prepare_pass, fg_graph_execute, introspection and
@@ -272,6 +273,28 @@ void fg_pass_report_rebuilt(fg_pass *pass, const char *format, ...)
 /* The last execute's text ("" when the pass said nothing or has not run). */
 const char *fg_pass_rebuilt(const fg_pass *pass);
 
+/* What the pass read this frame, in counts that do not depend on the machine's speed or load:
+ * its shaders' texture reads (textureLod and texelFetch calls, each one read whatever filter it
+ * takes) and the items they were made for (a gather: the pixels whose diffuse cones it traced;
+ * voxel_light: the voxels that traced). A GPU's cost of the pass can be estimated from them, and
+ * two settings compared on a loaded machine (`render --report`, `--pass-costs`, bench, the demo).
+ * `item` names the items ("pixel", "voxel"), a string that outlives the graph.
+ *
+ * The shaders count into `buffer` (FG_READS_COUNTER, 16 bytes at offset 0: reads, low and high
+ * 32 bits, then items, then 0: common/reads.glsl's layout), which the pass clears before its
+ * dispatches. Call it during execute(), after them. The graph copies the counter when the pass
+ * ends and reads the copy when it reads the pass's time: at once with FG_TIMING_SYNC and
+ * FG_TIMING_NONE, a frame late with FG_TIMING_QUERIES, so that no pass waits for the GPU. A pass
+ * that does not call it has no counts (fg_pass_reads is false). */
+#define FG_READS_COUNTER 16
+void fg_pass_report_reads(fg_pass *pass, GLuint buffer, const char *item);
+/* The counts of the last frame read back (queries: the frame before): false when the pass
+ * reported none. `reads` and `items` may be NULL. */
+bool fg_pass_reads(const fg_pass *pass, double *reads, double *items, const char **item);
+/* The counts for a person: "48.21 M, 3347 a pixel" (reads in millions, then per item), "0 M, no
+ * voxel" when nothing was traced, "-" when the pass reported none. Returns buf. */
+const char *fg_pass_reads_text(const fg_pass *pass, char *buf, size_t size);
+
 /* ---------------------------------------------------------------- registry and plugins */
 
 typedef struct fg_registry fg_registry;
@@ -404,8 +427,12 @@ void fg_graph_memory_report(const fg_graph *graph, fg_memory_report *out);
 /* Milliseconds of the last timed frame (queries: the frame before); -1 when not measured. */
 double fg_pass_milliseconds(const fg_pass *pass);
 
-/* Human-readable table of per-pass times and resource bytes. */
+/* Human-readable table of per-pass times, texture reads and resource bytes. */
 void fg_graph_print_report(const fg_graph *graph, FILE *out);
+/* Every live pass that counted, in execution order: "light 0 M, no voxel; gather 1.754 M, 1082 a
+ * pixel" ("" when none did). Returns buf. */
+const char *fg_graph_reads_text(const fg_graph *graph, char *buf, size_t size);
+
 /* The same as JSON, written atomically. */
 bool fg_graph_write_report_json(const fg_graph *graph, const char *path, cg_error *err);
 /* Graphviz DOT of the compiled graph: culled passes dashed, resource sizes on the edges. */
