@@ -71,6 +71,81 @@ test_shadow_map_depth_of_plane(void **state)
     assert_no_gl_errors(ctx);
 }
 
+/* shadow_map's cache (the default): the first frame draws; a frame with nothing changed keeps the
+ * depth map (the same bits, no draw); an instance moved, or the light turned, draws again, and the
+ * map equals a fresh render's of the changed scene (drawn with cache = false). */
+static void
+expect_shadow_rebuilt(const fx_runner *r, const char *text)
+{
+    const char *said = fg_pass_rebuilt(fg_graph_find_pass(r->graph, "shadow"));
+    if (strcmp(said, text))
+        fail_msg("shadow_map reported \"%s\", expected \"%s\"", said, text);
+}
+
+static void
+expect_depth_equal(const fx_runner *a, const fx_runner *b)
+{
+    int w, h, w2, h2;
+    float *da = fx_read_depth(fg_graph_texture(a->graph, "shadow.depth"), &w, &h);
+    float *db = fx_read_depth(fg_graph_texture(b->graph, "shadow.depth"), &w2, &h2);
+    assert_int_equal(w, w2);
+    assert_int_equal(h, h2);
+    assert_memory_equal(da, db, sizeof(float) * (size_t)w * (size_t)h);
+    free(da);
+    free(db);
+}
+
+static void
+test_shadow_map_cache(void **state)
+{
+    cg_context *ctx = cg_test_gl_context(state);
+    fx_scene s;
+    floor_and_occluder(&s);
+    cg_light *sun = fx_add_light(&s, CG_LIGHT_DIRECTIONAL, 1.0f);
+    fx_scene_finish(&s);
+    cg_view view;
+    fx_view_look_at((float[3]){ 0, 5, 0 }, (float[3]){ 0, 0, 0 }, up_z, 60.0f, SIZE, SIZE, &view);
+    static const char *cached = "{ \"version\": 1, \"passes\": { \"shadow\": { \"type\": \"shadow_map\","
+                                "  \"params\": { \"resolution\": 64 } } },"
+                                "  \"outputs\": [ \"shadow.depth\", \"shadow.matrix\" ] }";
+    static const char *drawn = "{ \"version\": 1, \"passes\": { \"shadow\": { \"type\": \"shadow_map\","
+                               "  \"params\": { \"resolution\": 64, \"cache\": false } } },"
+                               "  \"outputs\": [ \"shadow.depth\", \"shadow.matrix\" ] }";
+    fx_runner r, fresh;
+    cg_error err = { 0 };
+    fx_run(&r, &s, &view, cached, NULL);
+    expect_shadow_rebuilt(&r, "depth drawn (first frame; 1 draw since prepare)");
+    assert_true(fg_graph_find_resource(r.graph, "shadow.depth")->desc.persistent);
+    fx_run(&fresh, &s, &view, drawn, NULL);
+    expect_shadow_rebuilt(&fresh, "depth drawn (cache=false)");
+    r.frame.index = 1;
+    assert_cg_ok(fg_graph_execute(r.graph, &r.frame, FG_TIMING_SYNC, &err), &err);
+    expect_shadow_rebuilt(&r, "depth kept (1 draw since prepare)");
+    expect_depth_equal(&r, &fresh);
+    fx_runner_free(&fresh);
+
+    /* The occluder 0.25 m along x: an instance changed (its world, compared by value). */
+    s.instances[1].world[12] += 0.25f;
+    r.frame.index = 2;
+    assert_cg_ok(fg_graph_execute(r.graph, &r.frame, FG_TIMING_SYNC, &err), &err);
+    expect_shadow_rebuilt(&r, "depth drawn (an instance changed; 2 draws since prepare)");
+    fx_run(&fresh, &s, &view, drawn, NULL);
+    expect_depth_equal(&r, &fresh);
+    fx_runner_free(&fresh);
+
+    /* The sun tilted: its fit changes. */
+    sun->direction[0] = 0.28734789f;     /* (0.3, -1, 0), normalised */
+    sun->direction[1] = -0.95782629f;
+    r.frame.index = 3;
+    assert_cg_ok(fg_graph_execute(r.graph, &r.frame, FG_TIMING_SYNC, &err), &err);
+    expect_shadow_rebuilt(&r, "depth drawn (light, fit or parameters changed; 3 draws since prepare)");
+    fx_run(&fresh, &s, &view, drawn, NULL);
+    expect_depth_equal(&r, &fresh);
+    fx_runner_free(&fresh);
+    fx_runner_free(&r);
+    assert_no_gl_errors(ctx);
+}
+
 /* A quad facing +z seen head-on: normal (0,0,1), albedo = factor x sRGB-decoded texture,
  * emissive = factor x strength, position on the quad; background pixels are empty. */
 static void
@@ -794,6 +869,7 @@ test_shadow_map_refuses_bad_light(void **state)
 
 CG_TEST_MAIN(cg_test_gl_setup, cg_test_gl_teardown,
              cmocka_unit_test(test_shadow_map_depth_of_plane),
+             cmocka_unit_test(test_shadow_map_cache),
              cmocka_unit_test(test_gbuffer_normal_albedo),
              cmocka_unit_test(test_direct_directional_pcf3),
              cmocka_unit_test(test_direct_directional_unfiltered),
