@@ -346,17 +346,6 @@ reads_sum(const vf_runner *r, int w, int h)
     return sum;
 }
 
-/* The texture reads the gather counted (fg_pass_reads), and the pixels they were for. */
-static double
-counted_reads(const vf_runner *r, double *items)
-{
-    double reads = -1.0;
-    const char *item = NULL;
-    assert_true(fg_pass_reads(fg_graph_find_pass(r->graph, "gather"), &reads, items, &item));
-    assert_string_equal(item, "pixel");
-    return reads;
-}
-
 /* The gathers' counted texture reads (common/reads.glsl, fg_pass_report_reads) on builtin:cornell,
  * through the graphs whose gathers trace diffuse cones alone (vct-aniso.json, hybrid-paper.json):
  *   - cone_gather's equal the sum of its per-pixel `reads` image, at downsample 1 and 4, and its
@@ -380,7 +369,7 @@ test_reads_counted(void **state)
             vf_frame(&a);
             vf_frame(&b);
             double items = 0.0, items_b = 0.0;
-            double reads = counted_reads(&a, &items), reads_b = counted_reads(&b, &items_b);
+            double reads = vf_reads(&a, "gather", "pixel", &items), reads_b = vf_reads(&b, "gather", "pixel", &items_b);
             fprintf(stderr, "# %s %s: %.0f reads for %.0f pixels (%.1f a pixel)\n", graphs[g], downsample[d], reads,
                     items, reads / items);
             assert_true(reads > items && items > 0.0);
@@ -409,7 +398,7 @@ test_reads_counted(void **state)
         vf_frame(&a);
         vf_frame(&b);
         vf_next_frame(&b);
-        double items, traced = counted_reads(&a, &items), ratio = counted_reads(&b, &items) / traced;
+        double items, traced = vf_reads(&a, "gather", "pixel", &items), ratio = vf_reads(&b, "gather", "pixel", &items) / traced;
         fprintf(stderr, "# %s temporal 4, the second frame of a still scene: %.3f of temporal 1's reads\n", graphs[g],
                 ratio);
         if (ratio < 0.15 || ratio > 0.4)

@@ -50,17 +50,6 @@ traced_voxels(const vf_runner *r)
     return (unsigned)strtoul(at + 4, NULL, 10);
 }
 
-/* voxel_light's counted texture reads of the last frame (fg_pass_reads), and the voxels that traced. */
-static double
-light_reads(const vf_runner *r, double *voxels)
-{
-    double reads = -1.0;
-    const char *item = NULL;
-    assert_true(fg_pass_reads(fg_graph_find_pass(r->graph, "light"), &reads, voxels, &item));
-    assert_string_equal(item, "voxel");
-    return reads;
-}
-
 /* The lit side's radiance (rgb / w) of level 0, and the other side's (beta times it), of the two
  * runners compared voxel by voxel: the largest difference relative to the voxel's radiance, and the
  * summed absolute difference over the summed radiance. */
@@ -192,13 +181,13 @@ test_closed_box_under_sky(void **state)
     /* The texture reads count the voxels that traced, one gather each, and fall with them; a second,
      * still frame relights nothing and reads nothing. */
     double traced_every, traced_spaced;
-    double reads_every = light_reads(&every, &traced_every), reads_spaced = light_reads(&spaced, &traced_spaced);
+    double reads_every = vf_reads(&every, "light", "voxel", &traced_every), reads_spaced = vf_reads(&spaced, "light", "voxel", &traced_spaced);
     printf("# texture reads: %.0f for %.0f voxels at spacing 1, %.0f for %.0f at 4\n", reads_every, traced_every,
            reads_spaced, traced_spaced);
     assert_true(traced_every == all && traced_spaced == few);
     assert_true(reads_spaced * 4 < reads_every && reads_spaced > traced_spaced);
     vf_next_frame(&spaced);
-    assert_true(light_reads(&spaced, &traced_spaced) == 0.0 && traced_spaced == 0.0);
+    assert_true(vf_reads(&spaced, "light", "voxel", &traced_spaced) == 0.0 && traced_spaced == 0.0);
     /* Mixing the faces' light is no farther from the truth than tracing at every voxel. */
     assert_true(e_spaced.outer <= fmax(e_every.outer, 2e-3));
     assert_true(e_spaced.inner <= e_every.inner);

@@ -180,6 +180,16 @@ vf_rebuilt(const vf_runner *r, const char *pass)
     return fg_pass_rebuilt(p);
 }
 
+double
+vf_reads(const vf_runner *r, const char *pass, const char *item, double *items)
+{
+    double reads = -1.0;
+    const char *counted = NULL;
+    assert_true(fg_pass_reads(fg_graph_find_pass(r->graph, pass), &reads, items, &counted));
+    assert_string_equal(counted, item);
+    return reads;
+}
+
 float *
 vf_read_image(const vf_runner *r, const char *source, int width, int height)
 {

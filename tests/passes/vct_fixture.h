@@ -2,7 +2,7 @@
  * VCT pass tests (voxelize, mip3d, cone_gather).
  *
  * Declares: vf_scene, vf_scene_init, vf_add_triangle, vf_finish, vf_runner, vf_start, vf_run_format,
- *           vf_frame, vf_next_frame, vf_stop, vf_rebuilt, vf_read_image, vf_read_volume.
+ *           vf_frame, vf_next_frame, vf_stop, vf_rebuilt, vf_reads, vf_read_image, vf_read_volume.
  */
 #ifndef CG_TEST_VCT_FIXTURE_H
 #define CG_TEST_VCT_FIXTURE_H
@@ -61,6 +61,9 @@ void vf_stop(vf_runner *r);
 /* What pass `pass` of the runner's graph reported rebuilding in the last frame ("" when
  * nothing); fails the test when the graph has no such pass. */
 const char *vf_rebuilt(const vf_runner *r, const char *pass);
+/* The texture reads pass `pass` counted in the last frame (fg_pass_reads), with *items the items
+ * they were for; fails the test unless it counted, of `item`s. */
+double vf_reads(const vf_runner *r, const char *pass, const char *item, double *items);
 /* A graph's 2D output `source` ("pass.output") as RGBA floats, rows bottom to top; fails the
  * test when the graph has no such output or its size is not width x height. */
 float *vf_read_image(const vf_runner *r, const char *source, int width, int height);
