@@ -121,7 +121,6 @@ cg_cone_composite(inout vec4 acc, vec4 s)
     acc.a += (1.0 - acc.a) * alpha;
 }
 
-
 // What a march carries from one step to the next (cg_cone_step). With CG_CONE_SURFACE: the level
 // a surface crossing is held at, and the span of the previous step (the midpoint weights).
 struct CgConeState {
