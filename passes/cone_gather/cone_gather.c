@@ -59,6 +59,7 @@ static const fg_param_desc cone_gather_params[] = {
              "not depend on the machine's load); with downsample, a block's at its representative pixel" },
     CGP_DOWNSAMPLE_PARAM,
     CGP_TEMPORAL_PARAM,
+    CGP_INTERLEAVE_PARAM,
 };
 
 typedef struct cone_gather_state {

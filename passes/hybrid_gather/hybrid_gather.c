@@ -115,6 +115,7 @@ static const fg_param_desc hybrid_gather_params[] = {
       .doc = "also trace a refracted cone where the material transmits (output 'refraction'), as cone_gather's" },
     CGP_DOWNSAMPLE_PARAM,
     CGP_TEMPORAL_PARAM,
+    CGP_INTERLEAVE_PARAM,
 };
 
 typedef struct hybrid_gather_state {

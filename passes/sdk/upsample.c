@@ -20,7 +20,8 @@ cgp_gather_blocks_define(const fg_pass *pass, char *out, size_t size)
 {
     int d = cgp_gather_downsample(pass);
     if (d > 1)
-        snprintf(out, size, "#define CG_GATHER_DOWNSAMPLE %d\n", d);
+        snprintf(out, size, "#define CG_GATHER_DOWNSAMPLE %d\n%s", d,
+                 fg_param_bool(pass, "interleave") ? "#define CG_GATHER_INTERLEAVE\n" : "");
     else if (size > 0)
         out[0] = '\0';
     return out;

@@ -3,7 +3,7 @@
  * the G-buffer's position and normal (shaders/common/upsample.glsl says how, and why no light
  * crosses a depth or normal edge).
  *
- * Declares: CGP_DOWNSAMPLE_PARAM, CGP_TEMPORAL_PARAM, CGP_DOWNSAMPLE_AUTO_ROWS, cgp_gather_downsample,
+ * Declares: CGP_DOWNSAMPLE_PARAM, CGP_TEMPORAL_PARAM, CGP_INTERLEAVE_PARAM, CGP_DOWNSAMPLE_AUTO_ROWS, cgp_gather_downsample,
  *           cgp_gather_blocks, cgp_gather_blocks_define,
  *           cgp_gather_blocks_prepare, cgp_gather_blocks_trace, cgp_gather_blocks_deferred,
  *           cgp_gather_blocks_end.
@@ -21,6 +21,10 @@
  * With downsample = 1 none is compiled in and the shader is the gather it always was. A pass runs
  * them as: cgp_gather_begin, cgp_gather_blocks_trace, cgp_gather_dispatch, cgp_gather_blocks_deferred,
  * cgp_gather_end, cgp_gather_blocks_end.
+ *
+ * With interleave (CG_GATHER_INTERLEAVE in both programs) a block traces the quarter of the cone set
+ * its place in a 2 x 2 of blocks picks (common/upsample.glsl's cg_upsample_interleave), and a pixel
+ * sums the four subsets around it over their cone weights (cg_upsample_diffuse).
  *
  * With temporal = N > 1 (CG_GATHER_TEMPORAL in the block program) the blocks of one turn in N trace
  * each frame and the others keep their light where their pixel still sees the surface they traced
@@ -63,6 +67,15 @@ int cgp_gather_downsample(const fg_pass *pass);
              "whose surface changed traces again. A block's light is at most temporal - 1 frames old; "  \
              "the first frame after prepare traces every block, so a single frame is downsample's own; " \
              "1: every block every frame (docs/results/gi-resolution.md)" }
+/* The third, the entry after CGP_TEMPORAL_PARAM. */
+#define CGP_INTERLEAVE_PARAM                                                                          \
+    { .name = "interleave", .type = FG_PARAM_BOOL, .stage = FG_STAGE_PREPARE,                         \
+      .active_when = "downsample=0|2|4|8",                                                            \
+      .doc = "each block traces a quarter of the diffuse cones, the subset of its place in a 2 x 2 of " \
+             "blocks (cones k with k mod 4 = its subset), and a pixel sums the four subsets of the 2 x 2 " \
+             "blocks around it (each block as far as it agrees with the pixel, over the cone weights " \
+             "of the subsets that agree): a quarter of the blocks' cones, the GI's detail of blocks twice " \
+             "as wide (docs/results/gi-resolution.md); false: every block traces the whole set" }
 typedef struct cgp_gather_blocks {
     int downsample;         /* the parameter; 1: nothing here is made or used */
     GLuint program;         /* the gather's shader with CG_GATHER_LOWRES */
@@ -77,8 +90,9 @@ typedef struct cgp_gather_blocks {
                              * image each at most): 4 bytes a pixel, the state's */
 } cgp_gather_blocks;
 
-/* The define the gather's full-resolution program needs ("#define CG_GATHER_DOWNSAMPLE D\n"),
- * written to `out` (at most `size` bytes); "" for downsample 1. */
+/* The defines the gather's full-resolution program needs ("#define CG_GATHER_DOWNSAMPLE D\n", and
+ * "#define CG_GATHER_INTERLEAVE\n" with interleave), written to `out` (at most `size` bytes); "" for
+ * downsample 1. */
 const char *cgp_gather_blocks_define(const fg_pass *pass, char *out, size_t size);
 /* In prepare(), after cgp_gather_prepare: for downsample > 1, the program of `shader` with `defines`
  * (the full-resolution program's, its CG_GATHER_DOWNSAMPLE included), the model's and the

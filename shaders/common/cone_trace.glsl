@@ -60,6 +60,11 @@ cg_cone_count()
     return cg_cone_set_block.count.x;
 }
 
+// The cones of the set a gather's loops take: k = cg_cone_first, + cg_cone_stride, ... below
+// cg_cone_count(). The whole set (0, 1) but for an interleaved block, which takes a quarter of it
+// (common/upsample.glsl's cg_upsample_interleave).
+int cg_cone_first = 0, cg_cone_stride = 1;
+
 // Cone k of the set for a point with tangent frame `frame`: its world direction and tan of its half angle.
 vec3
 cg_cone_direction(mat3 frame, int k)
@@ -597,7 +602,7 @@ cg_cone_gather_diffuse(sampler3D volume, CgVolume v, vec3 origin, mat3 frame, fl
     CgMarch march = cg_cone_march();
     vec4 surface = vec4(frame[2], height);
     vec4 diffuse = vec4(0.0);
-    for (int k = 0; k < cg_cone_count(); k++) {
+    for (int k = cg_cone_first; k < cg_cone_count(); k += cg_cone_stride) {
         CgCone cone = CgCone(origin, cg_cone_direction(frame, k), cg_cone_tan_half(k), v.voxel_size, t_max,
                              march.step, march.lod_bias);
         // What the cone left open sees the sky (common/sky.glsl).

@@ -32,6 +32,7 @@
 #define CG_COMMON_UPSAMPLE_GLSL
 
 #include "common/agreement.glsl"
+#include "common/cone_trace.glsl"
 #include "common/gather.glsl"
 #include "common/reads.glsl"
 
@@ -127,17 +128,50 @@ cg_upsample_is_representative(ivec2 pixel)
     return cg_upsample_representative(pixel / CG_GATHER_DOWNSAMPLE) == pixel;
 }
 
+#ifdef CG_GATHER_INTERLEAVE
+// Interleaved cone sets (sdk/upsample.h's `interleave`): block b traces the cones k = s, s + 4, ...
+// of the set, s its place in the 2 x 2 of blocks it belongs to, so that any 2 x 2 blocks hold the
+// four subsets once each. Called by a gather's block entry point before it traces.
+int
+cg_upsample_subset(ivec2 b)
+{
+    return (b.x & 1) + 2 * (b.y & 1);
+}
+
+void
+cg_upsample_interleave(ivec2 b)
+{
+    cg_cone_first = cg_upsample_subset(b);
+    cg_cone_stride = 4;
+}
+
+// The cone weights of block b's subset: W_k summed over its cones (the whole set sums to 1).
+float
+cg_upsample_subset_weight(ivec2 b)
+{
+    float w = 0.0;
+    for (int k = cg_upsample_subset(b); k < cg_cone_count(); k += 4)
+        w += cg_cone_set_block.cones[k].w;
+    return w;
+}
+#endif
+
 // The diffuse light of `pixel` (a surface point `position` with unit normal `n`, seen from
 // `camera`) from the blocks around it; false where no block's surface agrees with the pixel's
 // well enough, and the pixel must trace its own cones. A representative takes its own block's
-// light exactly.
+// light exactly. Interleaved, the 2 x 2 blocks around the pixel hold the four subsets of the set:
+// their sums, each times its agreement, over the agreeing subsets' cone weights (a subset that
+// disagrees leaves its directions to the others, as a uniform radiance would fill them), without
+// the bilinear weights, which would lean the light towards the nearest block's directions.
 bool
 cg_upsample_diffuse(ivec2 pixel, vec3 position, vec3 n, vec3 camera, out vec4 diffuse)
 {
+#ifndef CG_GATHER_INTERLEAVE
     if (cg_upsample_is_representative(pixel)) {
         diffuse = texelFetch(cg_upsample_blocks, pixel / CG_GATHER_DOWNSAMPLE, 0);
         return true;
     }
+#endif
     // The four blocks around the pixel, by their representatives' positions on the screen.
     vec2 f = (vec2(pixel) - float(CG_GATHER_DOWNSAMPLE / 2)) / float(CG_GATHER_DOWNSAMPLE);
     ivec2 b0 = ivec2(floor(f));
@@ -158,9 +192,14 @@ cg_upsample_diffuse(ivec2 pixel, vec3 position, vec3 n, vec3 camera, out vec4 di
             float agreement = cg_upsample_agreement(q, m, position, n, tolerance);
             if (agreement == 0.0)
                 continue;   // another surface: none of its light, however near its block
+#ifdef CG_GATHER_INTERLEAVE
+            sum += agreement * texelFetch(cg_upsample_blocks, b, 0);
+            weight += agreement * cg_upsample_subset_weight(b);
+#else
             float w = (i == 0 ? 1.0 - t.x : t.x) * (j == 0 ? 1.0 - t.y : t.y) * agreement;
             sum += w * texelFetch(cg_upsample_blocks, b, 0);
             weight += w;
+#endif
         }
     if (!(weight > 0.0))
         return false;

@@ -109,6 +109,9 @@ main()
     vec3 position, n;
     vec4 diffuse = vec4(0.0, 0.0, 0.0, 1.0);
     bool surface = cg_gather_surface(pixel, position, n), traced = false;
+#ifdef CG_GATHER_INTERLEAVE
+    cg_upsample_interleave(block);
+#endif
     if (!cg_upsample_block_kept(block, surface, position, n, cg_cone_gather_block.camera.xyz)) {
         if (surface)
             diffuse = trace_diffuse(position, n);

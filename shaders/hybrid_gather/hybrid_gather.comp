@@ -827,7 +827,7 @@ trace_diffuse(vec3 position, vec3 n, Reach r)
     vec3 origin = position + n * (march.start_offset * r.xel);
 #ifdef METHOD_PAPER
     // What each cone left open, past the volume and the terrain, sees the sky (common/sky.glsl).
-    for (int k = 0; k < cg_cone_count(); k++) {
+    for (int k = cg_cone_first; k < cg_cone_count(); k += cg_cone_stride) {
         vec3 dir = cg_cone_direction(frame, k);
         float tan_half = cg_cone_tan_half(k);
         vec4 traced = trace_paper(cg_gather_volume, origin, dir, tan_half, r.xel, r.t_max);
@@ -835,7 +835,7 @@ trace_diffuse(vec3 position, vec3 n, Reach r)
     }
 #else
     vec4 surface = r.own_voxels ? vec4(n, march.start_offset * r.xel) : vec4(n, -1.0);
-    for (int k = 0; k < cg_cone_count(); k++) {
+    for (int k = cg_cone_first; k < cg_cone_count(); k += cg_cone_stride) {
         vec3 dir = cg_cone_direction(frame, k);
         float tan_half = cg_cone_tan_half(k);
         vec4 traced = trace_horizon(cg_gather_volume, position, origin, dir, tan_half, r.xel, r.t_max, surface,
@@ -882,6 +882,9 @@ main()
     bool surface = cg_gather_surface(pixel, position, n);
     if (cg_upsample_block_kept(block, surface, position, n, cg_hybrid_gather_block.camera.xyz))
         return;
+#ifdef CG_GATHER_INTERLEAVE
+    cg_upsample_interleave(block);
+#endif
     if (surface)
         diffuse = trace_diffuse(position, n, gather_reach(position, n));
     imageStore(cg_gather_radiance, block, diffuse);
