@@ -361,19 +361,19 @@ test_reads_counted(void **state)
     const char *graphs[2] = {"vct-aniso.json", "hybrid-paper.json"};
     const char *downsample[2] = {"gather.downsample=1", "gather.downsample=4"};
     for (int g = 0; g < 2; g++) {
+        double reads_4 = 0.0, items_4 = 0.0;  /* downsample 4's, for the second run below */
         for (int d = 0; d < 2; d++) {
             const char *sets[] = {downsample[d], g == 0 ? "gather.count_reads=true" : NULL, NULL};
-            vf_runner a, b;
+            vf_runner a;
             vf_start_file(&a, &scene, W, H, graphs[g], sets);
-            vf_start_file(&b, &scene, W, H, graphs[g], sets);
             vf_frame(&a);
-            vf_frame(&b);
-            double items = 0.0, items_b = 0.0;
-            double reads = vf_reads(&a, "gather", "pixel", &items), reads_b = vf_reads(&b, "gather", "pixel", &items_b);
+            double items = 0.0;
+            double reads = vf_reads(&a, "gather", "pixel", &items);
             fprintf(stderr, "# %s %s: %.0f reads for %.0f pixels (%.1f a pixel)\n", graphs[g], downsample[d], reads,
                     items, reads / items);
             assert_true(reads > items && items > 0.0);
-            assert_true(reads == reads_b && items == items_b);
+            reads_4 = reads;
+            items_4 = items;
             if (g == 0) {
                 float *image = vf_read_image(&a, "gather.reads", W, H);
                 double sum = 0.0;
@@ -388,7 +388,6 @@ test_reads_counted(void **state)
                              reads, items, sum, reading);
             }
             vf_stop(&a);
-            vf_stop(&b);
         }
         const char *plain[] = {"gather.downsample=4", NULL};
         const char *reuse[] = {"gather.downsample=4", "gather.temporal=4", NULL};
@@ -398,7 +397,10 @@ test_reads_counted(void **state)
         vf_frame(&a);
         vf_frame(&b);
         vf_next_frame(&b);
-        double items, traced = vf_reads(&a, "gather", "pixel", &items), ratio = vf_reads(&b, "gather", "pixel", &items) / traced;
+        double items, kept_items, traced = vf_reads(&a, "gather", "pixel", &items);
+        double ratio = vf_reads(&b, "gather", "pixel", &kept_items) / traced;
+        /* Another run of downsample 4 (without the reads image): the same counts. */
+        assert_true(traced == reads_4 && items == items_4);
         fprintf(stderr, "# %s temporal 4, the second frame of a still scene: %.3f of temporal 1's reads\n", graphs[g],
                 ratio);
         if (ratio < 0.15 || ratio > 0.4)
