@@ -284,7 +284,8 @@ const char *fg_pass_rebuilt(const fg_pass *pass);
  * 32 bits, then items, then 0: common/reads.glsl's layout), which the pass clears before its
  * dispatches. Call it during execute(), after them. The graph copies the counter when the pass
  * ends and reads the copy when it reads the pass's time: at once with FG_TIMING_SYNC and
- * FG_TIMING_NONE, a frame late with FG_TIMING_QUERIES, so that no pass waits for the GPU. A pass
+ * FG_TIMING_NONE (the read waits for the pass), a frame late with FG_TIMING_QUERIES (nothing
+ * waits). A pass
  * that does not call it has no counts (fg_pass_reads is false). */
 #define FG_READS_COUNTER 16
 void fg_pass_report_reads(fg_pass *pass, GLuint buffer, const char *item);
