@@ -11,7 +11,7 @@ static const fg_param_desc test_params[] = {
     { .name = "outputs", .type = FG_PARAM_STRING, .choices = "",
       .doc = "outputs: NAME:KIND:FORMAT:SIZE:ACCESS[:persistent][:gi][:mips] ..." },
     { .name = "nothing", .type = FG_PARAM_BOOL, .doc = "declare that there is nothing to do" },
-    { .name = "value", .type = FG_PARAM_FLOAT, .min = -1e6, .max = 1e6,
+    { .name = "value", .type = FG_PARAM_FLOAT, .min = -1e6, .max = 1e6, .interactive = "0.25",
       .doc = "value execute() clears colour outputs to" },
     /* For the validation tests only: */
     { .name = "cones", .type = FG_PARAM_INT, .default_value = 6, .min = 1, .max = 16,
@@ -22,7 +22,7 @@ static const fg_param_desc test_params[] = {
     { .name = "label", .type = FG_PARAM_STRING, .choices = "none", .doc = "a label" },
     { .name = "bounded", .type = FG_PARAM_BOOL, .doc = "whether low and high apply" },
     { .name = "low", .type = FG_PARAM_FLOAT, .min = -100, .max = 100, .active_when = "bounded",
-      .doc = "lower end" },
+      .interactive = "-1", .doc = "lower end" },
     { .name = "high", .type = FG_PARAM_FLOAT, .default_value = 1, .min = -100, .max = 100,
       .active_when = "bounded", .greater_than = { .param = "low" }, .doc = "upper end, above low" },
     { .name = "margin", .type = FG_PARAM_FLOAT, .min = 0, .max = 100,

@@ -146,6 +146,8 @@ test_vct_runs(void **state)
     cg_image_free(&a);
     const char *out = read_text(log);
     assert_non_null(strstr(out, "| gather "));
+    /* The gather's `temporal` takes its interactive value, unset in vct.json (fg_graph_apply_interactive). */
+    assert_non_null(strstr(out, "demo: gather.temporal=4 (interactive value"));
     /* Shift+Tab twice from the first pass: gather (final, then gather). Left from 26 cones
      * steps past 25 .. 17, which the pass refuses, to 16. */
     assert_non_null(strstr(out, "param: gather.cones = 16 "));
@@ -176,10 +178,12 @@ test_param_stages(void **state)
         const char *log = cg_test_tmp_path("stages.txt");
         char args[8192];
         snprintf(args, sizeof args,
-                 "builtin:cornell --graph vct.json --set vox.resolution=32 --size 48x32 --frames %d "
-                 "--timing sync --ui off --keys %s", (int)strlen(cases[i].keys) / 4 + 4, cases[i].keys);
+                 "builtin:cornell --graph vct.json --set vox.resolution=32 --set gather.temporal=1 --size 48x32 "
+                 "--frames %d --timing sync --ui off --keys %s", (int)strlen(cases[i].keys) / 4 + 4, cases[i].keys);
         assert_int_equal(run("CONEGRAPH_DEMO_EXE", args, log), 0);
         const char *out = read_text(log);
+        /* --set wins over the interactive value: nothing applied, nothing said. */
+        assert_null(strstr(out, "interactive value"));
         if (!strstr(out, cases[i].applied))
             fail_msg("keys %s: no '%s' in:\n%s", cases[i].keys, cases[i].applied, out);
         const char *rebuilt = strstr(out, "rebuilt: ");

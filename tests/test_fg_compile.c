@@ -107,6 +107,11 @@ static const fg_param_desc bad_constraints[][2] = {
     { { .name = "x", .type = FG_PARAM_FLOAT, .default_value = 1, .max = 1, .less_than = { .param = "y" },
         .doc = "x" },
       { .name = "y", .type = FG_PARAM_FLOAT, .default_value = 1, .max = 1, .doc = "y" } },
+    /* interactive values: out of range, not allowed, not a number */
+    { { .name = "n", .type = FG_PARAM_INT, .default_value = 1, .max = 5, .interactive = "9", .doc = "n" } },
+    { { .name = "n", .type = FG_PARAM_INT, .default_value = 1, .max = 16, .allowed = FG_PARAM_VALUES(1, 6),
+        .interactive = "4", .doc = "n" } },
+    { { .name = "b", .type = FG_PARAM_BOOL, .interactive = "yes", .doc = "b" } },
 };
 
 /* And tables that use every constraint correctly. */
@@ -309,6 +314,8 @@ parameter_constraints_as_text(void **state)
         { "label", "any text", "" },
         { "high", "-100..100", "only with bounded = true; greater than low" },
         { "margin", "0..100", "less than 0.25 x resolution" },
+        { "value", "-1e+06..1e+06", "0.25 in interactive applications unless set" },
+        { "low", "-100..100", "only with bounded = true; -1 in interactive applications unless set" },
     };
     for (size_t i = 0; i < sizeof expected / sizeof expected[0]; i++) {
         const fg_param_desc *p = NULL;
@@ -322,6 +329,36 @@ parameter_constraints_as_text(void **state)
         assert_string_equal(values, expected[i].values);
         assert_string_equal(depends, expected[i].depends);
     }
+}
+
+/* An interactive application's values (fg_graph_apply_interactive): set only where neither the
+ * file nor an override set the parameter and where it matters; listed; the others untouched. */
+static void
+interactive_values_fill_what_is_unset(void **state)
+{
+    fixture *f = *state;
+    add(f, "a", "t", NULL, NULL);
+    add(f, "b", "t", NULL, NULL);
+    fg_source_loc file_at = { "g.json", 3, 12 }, set_at = { "--set b.bounded=true", 0, 0 };
+    assert_cg_ok(fg_graph_set_param(f->graph, "a", "value", "7", &file_at, &f->err), &f->err);
+    assert_cg_ok(fg_graph_set_param(f->graph, "b", "bounded", "true", &set_at, &f->err), &f->err);
+    char applied[256];
+    assert_cg_ok(fg_graph_apply_interactive(f->graph, applied, sizeof applied, &f->err), &f->err);
+    /* a.value was set; a.low does not matter while a.bounded is false. */
+    assert_string_equal(applied, "b.value=0.25, b.low=-1");
+    fg_pass *a = fg_graph_find_pass(f->graph, "a"), *b = fg_graph_find_pass(f->graph, "b");
+    assert_true(fg_param_float(a, "value") == 7.0f);
+    assert_true(fg_param_float(a, "low") == 0.0f);
+    assert_true(fg_param_float(b, "value") == 0.25f);
+    assert_true(fg_param_float(b, "low") == -1.0f);
+    /* Applied values count as set: a second call changes nothing; a small buffer truncates. */
+    assert_cg_ok(fg_graph_apply_interactive(f->graph, applied, sizeof applied, &f->err), &f->err);
+    assert_string_equal(applied, "");
+    add(f, "c", "t", NULL, NULL);
+    char small[8];
+    assert_cg_ok(fg_graph_apply_interactive(f->graph, small, sizeof small, &f->err), &f->err);
+    assert_string_equal(small, "c.value");
+    assert_true(fg_param_float(fg_graph_find_pass(f->graph, "c"), "value") == 0.25f);
 }
 
 static void
@@ -894,4 +931,5 @@ CG_TEST_MAIN(NULL, NULL,
              fg_test_unit(barrier_bits_from_writer_and_reader_access),
              fg_test_unit(pool_handover_orders_writes),
              cmocka_unit_test(resource_bytes_and_levels),
-             fg_test_unit(report_and_dot_mention_everything))
+             fg_test_unit(report_and_dot_mention_everything),
+             fg_test_unit(interactive_values_fill_what_is_unset))

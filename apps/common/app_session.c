@@ -200,6 +200,9 @@ app_session_load_graph(app_session *s, const app_graph_desc *desc, cg_error *err
     for (int i = 0; i < desc->set_count; i++)
         if (!fg_graph_apply_override(s->graph, desc->sets[i], err))
             return failed(err, "graph");
+    s->interactive[0] = '\0';
+    if (desc->interactive && !fg_graph_apply_interactive(s->graph, s->interactive, sizeof s->interactive, err))
+        return failed(err, "graph");
     bool added;
     for (int i = 0; i < desc->read_count; i++)
         if (!app_session_mark_output(s, desc->reads[i], &added, err))

@@ -73,6 +73,9 @@ typedef struct app_graph_desc {
      * kept (never pooled away) until the read-back. */
     const char *const *reads;
     int read_count;
+    /* An interactive application (the demo): the passes' interactive values where neither the
+     * file nor `sets` set them (fg_graph_apply_interactive); the session's `interactive` lists them. */
+    bool interactive;
 } app_graph_desc;
 
 typedef struct app_session {
@@ -91,6 +94,7 @@ typedef struct app_session {
     fg_registry *registry;
     fg_graph *graph;                /* the loaded graph; NULL before app_session_load_graph */
     char graph_path[4096];          /* the file it came from */
+    char interactive[512];          /* the interactive values applied ("gather.temporal=4"), or "" */
     const char *image_source;       /* the graph's output named *.IMAGE; NULL without one */
     const char *const *reads;       /* the desc's read-backs, checked after each compile */
     int read_count;

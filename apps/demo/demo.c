@@ -1180,6 +1180,7 @@ demo_main(demo *d)
     app_session_desc desc = app_options_session(&d->o.common);
     app_graph_desc graph = app_options_graph(&d->o.common);
     graph.image = "ldr";
+    graph.interactive = true;
     cg_context_desc context = { .backend = CG_CONTEXT_GLFW, .width = d->o.common.width, .height = d->o.common.height,
                                 .title = "conegraph-demo", .debug = true };
     if (!app_session_open(&d->s, &desc, &err) || !app_session_load_graph(&d->s, &graph, &err) ||
@@ -1188,6 +1189,9 @@ demo_main(demo *d)
         goto done;
     }
     d->graph = d->s.graph;
+    if (d->s.interactive[0])
+        printf("demo: %s (interactive value: the graph file and --set leave it unset; docs/demo.md)\n",
+               d->s.interactive);
     /* The lights are settled now (a default sun is one of them): the sun key's base. */
     double start, end;
     cg_scene_animation_range(&d->s.scene, &start, &end);

@@ -207,6 +207,29 @@ fg_graph_set_param(fg_graph *graph, const char *pass_name, const char *param, co
 }
 
 bool
+fg_graph_apply_interactive(fg_graph *graph, char *applied, size_t size, cg_error *err)
+{
+    if (size)
+        applied[0] = '\0';
+    static const fg_source_loc interactive = { "the pass's interactive value", 0, 0 };
+    for (int i = 0; i < graph->pass_count; i++) {
+        fg_pass *pass = graph->passes[i];
+        for (int k = 0; k < pass->type->param_count; k++) {
+            const fg_param_desc *p = &pass->type->params[k];
+            if (!p->interactive || pass->values[k].set || !fg_param_active(pass, p))
+                continue;
+            if (!fg_graph_set_param(graph, pass->name, p->name, p->interactive, &interactive, err))
+                return false;
+            size_t used = size ? strlen(applied) : 0;
+            if (used < size)
+                snprintf(applied + used, size - used, "%s%s.%s=%s", used ? ", " : "", pass->name, p->name,
+                         p->interactive);
+        }
+    }
+    return true;
+}
+
+bool
 fg_graph_connect(fg_graph *graph, const char *pass_name, const char *input, const char *source,
                  const fg_source_loc *loc, cg_error *err)
 {

@@ -346,6 +346,8 @@ fg_param_dependency_text(const fg_param_desc *p, char *buf, size_t size)
             appendf(buf, size, "%g x ", bounds[b]->scale);
         appendf(buf, size, "%s", bounds[b]->param);
     }
+    if (p->interactive)
+        appendf(buf, size, "%s%s in interactive applications unless set", buf[0] ? "; " : "", p->interactive);
 }
 
 /* ---------------------------------------------------------------- messages */
@@ -594,7 +596,17 @@ check_param(const fg_pass_type *type, int i, cg_error *err)
         return cg_fail(err, CG_ERR_PLUGIN_LOAD, "pass type '%s': parameter '%s': unknown type %d",
                        type->name, p->name, (int)p->type);
     }
-    return check_values(type, p, err);
+    if (!check_values(type, p, err))
+        return false;
+    double v;
+    if (p->interactive && (!fg_param_parse(p, p->interactive, &v) || !fg_param_accepts(p, v))) {
+        char expected[1024];
+        fg_param_expected(p, expected, sizeof expected);
+        return cg_fail(err, CG_ERR_PLUGIN_LOAD,
+                       "pass type '%s': parameter '%s': interactive value \"%s\"; expected %s", type->name,
+                       p->name, p->interactive, expected);
+    }
+    return true;
 }
 
 /* active_when and the bounds name other entries of the table (all entries checked singly). */

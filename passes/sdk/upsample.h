@@ -59,7 +59,7 @@ int cgp_gather_downsample(const fg_pass *pass);
 /* The second parameter, the entry after CGP_DOWNSAMPLE_PARAM. */
 #define CGP_TEMPORAL_PARAM                                                                            \
     { .name = "temporal", .type = FG_PARAM_INT, .default_value = 1, .min = 1, .max = 4,               \
-      .allowed = FG_PARAM_VALUES(1, 2, 4), .stage = FG_STAGE_PREPARE,                                 \
+      .allowed = FG_PARAM_VALUES(1, 2, 4), .stage = FG_STAGE_PREPARE, .interactive = "4",             \
       .active_when = "downsample=0|2|4|8",                                                            \
       .doc = "blocks traced a frame: 1 in `temporal` (2: a checkerboard, 4: one of each 2 x 2), the "  \
              "others keeping the light they traced where their pixel's surface is the one they traced " \

@@ -47,7 +47,7 @@
  * 3: cg_gpu_scene lost its no-shadow fallback and cg_gpu_scene_bind_shadow (now the pass SDK's,
  *    sdk/shadow.h).
  * 4: fg_param_desc gained its stage. */
-#define FG_ABI_VERSION 4u
+#define FG_ABI_VERSION 5u
 
 /* ---------------------------------------------------------------- parameters */
 
@@ -129,6 +129,12 @@ typedef struct fg_param_desc {
     fg_param_bound less_than;    /* value < scale x that parameter's value */
 
     fg_param_stage stage;   /* what a change redoes (above); 0: the graph */
+
+    /* The value an interactive application (the demo) gives the parameter where neither the graph
+     * file nor --set does (fg_graph_apply_interactive), as a graph file writes it; NULL: the
+     * default. For a setting that costs less a frame and shows the default's image wherever
+     * nothing moves (the gathers' `temporal`), which a single-frame render cannot use. */
+    const char *interactive;
 } fg_param_desc;
 
 /* ---------------------------------------------------------------- resources */
@@ -315,8 +321,8 @@ const fg_pass_type *fg_registry_at(const fg_registry *registry, int index);
 /* The values a parameter takes, as `conegraph passes` prints them: "1, 6, 9, 16",
  * "16..512, power of two", "0.05..4", "true|false", "none|reinhard|aces", "any text". */
 void fg_param_values_text(const fg_param_desc *desc, char *buf, size_t size);
-/* Its dependencies, "" when none: "only with region = explicit; greater than min_x",
- * "less than 0.25 x resolution". */
+/* Its dependencies and its interactive value, "" when none: "only with region = explicit; greater
+ * than min_x", "less than 0.25 x resolution", "4 in interactive applications unless set". */
 void fg_param_dependency_text(const fg_param_desc *desc, char *buf, size_t size);
 /* dlopen()s a shared object and calls its entry point. */
 bool fg_registry_load_plugin(fg_registry *registry, const char *path, cg_error *err);
@@ -348,6 +354,12 @@ bool fg_graph_add_pass(fg_graph *graph, const char *name, const char *type,
  * one of 1, 6, 9, 16", or "--set gather.cones=7: expected one of 1, 6, 9, 16". */
 bool fg_graph_set_param(fg_graph *graph, const char *pass, const char *param, const char *value,
                         const fg_source_loc *loc, cg_error *err);
+/* Sets every parameter that has an interactive value (fg_param_desc.interactive), that neither
+ * the graph file nor an override set and that matters (fg_param_active), for an interactive
+ * application; lists what it set
+ * in `applied` ("gather.temporal=4", comma-separated; "" for none). Call it after the file and
+ * the overrides. */
+bool fg_graph_apply_interactive(fg_graph *graph, char *applied, size_t size, cg_error *err);
 /* Connects input slot `input` of `pass` to `source`: "pass.output", or "pass" for the
  * output of the same name as the input, or that pass's only output. A source ending in
  * "@previous" reads the value of the previous frame (the one edge a cycle may go through). */
