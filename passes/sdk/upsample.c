@@ -47,6 +47,10 @@ cgp_gather_blocks_prepare(void *state, const fg_pass *pass, const cgp_gather *g,
              cgp_gather_volume_define(g->model), g->material ? "#define CG_GATHER_MATERIAL\n" : "");
     if (!cgp_compute_program(state, shader, all, &b->deferred_program, err))
         return false;
+    snprintf(all, sizeof all, "%s%s%s#define CG_GATHER_LOWRES\n#define CG_GATHER_DEFERRED\n", defines ? defines : "",
+             cgp_gather_volume_define(g->model), g->material ? "#define CG_GATHER_MATERIAL\n" : "");
+    if (!cgp_compute_program(state, shader, all, &b->listed_program, err))
+        return false;
     GLuint list = 0;
     glCreateBuffers(1, &list);
     glNamedBufferStorage(list, (GLsizeiptr)(sizeof(cg_gather_deferred_block) + sizeof(GLuint) * (size_t)out->width *
@@ -75,6 +79,10 @@ cgp_gather_blocks_trace(const fg_pass *pass, const cgp_gather *g, cgp_gather_blo
 {
     if (b->downsample <= 1 || !b->program)
         return;
+    /* The blocks that trace are listed first, then traced 64 to a lockstep group (common/upsample.glsl). */
+    const cg_gather_deferred_block empty = {.dispatch = {0, 1, 1, 0}};
+    glNamedBufferSubData(b->deferred, 0, sizeof empty, &empty);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_GATHER_DEFERRED, b->deferred);
     glUseProgram(b->program);
     glBindImageTexture(0, b->texture, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     if (b->temporal > 1) {
@@ -92,14 +100,18 @@ cgp_gather_blocks_trace(const fg_pass *pass, const cgp_gather *g, cgp_gather_blo
         for (int i = 0; i < 2; i++)
             glBindImageTexture(CG_IMAGE_BLOCK_HISTORY + (GLuint)i, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
     }
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+    glUseProgram(b->listed_program);
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, b->deferred);
+    glDispatchComputeIndirect(0);
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
     /* The full-resolution dispatch reads the blocks by texelFetch, and a pass's cost image written
      * at the representatives by the blocks' dispatch is written by it at the other pixels. */
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     glBindTextureUnit(CG_UNIT_GATHER_BLOCKS, b->texture);
     glBindSampler(CG_UNIT_GATHER_BLOCKS, 0);
-    const cg_gather_deferred_block empty = {.dispatch = {0, 1, 1, 0}};
+    /* The same list again, for the pixels that no block agrees with (cgp_gather_blocks_deferred). */
     glNamedBufferSubData(b->deferred, 0, sizeof empty, &empty);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_GATHER_DEFERRED, b->deferred);
     glUseProgram(g->program);
     glBindImageTexture(0, fg_slot_texture(pass, g->slots.radiance), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
 }

@@ -9,15 +9,19 @@
  *           cgp_gather_blocks_end.
  *
  * Shared by cone_gather and hybrid_gather (and a plugin gather that wants the same). A gather's
- * shader that takes part includes common/upsample.glsl and has three entry points by define:
+ * shader that takes part includes common/upsample.glsl, whose main() is the entry point with
+ * CG_GATHER_LOWRES or CG_GATHER_DEFERRED (it calls the shader's cg_upsample_trace,
+ * cg_upsample_untraced and cg_upsample_camera); four programs by define:
  *   CG_GATHER_LOWRES    one invocation per block (cg_gather_pixel over the image of blocks, bound as
- *                       `radiance` at image unit 0): the diffuse cones of the block's representative
- *                       pixel (cg_upsample_representative), before the material's diffuse share;
- *   otherwise           every pixel as before, its diffuse light from cg_upsample_diffuse; where that
- *                       fails the pixel is listed (cg_upsample_defer) and its diffuse light left 0;
- *                       the specular and refracted cones at every pixel;
- *   CG_GATHER_DEFERRED  one invocation per listed pixel (common/upsample.glsl's main, which calls the
- *                       shader's cg_upsample_trace and cg_upsample_camera): its own diffuse cones.
+ *                       `radiance` at image unit 0): lists the blocks that trace this frame and
+ *                       writes the background's;
+ *   CG_GATHER_LOWRES and CG_GATHER_DEFERRED  one invocation per listed block, 64 to a group: the
+ *                       diffuse cones of its representative pixel (cg_upsample_representative),
+ *                       before the material's diffuse share;
+ *   neither             the shader's own main: every pixel as before, its diffuse light from
+ *                       cg_upsample_diffuse; where that fails the pixel is listed (cg_upsample_defer)
+ *                       and its diffuse light left 0; the specular and refracted cones at every pixel;
+ *   CG_GATHER_DEFERRED  one invocation per listed pixel, 64 to a group: its own diffuse cones.
  * With downsample = 1 none is compiled in and the shader is the gather it always was. A pass runs
  * them as: cgp_gather_begin, cgp_gather_blocks_trace, cgp_gather_dispatch, cgp_gather_blocks_deferred,
  * cgp_gather_end, cgp_gather_blocks_end.
@@ -86,6 +90,7 @@ typedef struct cgp_gather_blocks {
                              * and normal, RGBA32F */
     bool traced;            /* temporal > 1: the blocks hold a frame's light (not before the first) */
     GLuint deferred_program; /* the gather's shader with CG_GATHER_DEFERRED */
+    GLuint listed_program;  /* with CG_GATHER_LOWRES and CG_GATHER_DEFERRED: the listed blocks' traces */
     GLuint deferred;        /* the pixels no block agrees with (CG_GATHER_DEFERRED_BLOCK, a pixel of the
                              * image each at most): 4 bytes a pixel, the state's */
 } cgp_gather_blocks;

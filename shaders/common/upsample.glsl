@@ -25,8 +25,8 @@
 // pixels at 640x360 cost about 70 ms of a 480 ms gather on llvmpipe; docs/results/gi-resolution.md).
 //
 // Provides: cg_upsample_tolerance(), cg_upsample_block_kept(), cg_upsample_defer(), with
-//           CG_GATHER_DEFERRED the entry point main() (which calls the gather's cg_upsample_trace()
-//           and cg_upsample_camera(), declared here),
+//           CG_GATHER_LOWRES or CG_GATHER_DEFERRED the entry point main() (which calls the gather's
+//           cg_upsample_trace(), cg_upsample_untraced() and cg_upsample_camera(), declared here),
 //           cg_upsample_representative(), cg_upsample_is_representative(), cg_upsample_diffuse().
 #ifndef CG_COMMON_UPSAMPLE_GLSL
 #define CG_COMMON_UPSAMPLE_GLSL
@@ -207,16 +207,52 @@ cg_upsample_diffuse(ivec2 pixel, vec3 position, vec3 n, vec3 camera, out vec4 di
     return true;
 }
 
-#ifdef CG_GATHER_DEFERRED
+#if defined(CG_GATHER_DEFERRED) || defined(CG_GATHER_LOWRES)
 // Defined by the gather after this file: the diffuse cones of the surface point `position` with
 // unit normal `n` seen at `pixel` (before the material's diffuse share: rgb E_i / pi, a the ambient
-// visibility), and the camera's position.
+// visibility), which also stores the pixel's count of reads where the gather keeps such an image;
+// cg_upsample_untraced(pixel) stores 0 there for a representative that does not trace; and the
+// camera's position.
 vec4 cg_upsample_trace(ivec2 pixel, vec3 position, vec3 n);
+void cg_upsample_untraced(ivec2 pixel);
 vec3 cg_upsample_camera();
+#endif
 
-// The third entry point: each listed pixel's diffuse light, its own cones times the material's
-// diffuse share, as the full-resolution dispatch would have written it (which wrote the pixel's other
-// outputs already, and its diffuse light 0).
+#if defined(CG_GATHER_LOWRES) && !defined(CG_GATHER_DEFERRED)
+// The blocks' first entry point: one invocation a block says whether it traces this frame and lists
+// it (cg_upsample_defer) for the listed entry point below; a block on the background is written at
+// once (no light, visibility 1), a kept one (temporal) not at all. The traces run packed, 64 listed
+// blocks to a lockstep group: traced in place, a group of 8 blocks waited for its slowest trace, and
+// with temporal 4 (one block in each 2 x 2 traces) 6 of its 8 lanes idled through it (the demo's
+// gather on the open world at 640x360: docs/results/gi-resolution.md, "Temporal reuse").
+void
+main()
+{
+    ivec2 block;
+    if (!cg_gather_pixel(block))
+        return;
+    ivec2 pixel = cg_upsample_representative(block);
+    vec3 position, n;
+    bool surface = cg_gather_surface(pixel, position, n);
+    bool kept = cg_upsample_block_kept(block, surface, position, n, cg_upsample_camera());
+    if (!kept && surface) {
+        cg_upsample_defer(block);
+        return;
+    }
+    if (!kept)
+        imageStore(cg_gather_radiance, block, vec4(0.0, 0.0, 0.0, 1.0));
+    cg_upsample_untraced(pixel);
+}
+#endif
+
+#ifdef CG_GATHER_DEFERRED
+// The listed entry point, over the list that the block entry point (with CG_GATHER_LOWRES) or the
+// full-resolution dispatch (cg_upsample_defer) made, 64 to a lockstep group.
+// With CG_GATHER_LOWRES: each listed block's diffuse cones at its representative, for every surface
+// (a block's light serves the pixels around it, whatever its own material), into the image of blocks.
+// Otherwise: each listed pixel's diffuse light, its own cones times the material's diffuse share, as
+// the full-resolution dispatch would have written it (which wrote the pixel's other outputs already,
+// and its diffuse light 0).
 void
 main()
 {
@@ -224,16 +260,24 @@ main()
     if (i >= cg_upsample_deferred.dispatch.w)
         return;
     uint listed = cg_upsample_deferred.pixels[i];
-    ivec2 pixel = ivec2(listed & 0xffffu, listed >> 16);
+    ivec2 at = ivec2(listed & 0xffffu, listed >> 16);
+#ifdef CG_GATHER_LOWRES
+    ivec2 pixel = cg_upsample_representative(at);
+#ifdef CG_GATHER_INTERLEAVE
+    cg_upsample_interleave(at);
+#endif
+#else
+    ivec2 pixel = at;
+#endif
     vec3 position, n;
     cg_gather_surface(pixel, position, n);  // a surface: only those are listed
     vec4 diffuse = cg_upsample_trace(pixel, position, n);
-#ifdef CG_GATHER_MATERIAL
+#if defined(CG_GATHER_MATERIAL) && !defined(CG_GATHER_LOWRES)
     CgGatherMaterial m = cg_gather_material(pixel);
     vec3 view = normalize(position - cg_upsample_camera());
     diffuse.rgb *= cg_gather_diffuse_share(m, cg_gather_brdf(max(dot(n, -view), 0.0), m.roughness));
 #endif
-    imageStore(cg_gather_radiance, pixel, diffuse);
+    imageStore(cg_gather_radiance, at, diffuse);
     cg_reads_commit(true);
 }
 #endif

@@ -17,10 +17,11 @@
 // tau = 0.
 // Shadow (3.2.3, with SHADOW_CONE): one narrow cone towards a light; its
 // transmittance 1 - a is a soft visibility.
-// Decoupled resolution (CG_GATHER_DOWNSAMPLE, common/upsample.glsl): the diffuse cones at one pixel
-// of each block (the CG_GATHER_LOWRES entry point), every pixel's diffuse light upsampled from them
-// or, where no block's surface agrees with the pixel's, traced in a dispatch of those pixels alone
-// (the CG_GATHER_DEFERRED entry point); the other cones at every pixel.
+// Decoupled resolution (CG_GATHER_DOWNSAMPLE, common/upsample.glsl, whose entry points these are
+// with CG_GATHER_LOWRES or CG_GATHER_DEFERRED): the diffuse cones at one pixel of each block (the
+// blocks that trace listed, then traced packed), every pixel's diffuse light upsampled from them or,
+// where no block's surface agrees with the pixel's, traced in a dispatch of those pixels alone; the
+// other cones at every pixel (main below).
 #version 450 core
 #include "common/cone_trace.glsl"
 #include "common/gather.glsl"
@@ -78,7 +79,7 @@ trace_diffuse(vec3 position, vec3 n)
 }
 
 #ifdef CG_GATHER_DOWNSAMPLE
-// The deferred pixels' cones (common/upsample.glsl's CG_GATHER_DEFERRED entry point), their reads counted.
+// The cones of the listed blocks and pixels (common/upsample.glsl's entry points), their reads counted.
 vec4
 cg_upsample_trace(ivec2 pixel, vec3 position, vec3 n)
 {
@@ -89,6 +90,14 @@ cg_upsample_trace(ivec2 pixel, vec3 position, vec3 n)
     return diffuse;
 }
 
+void
+cg_upsample_untraced(ivec2 pixel)
+{
+#ifdef CG_CONE_COUNT_READS
+    imageStore(u_reads, pixel, vec4(0.0));
+#endif
+}
+
 vec3
 cg_upsample_camera()
 {
@@ -96,34 +105,7 @@ cg_upsample_camera()
 }
 #endif
 
-#ifdef CG_GATHER_LOWRES
-// One block: the diffuse cones of its representative pixel, for every surface (a block's light
-// serves the pixels around it, whatever its own material), into the image of blocks.
-void
-main()
-{
-    ivec2 block;
-    if (!cg_gather_pixel(block))
-        return;
-    ivec2 pixel = cg_upsample_representative(block);
-    vec3 position, n;
-    vec4 diffuse = vec4(0.0, 0.0, 0.0, 1.0);
-    bool surface = cg_gather_surface(pixel, position, n), traced = false;
-#ifdef CG_GATHER_INTERLEAVE
-    cg_upsample_interleave(block);
-#endif
-    if (!cg_upsample_block_kept(block, surface, position, n, cg_cone_gather_block.camera.xyz)) {
-        if (surface)
-            diffuse = trace_diffuse(position, n);
-        traced = surface;
-        imageStore(cg_gather_radiance, block, diffuse);
-    }
-#ifdef CG_CONE_COUNT_READS
-    imageStore(u_reads, pixel, vec4(float(cg_reads)));    // 0 for a block kept
-#endif
-    cg_reads_commit(traced);
-}
-#elif !defined(CG_GATHER_DEFERRED)
+#if !defined(CG_GATHER_LOWRES) && !defined(CG_GATHER_DEFERRED)
 void
 main()
 {

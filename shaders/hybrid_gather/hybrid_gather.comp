@@ -32,10 +32,11 @@
 //   a point on the height field itself has no voxels of its own, so its 3D steps need no cap
 //   near the surface (cg_cone_step's `surface` left out) and take the full steps.
 //
-// Decoupled resolution (CG_GATHER_DOWNSAMPLE, common/upsample.glsl), as cone_gather's: the diffuse
-// cones at one pixel of each block (the CG_GATHER_LOWRES entry point), every pixel's diffuse light
-// upsampled from them or, where no block agrees, traced in a dispatch of those pixels alone (the
-// CG_GATHER_DEFERRED entry point); the material cones at every pixel.
+// Decoupled resolution (CG_GATHER_DOWNSAMPLE, common/upsample.glsl, whose entry points these are
+// with CG_GATHER_LOWRES or CG_GATHER_DEFERRED), as cone_gather's: the diffuse cones at one pixel of
+// each block (the blocks that trace listed, then traced packed), every pixel's diffuse light
+// upsampled from them or, where no block agrees, traced in a dispatch of those pixels alone; the
+// material cones at every pixel (main below).
 #version 450 core
 #include "common/cone_trace.glsl"
 #include "common/gather.glsl"
@@ -853,11 +854,16 @@ trace_diffuse(vec3 position, vec3 n, Reach r)
 }
 
 #ifdef CG_GATHER_DOWNSAMPLE
-// The deferred pixels' cones (common/upsample.glsl's CG_GATHER_DEFERRED entry point).
+// The cones of the listed blocks and pixels (common/upsample.glsl's entry points).
 vec4
 cg_upsample_trace(ivec2 pixel, vec3 position, vec3 n)
 {
     return trace_diffuse(position, n, gather_reach(position, n));
+}
+
+void
+cg_upsample_untraced(ivec2 pixel)
+{
 }
 
 vec3
@@ -867,30 +873,7 @@ cg_upsample_camera()
 }
 #endif
 
-#ifdef CG_GATHER_LOWRES
-// One block: the diffuse cones of its representative pixel, for every surface (a block's light
-// serves the pixels around it, whatever its own material), into the image of blocks.
-void
-main()
-{
-    ivec2 block;
-    if (!cg_gather_pixel(block))
-        return;
-    ivec2 pixel = cg_upsample_representative(block);
-    vec3 position, n;
-    vec4 diffuse = vec4(0.0, 0.0, 0.0, 1.0);
-    bool surface = cg_gather_surface(pixel, position, n);
-    if (cg_upsample_block_kept(block, surface, position, n, cg_hybrid_gather_block.camera.xyz))
-        return;
-#ifdef CG_GATHER_INTERLEAVE
-    cg_upsample_interleave(block);
-#endif
-    if (surface)
-        diffuse = trace_diffuse(position, n, gather_reach(position, n));
-    imageStore(cg_gather_radiance, block, diffuse);
-    cg_reads_commit(surface);
-}
-#elif !defined(CG_GATHER_DEFERRED)
+#if !defined(CG_GATHER_LOWRES) && !defined(CG_GATHER_DEFERRED)
 void
 main()
 {
