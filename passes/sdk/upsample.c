@@ -2,6 +2,7 @@
 #include "sdk/upsample.h"
 
 #include <stdio.h>
+#include <string.h>
 
 #include "sdk/blocks.h"
 #include "sdk/pass.h"
@@ -25,6 +26,19 @@ cgp_gather_blocks_define(const fg_pass *pass, char *out, size_t size)
     else if (size > 0)
         out[0] = '\0';
     return out;
+}
+
+/* An RGBA32F image of blocks, owned by `state`. */
+static GLuint
+block_texture(void *state, const cgp_gather_blocks *b)
+{
+    GLuint tex = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &tex);
+    glTextureStorage2D(tex, 1, GL_RGBA32F, b->width, b->height);
+    /* Read by texelFetch only; a single level, complete under any filter. */
+    glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    return cgp_own(state, CGP_GL_TEXTURE, tex);
 }
 
 bool
@@ -59,17 +73,11 @@ cgp_gather_blocks_prepare(void *state, const fg_pass *pass, const cgp_gather *g,
     b->deferred = cgp_own(state, CGP_GL_BUFFER, list);
     b->width = (out->width + b->downsample - 1) / b->downsample;
     b->height = (out->height + b->downsample - 1) / b->downsample;
-    GLuint tex = 0;
-    glCreateTextures(GL_TEXTURE_2D, 1, &tex);
-    glTextureStorage2D(tex, 1, GL_RGBA32F, b->width, b->height);
-    /* Read by texelFetch only; a single level, complete under any filter. */
-    glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    b->texture = cgp_own(state, CGP_GL_TEXTURE, tex);
+    b->texture[0] = block_texture(state, b);
     for (int i = 0; i < 2 && b->temporal > 1; i++) {
-        glCreateTextures(GL_TEXTURE_2D, 1, &tex);
-        glTextureStorage2D(tex, 1, GL_RGBA32F, b->width, b->height);
-        b->history[i] = cgp_own(state, CGP_GL_TEXTURE, tex);
+        b->texture[1] = i ? block_texture(state, b) : b->texture[1];
+        b->history[i][0] = block_texture(state, b);
+        b->history[i][1] = block_texture(state, b);
     }
     return true;
 }
@@ -83,22 +91,36 @@ cgp_gather_blocks_trace(const fg_pass *pass, const cgp_gather *g, cgp_gather_blo
     const cg_gather_deferred_block empty = {.dispatch = {0, 1, 1, 0}};
     glNamedBufferSubData(b->deferred, 0, sizeof empty, &empty);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_GATHER_DEFERRED, b->deferred);
+    const fg_frame *frame = fg_pass_frame(pass);
+    GLuint blocks = b->texture[b->temporal > 1 ? b->current : 0];
     glUseProgram(b->program);
-    glBindImageTexture(0, b->texture, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    glBindImageTexture(0, blocks, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     if (b->temporal > 1) {
-        /* common/upsample.glsl's cg_upsample_block_kept: this frame's turn, and whether the blocks and
-         * their surfaces hold a traced frame. A block kept writes nothing, so the texture keeps
-         * its light: it is the state's, not a graph resource that another pass could reuse. */
-        for (int i = 0; i < 2; i++)
-            glBindImageTexture(CG_IMAGE_BLOCK_HISTORY + (GLuint)i, b->history[i], 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
-        glUniform2i(CG_UPSAMPLE_TEMPORAL_LOCATION, (int)(fg_pass_frame(pass)->index % (uint64_t)b->temporal),
-                    b->traced ? 1 : 0);
+        /* common/upsample.glsl's cg_upsample_block_kept: this frame's turn, whether the last frame's
+         * blocks and surfaces hold a traced frame, and the last camera; the last frame's blocks and
+         * surfaces read, this frame's written. They are the state's, not graph resources that
+         * another pass could reuse. */
+        int last = 1 - b->current;
+        for (int i = 0; i < 2; i++) {
+            glBindImageTexture(CG_IMAGE_BLOCK_HISTORY + (GLuint)i, b->history[b->current][i], 0, GL_FALSE, 0,
+                               GL_WRITE_ONLY, GL_RGBA32F);
+            glBindTextureUnit(CG_UNIT_BLOCK_PREVIOUS + (GLuint)i, b->history[last][i]);
+            glBindSampler(CG_UNIT_BLOCK_PREVIOUS + (GLuint)i, 0);
+        }
+        glBindTextureUnit(CG_UNIT_GATHER_BLOCKS, b->texture[last]);
+        glBindSampler(CG_UNIT_GATHER_BLOCKS, 0);
+        glUniform2i(CG_UPSAMPLE_TEMPORAL_LOCATION, (int)(frame->index % (uint64_t)b->temporal), b->traced ? 1 : 0);
+        glUniformMatrix4fv(CG_UPSAMPLE_PREVIOUS_LOCATION, 1, GL_FALSE, b->previous_view_proj);
     }
     cgp_dispatch_2d(b->width, b->height);
     if (b->temporal > 1) {
         b->traced = true;
-        for (int i = 0; i < 2; i++)
+        memcpy(b->previous_view_proj, frame->view.view_proj, sizeof b->previous_view_proj);
+        b->current = 1 - b->current;
+        for (int i = 0; i < 2; i++) {
             glBindImageTexture(CG_IMAGE_BLOCK_HISTORY + (GLuint)i, 0, 0, GL_FALSE, 0, GL_READ_ONLY, GL_RGBA32F);
+            glBindTextureUnit(CG_UNIT_BLOCK_PREVIOUS + (GLuint)i, 0);
+        }
     }
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
     glUseProgram(b->listed_program);
@@ -108,7 +130,7 @@ cgp_gather_blocks_trace(const fg_pass *pass, const cgp_gather *g, cgp_gather_blo
     /* The full-resolution dispatch reads the blocks by texelFetch, and a pass's cost image written
      * at the representatives by the blocks' dispatch is written by it at the other pixels. */
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-    glBindTextureUnit(CG_UNIT_GATHER_BLOCKS, b->texture);
+    glBindTextureUnit(CG_UNIT_GATHER_BLOCKS, blocks);
     glBindSampler(CG_UNIT_GATHER_BLOCKS, 0);
     /* The same list again, for the pixels that no block agrees with (cgp_gather_blocks_deferred). */
     glNamedBufferSubData(b->deferred, 0, sizeof empty, &empty);

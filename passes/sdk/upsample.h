@@ -31,9 +31,11 @@
  * sums the four subsets around it over their cone weights (cg_upsample_diffuse).
  *
  * With temporal = N > 1 (CG_GATHER_TEMPORAL in the block program) the blocks of one turn in N trace
- * each frame and the others keep their light where their pixel still sees the surface they traced
- * (cg_upsample_block_kept): the image of blocks and two images of the surfaces traced are the
- * state's, kept from frame to frame until the next prepare, whose first frame traces every block.
+ * each frame and each other block takes the light of the last frame's block where its pixel's point
+ * was seen (the last camera's projection), where that light was traced at a surface that agrees with
+ * the pixel's and is at most N - 1 frames old (cg_upsample_block_kept): the images of blocks and of
+ * the surfaces traced are the state's, two of each (this frame's and the last's), kept from frame to
+ * frame until the next prepare, whose first frame traces every block.
  */
 #ifndef CGP_UPSAMPLE_H
 #define CGP_UPSAMPLE_H
@@ -66,11 +68,12 @@ int cgp_gather_downsample(const fg_pass *pass);
       .allowed = FG_PARAM_VALUES(1, 2, 4), .stage = FG_STAGE_PREPARE, .interactive = "4",             \
       .active_when = "downsample=0|2|4|8",                                                            \
       .doc = "blocks traced a frame: 1 in `temporal` (2: a checkerboard, 4: one of each 2 x 2), the "  \
-             "others keeping the light they traced where their pixel's surface is the one they traced " \
-             "(normal and plane as the upsampling compares them, and within a block's reach); a block " \
-             "whose surface changed traces again. A block's light is at most temporal - 1 frames old; "  \
-             "the first frame after prepare traces every block, so a single frame is downsample's own; " \
-             "1: every block every frame (docs/results/gi-resolution.md)" }
+             "others taking the light of the last frame's block where the last camera saw their pixel's " \
+             "point (reprojection), where it was traced at the pixel's surface (normal and plane as the " \
+             "upsampling compares them, and within a block's reach); a block whose surface changed "     \
+             "traces again. A block's light is at most temporal - 1 frames old; the first frame after "  \
+             "prepare traces every block, so a single frame is downsample's own, and a still camera's "  \
+             "frames are too; 1: every block every frame (docs/results/gi-resolution.md)" }
 /* The third, the entry after CGP_TEMPORAL_PARAM. */
 #define CGP_INTERLEAVE_PARAM                                                                          \
     { .name = "interleave", .type = FG_PARAM_BOOL, .stage = FG_STAGE_PREPARE,                         \
@@ -83,11 +86,13 @@ int cgp_gather_downsample(const fg_pass *pass);
 typedef struct cgp_gather_blocks {
     int downsample;         /* the parameter; 1: nothing here is made or used */
     GLuint program;         /* the gather's shader with CG_GATHER_LOWRES */
-    GLuint texture;         /* RGBA32F, one texel a block: what the program writes */
+    GLuint texture[2];      /* RGBA32F, one texel a block: what the programs write ([1]: temporal > 1) */
     int width, height;      /* blocks across and down: the image's size / downsample, rounded up */
     int temporal;           /* the parameter; 1: every block every frame */
-    GLuint history[2];      /* temporal > 1: each block's traced surface, position (w: 1 for a surface)
-                             * and normal, RGBA32F */
+    GLuint history[2][2];   /* temporal > 1: the surface each block's light was traced at, position
+                             * (w: 1 for a surface) and normal (w: the light's age in frames), RGBA32F */
+    int current;            /* temporal > 1: this frame's texture and history; the other is the last's */
+    float previous_view_proj[16]; /* temporal > 1: the last frame's camera, for the reprojection */
     bool traced;            /* temporal > 1: the blocks hold a frame's light (not before the first) */
     GLuint deferred_program; /* the gather's shader with CG_GATHER_DEFERRED */
     GLuint listed_program;  /* with CG_GATHER_LOWRES and CG_GATHER_DEFERRED: the listed blocks' traces */

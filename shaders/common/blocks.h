@@ -72,10 +72,13 @@
 #define CG_UNIT_BRDF_TABLE 20           /* the GGX directional-albedo table (cgp_brdf_table_fill) */
 #define CG_UNIT_GLOSSY 22               /* voxel_light's glossy: its light one diffuse bounce further */
 #define CG_UNIT_GATHER_BLOCKS 21        /* a gather's diffuse light of one pixel per block (sdk/upsample.h) */
-/* A gather's blocks with temporal > 1 (sdk/upsample.h, common/upsample.glsl): image units of each
- * block's traced surface (position, then normal at the next unit) and the uniform of the frame's turn. */
+/* A gather's blocks with temporal > 1 (sdk/upsample.h, common/upsample.glsl): image units of the
+ * surface each block's light was traced at (position, then normal at the next unit), texture units
+ * of the last frame's (the same two), the uniforms of the frame's turn and of the last camera. */
 #define CG_IMAGE_BLOCK_HISTORY 5
+#define CG_UNIT_BLOCK_PREVIOUS 29
 #define CG_UPSAMPLE_TEMPORAL_LOCATION 20
+#define CG_UPSAMPLE_PREVIOUS_LOCATION 21
 /* A gather's pixels that no block agrees with (sdk/upsample.h): SSBO, CG_GATHER_DEFERRED_BLOCK. */
 #define CG_BINDING_GATHER_DEFERRED 3
 /* ---- texture units of voxelize's surface model beside the scene's (common/scene.glsl: 0, 1, 24..27) */

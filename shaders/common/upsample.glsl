@@ -70,22 +70,50 @@ cg_upsample_tolerance(vec3 position, vec3 camera)
 
 #ifdef CG_GATHER_TEMPORAL
 // Temporal reuse (sdk/upsample.h's `temporal` = N): each frame the blocks of one turn in N trace
-// (N = 2: a checkerboard; 4: one block of each 2 x 2); the others keep the light they hold where
-// their representative pixel still sees the surface they traced: the normal and the plane as the
+// (N = 2: a checkerboard; 4: one block of each 2 x 2); each other block takes the light of the last
+// frame's block in which the last camera saw its representative's point (a reprojection by the
+// G-buffer's point and the last camera, so a moving camera keeps what it still sees), where that
+// light was traced at a surface that agrees with the pixel's: the normal and the plane as the
 // upsampling compares a block with a pixel, and the point no farther from the traced one than the
-// plane tolerance (about a block's spacing), so that a kept block's light is what a neighbour's
-// would be to the upsampling. A block whose pixel sees another surface (the camera or an object
-// moved) traces whatever the turn. Each block keeps the surface it traced, position (w: 1 where it
-// saw a surface) and normal.
+// plane tolerance (about a block's spacing), so that a kept light is what a neighbour's would be to
+// the upsampling; and where it is at most N - 1 frames old, as on a still camera. A block whose pixel
+// sees another surface (an object moved, or the camera uncovered it) traces whatever the turn. Each
+// block keeps the surface its light was traced at, position (w: 1 where it saw a surface) and
+// normal (w: the light's age in frames), this frame's written, the last frame's read. A still camera
+// reprojects each block onto itself: its image is the one without reprojection, bit for bit.
 layout(binding = CG_IMAGE_BLOCK_HISTORY, rgba32f) uniform image2D cg_upsample_history_position;
 layout(binding = CG_IMAGE_BLOCK_HISTORY + 1, rgba32f) uniform image2D cg_upsample_history_normal;
-// x: this frame's turn (the frame's index mod N); y: 1 when the blocks hold a traced frame.
+layout(binding = CG_UNIT_BLOCK_PREVIOUS) uniform sampler2D cg_upsample_previous_position;
+layout(binding = CG_UNIT_BLOCK_PREVIOUS + 1) uniform sampler2D cg_upsample_previous_normal;
+// x: this frame's turn (the frame's index mod N); y: 1 when the last frame's blocks hold a traced frame.
 layout(location = CG_UPSAMPLE_TEMPORAL_LOCATION) uniform ivec2 cg_upsample_temporal;
+// The last frame's world-to-clip matrix.
+layout(location = CG_UPSAMPLE_PREVIOUS_LOCATION) uniform mat4 cg_upsample_previous_view_proj;
+
+// The last frame's block in which the last camera saw the world point `position`; -1 outside its
+// image or behind it. Interleaved, a block holds its own subset of the cones: only itself.
+ivec2
+cg_upsample_reprojected(ivec2 b, vec3 position)
+{
+#ifdef CG_GATHER_INTERLEAVE
+    return b;
+#else
+    vec4 clip = cg_upsample_previous_view_proj * vec4(position, 1.0);
+    if (!(clip.w > 0.0))
+        return ivec2(-1);
+    vec2 size = vec2(textureSize(cg_gather_position, 0));
+    vec2 pixel = (clip.xy / clip.w * 0.5 + 0.5) * size;
+    if (any(lessThan(pixel, vec2(0.0))) || any(greaterThanEqual(pixel, size)))
+        return ivec2(-1);
+    return ivec2(pixel) / CG_GATHER_DOWNSAMPLE;
+#endif
+}
 #endif
 
 // Whether block `b`, whose representative pixel sees (`surface`) the point `position` with unit
-// normal `n` from `camera`, keeps the light it holds this frame instead of tracing; where it
-// traces, the surface it traces is remembered. Without CG_GATHER_TEMPORAL every block traces.
+// normal `n` from `camera`, keeps light instead of tracing (then written to the image of blocks
+// here); where it traces, the surface it traces is remembered. Without CG_GATHER_TEMPORAL every
+// block traces.
 bool
 cg_upsample_block_kept(ivec2 b, bool surface, vec3 position, vec3 n, vec3 camera)
 {
@@ -96,14 +124,28 @@ cg_upsample_block_kept(ivec2 b, bool surface, vec3 position, vec3 n, vec3 camera
     int turn = (b.x & 1) + 2 * (b.y & 1);
 #endif
     if (cg_upsample_temporal.y != 0 && turn != cg_upsample_temporal.x) {
-        vec4 q = imageLoad(cg_upsample_history_position, b);
-        if (!surface && q.w == 0.0)
-            return true;    // the background then and now: no light to keep but none to trace
-        if (surface && q.w != 0.0) {
-            vec3 m = imageLoad(cg_upsample_history_normal, b).xyz;
+        // Outside the last frame's image (from = -1) nothing seen there is kept.
+        ivec2 from = surface ? cg_upsample_reprojected(b, position) : b;
+        vec4 q = vec4(0.0), m = vec4(0.0);
+        if (from.x >= 0) {
+            q = texelFetch(cg_upsample_previous_position, from, 0);
+            m = texelFetch(cg_upsample_previous_normal, from, 0);
+        }
+        bool kept = false;
+        if (from.x < 0) {
+            kept = false;
+        } else if (!surface) {
+            kept = q.w == 0.0;  // the background then and now: no light to keep but none to trace
+        } else if (q.w != 0.0 && m.w + 1.0 <= float(CG_GATHER_TEMPORAL - 1)) {
             float tolerance = cg_upsample_tolerance(position, camera);
-            if (cg_upsample_agreement(q.xyz, m, position, n, tolerance) > 0.0 && distance(q.xyz, position) < tolerance)
-                return true;
+            kept = cg_upsample_agreement(q.xyz, m.xyz, position, n, tolerance) > 0.0 &&
+                   distance(q.xyz, position) < tolerance;
+        }
+        if (kept) {
+            imageStore(cg_upsample_history_position, b, q);
+            imageStore(cg_upsample_history_normal, b, vec4(m.xyz, m.w + 1.0));
+            imageStore(cg_gather_radiance, b, texelFetch(cg_upsample_blocks, from, 0));
+            return true;
         }
     }
     imageStore(cg_upsample_history_position, b, vec4(position, surface ? 1.0 : 0.0));

@@ -525,7 +525,9 @@ rel_mse(const float *a, const float *b, int n)
  *   - on a still scene the later frames equal it too (a kept block holds what tracing again would
  *     give), while cone_gather's volume reads fall to about 1/temporal;
  *   - after the camera moves, the image is near a fresh render from there, the blocks whose pixel
- *     sees another surface tracing again (more reads than a turn's). */
+ *     sees another surface tracing again (more reads than a turn's);
+ *   - after a step of one block's width, the blocks take their neighbours' light (the reprojection):
+ *     near a fresh render, with few reads. */
 static void
 test_temporal(void **state)
 {
@@ -586,6 +588,42 @@ test_temporal(void **state)
             fail_msg("%s, temporal 4 after a camera move: relMSE %.2e against a fresh render", graphs[g], error);
         if (counted && ratio < 0.3)
             fail_msg("after a camera move the blocks read %.3f of a fresh render's: too few traced again", ratio);
+        free(fresh);
+        free(kept);
+
+        /* Then a step of one block's width (4 pixels) to the right at the back wall's depth, the point
+         * looked at moved with it (a translation): there each block's pixel sees the point its
+         * neighbour's traced at, which the reprojection finds in the last frame's neighbouring block;
+         * without it every block saw a point a block away from its own traced one, farther than the
+         * tolerance, and traced again (all of a fresh render's reads; 0.65 with it). */
+        const cg_view *at = &a.frame.view;
+        float forward[3] = {-at->inv_view[8], -at->inv_view[9], -at->inv_view[10]}, depth = 0.0f;
+        for (int c = 0; c < 8; c++) {
+            float d = 0.0f;
+            for (int k = 0; k < 3; k++)
+                d += ((c >> k & 1 ? scene.bounds_max[k] : scene.bounds_min[k]) - at->position[k]) * forward[k];
+            depth = fmaxf(depth, d);
+        }
+        float block = 4.0f * 2.0f * depth / ((float)H * at->proj[5]);
+        for (int k = 0; k < 3; k++) {
+            spec.from[k] = at->position[k] + block * at->inv_view[k];
+            spec.look_at[k] += block * at->inv_view[k];
+        }
+        cg_view_from_spec(&scene, &spec, W, H, &moved);
+        a.frame.view = moved;
+        b.frame.view = moved;
+        vf_frame(&a);
+        vf_next_frame(&b);
+        fresh = vf_read_image(&a, "gather.radiance", W, H);
+        kept = vf_read_image(&b, "gather.radiance", W, H);
+        error = rel_mse(kept, fresh, W * H);
+        ratio = counted ? reads_sum(&b, W, H) / reads_sum(&a, W, H) : 0.0;
+        fprintf(stderr, "# %s temporal 4, a step of a block (%.3f m): relMSE %.2e against a fresh render, %.3f of "
+                "its volume reads\n", graphs[g], block, error, ratio);
+        if (error > 2e-3)
+            fail_msg("%s, temporal 4 after a step of a block: relMSE %.2e against a fresh render", graphs[g], error);
+        if (counted && ratio > 0.8)
+            fail_msg("after a step of a block the blocks read %.3f of a fresh render's: not reprojected", ratio);
         free(fresh);
         free(kept);
         assert_no_gl_errors(ctx);
