@@ -74,10 +74,11 @@ cgp_gather_blocks_prepare(void *state, const fg_pass *pass, const cgp_gather *g,
     b->width = (out->width + b->downsample - 1) / b->downsample;
     b->height = (out->height + b->downsample - 1) / b->downsample;
     b->texture[0] = block_texture(state, b);
-    for (int i = 0; i < 2 && b->temporal > 1; i++) {
-        b->texture[1] = i ? block_texture(state, b) : b->texture[1];
-        b->history[i][0] = block_texture(state, b);
-        b->history[i][1] = block_texture(state, b);
+    if (b->temporal > 1) {
+        b->texture[1] = block_texture(state, b);
+        for (int i = 0; i < 2; i++)
+            for (int k = 0; k < 2; k++)
+                b->history[i][k] = block_texture(state, b);
     }
     return true;
 }

@@ -107,3 +107,13 @@ sf_compare(const cg_image *test, const cg_image *ref, double divide)
     cg_image_free(&scaled);
     return m;
 }
+
+bool
+sf_level_runs(int i, int count, int unit)
+{
+    const char *sweep = getenv("CONEGRAPH_SWEEP");
+    bool extremes = sweep && !strcmp(sweep, "extremes");
+    if (sweep && *sweep && !extremes && strcmp(sweep, "all"))
+        fail_msg("CONEGRAPH_SWEEP is '%s'; expected 'all' or 'extremes'", sweep);
+    return !extremes || i == 0 || i == count - 1 || i == unit;
+}

@@ -1,11 +1,12 @@
 /* tests/passes/sweep_fixture.h: one graph file on one scene, rendered in this process, for the
  * tests that render the same scene many times over (test_scale_sweep.c, test_radiance_range.c).
  *
- * Declares: sf_render, sf_render_placed, sf_nonfinite, sf_compare.
+ * Declares: sf_render, sf_render_placed, sf_nonfinite, sf_compare, sf_level_runs.
  */
 #ifndef CG_TEST_SWEEP_FIXTURE_H
 #define CG_TEST_SWEEP_FIXTURE_H
 
+#include <stdbool.h>
 #include <stddef.h>
 
 #include "cg/image.h"
@@ -24,6 +25,12 @@ cg_image sf_render_placed(const char *source, double scale, double offset, const
 
 /* RGB values of the image that are NaN or infinite. */
 size_t sf_nonfinite(const cg_image *img);
+
+/* Whether level i of a sweep of `count` levels is rendered: every level, unless CONEGRAPH_SWEEP is
+ * "extremes" (the sanitizer setup, tests/meson.build), which renders the first, the last and `unit`
+ * (the one the others are compared with): under the sanitizers the sweeps' task is the C code each
+ * graph runs, the same at every level; every level's image is compared in the plain suite. */
+bool sf_level_runs(int i, int count, int unit);
 
 /* The metrics of `test` against `ref`, `test` divided by `divide` first (1: as it is). */
 cg_metrics sf_compare(const cg_image *test, const cg_image *ref, double divide);
