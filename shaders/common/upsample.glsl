@@ -126,26 +126,21 @@ cg_upsample_block_kept(ivec2 b, bool surface, vec3 position, vec3 n, vec3 camera
     if (cg_upsample_temporal.y != 0 && turn != cg_upsample_temporal.x) {
         // Outside the last frame's image (from = -1) nothing seen there is kept.
         ivec2 from = surface ? cg_upsample_reprojected(b, position) : b;
-        vec4 q = vec4(0.0), m = vec4(0.0);
         if (from.x >= 0) {
-            q = texelFetch(cg_upsample_previous_position, from, 0);
-            m = texelFetch(cg_upsample_previous_normal, from, 0);
-        }
-        bool kept = false;
-        if (from.x < 0) {
-            kept = false;
-        } else if (!surface) {
-            kept = q.w == 0.0;  // the background then and now: no light to keep but none to trace
-        } else if (q.w != 0.0 && m.w + 1.0 <= float(CG_GATHER_TEMPORAL - 1)) {
-            float tolerance = cg_upsample_tolerance(position, camera);
-            kept = cg_upsample_agreement(q.xyz, m.xyz, position, n, tolerance) > 0.0 &&
-                   distance(q.xyz, position) < tolerance;
-        }
-        if (kept) {
-            imageStore(cg_upsample_history_position, b, q);
-            imageStore(cg_upsample_history_normal, b, vec4(m.xyz, m.w + 1.0));
-            imageStore(cg_gather_radiance, b, texelFetch(cg_upsample_blocks, from, 0));
-            return true;
+            vec4 q = texelFetch(cg_upsample_previous_position, from, 0);
+            vec4 m = texelFetch(cg_upsample_previous_normal, from, 0);
+            bool kept = !surface && q.w == 0.0;    // the background then and now: nothing to trace
+            if (surface && q.w != 0.0 && m.w + 1.0 <= float(CG_GATHER_TEMPORAL - 1)) {
+                float tolerance = cg_upsample_tolerance(position, camera);
+                kept = cg_upsample_agreement(q.xyz, m.xyz, position, n, tolerance) > 0.0 &&
+                       distance(q.xyz, position) < tolerance;
+            }
+            if (kept) {
+                imageStore(cg_upsample_history_position, b, q);
+                imageStore(cg_upsample_history_normal, b, vec4(m.xyz, m.w + 1.0));
+                imageStore(cg_gather_radiance, b, texelFetch(cg_upsample_blocks, from, 0));
+                return true;
+            }
         }
     }
     imageStore(cg_upsample_history_position, b, vec4(position, surface ? 1.0 : 0.0));
@@ -263,10 +258,11 @@ vec3 cg_upsample_camera();
 #if defined(CG_GATHER_LOWRES) && !defined(CG_GATHER_DEFERRED)
 // The blocks' first entry point: one invocation a block says whether it traces this frame and lists
 // it (cg_upsample_defer) for the listed entry point below; a block on the background is written at
-// once (no light, visibility 1), a kept one (temporal) not at all. The traces run packed, 64 listed
-// blocks to a lockstep group: traced in place, a group of 8 blocks waited for its slowest trace, and
-// with temporal 4 (one block in each 2 x 2 traces) 6 of its 8 lanes idled through it (the demo's
-// gather on the open world at 640x360: docs/results/gi-resolution.md, "Temporal reuse").
+// once (no light, visibility 1), a kept one (temporal) by cg_upsample_block_kept. The traces run
+// packed, 64 listed blocks to a lockstep group: traced in place, a group of 8 blocks waited for its
+// slowest trace, and with temporal 4 (one block in each 2 x 2 traces) 6 of its 8 lanes idled through
+// it (the demo's gather on the open world at 640x360: docs/results/gi-resolution.md, "The blocks
+// traced packed").
 void
 main()
 {
