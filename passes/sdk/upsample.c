@@ -41,6 +41,18 @@ block_texture(void *state, const cgp_gather_blocks *b)
     return cgp_own(state, CGP_GL_TEXTURE, tex);
 }
 
+/* One of the gather shader's entry points (sdk/upsample.h): the full-resolution program's defines,
+ * the model's and the material's as cgp_gather_prepare adds them, then `entry`'s. */
+static bool
+entry_point(void *state, const cgp_gather *g, const char *shader, const char *defines, const char *entry,
+            GLuint *program, cg_error *err)
+{
+    char all[1024];
+    snprintf(all, sizeof all, "%s%s%s%s", defines ? defines : "", cgp_gather_volume_define(g->model),
+             g->material ? "#define CG_GATHER_MATERIAL\n" : "", entry);
+    return cgp_compute_program(state, shader, all, program, err);
+}
+
 bool
 cgp_gather_blocks_prepare(void *state, const fg_pass *pass, const cgp_gather *g, cgp_gather_blocks *b,
                           const char *shader, const char *defines, cg_error *err)
@@ -50,20 +62,13 @@ cgp_gather_blocks_prepare(void *state, const fg_pass *pass, const cgp_gather *g,
     if (b->downsample <= 1 || !out)
         return true;
     b->temporal = fg_param_int(pass, "temporal");
-    char all[1024], temporal[64] = "";
-    if (b->temporal > 1)
-        snprintf(temporal, sizeof temporal, "#define CG_GATHER_TEMPORAL %d\n", b->temporal);
-    snprintf(all, sizeof all, "%s%s%s%s#define CG_GATHER_LOWRES\n", defines ? defines : "",
-             cgp_gather_volume_define(g->model), g->material ? "#define CG_GATHER_MATERIAL\n" : "", temporal);
-    if (!cgp_compute_program(state, shader, all, &b->program, err))
-        return false;
-    snprintf(all, sizeof all, "%s%s%s#define CG_GATHER_DEFERRED\n", defines ? defines : "",
-             cgp_gather_volume_define(g->model), g->material ? "#define CG_GATHER_MATERIAL\n" : "");
-    if (!cgp_compute_program(state, shader, all, &b->deferred_program, err))
-        return false;
-    snprintf(all, sizeof all, "%s%s%s#define CG_GATHER_LOWRES\n#define CG_GATHER_DEFERRED\n", defines ? defines : "",
-             cgp_gather_volume_define(g->model), g->material ? "#define CG_GATHER_MATERIAL\n" : "");
-    if (!cgp_compute_program(state, shader, all, &b->listed_program, err))
+    char temporal[96];
+    snprintf(temporal, sizeof temporal, "#define CG_GATHER_TEMPORAL %d\n#define CG_GATHER_LOWRES\n", b->temporal);
+    if (!entry_point(state, g, shader, defines, b->temporal > 1 ? temporal : "#define CG_GATHER_LOWRES\n",
+                     &b->program, err) ||
+        !entry_point(state, g, shader, defines, "#define CG_GATHER_DEFERRED\n", &b->deferred_program, err) ||
+        !entry_point(state, g, shader, defines, "#define CG_GATHER_LOWRES\n#define CG_GATHER_DEFERRED\n",
+                     &b->listed_program, err))
         return false;
     GLuint list = 0;
     glCreateBuffers(1, &list);
