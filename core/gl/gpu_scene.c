@@ -378,15 +378,15 @@ material_texture(const cg_gpu_scene *gpu, int index)
     return gpu->textures[index];
 }
 
-/* Which of the scene uniform locations 0..3 the bound program keeps. A stage that does not
+/* Which of the scene uniform locations 0..2 the bound program keeps. A stage that does not
  * read one (a depth-only shader and the normal matrix) lets the linker drop it, and the GL
  * spec leaves glUniform on such a location to the driver (Mesa ignores it, others may
  * raise GL_INVALID_OPERATION), so only the active ones are set. */
 static void
-active_scene_uniforms(bool active[4])
+active_scene_uniforms(bool active[3])
 {
     GLint program = 0, count = 0;
-    active[0] = active[1] = active[2] = active[3] = false;
+    active[0] = active[1] = active[2] = false;
     glGetIntegerv(GL_CURRENT_PROGRAM, &program);
     if (!program)
         return;
@@ -395,19 +395,17 @@ active_scene_uniforms(bool active[4])
         const GLenum prop = GL_LOCATION;
         GLint location = -1;
         glGetProgramResourceiv((GLuint)program, GL_UNIFORM, (GLuint)i, 1, &prop, 1, NULL, &location);
-        if (location >= 0 && location < 4)
+        if (location >= 0 && location < 3)
             active[location] = true;
     }
 }
 
-/* Sets what a draw of instance `index` reads beside its vertices: the matrices, material and
- * instance uniforms the bound program keeps (`active`), the material textures; binds its mesh's
- * VAO. */
+/* Sets what a draw of instance `inst` reads beside its vertices: the matrices and material
+ * uniforms the bound program keeps (`active`), the material textures; binds its mesh's VAO. */
 static void
-bind_instance(const cg_gpu_scene *gpu, int index, const bool active[4])
+bind_instance(const cg_gpu_scene *gpu, const cg_instance *inst, const bool active[3])
 {
     const cg_scene *scene = gpu->scene;
-    const cg_instance *inst = &scene->instances[index];
     mat4 model;
     memcpy(model, inst->world, sizeof model);
     /* Normals transform by the inverse transpose of the linear part. */
@@ -424,8 +422,6 @@ bind_instance(const cg_gpu_scene *gpu, int index, const bool active[4])
         glUniformMatrix3fv(1, 1, GL_FALSE, (const float *)normal_matrix);
     if (active[2])
         glUniform1i(2, material);
-    if (active[3])
-        glUniform1i(3, index);
     const cg_material *m = scene->material_count > 0 ? &scene->materials[material] : NULL;
     glBindTextureUnit(CG_SCENE_UNIT_BASE_COLOR, material_texture(gpu, m ? m->base_color_texture : -1));
     glBindTextureUnit(CG_SCENE_UNIT_EMISSIVE, material_texture(gpu, m ? m->emissive_texture : -1));
@@ -446,10 +442,10 @@ cg_gpu_scene_bind_instance(const cg_gpu_scene *gpu, int instance)
 {
     if (instance < 0 || instance >= gpu->scene->instance_count)
         return;
-    bool active[4];
+    bool active[3];
     active_scene_uniforms(active);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_MATERIALS, gpu->material_buffer);
-    bind_instance(gpu, instance, active);
+    bind_instance(gpu, &gpu->scene->instances[instance], active);
 }
 
 size_t
@@ -457,7 +453,7 @@ cg_gpu_scene_draw(const cg_gpu_scene *gpu, cg_mesh_filter filter)
 {
     const cg_scene *scene = gpu->scene;
     size_t triangles = 0;
-    bool active[4];
+    bool active[3];
     active_scene_uniforms(active);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_MATERIALS, gpu->material_buffer);
     for (int i = 0; i < scene->instance_count; i++) {
@@ -465,7 +461,7 @@ cg_gpu_scene_draw(const cg_gpu_scene *gpu, cg_mesh_filter filter)
         const cg_gpu_mesh *mesh = &gpu->meshes[inst->mesh];
         if (!mesh_passes(mesh->kind, filter) || mesh->index_count == 0)
             continue;
-        bind_instance(gpu, i, active);
+        bind_instance(gpu, inst, active);
         glDrawElements(GL_TRIANGLES, mesh->index_count, GL_UNSIGNED_INT, NULL);
         triangles += (size_t)mesh->index_count / 3u;
     }
@@ -485,10 +481,10 @@ cg_gpu_scene_draw_ranges(const cg_gpu_scene *gpu, int instance, GLuint index_buf
     const cg_gpu_mesh *mesh = &gpu->meshes[inst->mesh];
     if (mesh->index_count == 0)
         return 0;
-    bool active[4];
+    bool active[3];
     active_scene_uniforms(active);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_MATERIALS, gpu->material_buffer);
-    bind_instance(gpu, instance, active);
+    bind_instance(gpu, inst, active);
     /* The caller's element buffer stands in for the mesh's own for this draw only: the VAO is
      * shared by every pass, so it gets its own back before anything else draws with it. */
     if (index_buffer)

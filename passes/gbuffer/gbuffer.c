@@ -1,12 +1,10 @@
 /* gbuffer: the visible surface of every pixel of the output image, in world space.
  *
  * Outputs (all the output image's size): depth (GL_DEPTH_COMPONENT32F), position
- * (RGBA32F world position, w = 1 + the index of the instance drawn there in cg_scene.instances
- * where a surface covers the pixel, 0 on the background: a temporal gather reprojects an animated
- * instance's points by its motion, sdk/upsample.h), normal (RGBA16F shading normal, the normal
- * map applied, turned towards the camera; a height field's upper side, see gbuffer.frag),
- * emissive (RGBA32F emitted radiance) and the material of glTF 2.0's BSDF (common/bsdf.glsl,
- * cg/bsdf.h) in RGBA16F:
+ * (RGBA32F world position, w = 1 where a surface covers the pixel, 0 on the background),
+ * normal (RGBA16F shading normal, the normal map applied, turned towards the camera; a height
+ * field's upper side, see gbuffer.frag), emissive (RGBA32F emitted radiance) and the material
+ * of glTF 2.0's BSDF (common/bsdf.glsl, cg/bsdf.h) in RGBA16F:
  *   albedo        rgb = the diffuse weight rho = (1-m)(1-T) baseColor (x coverage for BLEND),
  *                 a = occlusion 1 + strength (occ - 1) (1 = none; it darkens indirect light only)
  *   specular      rgb = F0 (metal and dielectric mixed by metallic), a = F90
@@ -150,7 +148,7 @@ gbuffer_execute(fg_pass *pass, gbuffer_state *st, cg_error *err)
 
 CGP_PASS(gbuffer, CGP_NO_PARAMS,
          "The visible surface of each pixel of the output image: depth, world position "
-         "(w = 1 + the instance's index where covered, 0 on the background), shading normal facing the camera, emitted radiance and glTF 2.0's "
+         "(w = 1 where covered), shading normal facing the camera, emitted radiance and glTF 2.0's "
          "BSDF (albedo = diffuse weight and occlusion, specular = F0 and F90, transmission = "
          "tint and ior, material = roughness, metallic, thickness, attenuation = sigma), and on "
          "the background the scene's sky as the emission the camera sees. "

@@ -2,7 +2,6 @@
 #include "sdk/upsample.h"
 
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
 
 #include "sdk/blocks.h"
@@ -85,52 +84,8 @@ cgp_gather_blocks_prepare(void *state, const fg_pass *pass, const cgp_gather *g,
         for (int i = 0; i < 2; i++)
             for (int k = 0; k < 2; k++)
                 b->history[i][k] = block_texture(state, b);
-        glCreateBuffers(1, &b->worlds);
-        cgp_own(state, CGP_GL_BUFFER, b->worlds);
-        b->world_count = -1;
     }
     return true;
-}
-
-/* Writes the scene's instance world matrices into half `half` of b->worlds. */
-static void
-write_worlds(const cgp_gather_blocks *b, const cg_scene *scene, int half)
-{
-    size_t n = (size_t)scene->instance_count, bytes = 16 * sizeof(float) * n;
-    float *worlds = malloc(bytes);
-    if (!worlds)
-        return;    /* the matrices stay what they were: no motion seen this frame */
-    for (size_t i = 0; i < n; i++)
-        memcpy(worlds + 16 * i, scene->instances[i].world, 16 * sizeof(float));
-    glNamedBufferSubData(b->worlds, (GLintptr)(bytes * (size_t)half), (GLsizeiptr)bytes, worlds);
-    free(worlds);
-}
-
-/* The instances' world matrices of the last frame and this one for common/upsample.glsl's
- * cg_upsample_instance_moved, bound with the uniform saying where each starts. Written only when
- * the scene's instances changed since the last frame; otherwise both are the present half. A scene
- * of another instance count (another scene) starts over with no motion. */
-static void
-bind_worlds(cgp_gather_blocks *b, const cg_scene *scene)
-{
-    int n = scene->instance_count;
-    int last = b->worlds_now;
-    if (n != b->world_count) {
-        glNamedBufferData(b->worlds, (GLsizeiptr)(2 * 16 * sizeof(float) * (size_t)(n > 0 ? n : 1)), NULL,
-                          GL_DYNAMIC_DRAW);
-        write_worlds(b, scene, 0);
-        b->world_count = n;
-        b->worlds_now = last = 0;
-        b->worlds_revision = scene->instances_revision;
-    } else if (scene->instances_revision != b->worlds_revision) {
-        b->worlds_now = 1 - last;
-        write_worlds(b, scene, b->worlds_now);
-        b->worlds_revision = scene->instances_revision;
-    } else {
-        last = b->worlds_now;
-    }
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, CG_BINDING_INSTANCE_WORLDS, b->worlds);
-    glUniform3i(CG_UPSAMPLE_WORLDS_LOCATION, last * n, b->worlds_now * n, n);
 }
 
 void
@@ -162,7 +117,6 @@ cgp_gather_blocks_trace(const fg_pass *pass, const cgp_gather *g, cgp_gather_blo
         glBindSampler(CG_UNIT_GATHER_BLOCKS, 0);
         glUniform2i(CG_UPSAMPLE_TEMPORAL_LOCATION, (int)(frame->index % (uint64_t)b->temporal), b->traced ? 1 : 0);
         glUniformMatrix4fv(CG_UPSAMPLE_PREVIOUS_LOCATION, 1, GL_FALSE, b->previous_view_proj);
-        bind_worlds(b, frame->scene);
     }
     cgp_dispatch_2d(b->width, b->height);
     if (b->temporal > 1) {

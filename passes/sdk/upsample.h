@@ -35,10 +35,7 @@
  * was seen (the last camera's projection), where that light was traced at a surface that agrees with
  * the pixel's and is at most N - 1 frames old (cg_upsample_block_kept): the images of blocks and of
  * the surfaces traced are the state's, two of each (this frame's and the last's), kept from frame to
- * frame until the next prepare, whose first frame traces every block. A point of an instance whose
- * world matrix changed since the last frame (an animated node) is first taken back to where the
- * instance held it then (the G-buffer's position w names the instance; the state keeps the
- * instances' matrices of both frames), so that the light traced on a moving object follows it.
+ * frame until the next prepare, whose first frame traces every block.
  */
 #ifndef CGP_UPSAMPLE_H
 #define CGP_UPSAMPLE_H
@@ -97,10 +94,6 @@ typedef struct cgp_gather_blocks {
     int current;            /* temporal > 1: this frame's texture and history; the other is the last's */
     float previous_view_proj[16]; /* temporal > 1: the last frame's camera, for the reprojection */
     bool traced;            /* temporal > 1: the blocks hold a frame's light (not before the first) */
-    GLuint worlds;          /* temporal > 1: the instances' world matrices, two frames' (SSBO of mat4) */
-    int world_count;        /* the instances each frame's half holds (-1: none written yet) */
-    int worlds_now;         /* the half holding the present matrices */
-    uint64_t worlds_revision; /* the scene's instances_revision when they were written */
     GLuint deferred_program; /* the gather's shader with CG_GATHER_DEFERRED */
     GLuint listed_program;  /* with CG_GATHER_LOWRES and CG_GATHER_DEFERRED: the listed blocks' traces */
     GLuint deferred;        /* the pixels no block agrees with (CG_GATHER_DEFERRED_BLOCK, a pixel of the

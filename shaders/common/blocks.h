@@ -79,11 +79,6 @@
 #define CG_UNIT_BLOCK_PREVIOUS 29
 #define CG_UPSAMPLE_TEMPORAL_LOCATION 20
 #define CG_UPSAMPLE_PREVIOUS_LOCATION 21
-/* ... and the scene's instances' world matrices of the last frame and of this one (SSBO, mat4s,
- * cg_scene.instances order; the G-buffer's position w is 1 + the index), with the uniform saying
- * where each frame's start and how many instances each holds. */
-#define CG_BINDING_INSTANCE_WORLDS 4
-#define CG_UPSAMPLE_WORLDS_LOCATION 22
 /* A gather's pixels that no block agrees with (sdk/upsample.h): SSBO, CG_GATHER_DEFERRED_BLOCK. */
 #define CG_BINDING_GATHER_DEFERRED 3
 /* ---- texture units of voxelize's surface model beside the scene's (common/scene.glsl: 0, 1, 24..27) */

@@ -1,7 +1,7 @@
 // common/scene.glsl: how a program sees the scene drawn by cg_gpu_scene_draw (cg/gpu_scene.h).
 //
 // Every program drawn with cg_gpu_scene_draw includes this file, so that uniform locations
-// 0..3 mean the same in every such program (the draw sets those the program keeps active).
+// 0..2 mean the same in every such program (the draw sets those the program keeps active).
 // A vertex stage defines
 // CG_SCENE_VERTEX before the include to get the vertex inputs. Pass-specific uniforms
 // start at location 8.
@@ -55,8 +55,6 @@ layout(std430, binding = 0) readonly buffer CgMaterials {
 layout(location = 0) uniform mat4 cg_model;
 layout(location = 1) uniform mat3 cg_normal_matrix;
 layout(location = 2) uniform int cg_material_index;
-// The instance drawn, its index in cg_scene.instances (gbuffer writes it for a temporal gather).
-layout(location = 3) uniform int cg_instance_index;
 
 // A 1x1 white texture is bound where a material has none, so sampling is always valid and gives
 // the factors alone (CG_SCENE_UNIT_* of cg/gpu_scene.h).

@@ -68,15 +68,6 @@ cg_upsample_tolerance(vec3 position, vec3 camera)
     return CG_UPSAMPLE_PLANE_PER_BLOCK * float(CG_GATHER_DOWNSAMPLE) * distance(position, camera);
 }
 
-// The pixel that block `b` traces: its centre (for an even D the lower right of the four central
-// pixels), clamped to the image for a last block that the image cuts.
-ivec2
-cg_upsample_representative(ivec2 b)
-{
-    ivec2 size = textureSize(cg_gather_position, 0);
-    return min(b * CG_GATHER_DOWNSAMPLE + CG_GATHER_DOWNSAMPLE / 2, size - 1);
-}
-
 #ifdef CG_GATHER_TEMPORAL
 // Temporal reuse (sdk/upsample.h's `temporal` = N): each frame the blocks of one turn in N trace
 // (N = 2: a checkerboard; 4: one block of each 2 x 2); each other block takes the light of the last
@@ -98,32 +89,6 @@ layout(binding = CG_UNIT_BLOCK_PREVIOUS + 1) uniform sampler2D cg_upsample_previ
 layout(location = CG_UPSAMPLE_TEMPORAL_LOCATION) uniform ivec2 cg_upsample_temporal;
 // The last frame's world-to-clip matrix.
 layout(location = CG_UPSAMPLE_PREVIOUS_LOCATION) uniform mat4 cg_upsample_previous_view_proj;
-// The scene's instances' world matrices (cg_scene.instances order), the last frame's from x, this
-// frame's from y, z of each (sdk/upsample.c: bind_worlds).
-layout(std430, binding = CG_BINDING_INSTANCE_WORLDS) readonly buffer CgUpsampleWorlds {
-    mat4 cg_upsample_worlds[];
-};
-layout(location = CG_UPSAMPLE_WORLDS_LOCATION) uniform ivec3 cg_upsample_world_halves;
-
-// Whether the instance seen at block b's representative (the G-buffer's position w - 1) moved
-// since the last frame; then `then_from_now` takes its points back to where the instance held them
-// in the last frame (its last world matrix times the inverse of the present one). A skinned or
-// morphed mesh moves its vertices, not its matrix: its points are not taken back, see another
-// surface and trace again.
-bool
-cg_upsample_instance_moved(ivec2 b, out mat4 then_from_now)
-{
-    int i = int(texelFetch(cg_gather_position, cg_upsample_representative(b), 0).w) - 1;
-    then_from_now = mat4(1.0);
-    if (i < 0 || i >= cg_upsample_world_halves.z)
-        return false;
-    mat4 then = cg_upsample_worlds[cg_upsample_world_halves.x + i];
-    mat4 now = cg_upsample_worlds[cg_upsample_world_halves.y + i];
-    if (then == now)
-        return false;
-    then_from_now = then * inverse(now);
-    return true;
-}
 
 // The last frame's block in which the last camera saw the world point `position`; -1 outside its
 // image or behind it. Interleaved, a block holds its own subset of the cones: only itself.
@@ -159,30 +124,16 @@ cg_upsample_block_kept(ivec2 b, bool surface, vec3 position, vec3 n, vec3 camera
     int turn = (b.x & 1) + 2 * (b.y & 1);
 #endif
     if (cg_upsample_temporal.y != 0 && turn != cg_upsample_temporal.x) {
-        // The point and normal where the last frame had them: a moving instance's taken back (the
-        // normal by the inverse transpose of the motion's linear part), a still one's as they are.
-        mat4 then_from_now;
-        bool moved = surface && cg_upsample_instance_moved(b, then_from_now);
-        vec3 then = position, then_n = n;
-        if (moved) {
-            then = (then_from_now * vec4(position, 1.0)).xyz;
-            then_n = normalize(transpose(inverse(mat3(then_from_now))) * n);
-        }
         // Outside the last frame's image (from = -1) nothing seen there is kept.
-        ivec2 from = surface ? cg_upsample_reprojected(b, then) : b;
+        ivec2 from = surface ? cg_upsample_reprojected(b, position) : b;
         if (from.x >= 0) {
             vec4 q = texelFetch(cg_upsample_previous_position, from, 0);
             vec4 m = texelFetch(cg_upsample_previous_normal, from, 0);
             bool kept = !surface && q.w == 0.0;    // the background then and now: nothing to trace
             if (surface && q.w != 0.0 && m.w + 1.0 <= float(CG_GATHER_TEMPORAL - 1)) {
                 float tolerance = cg_upsample_tolerance(position, camera);
-                kept = cg_upsample_agreement(q.xyz, m.xyz, then, then_n, tolerance) > 0.0 &&
-                       distance(q.xyz, then) < tolerance;
-            }
-            if (kept && moved) {
-                // The traced surface is kept where the instance holds it now, for the next frame.
-                q.xyz = (inverse(then_from_now) * vec4(q.xyz, 1.0)).xyz;
-                m.xyz = normalize(transpose(mat3(then_from_now)) * m.xyz);
+                kept = cg_upsample_agreement(q.xyz, m.xyz, position, n, tolerance) > 0.0 &&
+                       distance(q.xyz, position) < tolerance;
             }
             if (kept) {
                 imageStore(cg_upsample_history_position, b, q);
@@ -196,6 +147,15 @@ cg_upsample_block_kept(ivec2 b, bool surface, vec3 position, vec3 n, vec3 camera
     imageStore(cg_upsample_history_normal, b, vec4(n, 0.0));
 #endif
     return false;
+}
+
+// The pixel that block `b` traces: its centre (for an even D the lower right of the four central
+// pixels), clamped to the image for a last block that the image cuts.
+ivec2
+cg_upsample_representative(ivec2 b)
+{
+    ivec2 size = textureSize(cg_gather_position, 0);
+    return min(b * CG_GATHER_DOWNSAMPLE + CG_GATHER_DOWNSAMPLE / 2, size - 1);
 }
 
 // Whether `pixel` is the pixel its block traces (the block holding it: pixel / D).

@@ -1,6 +1,5 @@
-// gbuffer: world position (w = 1 + the instance's index where a surface covers the pixel), shading
-// normal facing the camera, emitted radiance and the glTF 2.0 BSDF's quantities
-// (passes/gbuffer/gbuffer.c lists them).
+// gbuffer: world position (w = 1 where a surface covers the pixel), shading normal facing the
+// camera, emitted radiance and the glTF 2.0 BSDF's quantities (passes/gbuffer/gbuffer.c lists them).
 #version 450 core
 #include "common/scene.glsl"
 
@@ -71,9 +70,7 @@ main()
         ior = own >= 1.0 - coverage ? b.ior : 1.0;
     }
 
-    // w: 1 + the instance's index (cg/gpu_scene.h), exact in fp32 below 2^24 instances; every reader
-    // tests w > 0 for a surface, and a temporal gather finds the instance's motion by it.
-    out_position = vec4(world_position, 1.0 + float(cg_instance_index));
+    out_position = vec4(world_position, 1.0);
     out_normal = vec4(n, 1.0);
     out_albedo = vec4(b.diffuse * coverage, cg_material_occlusion(material, texcoord));
     out_emissive = vec4(cg_material_emissive(material, texcoord), 1.0);

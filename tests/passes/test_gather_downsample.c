@@ -638,13 +638,15 @@ test_temporal(void **state)
  * rising), the camera still and close to the turning building nearest the view's centre, frames
  * 0.25 s apart (the demo's rate on this machine; 4.5 degrees of turn a frame), cone_gather of
  * vct.json at 64³, temporal 4 against a fresh render (temporal 1) at each frame's time:
- *   - relMSE below 2e-2 (measured 2.5e-3 to 9.3e-3): a kept block's light is at most 3 frames old
- *     and was traced at the same surface, but the light there changed as the buildings turned
- *     (their shadows and bounce on the terrain, their own walls turned to the sun): the lag;
- *   - at most 0.75 of the fresh render's pixels trace (blocks and deferred pixels; measured 0.58 to
- *     0.61 at this size, where a block is a large share of the building): the still parts keep
+ *   - relMSE below 2e-2 (measured 6.4e-3 to 1.1e-2): a kept block's light is at most 3 frames old
+ *     and was traced at the same place, but the light there changed as the buildings turned
+ *     (their shadows and bounce on the terrain, their walls turned to the sun): the lag;
+ *   - at most 0.75 of the fresh render's pixels trace (blocks and deferred pixels; measured 0.52 to
+ *     0.56 at this size, where a block is a large share of the building): the still parts keep
  *     their light; a block whose point moved off the one traced traces again.
- * docs/results/gi-resolution.md reports the lag at larger sizes. */
+ * The reprojection is by world position: a moving object's block keeps light only where its
+ * surface is still about where the light was traced. docs/results/gi-resolution.md reports the
+ * lag at larger sizes, and why following the objects' motion was taken out again. */
 static void
 test_temporal_motion(void **state)
 {

@@ -9,13 +9,12 @@
  * Shader interface (shaders/common/scene.glsl): vertex attributes 0 = position,
  * 1 = normal, 2 = texcoord, 3 = tangent (vec4, glTF TANGENT; all zero where the mesh has
  * none, and the shaders then skip normal mapping); uniform location 0 = mat4 model, 1 = mat3
- * normal matrix, 2 = int material index, 3 = int instance index (into cg_scene.instances: what
- * gbuffer writes for a temporal gather to find the instance's motion); SSBO binding 0 = materials (struct CgMaterial in
+ * normal matrix, 2 = int material index; SSBO binding 0 = materials (struct CgMaterial in
  * scene.glsl: every field of cg_material the shaders need); texture units CG_SCENE_UNIT_*
  * (a 1x1 white texture where the material has none: the factors alone). A draw sets the front
  * face by the sign of the instance's determinant (glTF 3.7.4) and leaves GL_CCW after it.
  * Every program drawn with cg_gpu_scene_draw includes common/scene.glsl, which declares
- * all four uniforms; cg_gpu_scene_draw sets those the program keeps active.
+ * all three uniforms; cg_gpu_scene_draw sets those the program keeps active.
  *
  * Lights (shaders/common/lights.glsl): SSBO binding 1 = a uvec4 header (x = light count)
  * followed by a std430 array of struct CgLight, one per cg_scene light in scene order,
@@ -92,7 +91,7 @@ bool cg_gpu_scene_update_meshes(cg_gpu_scene *gpu, int *updated, cg_error *err);
 void cg_gpu_scene_destroy(cg_gpu_scene *gpu);
 
 /* Draws every instance whose mesh passes `filter` with the bound program: sets the
- * model and normal matrices, material and instance index uniforms, binds the material SSBO and
+ * model and normal matrices and material index uniforms, binds the material SSBO and
  * textures. Returns the number of triangles drawn. The matrices come from gpu->scene's
  * instances at every call, so a scene posed at a new time (cg_scene_evaluate) draws where it
  * is now with nothing uploaded; only its lights need cg_gpu_scene_update_lights. */
@@ -108,8 +107,8 @@ size_t cg_gpu_scene_draw_ranges(const cg_gpu_scene *gpu, int instance, GLuint in
                                 const GLsizeiptr *firsts, GLsizei ranges);
 
 /* What a draw of `instance` reads beside its vertices, set for the bound program as
- * cg_gpu_scene_draw sets it: the active uniforms 0..3 (model and normal matrices, material
- * and instance index), the materials SSBO, the material textures, the mesh's VAO. For a compute program that
+ * cg_gpu_scene_draw sets it: the active uniforms 0..2 (model and normal matrices, material
+ * index), the materials SSBO, the material textures, the mesh's VAO. For a compute program that
  * reads the mesh's buffers itself (voxelize's voxelizer=compute), so that both see one instance
  * alike. */
 void cg_gpu_scene_bind_instance(const cg_gpu_scene *gpu, int instance);
