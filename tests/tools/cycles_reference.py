@@ -248,9 +248,13 @@ def main():
     if scene.camera is None:
         sys.exit("cycles_reference.py: the scene has no camera")
 
-    # the importer names each Blender material after its glTF material
+    # the importer names each Blender material after its glTF material; one no primitive uses (a
+    # file's spare default) is not imported
+    used = {p["material"] for m in doc.get("meshes", []) for p in m["primitives"] if "material" in p}
     for k, name in enumerate(names):
         mat = bpy.data.materials.get(name)
+        if mat is None and k not in used:
+            continue
         if mat is None:
             sys.exit(f"cycles_reference.py: material '{name}' was not imported")
         if args["ids"]:

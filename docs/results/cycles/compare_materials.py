@@ -5,7 +5,7 @@ index + 1 at the pixel centre, 0 = background):
 
     /usr/bin/python3 docs/results/cycles/compare_materials.py SCENE.gltf OURS.exr CYCLES.exr IDS.exr [--json OUT]
 
-Prints, for the whole image and for each material: pixels, mean luminance of each image (Rec. 709
+Prints, for the whole image, the background, every surface together and each material: pixels, mean luminance of each image (Rec. 709
 weights on linear RGB) and ours / Cycles. `interior` leaves out the pixels with another id in
 their 3x3 neighbourhood (silhouettes, where one pixel-centre ray may land on either object).
 Needs numpy and OpenImageIO's Python module (Debian: python3-numpy, python3-openimageio).
@@ -64,6 +64,8 @@ def main():
 
     row("image", np.ones_like(ids, dtype=bool))
     row("background", ids == 0)
+    row("surfaces", ids > 0)
+    row("surfaces (interior)", (ids > 0) & interior)
     for k, name in enumerate(names):
         row(name, ids == k + 1)
         row(name + " (interior)", (ids == k + 1) & interior)
