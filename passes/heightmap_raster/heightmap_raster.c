@@ -24,7 +24,12 @@
  * still rebuilds; any doubt rebuilds). The light is recomputed every frame by a compute pass
  * over the texels (relight.comp), at a cost that follows texels, not triangles, with the
  * formula the lit raster uses (common/surface_light.glsl) on the values it would use, so that
- * a cached frame equals a rebuilt one bit for bit. cache=false is the paper's full rebuild:
+ * a cached frame equals a rebuilt one bit for bit. The lightmap is then persistent too, and a frame
+ * relights only when something the light reads changed since the last relight: the geometry (a
+ * rasterization), the lights (by value), any instance (a shadow caster: sdk/instances.h over every
+ * mesh), the shadow map's objects or its matrix block (read back), the radiance scale or the
+ * lightmap itself; a static frame dispatches nothing and keeps the map (mip2d and hsat after it
+ * filter the same level 0 again). cache=false is the paper's full rebuild:
  * every frame rasterizes the meshes and lights them in the raster. The pass says which it did
  * through fg_pass_report_rebuilt.
  *
@@ -65,9 +70,10 @@ static const fg_param_desc heightmap_params[] = {
     { .name = "format", .type = FG_PARAM_ENUM, .default_value = FORMAT_RGBA32F, .choices = "rgba16f|rgba32f",
       .doc = "texel format; rgba32f keeps heights to 24 bits (rgba16f: 11 bits, centimetres at 30 m, metres at 10 km)" },
     { .name = "cache", .type = FG_PARAM_BOOL, .default_value = 1,
-      .doc = "keep the rasterized geometry across frames, re-rasterize it only when a height-field "
-             "instance changed and relight every texel each frame; false: rasterize and light "
-             "everything every frame (the paper's rebuild)" },
+      .doc = "keep the rasterized geometry and the lightmap across frames, re-rasterize the geometry "
+             "only when a height-field instance changed and relight the texels only when the geometry, "
+             "the lights, an instance (a shadow caster) or the shadow map changed; false: rasterize "
+             "and light everything every frame (the paper's rebuild)" },
 };
 
 /* The kept surface attributes (raster.frag with CG_HEIGHTMAP_GEOMETRY, colour attachments in
@@ -95,6 +101,17 @@ typedef struct heightmap_raster_state {
     int resolution;
     heightmap_region region;
     uint64_t builds;        /* geometry rasterizations since prepare */
+    /* cache=true: what the kept light was computed from (lit = false: nothing yet). */
+    bool lit;
+    cgp_instance_record casters;    /* every instance: the shadow map's casters */
+    cg_light *lights;
+    int light_count;
+    struct light_key {
+        GLuint objects[3];          /* the lightmap, the shadow map and its matrix buffer */
+        unsigned char shadow[256];  /* the shadow map's matrix block as read back (its first bytes) */
+        double radiance_scale;
+    } key;
+    uint64_t relights;      /* relights since prepare */
     fg_slot lightmap, block, depth;
     fg_slot geometry[GEOMETRY_TARGETS]; /* cache=true */
 } heightmap_raster_state;
@@ -130,6 +147,8 @@ heightmap_raster_declare(fg_pass *pass, fg_declare *decl, cg_error *err)
         .levels = levels > 0 && levels < full ? levels : full,
         .gi = true,
     };
+    /* Kept across frames with cache: a static frame does not relight it. */
+    lightmap.persistent = cache;
     fg_declare_output(decl, "lightmap", &lightmap,
                       cache ? FG_ACCESS_IMAGE_STORE : FG_ACCESS_ATTACHMENT | FG_ACCESS_TRANSFER);
     if (cache) {
@@ -156,6 +175,8 @@ heightmap_raster_cleanup(void *state)
     heightmap_raster_state *s = state;
     cgp_light_distances_free(&s->light_distances);
     cgp_instance_record_free(&s->instances);
+    cgp_instance_record_free(&s->casters);
+    free(s->lights);
 }
 
 static bool
@@ -257,8 +278,72 @@ framebuffer_complete(const fg_pass *pass, const heightmap_raster_state *s, cg_er
     return true;
 }
 
+/* What a relight would read this frame beside the kept geometry, the instances and the lights. */
+static void
+read_light_key(const fg_pass *pass, const heightmap_raster_state *s, double radiance_scale, struct light_key *key)
+{
+    memset(key, 0, sizeof *key);
+    key->objects[0] = fg_slot_texture(pass, s->lightmap);
+    key->objects[1] = fg_slot_texture(pass, s->no_shadow.shadow);
+    key->objects[2] = fg_slot_buffer(pass, s->no_shadow.matrix);
+    const fg_resource_desc *matrix = fg_slot_resource(pass, s->no_shadow.matrix);
+    if (matrix && key->objects[2]) {
+        size_t bytes = matrix->buffer_bytes < sizeof key->shadow ? matrix->buffer_bytes : sizeof key->shadow;
+        glGetNamedBufferSubData(key->objects[2], 0, (GLsizeiptr)bytes, key->shadow);
+    }
+    key->radiance_scale = radiance_scale;
+}
+
+/* Why the kept light must be computed again (NULL: nothing it reads changed since the last relight);
+ * `geometry` says why the geometry was rasterized this frame, if it was. */
+static const char *
+light_stale(const heightmap_raster_state *s, const fg_frame *frame, const char *geometry, const struct light_key *key)
+{
+    if (!s->lit)
+        return "first frame";
+    if (geometry)
+        return "geometry rasterized";
+    const char *why = cgp_instances_changed(&s->casters, frame, CG_MESHES_ALL, "an instance changed");
+    if (why)
+        return why;
+    const cg_scene *scene = frame->scene;
+    if (scene->light_count != s->light_count ||
+        (s->light_count > 0 && memcmp(scene->lights, s->lights, sizeof *s->lights * (size_t)s->light_count)))
+        return "lights changed";
+    if (memcmp(key, &s->key, sizeof *key))
+        return "shadow map or radiance scale changed";
+    return NULL;
+}
+
+/* Records what the light was computed from; on failure nothing is recorded (the next frame relights). */
+static bool
+remember_light(heightmap_raster_state *s, const fg_frame *frame, const struct light_key *key, cg_error *err)
+{
+    const cg_scene *scene = frame->scene;
+    s->lit = false;
+    if (scene->light_count != s->light_count) {
+        free(s->lights);
+        s->lights = NULL;
+        s->light_count = 0;
+        if (scene->light_count > 0) {
+            s->lights = malloc(sizeof *s->lights * (size_t)scene->light_count);
+            if (!s->lights)
+                return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "heightmap_raster: out of memory keeping %d lights",
+                               scene->light_count);
+        }
+        s->light_count = scene->light_count;
+    }
+    if (s->light_count > 0)
+        memcpy(s->lights, scene->lights, sizeof *s->lights * (size_t)s->light_count);
+    if (!cgp_instances_remember(&s->casters, frame, CG_MESHES_ALL, err))
+        return false;
+    memcpy(&s->key, key, sizeof s->key);   /* its padding too: the keys are compared by memcmp */
+    s->lit = true;
+    return true;
+}
+
 /* cache=true: rasterizes the surface attributes when they may have changed, then relights
- * every texel. */
+ * every texel when the light may have changed. */
 static bool
 execute_cached(fg_pass *pass, heightmap_raster_state *s, const heightmap_region *region, int resolution,
                double radiance_scale, cg_error *err)
@@ -283,6 +368,15 @@ execute_cached(fg_pass *pass, heightmap_raster_state *s, const heightmap_region 
         s->builds++;
     }
 
+    struct light_key key;
+    read_light_key(pass, s, radiance_scale, &key);
+    const char *relight = light_stale(s, frame, why, &key);
+    if (!relight) {
+        fg_pass_report_rebuilt(pass, "geometry kept; light kept (%llu geometry build%s, %llu relight%s since prepare)",
+                               (unsigned long long)s->builds, s->builds == 1 ? "" : "s",
+                               (unsigned long long)s->relights, s->relights == 1 ? "" : "s");
+        return true;
+    }
     glUseProgram(s->relight);
     glUniform1f(10, (float)radiance_scale);
     glUniform1f(11, (float)region->lo[1]);
@@ -299,10 +393,11 @@ execute_cached(fg_pass *pass, heightmap_raster_state *s, const heightmap_region 
         glBindTextureUnit(3 + (GLuint)i, 0);
     glUseProgram(0);
 
-    fg_pass_report_rebuilt(pass, "geometry %s%s%s; light %d texels relit (%llu geometry build%s since prepare)",
+    s->relights++;
+    fg_pass_report_rebuilt(pass, "geometry %s%s%s; light %d texels relit (%s; %llu geometry build%s since prepare)",
                            why ? "rasterized (" : "kept", why ? why : "", why ? ")" : "",
-                           resolution * resolution, (unsigned long long)s->builds, s->builds == 1 ? "" : "s");
-    return true;
+                           resolution * resolution, relight, (unsigned long long)s->builds, s->builds == 1 ? "" : "s");
+    return remember_light(s, frame, &key, err);
 }
 
 static bool
@@ -356,6 +451,7 @@ CGP_PASS(heightmap_raster, CGP_PARAMS(heightmap_params),
          "into a 2D lightmap over their xz bounds (hybrid paper V.B): rgb = outgoing diffuse "
          "radiance of the direct light, shadowed through the optional shadow map, plus emission; "
          "alpha = height (world y). With cache=true the meshes' surface attributes are kept across "
-         "frames, re-rasterized only when a height-field instance changed, and relit every frame "
-         "by a compute pass over the texels; cache=false rasterizes and lights everything every "
+         "frames, re-rasterized only when a height-field instance changed, and relit by a compute "
+         "pass over the texels when the geometry, the lights, an instance (a shadow caster) or the "
+         "shadow map changed (a static frame keeps the map); cache=false rasterizes and lights everything every "
          "frame. Nothing to do for a scene without height-field meshes.");
