@@ -26,9 +26,8 @@
  * formula the lit raster uses (common/surface_light.glsl) on the values it would use, so that
  * a cached frame equals a rebuilt one bit for bit. The lightmap is then persistent too, and a frame
  * relights only when something the light reads changed since the last relight: the geometry (a
- * rasterization), the lights (by value), any instance (a shadow caster: sdk/instances.h over every
- * mesh), the shadow map's objects or its matrix block (read back), the radiance scale or the
- * lightmap itself; a static frame dispatches nothing and keeps the map (mip2d and hsat after it
+ * rasterization), the lights or the shadow map (sdk/shadow.h's lighting record), any instance (a
+ * shadow caster: sdk/instances.h over every mesh), the radiance scale or the lightmap itself; a static frame dispatches nothing and keeps the map (mip2d and hsat after it
  * filter the same level 0 again). cache=false is the paper's full rebuild:
  * every frame rasterizes the meshes and lights them in the raster. The pass says which it did
  * through fg_pass_report_rebuilt.
@@ -104,13 +103,9 @@ typedef struct heightmap_raster_state {
     /* cache=true: what the kept light was computed from (lit = false: nothing yet). */
     bool lit;
     cgp_instance_record casters;    /* every instance: the shadow map's casters */
-    cg_light *lights;
-    int light_count;
-    struct light_key {
-        GLuint objects[3];          /* the lightmap, the shadow map and its matrix buffer */
-        unsigned char shadow[256];  /* the shadow map's matrix block as read back (its first bytes) */
-        double radiance_scale;
-    } key;
+    cgp_lighting_record lighting;   /* the lights and the shadow map (sdk/shadow.h) */
+    GLuint lit_map;                 /* the lightmap's texture */
+    double lit_scale;               /* the radiance scale */
     uint64_t relights;      /* relights since prepare */
     fg_slot lightmap, block, depth;
     fg_slot geometry[GEOMETRY_TARGETS]; /* cache=true */
@@ -176,7 +171,7 @@ heightmap_raster_cleanup(void *state)
     cgp_light_distances_free(&s->light_distances);
     cgp_instance_record_free(&s->instances);
     cgp_instance_record_free(&s->casters);
-    free(s->lights);
+    cgp_lighting_record_free(&s->lighting);
 }
 
 static bool
@@ -278,66 +273,44 @@ framebuffer_complete(const fg_pass *pass, const heightmap_raster_state *s, cg_er
     return true;
 }
 
-/* What a relight would read this frame beside the kept geometry, the instances and the lights. */
-static void
-read_light_key(const fg_pass *pass, const heightmap_raster_state *s, double radiance_scale, struct light_key *key)
-{
-    memset(key, 0, sizeof *key);
-    key->objects[0] = fg_slot_texture(pass, s->lightmap);
-    key->objects[1] = fg_slot_texture(pass, s->no_shadow.shadow);
-    key->objects[2] = fg_slot_buffer(pass, s->no_shadow.matrix);
-    const fg_resource_desc *matrix = fg_slot_resource(pass, s->no_shadow.matrix);
-    if (matrix && key->objects[2]) {
-        size_t bytes = matrix->buffer_bytes < sizeof key->shadow ? matrix->buffer_bytes : sizeof key->shadow;
-        glGetNamedBufferSubData(key->objects[2], 0, (GLsizeiptr)bytes, key->shadow);
-    }
-    key->radiance_scale = radiance_scale;
-}
-
-/* Why the kept light must be computed again (NULL: nothing it reads changed since the last relight);
- * `geometry` says why the geometry was rasterized this frame, if it was. */
+/* Why the kept light must be computed again (NULL: nothing it reads changed since the last relight):
+ * `geometry` says why the geometry was rasterized this frame, if it was; `lighting` is this
+ * frame's lights and shadow map. */
 static const char *
-light_stale(const heightmap_raster_state *s, const fg_frame *frame, const char *geometry, const struct light_key *key)
+light_stale(const fg_pass *pass, const heightmap_raster_state *s, const char *geometry,
+            const cgp_lighting_record *lighting, double radiance_scale)
 {
     if (!s->lit)
         return "first frame";
     if (geometry)
         return "geometry rasterized";
-    const char *why = cgp_instances_changed(&s->casters, frame, CG_MESHES_ALL, "an instance changed");
+    const char *why = cgp_instances_changed(&s->casters, fg_pass_frame(pass), CG_MESHES_ALL, "an instance changed");
     if (why)
         return why;
-    const cg_scene *scene = frame->scene;
-    if (scene->light_count != s->light_count ||
-        (s->light_count > 0 && memcmp(scene->lights, s->lights, sizeof *s->lights * (size_t)s->light_count)))
+    switch (cgp_lighting_changed(&s->lighting, lighting)) {
+    case CGP_LIGHTING_LIGHTS:
         return "lights changed";
-    if (memcmp(key, &s->key, sizeof *key))
-        return "shadow map or radiance scale changed";
+    case CGP_LIGHTING_SHADOW:
+        return "shadow map changed";
+    case CGP_LIGHTING_SAME:
+        break;
+    }
+    if (fg_slot_texture(pass, s->lightmap) != s->lit_map || radiance_scale != s->lit_scale)
+        return "lightmap or radiance scale changed";
     return NULL;
 }
 
 /* Records what the light was computed from; on failure nothing is recorded (the next frame relights). */
 static bool
-remember_light(heightmap_raster_state *s, const fg_frame *frame, const struct light_key *key, cg_error *err)
+remember_light(const fg_pass *pass, heightmap_raster_state *s, const cgp_lighting_record *lighting,
+               double radiance_scale, cg_error *err)
 {
-    const cg_scene *scene = frame->scene;
     s->lit = false;
-    if (scene->light_count != s->light_count) {
-        free(s->lights);
-        s->lights = NULL;
-        s->light_count = 0;
-        if (scene->light_count > 0) {
-            s->lights = malloc(sizeof *s->lights * (size_t)scene->light_count);
-            if (!s->lights)
-                return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "heightmap_raster: out of memory keeping %d lights",
-                               scene->light_count);
-        }
-        s->light_count = scene->light_count;
-    }
-    if (s->light_count > 0)
-        memcpy(s->lights, scene->lights, sizeof *s->lights * (size_t)s->light_count);
-    if (!cgp_instances_remember(&s->casters, frame, CG_MESHES_ALL, err))
+    if (!cgp_lighting_remember(&s->lighting, lighting, err) ||
+        !cgp_instances_remember(&s->casters, fg_pass_frame(pass), CG_MESHES_ALL, err))
         return false;
-    memcpy(&s->key, key, sizeof s->key);   /* its padding too: the keys are compared by memcmp */
+    s->lit_map = fg_slot_texture(pass, s->lightmap);
+    s->lit_scale = radiance_scale;
     s->lit = true;
     return true;
 }
@@ -368,9 +341,9 @@ execute_cached(fg_pass *pass, heightmap_raster_state *s, const heightmap_region 
         s->builds++;
     }
 
-    struct light_key key;
-    read_light_key(pass, s, radiance_scale, &key);
-    const char *relight = light_stale(s, frame, why, &key);
+    cgp_lighting_record lighting;
+    cgp_lighting_read(pass, &s->no_shadow, &lighting);
+    const char *relight = light_stale(pass, s, why, &lighting, radiance_scale);
     if (!relight) {
         fg_pass_report_rebuilt(pass, "geometry kept; light kept (%llu geometry build%s, %llu relight%s since prepare)",
                                (unsigned long long)s->builds, s->builds == 1 ? "" : "s",
@@ -397,7 +370,7 @@ execute_cached(fg_pass *pass, heightmap_raster_state *s, const heightmap_region 
     fg_pass_report_rebuilt(pass, "geometry %s%s%s; light %d texels relit (%s; %llu geometry build%s since prepare)",
                            why ? "rasterized (" : "kept", why ? why : "", why ? ")" : "",
                            resolution * resolution, relight, (unsigned long long)s->builds, s->builds == 1 ? "" : "s");
-    return remember_light(s, frame, &key, err);
+    return remember_light(pass, s, &lighting, radiance_scale, err);
 }
 
 static bool

@@ -47,7 +47,7 @@
  * the three light volumes are persistent, and a frame relights them only when something the light
  * reads changed since the last relight: the geometry (an instance as sdk/instances.h compares it, the
  * GPU scene's upload, voxelize's region block, read back: region, levels and scales; the input
- * textures), the lights (by value) and the shadow map's matrix block (read back), the sky, or the
+ * textures), the lights and the shadow map (sdk/shadow.h's lighting record), the sky, or the
  * pass's parameters. A static frame dispatches nothing and keeps the volumes. Where the only gather is
  * the first (bounces = 1 with a sky or emitters: G(V_0), V_0 = Le, reads no punctual light), it is kept
  * too (gathered_front and gathered_back are then persistent) while only the lights or the shadow map
@@ -145,15 +145,14 @@ typedef struct voxel_light_state {
     GLuint listed;          /* occupied voxels found by the last listing (list_voxels) */
     cgp_instance_record instances;
     struct light_key {
-        GLuint textures[7];         /* the geometry volumes, the shadow map, the shadow matrix buffer */
+        GLuint textures[5];         /* the geometry volumes */
         cg_volume_block region;     /* voxelize's region block as it was read back */
-        unsigned char shadow[256];  /* the shadow_map's matrix block as read back (its first bytes) */
         int bounces, bounce_cones, bounce_spacing;
         bool glossy, lobes;     /* the parameter; whether a material has a lobe (glossy is lit then) */
         cg_sky sky;
+        cgp_lighting_record lighting;   /* the lights and the shadow map (sdk/shadow.h; lights borrowed) */
     } key;
-    cg_light *lights;       /* the scene's lights at the last relight */
-    int light_count;
+    cgp_lighting_record lighting;   /* the key's lighting at the last relight, its lights kept */
     uint64_t relights;      /* frames that relit since prepare */
     int dispatches;         /* compute dispatches of this frame's execute */
     fg_slot geometry[5];    /* geometry_names */
@@ -315,7 +314,7 @@ voxel_light_cleanup(void *state)
 {
     voxel_light_state *s = state;
     cgp_instance_record_free(&s->instances);
-    free(s->lights);
+    cgp_lighting_record_free(&s->lighting);
 }
 
 static bool
@@ -667,16 +666,10 @@ read_key(const fg_pass *pass, const voxel_light_state *s, struct light_key *key)
     memset(key, 0, sizeof *key);
     for (int i = 0; i < 5; i++)
         key->textures[i] = fg_slot_texture(pass, s->geometry[i]);
-    key->textures[5] = fg_slot_texture(pass, s->no_shadow.shadow);
-    key->textures[6] = fg_slot_buffer(pass, s->no_shadow.matrix);
     /* voxelize writes its region block every frame: read back, it says whether the region, the
      * levels or the radiance scale moved (48 bytes; the pass's work is done by then anyway). */
     glGetNamedBufferSubData(fg_slot_buffer(pass, s->region), 0, sizeof key->region, &key->region);
-    const fg_resource_desc *matrix = fg_slot_resource(pass, s->no_shadow.matrix);
-    if (matrix && key->textures[6]) {
-        size_t bytes = matrix->buffer_bytes < sizeof key->shadow ? matrix->buffer_bytes : sizeof key->shadow;
-        glGetNamedBufferSubData(key->textures[6], 0, (GLsizeiptr)bytes, key->shadow);
-    }
+    cgp_lighting_read(pass, &s->no_shadow, &key->lighting);
     key->bounces = fg_param_int(pass, "bounces");
     key->bounce_cones = fg_param_int(pass, "bounce_cones");
     key->bounce_spacing = fg_param_int(pass, "bounce_spacing");
@@ -692,7 +685,6 @@ static const char *
 what_changed(const fg_pass *pass, const voxel_light_state *s, const struct light_key *key, bool *lights_only)
 {
     const fg_frame *frame = fg_pass_frame(pass);
-    const cg_scene *scene = frame->scene;
     *lights_only = false;
     if (!s->lit)
         return "first frame";
@@ -708,12 +700,10 @@ what_changed(const fg_pass *pass, const voxel_light_state *s, const struct light
         return "parameters changed";
     if (!cg_sky_equal(&key->sky, &s->key.sky) || key->sky.type != s->key.sky.type)
         return "sky changed";
-    bool lights = scene->light_count != s->light_count ||
-                  (s->light_count > 0 && memcmp(scene->lights, s->lights, sizeof *s->lights * (size_t)s->light_count));
-    bool shadow = memcmp(&key->textures[5], &s->key.textures[5], 2 * sizeof key->textures[0]) ||
-                  memcmp(key->shadow, s->key.shadow, sizeof key->shadow);
-    if (!lights && !shadow)
+    cgp_lighting_change change = cgp_lighting_changed(&s->lighting, &key->lighting);
+    if (change == CGP_LIGHTING_SAME)
         return NULL;
+    bool lights = change == CGP_LIGHTING_LIGHTS;
     *lights_only = !(lights && key->sky.type == CG_SKY_PREETHAM);
     return lights ? "lights changed" : "shadow map changed";
 }
@@ -723,25 +713,13 @@ static bool
 remember(const fg_pass *pass, voxel_light_state *s, const struct light_key *key, bool first_gather_kept, cg_error *err)
 {
     const fg_frame *frame = fg_pass_frame(pass);
-    const cg_scene *scene = frame->scene;
     s->lit = false;
-    if (scene->light_count != s->light_count) {
-        free(s->lights);
-        s->lights = NULL;
-        s->light_count = 0;
-        if (scene->light_count > 0) {
-            s->lights = malloc(sizeof *s->lights * (size_t)scene->light_count);
-            if (!s->lights)
-                return cg_fail(err, CG_ERR_OUT_OF_MEMORY, "pass '%s': out of memory keeping %d lights",
-                               fg_pass_name(pass), scene->light_count);
-        }
-        s->light_count = scene->light_count;
-    }
-    if (s->light_count > 0)
-        memcpy(s->lights, scene->lights, sizeof *s->lights * (size_t)s->light_count);
-    if (!cgp_instances_remember(&s->instances, frame, CG_MESHES_ALL, err))
+    if (!cgp_lighting_remember(&s->lighting, &key->lighting, err) ||
+        !cgp_instances_remember(&s->instances, frame, CG_MESHES_ALL, err))
         return false;
     s->key = *key;
+    /* Its lights were the scene's, borrowed: s->lighting holds them by value. */
+    memset(&s->key.lighting, 0, sizeof s->key.lighting);
     s->lit = true;
     s->first_gather_kept = first_gather_kept;
     s->list_kept = true;
