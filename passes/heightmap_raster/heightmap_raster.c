@@ -21,16 +21,16 @@
  * when a height-field instance's world matrix, revision, mesh or material, the set of
  * instances, the scene, the GPU scene's upload (cg_gpu_scene.generation) or the map's region
  * differ from the last build, compared by value (a world changed by hand without a revision
- * still rebuilds; any doubt rebuilds). The light is recomputed every frame by a compute pass
- * over the texels (relight.comp), at a cost that follows texels, not triangles, with the
- * formula the lit raster uses (common/surface_light.glsl) on the values it would use, so that
- * a cached frame equals a rebuilt one bit for bit. The lightmap is then persistent too, and a frame
- * relights only when something the light reads changed since the last relight: the geometry (a
- * rasterization), the lights or the shadow map (sdk/shadow.h's lighting record), any instance (a
- * shadow caster: sdk/instances.h over every mesh), the radiance scale or the lightmap itself; a static frame dispatches nothing and keeps the map (mip2d and hsat after it
- * filter the same level 0 again). cache=false is the paper's full rebuild:
- * every frame rasterizes the meshes and lights them in the raster. The pass says which it did
- * through fg_pass_report_rebuilt.
+ * still rebuilds; any doubt rebuilds). The light is computed by a compute pass over the texels
+ * (relight.comp), at a cost that follows texels, not triangles, with the formula the lit raster
+ * uses (common/surface_light.glsl) on the values it would use, so that a cached frame equals a
+ * rebuilt one bit for bit. The lightmap is persistent too, and a frame relights only when something
+ * the light reads changed since the last relight: the geometry (a rasterization), the lights or
+ * the shadow map (sdk/shadow.h's lighting record), any instance (a shadow caster: sdk/instances.h
+ * over every mesh), the radiance scale or the lightmap itself; a static frame dispatches nothing
+ * and keeps the map (mip2d and hsat after it filter the same level 0 again). cache=false is the
+ * paper's full rebuild: every frame rasterizes the meshes and lights them in the raster. The pass
+ * says which it did through fg_pass_report_rebuilt.
  *
  * Radiance range: RGBA16F stores radiance / s, s = a bound on the height fields' radiance /
  * 32768 (sdk/radiance.h), published in the region block: neither 1e9 W/m^2 clips at 65504 nor
