@@ -2,7 +2,8 @@
  * GLSL, the size and member offsets of its C struct; a pass state deletes the GL objects it owns;
  * cgp_register_passes refuses a pass type of another ABI before registering any; cgp_mesh_bounds
  * transforms and filters as voxelize and heightmap_raster need; cgp_instances_changed sees every
- * change to the instances a filter keeps, and none to the others. */
+ * change to the instances a filter keeps, and none to the others; cgp_lighting_changed tells the
+ * lights from the shadow map and keeps the lights by value. */
 #include <float.h>
 #include <stddef.h>
 #include <stdio.h>
@@ -14,6 +15,7 @@
 #include "sdk/instances.h"
 #include "sdk/pass.h"
 #include "sdk/scene.h"
+#include "sdk/shadow.h"
 #include "test_support.h"
 
 static GLuint layout_program;
@@ -243,9 +245,60 @@ instances_changed_by_filter(void **state)
     cg_scene_free(&scene);
 }
 
+/* The lighting record (sdk/shadow.h) that voxel_light and heightmap_raster keep: nothing recorded
+ * is a change of the lights; the lights are compared by value and kept by value (the scene's array
+ * may change or go after cgp_lighting_remember); a shadow map's objects or matrix block alone is
+ * CGP_LIGHTING_SHADOW; the lights win when both changed. */
+static void
+lighting_record_tells_lights_from_shadow(void **state)
+{
+    (void)state;
+    cg_error err = {0};
+    cg_light lights[2];
+    memset(lights, 0, sizeof lights);
+    cg_default_sun(&lights[0]);
+    cg_default_sun(&lights[1]);
+    lights[1].intensity = 1.0f;
+    cgp_lighting_record now = {.taken = true, .lights = lights, .light_count = 2, .shadow_objects = {3, 4}};
+    now.shadow_block[0] = 1;
+    cgp_lighting_record kept = {0};
+    assert_int_equal(cgp_lighting_changed(&kept, &now), CGP_LIGHTING_LIGHTS);
+    assert_cg_ok(cgp_lighting_remember(&kept, &now, &err), &err);
+    assert_int_equal(cgp_lighting_changed(&kept, &now), CGP_LIGHTING_SAME);
+    /* Kept by value: the record does not follow the scene's array. */
+    assert_ptr_not_equal(kept.lights, lights);
+    lights[1].intensity = 2.0f;
+    assert_int_equal(cgp_lighting_changed(&kept, &now), CGP_LIGHTING_LIGHTS);
+    lights[1].intensity = 1.0f;
+    now.light_count = 1;
+    assert_int_equal(cgp_lighting_changed(&kept, &now), CGP_LIGHTING_LIGHTS);
+    now.light_count = 2;
+    /* The shadow map alone: its matrix block, its objects. */
+    now.shadow_block[255] = 9;
+    assert_int_equal(cgp_lighting_changed(&kept, &now), CGP_LIGHTING_SHADOW);
+    lights[0].direction[0] += 0.1f;
+    assert_int_equal(cgp_lighting_changed(&kept, &now), CGP_LIGHTING_LIGHTS);
+    lights[0].direction[0] -= 0.1f;
+    now.shadow_block[255] = 0;
+    now.shadow_objects[1] = 5;
+    assert_int_equal(cgp_lighting_changed(&kept, &now), CGP_LIGHTING_SHADOW);
+    /* Remembered again with fewer lights, then none. */
+    now.light_count = 1;
+    assert_cg_ok(cgp_lighting_remember(&kept, &now, &err), &err);
+    assert_int_equal(cgp_lighting_changed(&kept, &now), CGP_LIGHTING_SAME);
+    now.light_count = 0;
+    now.lights = NULL;
+    assert_int_equal(cgp_lighting_changed(&kept, &now), CGP_LIGHTING_LIGHTS);
+    assert_cg_ok(cgp_lighting_remember(&kept, &now, &err), &err);
+    assert_int_equal(cgp_lighting_changed(&kept, &now), CGP_LIGHTING_SAME);
+    cgp_lighting_record_free(&kept);
+    assert_int_equal(cgp_lighting_changed(&kept, &now), CGP_LIGHTING_LIGHTS);
+}
+
 CG_TEST_MAIN(cg_test_gl_setup, cg_test_gl_teardown,
              cmocka_unit_test(blocks_have_the_c_layout_in_glsl),
              cmocka_unit_test(state_deletes_what_it_owns),
              cmocka_unit_test(registration_checks_the_abi_first),
              cmocka_unit_test(mesh_bounds_of_a_subset),
-             cmocka_unit_test(instances_changed_by_filter))
+             cmocka_unit_test(instances_changed_by_filter),
+             cmocka_unit_test(lighting_record_tells_lights_from_shadow))
