@@ -150,9 +150,8 @@ typedef struct voxel_light_state {
         int bounces, bounce_cones, bounce_spacing;
         bool glossy, lobes;     /* the parameter; whether a material has a lobe (glossy is lit then) */
         cg_sky sky;
-        cgp_lighting_record lighting;   /* the lights and the shadow map (sdk/shadow.h; lights borrowed) */
     } key;
-    cgp_lighting_record lighting;   /* the key's lighting at the last relight, its lights kept */
+    cgp_lighting_record lighting;   /* the lights and the shadow map at the last relight (sdk/shadow.h) */
     uint64_t relights;      /* frames that relit since prepare */
     int dispatches;         /* compute dispatches of this frame's execute */
     fg_slot geometry[5];    /* geometry_names */
@@ -669,7 +668,6 @@ read_key(const fg_pass *pass, const voxel_light_state *s, struct light_key *key)
     /* voxelize writes its region block every frame: read back, it says whether the region, the
      * levels or the radiance scale moved (48 bytes; the pass's work is done by then anyway). */
     glGetNamedBufferSubData(fg_slot_buffer(pass, s->region), 0, sizeof key->region, &key->region);
-    cgp_lighting_read(pass, &s->no_shadow, &key->lighting);
     key->bounces = fg_param_int(pass, "bounces");
     key->bounce_cones = fg_param_int(pass, "bounce_cones");
     key->bounce_spacing = fg_param_int(pass, "bounce_spacing");
@@ -678,11 +676,12 @@ read_key(const fg_pass *pass, const voxel_light_state *s, struct light_key *key)
     key->sky = fg_pass_frame(pass)->scene->sky;
 }
 
-/* Why this frame must relight (NULL: nothing the light reads changed since the last relight).
- * *lights_only: what changed is the lights or the shadow map alone, which G(V_0) does not read
- * (unless a Preetham sky follows the sun). */
+/* Why this frame must relight (NULL: nothing the light reads changed since the last relight), `key`
+ * and `lighting` being what it reads this frame. *lights_only: what changed is the lights or the
+ * shadow map alone, which G(V_0) does not read (unless a Preetham sky follows the sun). */
 static const char *
-what_changed(const fg_pass *pass, const voxel_light_state *s, const struct light_key *key, bool *lights_only)
+what_changed(const fg_pass *pass, const voxel_light_state *s, const struct light_key *key,
+             const cgp_lighting_record *lighting, bool *lights_only)
 {
     const fg_frame *frame = fg_pass_frame(pass);
     *lights_only = false;
@@ -700,7 +699,7 @@ what_changed(const fg_pass *pass, const voxel_light_state *s, const struct light
         return "parameters changed";
     if (!cg_sky_equal(&key->sky, &s->key.sky) || key->sky.type != s->key.sky.type)
         return "sky changed";
-    cgp_lighting_change change = cgp_lighting_changed(&s->lighting, &key->lighting);
+    cgp_lighting_change change = cgp_lighting_changed(&s->lighting, lighting);
     if (change == CGP_LIGHTING_SAME)
         return NULL;
     bool lights = change == CGP_LIGHTING_LIGHTS;
@@ -710,16 +709,15 @@ what_changed(const fg_pass *pass, const voxel_light_state *s, const struct light
 
 /* Keeps what this relight read, for the next frame's what_changed. */
 static bool
-remember(const fg_pass *pass, voxel_light_state *s, const struct light_key *key, bool first_gather_kept, cg_error *err)
+remember(const fg_pass *pass, voxel_light_state *s, const struct light_key *key, const cgp_lighting_record *lighting,
+         bool first_gather_kept, cg_error *err)
 {
     const fg_frame *frame = fg_pass_frame(pass);
     s->lit = false;
-    if (!cgp_lighting_remember(&s->lighting, &key->lighting, err) ||
+    if (!cgp_lighting_remember(&s->lighting, lighting, err) ||
         !cgp_instances_remember(&s->instances, frame, CG_MESHES_ALL, err))
         return false;
     s->key = *key;
-    /* Its lights were the scene's, borrowed: s->lighting holds them by value. */
-    memset(&s->key.lighting, 0, sizeof s->key.lighting);
     s->lit = true;
     s->first_gather_kept = first_gather_kept;
     s->list_kept = true;
@@ -736,11 +734,13 @@ voxel_light_execute(fg_pass *pass, voxel_light_state *s, cg_error *err)
     cgp_reads_begin(s->reads);
     glBindBufferBase(GL_UNIFORM_BUFFER, CG_BINDING_VOLUME, fg_slot_buffer(pass, s->region));
     struct light_key key;
+    cgp_lighting_record lighting = {0};
     bool lights_only = false;
     const char *why = "cache=false";
     if (s->cache) {
         read_key(pass, s, &key);
-        why = what_changed(pass, s, &key, &lights_only);
+        cgp_lighting_read(pass, &s->no_shadow, &lighting);
+        why = what_changed(pass, s, &key, &lighting, &lights_only);
         if (!why) {
             fg_pass_report_rebuilt(pass, "volumes kept (0 dispatches; %llu relight%s since prepare)",
                                    (unsigned long long)s->relights, s->relights == 1 ? "" : "s");
@@ -830,7 +830,7 @@ voxel_light_execute(fg_pass *pass, voxel_light_state *s, cg_error *err)
                                count, count == 1 ? "" : "s", s->listed);
     else
         fg_pass_report_rebuilt(pass, "volumes relit (%s): %d dispatches", why, s->dispatches);
-    return !s->cache || remember(pass, s, &key, keeps_first, err);
+    return !s->cache || remember(pass, s, &key, &lighting, keeps_first, err);
 }
 
 CGP_PASS(voxel_light, CGP_PARAMS(voxel_light_params),

@@ -40,7 +40,7 @@ make_scene(hf_scene *s)
     hf_init(s);
     hf_material(s, 1, 0.6f, 0.05f);
     hf_grid(s, 24, -4.0, -4.0, 8.0, bumpy, NULL);
-    /* A complex plate 2 m over the terrain's middle, casting a shadow on it. */
+    /* A complex plate at 3.5 m, above the terrain's middle, casting a shadow on it. */
     const double corner[3] = {-1.0, 3.5, -1.0}, e1[3] = {0.0, 0.0, 2.0}, e2[3] = {2.0, 0.0, 0.0};
     hf_quad(s, corner, e1, e2);
     const double sun[3] = {0.4, -1.0, 0.3};
