@@ -676,7 +676,8 @@ test_temporal_motion(void **state)
         spec.look_at[k] = 0.5f * (building->motion_min[k] + building->motion_max[k]);
         size = fmaxf(size, building->motion_max[k] - building->motion_min[k]);
     }
-    /* From the south-east and a little above, 1.5 of its size away: it fills most of the image. */
+    /* From the south-east and a little above, 1.5 of its size away: it covers about a tenth of the
+     * image (585 of the 6144 pixels at the first frame). */
     spec.from[0] = spec.look_at[0] + size;
     spec.from[1] = spec.look_at[1] + 0.5f * size;
     spec.from[2] = spec.look_at[2] + size;
